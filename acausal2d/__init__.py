@@ -1,0 +1,37 @@
+"""acausal2d: acausal, equation-based simulation of planar mechanisms.
+
+Write models as Python classes (:class:`Component`), then :func:`compile_model`
+and :meth:`CompiledModel.simulate` them, or call :func:`simulate` directly.
+"""
+import os as _os
+
+_os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is imported
+
+from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
+                    fmin, fmax, sign, if_else, pi)
+
+from .connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
+                         RotationalFlange, TranslationalFlange)
+from .dsl import Component, Parameter, Variable, start  # noqa: E402,F401
+from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
+                     SimulationError, StructuralError)
+from .symbols import der, time  # noqa: E402,F401
+
+Model = Component
+"""Alias of :class:`Component` for top-level models."""
+
+
+def compile_model(model, **options):
+    """Flatten, index-reduce and prepare ``model`` for simulation; returns a
+    :class:`~acausal2d.compiler.CompiledModel` that simulates many times with
+    different parameter values without recompiling."""
+    from .compiler import compile_model as _compile
+    return _compile(model, **options)
+
+
+def simulate(model, stop_time=None, **options):
+    """Compile (if needed) and simulate ``model``; returns a
+    :class:`~acausal2d.result.Result`.  See :meth:`CompiledModel.simulate`."""
+    from .compiler import CompiledModel
+    compiled = model if isinstance(model, CompiledModel) else compile_model(model)
+    return compiled.simulate(stop_time=stop_time, **options)

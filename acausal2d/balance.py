@@ -1,0 +1,124 @@
+"""Balance and structural-singularity check of the flattened equations.
+
+Builds the bipartite graph equations x unknowns (an unknown is incident to an
+equation if it or one of its derivatives appears), finds a maximum matching
+and, if it is not perfect, reports which equations over-determine which
+unknowns and which unknowns no equation determines (Dulmage-Mendelsohn
+coarse decomposition), naming components and equations.
+"""
+import casadi as ca
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import maximum_bipartite_matching
+
+from . import symbols
+from .errors import StructuralError
+
+_LIST = 12
+
+
+def incidence(equations, variables):
+    """Sparse 0/1 matrix (equations x variables) of the structural incidence;
+    derivatives count for their base variable."""
+    index = {symbols.key(v.sym): j for j, v in enumerate(variables)}
+    rows, cols = [], []
+    for i, eq in enumerate(equations):
+        for s in ca.symvar(eq.expr):
+            if symbols.kind(s) != symbols.VAR:
+                continue
+            base, _ = symbols.base_and_level(s)
+            j = index.get(symbols.key(base))
+            if j is not None:
+                rows.append(i)
+                cols.append(j)
+    m = sp.csr_matrix((np.ones(len(rows)), (rows, cols)),
+                      shape=(len(equations), len(variables)))
+    m.data[:] = 1.0
+    return m
+
+
+def _names(items, describe):
+    lines = [describe(x) for x in items[:_LIST]]
+    if len(items) > _LIST:
+        lines.append("... and %d more" % (len(items) - _LIST))
+    return "\n".join("  - " + s for s in lines)
+
+
+def _var_desc(v):
+    owner = v.owner.describe() if v.owner is not None else "model"
+    return "%s (in %s)" % (v.name, owner)
+
+
+def check_balance(equations, variables):
+    """Raise :class:`StructuralError` unless the system is square and has a
+    perfect structural matching."""
+    for eq in equations:
+        if not any(symbols.kind(s) == symbols.VAR for s in ca.symvar(eq.expr)):
+            raise StructuralError(
+                "Equation without unknowns after alias elimination (it repeats what other "
+                "equations already state, e.g. a connection closing a loop of equal "
+                "potentials, or a fixed value set twice):\n  - %s\nRemove it." % eq.describe())
+    n_eq, n_var = len(equations), len(variables)
+    A = incidence(equations, variables)
+    match_eq = maximum_bipartite_matching(A, perm_type="column") if n_eq and n_var else \
+        np.full(n_eq, -1)
+    if n_eq == n_var and (n_eq == 0 or np.all(match_eq >= 0)):
+        return
+    matched_vars = set(int(j) for j in match_eq if j >= 0)
+    free_eqs = [i for i in range(n_eq) if match_eq[i] < 0]
+    free_vars = [j for j in range(n_var) if j not in matched_vars]
+    var_of_eq = {i: int(match_eq[i]) for i in range(n_eq) if match_eq[i] >= 0}
+    eq_of_var = {j: i for i, j in var_of_eq.items()}
+    At = A.T.tocsr()
+    # over-determined part: equations reachable from free equations by alternating paths
+    over_eqs, over_vars = set(free_eqs), set()
+    stack = list(free_eqs)
+    while stack:
+        i = stack.pop()
+        for j in A.indices[A.indptr[i]:A.indptr[i + 1]]:
+            if j not in over_vars:
+                over_vars.add(j)
+                i2 = eq_of_var.get(j)
+                if i2 is not None and i2 not in over_eqs:
+                    over_eqs.add(i2)
+                    stack.append(i2)
+    # under-determined part: variables reachable from free variables
+    under_vars, under_eqs = set(free_vars), set()
+    stack = list(free_vars)
+    while stack:
+        j = stack.pop()
+        for i in At.indices[At.indptr[j]:At.indptr[j + 1]]:
+            if i not in under_eqs:
+                under_eqs.add(i)
+                j2 = var_of_eq.get(i)
+                if j2 is not None and j2 not in under_vars:
+                    under_vars.add(j2)
+                    stack.append(j2)
+    if n_eq > n_var:
+        head = ("The model is over-determined: %d equations for %d unknowns (%d too many)."
+                % (n_eq, n_var, n_eq - n_var))
+    elif n_eq < n_var:
+        head = ("The model is under-determined: %d equations for %d unknowns (%d missing)."
+                % (n_eq, n_var, n_var - n_eq))
+    else:
+        head = ("The model is structurally singular: %d equations and %d unknowns, but "
+                "some equations constrain the same unknowns while others are left free."
+                % (n_eq, n_var))
+    parts = [head]
+    if free_eqs:
+        eqs = sorted(over_eqs)
+        parts.append("These %d equations determine only %d unknowns (%s); one of them is "
+                     "too many - remove it or add the unknown it should determine:\n%s"
+                     % (len(eqs), len(over_vars),
+                        ", ".join(variables[j].name for j in sorted(over_vars)[:_LIST]) or "none",
+                        _names([equations[i] for i in eqs], lambda e: e.describe())))
+    if free_vars:
+        vs = sorted(under_vars)
+        parts.append("These unknowns are not determined by any equation (add an equation, "
+                     "connect the connector, or fix a value):\n%s"
+                     % _names([variables[j] for j in sorted(free_vars)], _var_desc))
+        if len(vs) > len(free_vars):
+            parts.append("They compete with %s for the equations:\n%s" % (
+                ", ".join(variables[j].name for j in vs if j not in free_vars)[:400],
+                _names([equations[i] for i in sorted(under_eqs)], lambda e: e.describe())))
+    raise StructuralError("\n".join(parts))

@@ -1,0 +1,211 @@
+"""Flattening: from a component tree to one list of scalar equations.
+
+Creates the symbols of every component, collects their equations, builds
+the connection sets (potentials equal, flows sum to zero, seed eq. 4.1) and
+closes unconnected connectors (flows zero, or fixed to ground for connectors
+declared with ``ground=``).
+"""
+import casadi as ca
+import numpy as np
+
+from .connectors import Connector
+from .errors import ModelDefinitionError
+
+
+class Equation:
+    """One scalar residual equation ``expr == 0`` and where it comes from."""
+
+    __slots__ = ("expr", "origin", "text")
+
+    def __init__(self, expr, origin, text):
+        self.expr = expr
+        self.origin = origin
+        self.text = text
+
+    def describe(self):
+        """'origin: text' for messages."""
+        return "%s: %s" % (self.origin, self.text)
+
+    def __repr__(self):
+        return "Equation(%s)" % self.describe()
+
+
+class FlatModel:
+    """Result of flattening: variables, parameters and equations."""
+
+    def __init__(self, model, variables, parameters, equations):
+        self.model = model
+        self.variables = variables        # list of VarInfo
+        self.parameters = parameters      # list of (name, symbol, value, decl)
+        self.equations = equations        # list of Equation
+
+
+def _residuals(item, origin, out, counter):
+    if isinstance(item, (list, tuple)):
+        for sub in item:
+            _residuals(sub, origin, out, counter)
+        return
+    if isinstance(item, (bool, np.bool_)):
+        raise ModelDefinitionError(
+            "%s equation %d is the Python value %r; write equations between symbolic "
+            "expressions (a == b)" % (origin, counter[0] + 1, item))
+    try:
+        e = ca.SX(item)
+    except Exception:
+        raise ModelDefinitionError("%s equation %d is not an expression: %r"
+                                   % (origin, counter[0] + 1, item)) from None
+    for k in range(e.numel()):
+        el = e[k]
+        counter[0] += 1
+        if el.is_scalar() and el.n_dep() == 2 and el.op() == ca.OP_EQ:
+            lhs, rhs = el.dep(0), el.dep(1)
+            text = "%s == %s" % (_fmt(lhs), _fmt(rhs))
+            res = lhs - rhs
+        else:
+            text = "%s == 0" % _fmt(el)
+            res = el
+        if res.is_constant():
+            raise ModelDefinitionError(
+                "%s equation %d (%s) contains no unknowns" % (origin, counter[0], text))
+        out.append(Equation(res, "%s equation %d" % (origin, counter[0]), text))
+
+
+def _fmt(e):
+    s = str(e)
+    return s if len(s) < 160 else s[:157] + "..."
+
+
+def _ensure_world(model):
+    from acausal2d.library.planar import PlanarWorld
+    needs = any(getattr(type(c), "needs_world", False) for c in model.components())
+    if not needs:
+        return
+    if any(isinstance(c, PlanarWorld) for c in model._children.values()):
+        return
+    name = "world"
+    while name in model._children or name in model.__dict__:
+        name += "_"
+    setattr(model, name, PlanarWorld())
+
+
+def flatten(model):
+    """Flatten ``model`` (a Component instance) into a :class:`FlatModel`."""
+    _ensure_world(model)
+    params, variables = [], []
+    comps = list(model.components())
+    for comp in comps:
+        comp._bind(params, variables)
+    equations = []
+    for comp in comps:
+        origin = comp.describe()
+        try:
+            items = comp.equations()
+        except ModelDefinitionError:
+            raise
+        except Exception as exc:
+            raise ModelDefinitionError("%s: equations() failed: %s: %s"
+                                       % (origin, type(exc).__name__, exc)) from None
+        _residuals(items if items is not None else [], origin, equations, [0])
+    equations.extend(_connection_equations(model, comps))
+    return FlatModel(model, variables, params, equations)
+
+
+def _is_descendant(comp, ancestor):
+    node = comp
+    while node is not None:
+        if node is ancestor:
+            return True
+        node = node._parent
+    return False
+
+
+def _connection_equations(model, comps):
+    parent = {}
+
+    def find(k):
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    members = {}
+    for scope in comps:
+        for a, b in scope._connections:
+            keys = []
+            for c in (a, b):
+                if c.owner is None:
+                    raise ModelDefinitionError("connect(): connector %s is not attached to a component"
+                                               % c.describe())
+                if not _is_descendant(c.owner, scope):
+                    raise ModelDefinitionError(
+                        "%s connects %s, which is not part of it" % (scope.describe(), c.path))
+                side = "outside" if c.owner is scope else "inside"
+                k = (id(c), side)
+                members[k] = (c, side)
+                parent.setdefault(k, k)
+                keys.append(k)
+            ra, rb = find(keys[0]), find(keys[1])
+            if ra != rb:
+                parent[ra] = rb
+    sets = {}
+    for k in members:
+        sets.setdefault(find(k), []).append(members[k])
+
+    eqs = []
+    connected_inside = set()
+    for elems in sets.values():
+        elems.sort(key=lambda e: e[0].path)
+        conns = [c for c, _ in elems]
+        names = ", ".join(c.path for c in conns)
+        for c, side in elems:
+            if side == "inside":
+                connected_inside.add(id(c))
+        if type(conns[0]).one_to_one and len(elems) > 2:
+            raise ModelDefinitionError(
+                "band connectors may be connected one-to-one only, but %s are joined: "
+                "use a separate band element between them" % names)
+        if type(conns[0]).signal is not None:
+            sources = [c for c, side in elems
+                       if (c.signal == "output") == (side == "inside")]
+            if len(sources) != 1:
+                raise ModelDefinitionError(
+                    "signal connection {%s} must have exactly one source (an output), has %d"
+                    % (names, len(sources)))
+        origin = "connect(%s)" % names
+        first = conns[0]
+        for c in conns[1:]:
+            for pot in type(first).potentials:
+                eqs.append(_conn_eq(getattr(c, pot) - getattr(first, pot), origin,
+                                    "%s.%s == %s.%s" % (c.path, pot, first.path, pot)))
+        for flow in type(first).flows:
+            total = 0
+            terms = []
+            for c, side in elems:
+                f = getattr(c, flow)
+                total = total + (f if side == "inside" else -f)
+                terms.append(("" if side == "inside" else "-") + "%s.%s" % (c.path, flow))
+            eqs.append(_conn_eq(total, origin, " + ".join(terms) + " == 0"))
+
+    for comp in comps:
+        for conn in comp._connectors.values():
+            if id(conn) in connected_inside or comp is model:
+                continue
+            if conn.ground is not None:
+                ground = conn.ground(comp) if callable(conn.ground) else conn.ground
+                for pot, value in ground.items():
+                    eqs.append(_conn_eq(getattr(conn, pot) - value,
+                                        "%s (unconnected, fixed to ground)" % conn.path,
+                                        "%s.%s == %s" % (conn.path, pot, value)))
+            elif conn.required:
+                raise ModelDefinitionError(
+                    "connector %s must be connected (it is required by %s)"
+                    % (conn.path, comp.describe()))
+            else:
+                for flow in type(conn).flows:
+                    eqs.append(_conn_eq(getattr(conn, flow), "%s (unconnected)" % conn.path,
+                                        "%s.%s == 0" % (conn.path, flow)))
+    return eqs
+
+
+def _conn_eq(expr, origin, text):
+    return Equation(ca.SX(expr), origin, text)

@@ -1,0 +1,241 @@
+"""Integration with IDA (SUNDIALS, through scikit-sundae).
+
+Residual, iteration matrix dF/dy + cj dF/dyp and zero-crossing functions
+are CasADi functions evaluated through ``Function.buffer()``.  The run is
+split into segments at events: a relation changes its value (then the
+system is re-initialized with the states held), or a dynamically selected
+dummy block becomes ill-conditioned (then the states are re-selected at
+that point).  Event instants are recorded twice (left and right limit).
+"""
+import os
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
+import sksundae as sun  # noqa: E402
+
+from .errors import Acausal2dError, InitializationError, SimulationError  # noqa: E402
+from .initialize import solve_consistent  # noqa: E402
+
+_MONITOR_THRESHOLD = 0.25
+
+
+class _Buffered:
+    """A CasADi function bound to fixed numpy input/output arrays."""
+
+    def __init__(self, fn, inputs):
+        self.buf, self.eval = fn.buffer()
+        self.args = []
+        for k, arr in enumerate(inputs):
+            a = np.ascontiguousarray(arr, dtype=float).copy()
+            self.args.append(a)
+            self.buf.set_arg(k, memoryview(a))
+        self.outs = []
+        for k in range(fn.n_out()):
+            o = np.zeros(fn.nnz_out(k))
+            self.outs.append(o)
+            self.buf.set_res(k, memoryview(o))
+
+
+class _Problem:
+    def __init__(self, form, p, d, n_monitor_ref):
+        n = form.n
+        t = np.zeros(1)
+        z = np.zeros(n)
+        self.form = form
+        self.res = _Buffered(form.res_fn, [t, z, z, p, d])
+        self.jac = _Buffered(form.jac_fn, [t, z, z, p, d, np.zeros(1)])
+        self.g = _Buffered(form.g_fn, [t, z, z, p, d]) if form.g_fn is not None else None
+        self.mon = _Buffered(form.monitor_fn, [t, z, z, p, d]) \
+            if form.monitor_fn is not None else None
+        self.mon_ref = n_monitor_ref
+        sparsity = form.jac_sparsity
+        if form.sparse:
+            colind = np.array(sparsity.colind())
+            row = np.array(sparsity.row())
+            self.pattern = sp.csc_matrix((np.ones(len(row)), row, colind), shape=(n, n))
+        else:
+            r, c = sparsity.get_triplet()
+            self.rows, self.cols = np.array(r, dtype=int), np.array(c, dtype=int)
+        self.n_rel = len(self.g.outs[0]) if self.g is not None else 0
+        self.n_mon = len(form.monitors) if self.mon is not None else 0
+
+    def resfn(self, t, y, yp, res):
+        a = self.res.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        self.res.eval()
+        res[:] = self.res.outs[0]
+
+    def jacfn(self, t, y, yp, res, cj, JJ):
+        a = self.jac.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        a[5][0] = cj
+        self.jac.eval()
+        if self.form.sparse:
+            JJ[:] = self.jac.outs[0]
+        else:
+            JJ.fill(0.0)
+            JJ[self.rows, self.cols] = self.jac.outs[0]
+
+    def monitor_values(self, t, y, yp):
+        a = self.mon.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        self.mon.eval()
+        out = []
+        for k, blk in enumerate(self.form.monitors):
+            M = self.mon.outs[k]
+            m = np.zeros(blk.shape)
+            sparsity = blk.sparsity()
+            r, c = sparsity.get_triplet()
+            m[r, c] = M
+            out.append(abs(np.linalg.det(m)))
+        return np.array(out)
+
+    def eventsfn(self, t, y, yp, events):
+        if self.g is not None:
+            a = self.g.args
+            a[0][0] = t
+            a[1][:] = y
+            a[2][:] = yp
+            self.g.eval()
+            events[:self.n_rel] = self.g.outs[0]
+        if self.n_mon:
+            events[self.n_rel:] = self.monitor_values(t, y, yp) / self.mon_ref - _MONITOR_THRESHOLD
+
+
+def _solver(prob, rtol, atol):
+    form = prob.form
+    n_ev = prob.n_rel + prob.n_mon
+    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=200000,
+                algebraic_idx=np.where(~form.differential)[0] if np.any(~form.differential)
+                else None)
+    if form.sparse:
+        opts.update(linsolver="sparse", sparsity=prob.pattern)
+    if n_ev:
+        ev = prob.eventsfn
+
+        def eventsfn(t, y, yp, events):
+            ev(t, y, yp, events)
+        eventsfn.terminal = [True] * n_ev
+        eventsfn.direction = [0] * prob.n_rel + [-1] * prob.n_mon
+        opts.update(eventsfn=eventsfn, num_events=n_ev)
+    return sun.ida.IDA(prob.resfn, **opts)
+
+
+def _worst_variable(cm, form, prob, t, y, yp):
+    """Name of the variable most involved in a near-singular iteration matrix."""
+    try:
+        a = prob.jac.args
+        a[0][0], a[1][:], a[2][:], a[5][0] = t, y, yp, 1e3
+        prob.jac.eval()
+        if form.n > 600:
+            return None
+        J = np.zeros((form.n, form.n))
+        r, c = form.jac_sparsity.get_triplet()
+        J[r, c] = prob.jac.outs[0]
+        _, _, vt = np.linalg.svd(J)
+        k = int(np.argmax(np.abs(vt[-1])))
+        return cm.node_names[form.y_nodes[k]]
+    except Exception:
+        return None
+
+
+def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
+    """Integrate the compiled model ``cm`` from consistent node values z0.
+
+    Returns (times, node values [n_times x n_nodes], events, stats)."""
+    t_end = float(times[-1])
+    t = float(times[0])
+    z = np.array(z0, dtype=float)
+    d = np.array(d0, dtype=float)
+    out_t, out_z = [t], [z.copy()]
+    events = []
+    stats = {"steps_segments": 0, "events": 0, "reselections": 0, "nfev": 0, "njev": 0}
+    selection = cm.select(t, z, p, d)
+    nominal = np.array(cm.nominal)
+    eps = 1e-12 * max(1.0, abs(t_end))
+    while t < t_end - eps:
+        form = cm.formulation(selection)
+        prob = _Problem(form, p, d, 1.0)
+        y0, yp0 = form.y_from(z)
+        if prob.n_mon:
+            prob.mon_ref = np.maximum(prob.monitor_values(t, y0, yp0), 1e-300)
+        a = atol if atol is not None else rtol * nominal[form.y_pos]
+        solver = _solver(prob, rtol, a)
+        remaining = times[times > t + eps]
+        tspan = np.concatenate([[t], remaining])
+        drop_mid = False
+        if len(tspan) == 2:
+            tspan = np.array([t, 0.5 * (t + tspan[1]), tspan[1]])
+            drop_mid = True
+        try:
+            sol = solver.solve(tspan, y0, yp0)
+        except Exception as exc:  # SUNDIALS setup errors
+            raise SimulationError("IDA could not start at t=%.6g: %s" % (t, exc), time=t) from None
+        stats["segments"] = stats.get("segments", 0) + 1
+        stats["nfev"] += int(getattr(sol, "nfev", 0) or 0)
+        stats["njev"] += int(getattr(sol, "njev", 0) or 0)
+        ts = np.asarray(sol.t)
+        ys = np.asarray(sol.y)
+        yps = np.asarray(sol.yp)
+        event = sol.status == 2 and sol.t_events is not None and len(sol.t_events)
+        n_regular = len(ts) - (1 if event else 0)
+        for k in range(1, n_regular):
+            if drop_mid and k == 1 and len(ts) > 2 and not event:
+                continue
+            if drop_mid and event and ts[k] != tspan[-1]:
+                continue
+            out_t.append(float(ts[k]))
+            out_z.append(form.nodes_from(ys[k], yps[k]))
+        if progress is not None and len(out_t):
+            progress(out_t[-1], t_end)
+        if not sol.success and not event:
+            tf = float(ts[-1]) if len(ts) else t
+            var = _worst_variable(cm, form, prob, tf, ys[-1], yps[-1]) if len(ts) else None
+            raise SimulationError(
+                "Integration failed at t=%.6g (IDA status %s: %s)%s." % (
+                    tf, sol.status, str(sol.message).strip(),
+                    "; the variable most involved is '%s'" % var if var else ""),
+                time=tf, status=sol.status, variable=var)
+        if not event:
+            break
+        te = float(sol.t_events[-1])
+        ye, ype = np.asarray(sol.y_events)[-1], np.asarray(sol.yp_events)[-1]
+        ze = form.nodes_from(ye, ype)
+        which = np.nonzero(np.asarray(sol.i_events)[-1])[0]
+        rel_hits = [k for k in which if k < prob.n_rel]
+        out_t.append(te)
+        out_z.append(ze)
+        if rel_hits:
+            stats["events"] += 1
+            d_new = d.copy()
+            for k in rel_hits:
+                d_new[k] = 1.0 - d[k]
+            held = list(np.asarray(form.y_nodes)[form.differential])
+            try:
+                z_new = solve_consistent(cm.init_system, te, ze, p, d_new, held, ze[held],
+                                         cm.describe_equation, cm.node_name)
+            except InitializationError as exc:
+                raise SimulationError("Re-initialization after the event at t=%.6g (%s) failed:\n%s"
+                                      % (te, "; ".join(cm.relations[k].text for k in rel_hits),
+                                         exc), time=te) from None
+            d = d_new
+            events.append((te, "; ".join(cm.relations[k].text for k in rel_hits)))
+            z = z_new
+            out_t.append(te)
+            out_z.append(z.copy())
+        else:
+            stats["reselections"] += 1
+            z = ze
+            new_sel = cm.select(te, z, p, d)
+            events.append((te, "state re-selection"))
+            selection = new_sel
+        t = te
+    return np.array(out_t), np.array(out_z), events, stats

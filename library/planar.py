@@ -1,0 +1,160 @@
+"""Planar multibody basics with the semantics of the Modelica library
+PlanarMechanics (frames resolved in the world frame, phi and t counter-clockwise
+positive), as described in the project's reference data README.
+
+Each element states position-level equations, force/torque balances and mass
+data only; velocities and accelerations are produced by index reduction.
+The flows of a :class:`~acausal2d.connectors.Frame` are the force and torque
+acting on the element from the connected part (seed eq. 4.1 at the nodes).
+"""
+import casadi as ca
+
+from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
+from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d.symbols import der
+
+
+class PlanarWorld(Component):
+    """Gravity field for all bodies of the model (default {0, -9.81} m/s²).
+
+    Place one in a model to change gravity; a model without one gets the
+    default automatically."""
+    g = Parameter((0.0, -9.81), "m/s2", "gravity acceleration, world frame")
+
+
+def _gravity(comp):
+    world = comp.world()
+    if world is None:  # the flattener adds a world to the root model
+        raise RuntimeError("no PlanarWorld in the model")
+    return world.g
+
+
+class Fixed(Component):
+    """Frame fixed in the world at (x, y) with angle phi."""
+    r = Parameter((0.0, 0.0), "m", "position of the frame in the world")
+    phi = Parameter(0.0, "rad", "angle of the frame")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.frame = Frame()
+
+    def equations(self):
+        f = self.frame
+        return [f.x == self.r[0], f.y == self.r[1], f.phi == self.phi]
+
+
+class Body(Component):
+    """Rigid body: point mass m at its frame origin, rotational inertia I about
+    that origin, under the world's gravity (PlanarMechanics Body; seed Anhang
+    A.3 with the centre of gravity at the frame origin).
+
+    Outputs: x, y, phi of the frame."""
+    needs_world = True
+    m = Parameter(1.0, "kg", "mass")
+    I = Parameter(0.1, "kg.m2", "rotational inertia about the frame origin")
+    x = Variable(unit="m", doc="x position")
+    y = Variable(unit="m", doc="y position")
+    phi = Variable(unit="rad", doc="angle")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.frame_a = Frame()
+
+    def equations(self):
+        f = self.frame_a
+        g = _gravity(self)
+        return [self.x == f.x, self.y == f.y, self.phi == f.phi,
+                self.m * der(der(self.x)) == f.fx + self.m * g[0],
+                self.m * der(der(self.y)) == f.fy + self.m * g[1],
+                self.I * der(der(self.phi)) == f.t]
+
+
+class FixedTranslation(Component):
+    """Massless rigid rod from frame_a to frame_b; r is resolved in frame_a."""
+    r = Parameter((1.0, 0.0), "m", "vector from frame_a to frame_b, in frame_a")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+
+    def equations(self):
+        a, b = self.frame_a, self.frame_b
+        c, s = ca.cos(a.phi), ca.sin(a.phi)
+        rx = c * self.r[0] - s * self.r[1]
+        ry = s * self.r[0] + c * self.r[1]
+        return [b.x == a.x + rx, b.y == a.y + ry, b.phi == a.phi,
+                a.fx + b.fx == 0, a.fy + b.fy == 0,
+                a.t + b.t + rx * b.fy - ry * b.fx == 0]
+
+
+class Revolute(Component):
+    """Revolute joint: frame_b turns against frame_a by phi about their common
+    origin; w = der(phi).  With ``use_flange=True`` a 1D rotational flange
+    (angle phi, driving torque tau) and a support flange (fixed at 0, carried
+    by frame_a) are added.  ``state_select`` applies to phi and w (default
+    'prefer', as in PlanarMechanics)."""
+    phi = Variable(unit="rad", doc="relative angle")
+    w = Variable(unit="rad/s", doc="relative angular velocity")
+
+    def __init__(self, use_flange=False, state_select="prefer", **kw):
+        super().__init__(**kw)
+        self._var_decls["phi"].state_select = state_select
+        self._var_decls["w"].state_select = state_select
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+        self.use_flange = use_flange
+        if use_flange:
+            self.flange_a = RotationalFlange()
+            self.support = RotationalFlange()
+
+    def equations(self):
+        a, b = self.frame_a, self.frame_b
+        eqs = [b.x == a.x, b.y == a.y, b.phi == a.phi + self.phi,
+               self.w == der(self.phi),
+               a.fx + b.fx == 0, a.fy + b.fy == 0, a.t + b.t == 0]
+        if self.use_flange:
+            eqs += [self.flange_a.phi == self.phi, b.t == -self.flange_a.tau,
+                    self.support.phi == 0]
+        else:
+            eqs.append(b.t == 0)
+        return eqs
+
+
+class Prismatic(Component):
+    """Prismatic joint: frame_b moves by s along the unit vector of r
+    (resolved in frame_a); same angle; v = der(s).  With ``use_flange=True`` a
+    1D translational flange (position s, driving force f) and a support flange
+    (fixed at 0) are added.  ``state_select`` applies to s and v."""
+    r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a")
+    s = Variable(unit="m", doc="relative position")
+    v = Variable(unit="m/s", doc="relative velocity")
+
+    def __init__(self, use_flange=False, state_select="prefer", **kw):
+        super().__init__(**kw)
+        self._var_decls["s"].state_select = state_select
+        self._var_decls["v"].state_select = state_select
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+        self.use_flange = use_flange
+        if use_flange:
+            self.flange_a = TranslationalFlange()
+            self.support = TranslationalFlange()
+
+    def equations(self):
+        a, b = self.frame_a, self.frame_b
+        n = ca.sqrt(self.r[0] ** 2 + self.r[1] ** 2)
+        c, s = ca.cos(a.phi), ca.sin(a.phi)
+        ex = (c * self.r[0] - s * self.r[1]) / n
+        ey = (s * self.r[0] + c * self.r[1]) / n
+        axial = ex * b.fx + ey * b.fy
+        eqs = [b.x == a.x + self.s * ex, b.y == a.y + self.s * ey, b.phi == a.phi,
+               self.v == der(self.s),
+               a.fx + b.fx == 0, a.fy + b.fy == 0,
+               a.t + b.t + self.s * (ex * b.fy - ey * b.fx) == 0]
+        if self.use_flange:
+            eqs += [self.flange_a.s == self.s, axial == -self.flange_a.f,
+                    self.support.s == 0]
+        else:
+            eqs.append(axial == 0)
+        return eqs

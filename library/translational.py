@@ -1,0 +1,79 @@
+"""1D translational mechanics (Modelica.Mechanics.Translational conventions):
+flange.s is the absolute position, flange.f the force acting on the element
+from the connected part."""
+from acausal2d.connectors import RealInput, TranslationalFlange
+from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d.symbols import der
+
+
+class Fixed(Component):
+    """Flange fixed at position s0."""
+    s0 = Parameter(0.0, "m", "fixed position")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = TranslationalFlange()
+
+    def equations(self):
+        return [self.flange.s == self.s0]
+
+
+class Mass(Component):
+    """Sliding mass m between two rigidly coupled flanges; v = der(s)."""
+    m = Parameter(1.0, "kg", "mass")
+    s = Variable(unit="m", doc="position")
+    v = Variable(unit="m/s", doc="velocity")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange_a = TranslationalFlange()
+        self.flange_b = TranslationalFlange()
+
+    def equations(self):
+        return [self.flange_a.s == self.s, self.flange_b.s == self.s,
+                self.v == der(self.s),
+                self.m * der(self.v) == self.flange_a.f + self.flange_b.f]
+
+
+class _Compliant(Component):
+    s_rel = Variable(unit="m", doc="relative position flange_b - flange_a")
+    f = Variable(unit="N", doc="force transmitted (acting on flange_b)")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange_a = TranslationalFlange()
+        self.flange_b = TranslationalFlange()
+
+    def _common(self):
+        return [self.s_rel == self.flange_b.s - self.flange_a.s,
+                self.flange_b.f == self.f, self.flange_a.f == -self.f]
+
+
+class Spring(_Compliant):
+    """Linear spring f = c (s_rel - s_rel0)."""
+    c = Parameter(1.0, "N/m", "spring constant")
+    s_rel0 = Parameter(0.0, "m", "unstretched length")
+
+    def equations(self):
+        return self._common() + [self.f == self.c * (self.s_rel - self.s_rel0)]
+
+
+class Damper(_Compliant):
+    """Linear damper f = d v_rel with v_rel = der(s_rel)."""
+    d = Parameter(1.0, "N.s/m", "damping constant")
+    v_rel = Variable(unit="m/s", doc="relative velocity")
+
+    def equations(self):
+        return self._common() + [self.v_rel == der(self.s_rel), self.f == self.d * self.v_rel]
+
+
+class Force(Component):
+    """Force from the signal f_in acting on the flange."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = TranslationalFlange()
+        self.f_in = RealInput()
+
+    def equations(self):
+        return [self.flange.f == -self.f_in.u]
