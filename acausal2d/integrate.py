@@ -50,6 +50,11 @@ class _Problem:
         self.mon = _Buffered(form.monitor_fn, [t, z, z, p, d]) \
             if form.monitor_fn is not None else None
         self.mon_ref = n_monitor_ref
+        self._blocks = []
+        for blk in form.monitors:
+            r, c = blk.sparsity().get_triplet()
+            self._blocks.append((np.zeros(blk.shape), np.array(r, dtype=int),
+                                 np.array(c, dtype=int)))
         sparsity = form.jac_sparsity
         if form.sparse:
             colind = np.array(sparsity.colind())
@@ -88,15 +93,11 @@ class _Problem:
         a[1][:] = y
         a[2][:] = yp
         self.mon.eval()
-        out = []
-        for k, blk in enumerate(self.form.monitors):
-            M = self.mon.outs[k]
-            m = np.zeros(blk.shape)
-            sparsity = blk.sparsity()
-            r, c = sparsity.get_triplet()
-            m[r, c] = M
-            out.append(abs(np.linalg.det(m)))
-        return np.array(out)
+        out = np.empty(len(self._blocks))
+        for k, (m, r, c) in enumerate(self._blocks):
+            m[r, c] = self.mon.outs[k]
+            out[k] = abs(np.linalg.det(m))
+        return out
 
     def eventsfn(self, t, y, yp, events):
         if self.g is not None:

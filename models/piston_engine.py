@@ -1,0 +1,54 @@
+"""Piston engine: a slider-crank without drive, started spinning
+(PlanarMechanics example; reference PistonEngine.csv).
+
+Fixed at the origin -> revoluteDrive (phi(0)=0, w(0)=-2.5 rad/s, always a
+state) -> its frame_b carries bodyDrive (m=1, I=0.1) and the crank
+FixedTranslation r={0.3,0} -> revoluteDisc -> massless rod FixedTranslation
+r={0.8,0} -> revolutePiston -> frame carrying bodyPiston (m=3, I=0.1), which
+is frame_a of a Prismatic r={1,0} whose frame_b is connected to a second
+Fixed at the origin (so the piston's x equals -s).  At t=0 the mechanism is
+at its dead centre with s=-1.1.  Gravity does no work; the energy
+E = 0.5*0.1*w^2 + 0.5*3*xdot^2 = 0.3125 J is conserved.
+"""
+from acausal2d import Component, start
+from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
+
+
+class PistonEngine(Component):
+    """Slider-crank with crank angle chosen as state (``state_select``
+    'always' on the drive joint, 'prefer' on the others as in
+    PlanarMechanics).  Pass ``state_select='default'`` to leave the choice of
+    states entirely to the compiler."""
+    experiment = {"stop_time": 10.0, "intervals": 5000, "rtol": 1e-8}
+    outputs = ["revoluteDrive.phi", "revoluteDrive.w", "prismatic.s"]
+
+    def __init__(self, drive_state_select="always", state_select="prefer", **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed()
+        self.revoluteDrive = Revolute(state_select=drive_state_select,
+                                      phi=start(0.0, fixed=True), w=start(-2.5, fixed=True))
+        self.bodyDrive = Body(m=1.0, I=0.1)
+        self.crank = FixedTranslation(r=(0.3, 0.0))
+        self.revoluteDisc = Revolute(state_select=state_select)
+        self.rod = FixedTranslation(r=(0.8, 0.0))
+        self.revolutePiston = Revolute(state_select=state_select)
+        self.bodyPiston = Body(m=3.0, I=0.1)
+        self.prismatic = Prismatic(r=(1.0, 0.0), state_select=state_select,
+                                   s=start(-1.1))
+        self.fixed1 = Fixed()
+        self.connect(self.fixed.frame, self.revoluteDrive.frame_a)
+        self.connect(self.revoluteDrive.frame_b, self.bodyDrive.frame_a)
+        self.connect(self.revoluteDrive.frame_b, self.crank.frame_a)
+        self.connect(self.crank.frame_b, self.revoluteDisc.frame_a)
+        self.connect(self.revoluteDisc.frame_b, self.rod.frame_a)
+        self.connect(self.rod.frame_b, self.revolutePiston.frame_a)
+        self.connect(self.revolutePiston.frame_b, self.bodyPiston.frame_a)
+        self.connect(self.revolutePiston.frame_b, self.prismatic.frame_a)
+        self.connect(self.prismatic.frame_b, self.fixed1.frame)
+
+
+if __name__ == "__main__":
+    from acausal2d import simulate
+    res = simulate(PistonEngine())
+    print("revoluteDrive.phi(10 s) = %.10f rad (reference -16.8149394961727)"
+          % res.final("revoluteDrive.phi"))
