@@ -698,8 +698,8 @@ _JS = r"""
 
   // Layers, drawn bottom to top; unknown shape types are ignored.
   var LAYERS = {
-    trace: [[0, drawTracePath], [90, drawTracePoint]], ground: [[10, drawGround]],
-    slider: [[15, drawGuide], [60, drawSlider]], pulley: [[20, drawPulley]],
+    trace: [[0, drawTracePath], [90, drawTracePoint]], pulley: [[10, drawPulley]],
+    slider: [[15, drawGuide], [60, drawSlider]], ground: [[20, drawGround]],
     belt: [[30, drawBelt]], spring: [[40, drawSpring]], link: [[50, drawLink]],
     body: [[70, drawBody]], joint: [[80, drawJoint]], label: [[100, drawLabel]]
   };

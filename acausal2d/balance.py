@@ -14,7 +14,7 @@ from scipy.sparse.csgraph import maximum_bipartite_matching
 from . import symbols
 from .errors import StructuralError
 
-_LIST = 12
+_LIST = 20
 
 
 def incidence(equations, variables):
@@ -106,7 +106,9 @@ def check_balance(equations, variables):
                 % (n_eq, n_var))
     parts = [head]
     if free_eqs:
-        eqs = sorted(over_eqs)
+        # the unmatched equations first, then the component equations, then connections
+        eqs = sorted(over_eqs, key=lambda i: (i not in free_eqs,
+                                              equations[i].origin.startswith("connect("), i))
         parts.append("These %d equations determine only %d unknowns (%s); one of them is "
                      "too many - remove it or add the unknown it should determine:\n%s"
                      % (len(eqs), len(over_vars),

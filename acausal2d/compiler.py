@@ -53,6 +53,7 @@ class CompiledModel:
         self.d = ca.vertcat(*[r.sym for r in self.relations]) if self.relations \
             else ca.SX(0, 1)
         equations, variables = flat.equations, list(flat.variables)
+        check_balance(equations, variables)
         self.aliases = []
         while True:
             equations, variables, new = eliminate_aliases(equations, variables)

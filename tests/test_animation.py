@@ -192,7 +192,8 @@ def test_json_embedded_and_parseable():
     assert "<crank>" not in page
     xmin, ymin, xmax, ymax = data["bbox"]
     assert xmin == pytest.approx(-0.35) and xmax == pytest.approx(0.62)
-    assert ymin == pytest.approx(-0.1) and ymax == pytest.approx(0.1)
+    # the crank pin A reaches y = +-0.1, and the rod through it is 0.02 wide
+    assert ymin == pytest.approx(-0.11, abs=1e-4) and ymax == pytest.approx(0.11, abs=1e-4)
 
 
 def test_nan_becomes_null():
@@ -319,7 +320,8 @@ class DevTools:
         self._next_id = 0
         self._messages = queue.Queue()
         self.events = []
-        threading.Thread(target=self._reader, daemon=True).start()
+        self._thread = threading.Thread(target=self._reader, daemon=True)
+        self._thread.start()
 
     def _reader(self):
         buf = b""
@@ -381,6 +383,9 @@ class DevTools:
             os.killpg(self.proc.pid, signal.SIGKILL)  # our own process group only
             self.proc.wait(timeout=5)
         os.close(self._to_chrome)
+        self._thread.join(timeout=5)  # the reader ends at EOF, once chromium has exited
+        if not self._thread.is_alive():
+            os.close(self._from_chrome)
         self.log.close()
 
 
@@ -409,7 +414,7 @@ def test_browser_scrub_play_and_console(page_path, tmp_path):
     --user-data-dir=<tmp> --remote-debugging-pipe about:blank``.  The test opens
     the page at ``#frame=120``, checks the initial frame, takes a screenshot,
     scrubs with ``acausal2d.setFrame`` and with the range input, takes a second
-    screenshot, plays for a moment and pauses.  Console errors are collected
+    screenshot, plays for a moment at 4x and pauses, and resizes the window.  Console errors are collected
     from the protocol's Runtime.exceptionThrown, Runtime.consoleAPICalled
     (error/assert) and Log.entryAdded (level error) events; this does not
     depend on the format of Chromium's log output, and catches errors the page
@@ -477,7 +482,15 @@ def test_browser_scrub_play_and_console(page_path, tmp_path):
         time.sleep(0.1)
         assert js("acausal2d.frame") == frame and js("acausal2d.playing") is False
 
+        # the canvas follows the window size
+        cdp.call("Emulation.setDeviceMetricsOverride",
+                 {"width": 500, "height": 700, "deviceScaleFactor": 1, "mobile": False},
+                 session=session)
         js("new Promise(r => requestAnimationFrame(() => setTimeout(r, 50)))")
+        size = js("[document.getElementById('view').width, document.getElementById('view').height,"
+                  " window.innerHeight]")
+        assert size[0] == 500 and 600 <= size[1] < size[2] == 700, size
+
         assert js("acausal2d.errors") == []
         assert console_errors(cdp.events) == []
     finally:
