@@ -31,32 +31,52 @@ def _param_only(e):
     return True
 
 
+_ADD, _SUB, _NEG = ca.OP_ADD, ca.OP_SUB, ca.OP_NEG
+
+
+def _terms(e, sign, vs, rest, depth=0):
+    """Split e into +-1 * symbols and other terms; False if too complex."""
+    if e.is_symbolic():
+        if symbols.kind(e) == symbols.PARAM:
+            rest.append(sign * e)
+        else:
+            vs.append((sign, e))
+        return True
+    if e.is_constant():
+        rest.append(sign * float(e))
+        return True
+    if depth > 6:
+        return False
+    op = e.op()
+    if op == _ADD:
+        return _terms(e.dep(0), sign, vs, rest, depth + 1) and \
+            _terms(e.dep(1), sign, vs, rest, depth + 1)
+    if op == _SUB:
+        return _terms(e.dep(0), sign, vs, rest, depth + 1) and \
+            _terms(e.dep(1), -sign, vs, rest, depth + 1)
+    if op == _NEG:
+        return _terms(e.dep(0), -sign, vs, rest, depth + 1)
+    if ca.n_nodes(e) <= _MAX_NODES and _param_only(e):
+        rest.append(sign * e)
+        return True
+    return False
+
+
 def _alias_form(expr, varkeys):
-    """Return (vars, coefficients, remainder) if expr is c1*v1 (+ c2*v2) + rest
-    with |ci| = 1 and rest parameter-only; else None."""
-    if ca.n_nodes(expr) > _MAX_NODES:
+    """Return (vars, coefficients, remainder) if expr is +-v1 (+- v2) + rest
+    with rest built from parameters only; else None."""
+    vs, rest = [], []
+    if not _terms(expr, 1.0, vs, rest):
         return None
-    vs = []
-    for s in ca.symvar(expr):
-        k = symbols.kind(s)
-        if k == symbols.PARAM:
-            continue
-        if k != symbols.VAR or symbols.key(s) not in varkeys:
-            return None
-        vs.append(s)
     if not 1 <= len(vs) <= 2:
         return None
-    v = ca.vertcat(*vs)
-    jac = ca.jacobian(expr, v)
-    if not jac.is_constant():
+    keys = [symbols.key(v) for _, v in vs]
+    if len(set(keys)) != len(keys) or any(k not in varkeys for k in keys):
         return None
-    coeffs = [float(jac[i]) for i in range(len(vs))]
-    if any(abs(abs(c) - 1.0) > 0 for c in coeffs):
-        return None
-    rest = ca.simplify(expr - ca.mtimes(jac, v))
-    if not _param_only(rest):
-        return None
-    return vs, coeffs, rest
+    total = 0.0
+    for r in rest:
+        total = total + r
+    return [v for _, v in vs], [c for c, _ in vs], total
 
 
 def _score(info):
@@ -65,18 +85,20 @@ def _score(info):
     return (prio, 0 if info.fixed else 1, info.name.count("."), len(info.name), info.name)
 
 
-def eliminate_aliases(equations, variables):
-    """Run alias elimination.
+def eliminate_aliases(equations, variables, examine=None):
+    """Run one pass of alias elimination.
 
-    equations: list of flatten.Equation; variables: list of VarInfo.
-    Returns (equations, variables, aliases) with the eliminated variables
-    removed and ``aliases`` a list of :class:`Alias`.
+    equations: list of flatten.Equation; variables: list of VarInfo;
+    examine: ids (``id(eq)``) of the equations to inspect (default: all).
+    Returns (equations, variables, aliases, changed) with the eliminated
+    variables removed, ``aliases`` a list of :class:`Alias` and ``changed``
+    the ids of the equations the substitution touched.
     """
     info = {symbols.key(v.sym): v for v in variables}
     parent = {}   # key -> (parent key or None, sign, offset)  var = sign*parent + offset
 
     def find(k):
-        p, s, o = parent.get(k, (k, 1.0, ca.SX(0)))
+        p, s, o = parent.get(k, (k, 1.0, 0.0))
         if p is None or p == k:
             return p, s, o
         rp, rs, ro = find(p)
@@ -86,6 +108,9 @@ def eliminate_aliases(equations, variables):
 
     kept = []
     for eq in equations:
+        if examine is not None and id(eq) not in examine:
+            kept.append(eq)
+            continue
         form = _alias_form(eq.expr, info)
         if form is None:
             kept.append(eq)
@@ -147,7 +172,7 @@ def eliminate_aliases(equations, variables):
             else:
                 src.append(sym)
                 if rep is None:
-                    dst.append(ca.SX(0))
+                    dst.append(0.0)
                 else:
                     r = info[rep].sym
                     for _ in range(level):
@@ -158,12 +183,18 @@ def eliminate_aliases(equations, variables):
             sym = symbols.derivative_symbol(sym)
             level += 1
     eliminated = {symbols.key(a.var.sym) for a in aliases}
-    if src:
-        exprs = ca.substitute([eq.expr for eq in kept], src, dst)
-        for eq, e in zip(kept, exprs):
-            eq.expr = e
+    changed = set()
+    if src and kept:
+        old = ca.vertcat(*[eq.expr for eq in kept])
+        touched = ca.jacobian_sparsity(old, ca.vertcat(*src)).get_triplet()[0]
+        rows = sorted(set(touched))
+        if rows:
+            exprs = ca.substitute([kept[i].expr for i in rows], src, [ca.SX(x) for x in dst])
+            for i, e in zip(rows, exprs):
+                kept[i].expr = e
+                changed.add(id(kept[i]))
     remaining = [v for v in variables if symbols.key(v.sym) not in eliminated]
-    return kept, remaining, aliases
+    return kept, remaining, aliases, changed
 
 
 def _merge_attrs(rep, member, sign, off):

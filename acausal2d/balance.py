@@ -6,12 +6,12 @@ and, if it is not perfect, reports which equations over-determine which
 unknowns and which unknowns no equation determines (Dulmage-Mendelsohn
 coarse decomposition), naming components and equations.
 """
-import casadi as ca
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import maximum_bipartite_matching
 
 from . import symbols
+from .incidence import variable_incidence
 from .errors import StructuralError
 
 _LIST = 20
@@ -21,20 +21,15 @@ def incidence(equations, variables):
     """Sparse 0/1 matrix (equations x variables) of the structural incidence;
     derivatives count for their base variable."""
     index = {symbols.key(v.sym): j for j, v in enumerate(variables)}
-    rows, cols = [], []
-    for i, eq in enumerate(equations):
-        for s in ca.symvar(eq.expr):
-            if symbols.kind(s) != symbols.VAR:
-                continue
-            base, _ = symbols.base_and_level(s)
-            j = index.get(symbols.key(base))
-            if j is not None:
-                rows.append(i)
-                cols.append(j)
-    m = sp.csr_matrix((np.ones(len(rows)), (rows, cols)),
+    syms, m = variable_incidence([eq.expr for eq in equations])
+    col_map = np.array([index.get(symbols.key(symbols.base_and_level(s)[0]), -1) for s in syms],
+                       dtype=int)
+    coo = m.tocoo()
+    keep = col_map[coo.col] >= 0 if len(syms) else np.zeros(0, dtype=bool)
+    A = sp.csr_matrix((np.ones(int(keep.sum())), (coo.row[keep], col_map[coo.col[keep]])),
                       shape=(len(equations), len(variables)))
-    m.data[:] = 1.0
-    return m
+    A.data[:] = 1.0
+    return A
 
 
 def _names(items, describe):
@@ -52,14 +47,15 @@ def _var_desc(v):
 def check_balance(equations, variables):
     """Raise :class:`StructuralError` unless the system is square and has a
     perfect structural matching."""
-    for eq in equations:
-        if not any(symbols.kind(s) == symbols.VAR for s in ca.symvar(eq.expr)):
-            raise StructuralError(
-                "Equation without unknowns after alias elimination (it repeats what other "
-                "equations already state, e.g. a connection closing a loop of equal "
-                "potentials, or a fixed value set twice):\n  - %s\nRemove it." % eq.describe())
-    n_eq, n_var = len(equations), len(variables)
     A = incidence(equations, variables)
+    counts = np.diff(A.indptr)
+    empty = np.nonzero(counts == 0)[0]
+    if len(empty):
+        raise StructuralError(
+            "Equation without unknowns (it repeats what other equations already state, e.g. "
+            "a connection closing a loop of equal potentials, or a value fixed twice):\n%s\n"
+            "Remove it." % _names([equations[i] for i in empty], lambda e: e.describe()))
+    n_eq, n_var = len(equations), len(variables)
     match_eq = maximum_bipartite_matching(A, perm_type="column") if n_eq and n_var else \
         np.full(n_eq, -1)
     if n_eq == n_var and (n_eq == 0 or np.all(match_eq >= 0)):

@@ -55,18 +55,16 @@ class CompiledModel:
         equations, variables = flat.equations, list(flat.variables)
         check_balance(equations, variables)
         self.aliases = []
+        examine = None
         while True:
-            equations, variables, new = eliminate_aliases(equations, variables)
+            equations, variables, new, examine = eliminate_aliases(equations, variables, examine)
             if not new:
                 break
             if self.aliases:
-                src = [a.var.sym for a in new]
-                dst = [a.offset if a.rep is None else a.sign * a.rep.sym + a.offset for a in new]
+                by_var = {symbols.key(b.var.sym): b for b in new}
                 for a in self.aliases:
-                    if a.rep is not None and any(symbols.key(a.rep.sym) == symbols.key(s)
-                                                 for s in src):
-                        k = [symbols.key(s) for s in src].index(symbols.key(a.rep.sym))
-                        b = new[k]
+                    b = by_var.get(symbols.key(a.rep.sym)) if a.rep is not None else None
+                    if b is not None:       # a.var = a.sign*(b.sign*b.rep + b.offset) + a.offset
                         a.offset = a.sign * b.offset + a.offset
                         a.sign = a.sign * b.sign
                         a.rep = b.rep

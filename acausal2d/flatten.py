@@ -13,14 +13,25 @@ from .errors import ModelDefinitionError
 
 
 class Equation:
-    """One scalar residual equation ``expr == 0`` and where it comes from."""
+    """One scalar residual equation ``expr == 0`` and where it comes from.
+    ``text`` shows it as written (formatted on first use)."""
 
-    __slots__ = ("expr", "origin", "text")
+    __slots__ = ("expr", "origin", "_text", "_sides")
 
-    def __init__(self, expr, origin, text):
+    def __init__(self, expr, origin, text=None, sides=None):
         self.expr = expr
         self.origin = origin
-        self.text = text
+        self._text = text
+        self._sides = sides
+
+    @property
+    def text(self):
+        if self._text is None:
+            if self._sides is not None:
+                self._text = "%s == %s" % (_fmt(self._sides[0]), _fmt(self._sides[1]))
+            else:
+                self._text = "%s == 0" % _fmt(self.expr)
+        return self._text
 
     def describe(self):
         """'origin: text' for messages."""
@@ -49,25 +60,26 @@ def _residuals(item, origin, out, counter):
         raise ModelDefinitionError(
             "%s equation %d is the Python value %r; write equations between symbolic "
             "expressions (a == b)" % (origin, counter[0] + 1, item))
-    try:
-        e = ca.SX(item)
-    except Exception:
-        raise ModelDefinitionError("%s equation %d is not an expression: %r"
-                                   % (origin, counter[0] + 1, item)) from None
-    for k in range(e.numel()):
-        el = e[k]
+    if isinstance(item, ca.SX):
+        e = item
+    else:
+        try:
+            e = ca.SX(item)
+        except Exception:
+            raise ModelDefinitionError("%s equation %d is not an expression: %r"
+                                       % (origin, counter[0] + 1, item)) from None
+    for el in ([e] if e.is_scalar() else [e[k] for k in range(e.numel())]):
         counter[0] += 1
-        if el.is_scalar() and el.n_dep() == 2 and el.op() == ca.OP_EQ:
+        if el.n_dep() == 2 and el.op() == ca.OP_EQ:
             lhs, rhs = el.dep(0), el.dep(1)
-            text = "%s == %s" % (_fmt(lhs), _fmt(rhs))
-            res = lhs - rhs
+            res, sides = lhs - rhs, (lhs, rhs)
         else:
-            text = "%s == 0" % _fmt(el)
-            res = el
+            res, sides = el, None
+        eq = Equation(res, "%s equation %d" % (origin, counter[0]), sides=sides)
         if res.is_constant():
             raise ModelDefinitionError(
-                "%s equation %d (%s) contains no unknowns" % (origin, counter[0], text))
-        out.append(Equation(res, "%s equation %d" % (origin, counter[0]), text))
+                "%s equation %d (%s) contains no unknowns" % (origin, counter[0], eq.text))
+        out.append(eq)
 
 
 def _fmt(e):

@@ -10,6 +10,7 @@ symbolically (chain rule over the derivative symbols), so library code never
 writes velocity or acceleration equations.
 """
 from . import symbols
+from .incidence import variable_incidence
 from .errors import StructuralError
 
 
@@ -56,7 +57,6 @@ class IndexReduced:
 def pantelides(equations, variables, max_differentiations=None):
     """Index reduction of ``equations`` (flatten.Equation) in the unknowns
     ``variables`` (VarInfo); returns :class:`IndexReduced`."""
-    import casadi as ca
     R = IndexReduced()
 
     def var_node(sym):
@@ -86,16 +86,15 @@ def pantelides(equations, variables, max_differentiations=None):
 
     for v in variables:
         var_node(v.sym)
+    syms, inc_matrix = variable_incidence([eq.expr for eq in equations])
+    col_node = [var_node(sym) for sym in syms]
     for n, eq in enumerate(equations):
-        inc = set()
-        for s in ca.symvar(eq.expr):
-            if symbols.kind(s) == symbols.VAR:
-                inc.add(var_node(s))
+        cols = inc_matrix.indices[inc_matrix.indptr[n]:inc_matrix.indptr[n + 1]]
         R.eq_expr.append(eq.expr)
         R.eq_origin.append(n)
         R.eq_level.append(0)
         R.B.append(-1)
-        R.eq_inc.append(sorted(inc))
+        R.eq_inc.append(sorted({col_node[c] for c in cols}))
 
     if max_differentiations is None:
         max_differentiations = len(equations) + 3
@@ -140,18 +139,14 @@ def pantelides(equations, variables, max_differentiations=None):
         return False
 
     def differentiate_eq(l):
-        expr = symbols.time_derivative(R.eq_expr[l])
         inc = set()
         for j in R.eq_inc[l]:
             inc.add(j)
             if A[j] < 0:
                 var_node(symbols.derivative_symbol(R.var_sym[j]))
             inc.add(A[j])
-        for s in ca.symvar(expr):
-            if symbols.kind(s) == symbols.VAR:
-                inc.add(var_node(s))
         n = len(R.eq_expr)
-        R.eq_expr.append(expr)
+        R.eq_expr.append(None)        # built symbolically after the structural pass
         R.eq_origin.append(R.eq_origin[l])
         R.eq_level.append(R.eq_level[l] + 1)
         R.B.append(-1)
@@ -180,4 +175,25 @@ def pantelides(equations, variables, max_differentiations=None):
             for j in colV:
                 assign[A[j]] = B[assign[j]]
             i = B[i]
+    _differentiate_symbolically(R)
     return R
+
+
+def _differentiate_symbolically(R):
+    """Build the expressions of all differentiated equations, one derivative
+    order at a time, with a single forward-mode derivative per order."""
+    import casadi as ca
+    parent = {R.B[i]: i for i in range(R.n_eq) if R.B[i] >= 0}
+    level = 1
+    while True:
+        todo = [i for i in range(R.n_eq) if R.eq_expr[i] is None and R.eq_level[i] == level]
+        if not todo:
+            break
+        nodes = sorted({j for i in todo for j in R.eq_inc[parent[i]]})
+        V = ca.vertcat(symbols.time, *[R.var_sym[j] for j in nodes])
+        Vdot = ca.vertcat(1, *[R.var_sym[R.A[j]] for j in nodes])
+        F = ca.vertcat(*[R.eq_expr[parent[i]] for i in todo])
+        dF = ca.vertsplit(ca.jtimes(F, V, Vdot))
+        for i, e in zip(todo, dF):
+            R.eq_expr[i] = e
+        level += 1

@@ -1,0 +1,73 @@
+"""Compile and simulation times of the core: piston engine and chains of N
+pendulum links.  Prints a table.
+
+    python benchmarks/bench_core.py [N ...]
+
+compile = flatten, aliases, balance, Pantelides (compile_model) plus the
+consistent initialization, state selection and generation of the index-1
+functions; simulate = the IDA run.  Each figure is the best of a few runs.
+"""
+import math
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "models"))
+
+import acausal2d  # noqa: E402
+from acausal2d import Component, start  # noqa: E402
+from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute  # noqa: E402
+
+
+class PendulumChain(Component):
+    """N pendulum links (revolute + rod + body) hanging from a fixed point."""
+
+    def __init__(self, n, **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed()
+        self.joints = [Revolute(phi=start(-math.pi / 2 + (0.3 if i == 0 else 0.0), fixed=True),
+                                w=start(0.0, fixed=True)) for i in range(n)]
+        self.rods = [FixedTranslation(r=(1.0 / n, 0.0)) for _ in range(n)]
+        self.bodies = [Body(m=1.0 / n, I=0.01 / n) for _ in range(n)]
+        prev = self.fixed.frame
+        for j, r, b in zip(self.joints, self.rods, self.bodies):
+            self.connect(prev, j.frame_a)
+            self.connect(j.frame_b, r.frame_a)
+            self.connect(r.frame_b, b.frame_a)
+            prev = r.frame_b
+
+
+def measure(make, stop_time, rtol, intervals, repeat=3):
+    best_c = best_s = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        cm = acausal2d.compile_model(make())
+        p = cm.parameter_values()
+        z, d = cm.initial_values(0.0, p)
+        cm.formulation(cm.select(0.0, z, p, d))
+        t1 = time.perf_counter()
+        res = cm.simulate(stop_time=stop_time, rtol=rtol, intervals=intervals)
+        t2 = time.perf_counter()
+        best_c = min(best_c, t1 - t0)
+        best_s = min(best_s, t2 - t1)
+    return cm, res, best_c, best_s
+
+
+def main(sizes):
+    from piston_engine import PistonEngine
+    rows = []
+    cm, res, c, s = measure(PistonEngine, 10.0, 1e-8, 5000)
+    rows.append(("piston engine (10 s, rtol 1e-8, 5000 pts)", len(cm.equations),
+                 cm.R.n_eq, c, s))
+    for n in sizes:
+        cm, res, c, s = measure(lambda: PendulumChain(n), 1.0, 1e-6, 100,
+                                repeat=3 if n <= 20 else 1)
+        rows.append(("chain of %d links (1 s, rtol 1e-6)" % n, len(cm.equations), cm.R.n_eq, c, s))
+    print("%-44s %8s %9s %10s %10s %10s" % ("model", "eqs", "reduced", "compile s",
+                                            "simulate s", "total s"))
+    for name, n_eq, n_red, c, s in rows:
+        print("%-44s %8d %9d %10.3f %10.3f %10.3f" % (name, n_eq, n_red, c, s, c + s))
+
+
+if __name__ == "__main__":
+    main([int(a) for a in sys.argv[1:]] or [5, 20, 80, 200])
