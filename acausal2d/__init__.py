@@ -35,3 +35,21 @@ def simulate(model, stop_time=None, **options):
     from .compiler import CompiledModel
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
+
+
+def check(model):
+    """Structure report of ``model`` (see :func:`acausal2d.check.check`)."""
+    from .check import check as _check
+    return _check(model)
+
+
+def compare(result, reference, **options):
+    """Compare a result with reference curves (see :func:`acausal2d.compare.compare`)."""
+    from .compare import compare as _compare
+    return _compare(result, reference, **options)
+
+
+def load_model(path, name=None, **kwargs):
+    """Instantiate the model of a model file (see :func:`acausal2d.loader.load_model`)."""
+    from .loader import load_model as _load
+    return _load(path, name, **kwargs)

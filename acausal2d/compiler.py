@@ -42,6 +42,7 @@ class CompiledModel:
         self.model = model
         flat = flatten(model)
         self.all_variables = flat.variables
+        self.n_flat_equations = len(flat.equations)
         self.parameters = flat.parameters
         self.param_index = {name: k for k, (name, _, _, _) in enumerate(flat.parameters)}
         self.p = ca.vertcat(*[s for _, s, _, _ in flat.parameters]) if flat.parameters \

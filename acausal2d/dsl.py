@@ -282,6 +282,20 @@ class Component:
         lists.  Components without own equations return an empty list."""
         return []
 
+    def shapes(self):
+        """How the component is drawn in the animation: a list of shape dicts
+        (kinds in :mod:`acausal2d.animation`) whose signal names are relative
+        to the component, e.g. ``{"type": "joint", "x": "frame_a.x", "y":
+        "frame_a.y"}``.  Default: nothing."""
+        return []
+
+    def topology(self):
+        """Planar topology for the degree-of-freedom count (seed eq. 2.1):
+        a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames
+        of one link) and ``("joint", frame_a, frame_b, f)`` (a joint with f
+        degrees of freedom).  Default: nothing."""
+        return []
+
     @property
     def path(self):
         """Dotted instance name inside the model ('' for the model itself)."""

@@ -8,6 +8,9 @@ dummy block becomes ill-conditioned (then the states are re-selected at
 that point).  Event instants are recorded twice (left and right limit).
 """
 import os
+import sys
+import time as _time
+import warnings
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
@@ -15,7 +18,7 @@ import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 import sksundae as sun  # noqa: E402
 
-from .errors import Acausal2dError, InitializationError, SimulationError  # noqa: E402
+from .errors import InitializationError, SimulationError  # noqa: E402
 from .initialize import solve_consistent  # noqa: E402
 
 _MONITOR_THRESHOLD = 0.25
@@ -127,7 +130,11 @@ def _solver(prob, rtol, atol):
         eventsfn.terminal = [True] * n_ev
         eventsfn.direction = [0] * prob.n_rel + [-1] * prob.n_mon
         opts.update(eventsfn=eventsfn, num_events=n_ev)
-    return sun.ida.IDA(prob.resfn, **opts)
+    with warnings.catch_warnings():
+        # with a sparsity pattern and our exact jacfn, scikit-sundae notes that its own
+        # sparse approximation is not used - which is what we want
+        warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
+        return sun.ida.IDA(prob.resfn, **opts)
 
 
 def _worst_variable(cm, form, prob, t, y, yp):
@@ -148,20 +155,44 @@ def _worst_variable(cm, form, prob, t, y, yp):
         return None
 
 
+class _CapturedStderr:
+    """Redirect the C-level stderr (where SUNDIALS prints its messages) to a
+    temporary file; the text is available as ``.text`` afterwards."""
+
+    def __enter__(self):
+        import tempfile
+        sys.stderr.flush()
+        self._file = tempfile.TemporaryFile(mode="w+b")
+        self._saved = os.dup(2)
+        os.dup2(self._file.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc):
+        os.dup2(self._saved, 2)
+        os.close(self._saved)
+        self._file.seek(0)
+        self.text = self._file.read().decode("utf-8", "replace").strip()
+        self._file.close()
+        return False
+
+
 def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     """Integrate the compiled model ``cm`` from consistent node values z0.
 
-    Returns (times, node values [n_times x n_nodes], events, stats)."""
+    times: output times (the first is the start time).  progress: optional
+    callable(t, t_end) called about ten times a second.  Returns (times,
+    node values [n_times x n_nodes], events, stats)."""
     t_end = float(times[-1])
     t = float(times[0])
     z = np.array(z0, dtype=float)
     d = np.array(d0, dtype=float)
     out_t, out_z = [t], [z.copy()]
     events = []
-    stats = {"steps_segments": 0, "events": 0, "reselections": 0, "nfev": 0, "njev": 0}
+    stats = {"segments": 0, "events": 0, "reselections": 0, "nfev": 0, "njev": 0}
     selection = cm.select(t, z, p, d)
     nominal = np.array(cm.nominal)
     eps = 1e-12 * max(1.0, abs(t_end))
+    last_report = _time.perf_counter()
     while t < t_end - eps:
         form = cm.formulation(selection)
         prob = _Problem(form, p, d, 1.0)
@@ -171,47 +202,50 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         a = atol if atol is not None else rtol * nominal[form.y_pos]
         solver = _solver(prob, rtol, a)
         remaining = times[times > t + eps]
-        tspan = np.concatenate([[t], remaining])
-        drop_mid = False
-        if len(tspan) == 2:
-            tspan = np.array([t, 0.5 * (t + tspan[1]), tspan[1]])
-            drop_mid = True
-        try:
-            sol = solver.solve(tspan, y0, yp0)
-        except Exception as exc:  # SUNDIALS setup errors
-            raise SimulationError("IDA could not start at t=%.6g: %s" % (t, exc), time=t) from None
-        stats["segments"] = stats.get("segments", 0) + 1
-        stats["nfev"] += int(getattr(sol, "nfev", 0) or 0)
-        stats["njev"] += int(getattr(sol, "njev", 0) or 0)
-        ts = np.asarray(sol.t)
-        ys = np.asarray(sol.y)
-        yps = np.asarray(sol.yp)
-        event = sol.status == 2 and sol.t_events is not None and len(sol.t_events)
-        n_regular = len(ts) - (1 if event else 0)
-        for k in range(1, n_regular):
-            if drop_mid and k == 1 and len(ts) > 2 and not event:
-                continue
-            if drop_mid and event and ts[k] != tspan[-1]:
-                continue
-            out_t.append(float(ts[k]))
-            out_z.append(form.nodes_from(ys[k], yps[k]))
-        if progress is not None and len(out_t):
-            progress(out_t[-1], t_end)
-        if not sol.success and not event:
-            tf = float(ts[-1]) if len(ts) else t
-            var = _worst_variable(cm, form, prob, tf, ys[-1], yps[-1]) if len(ts) else None
+        stats["segments"] += 1
+        event = None
+        with _CapturedStderr() as err:
+            try:
+                solver.init_step(t, y0, yp0)
+            except Exception as exc:
+                sol = None
+                start_error = exc
+            else:
+                start_error = None
+                for t_out in remaining:
+                    sol = solver.step(float(t_out))
+                    if sol.status == 2:
+                        event = sol
+                        break
+                    if not sol.success:
+                        break
+                    out_t.append(float(sol.t))
+                    out_z.append(form.nodes_from(sol.y, sol.yp))
+                    if progress is not None and _time.perf_counter() - last_report > 0.1:
+                        last_report = _time.perf_counter()
+                        progress(float(sol.t), t_end)
+        if start_error is not None:
+            raise SimulationError("IDA could not start at t=%.6g: %s" % (t, start_error),
+                                  time=t) from None
+        if sol is not None:
+            stats["nfev"] += int(getattr(sol, "nfev", 0) or 0)
+            stats["njev"] += int(getattr(sol, "njev", 0) or 0)
+        if event is None and sol is not None and not sol.success:
+            tf = float(sol.t)
+            var = _worst_variable(cm, form, prob, tf, np.asarray(sol.y), np.asarray(sol.yp))
+            detail = err.text.replace("\n", " ").strip() or str(sol.message).strip()
             raise SimulationError(
                 "Integration failed at t=%.6g (IDA status %s: %s)%s." % (
-                    tf, sol.status, str(sol.message).strip(),
+                    tf, sol.status, detail,
                     "; the variable most involved is '%s'" % var if var else ""),
                 time=tf, status=sol.status, variable=var)
-        if not event:
+        if event is None:
             break
-        te = float(sol.t_events[-1])
-        ye, ype = np.asarray(sol.y_events)[-1], np.asarray(sol.yp_events)[-1]
+        te = float(event.t)
+        ye, ype = np.asarray(event.y), np.asarray(event.yp)
         ze = form.nodes_from(ye, ype)
-        which = np.nonzero(np.asarray(sol.i_events)[-1])[0]
-        rel_hits = [k for k in which if k < prob.n_rel]
+        which = np.nonzero(np.asarray(event.i_events).ravel())[0]
+        rel_hits = [int(k) for k in which if k < prob.n_rel]
         out_t.append(te)
         out_z.append(ze)
         if rel_hits:
@@ -220,23 +254,24 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
             for k in rel_hits:
                 d_new[k] = 1.0 - d[k]
             held = list(np.asarray(form.y_nodes)[form.differential])
+            text = "; ".join(cm.relations[k].text for k in rel_hits)
             try:
                 z_new = solve_consistent(cm.init_system, te, ze, p, d_new, held, ze[held],
                                          cm.describe_equation, cm.node_name)
             except InitializationError as exc:
-                raise SimulationError("Re-initialization after the event at t=%.6g (%s) failed:\n%s"
-                                      % (te, "; ".join(cm.relations[k].text for k in rel_hits),
-                                         exc), time=te) from None
+                raise SimulationError("Re-initialization after the event at t=%.6g (%s) failed:"
+                                      "\n%s" % (te, text, exc), time=te) from None
             d = d_new
-            events.append((te, "; ".join(cm.relations[k].text for k in rel_hits)))
+            events.append((te, text))
             z = z_new
             out_t.append(te)
             out_z.append(z.copy())
         else:
             stats["reselections"] += 1
             z = ze
-            new_sel = cm.select(te, z, p, d)
+            selection = cm.select(te, z, p, d)
             events.append((te, "state re-selection"))
-            selection = new_sel
         t = te
+    if progress is not None:
+        progress(out_t[-1], t_end)
     return np.array(out_t), np.array(out_z), events, stats

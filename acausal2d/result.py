@@ -72,3 +72,18 @@ class Result:
             for row in zip(*cols):
                 w.writerow(["%.17g" % v for v in row])
         return path
+
+    def plot(self, names=None, path=None, title=None):
+        """Plot signals over time (default: the model's outputs); writes a
+        PNG to ``path`` or returns a matplotlib Figure.  See
+        :func:`acausal2d.plotting.plot`."""
+        from .plotting import plot
+        return plot(self, names, path, title)
+
+    def animate(self, path, traces=(), title=None):
+        """Write a self-contained HTML animation of the mechanism, drawn from
+        the components' ``shapes()``; ``traces`` are frame names whose path
+        is drawn.  See :mod:`acausal2d.animation`."""
+        from .scene import animate
+        return animate(self, path, traces, title)
+

@@ -42,6 +42,12 @@ class Fixed(Component):
         f = self.frame
         return [f.x == self.r[0], f.y == self.r[1], f.phi == self.phi]
 
+    def shapes(self):
+        return [{"type": "ground", "x": "frame.x", "y": "frame.y", "phi": "frame.phi"}]
+
+    def topology(self):
+        return [("ground", [self.frame])]
+
 
 class Body(Component):
     """Rigid body: point mass m at its frame origin, rotational inertia I about
@@ -68,6 +74,12 @@ class Body(Component):
                 self.m * der(der(self.y)) == f.fy + self.m * g[1],
                 self.I * der(der(self.phi)) == f.t]
 
+    def shapes(self):
+        return [{"type": "body", "x": "frame_a.x", "y": "frame_a.y"}]
+
+    def topology(self):
+        return [("rigid", [self.frame_a])]
+
 
 class FixedTranslation(Component):
     """Massless rigid rod from frame_a to frame_b; r is resolved in frame_a."""
@@ -86,6 +98,12 @@ class FixedTranslation(Component):
         return [b.x == a.x + rx, b.y == a.y + ry, b.phi == a.phi,
                 a.fx + b.fx == 0, a.fy + b.fy == 0,
                 a.t + b.t + rx * b.fy - ry * b.fx == 0]
+
+    def shapes(self):
+        return [{"type": "link", "points": [["frame_a.x", "frame_a.y"], ["frame_b.x", "frame_b.y"]]}]
+
+    def topology(self):
+        return [("rigid", [self.frame_a, self.frame_b])]
 
 
 class Revolute(Component):
@@ -119,6 +137,12 @@ class Revolute(Component):
         else:
             eqs.append(b.t == 0)
         return eqs
+
+    def shapes(self):
+        return [{"type": "joint", "x": "frame_a.x", "y": "frame_a.y"}]
+
+    def topology(self):
+        return [("joint", self.frame_a, self.frame_b, 1)]
 
 
 class Prismatic(Component):
@@ -158,3 +182,10 @@ class Prismatic(Component):
         else:
             eqs.append(axial == 0)
         return eqs
+
+    def shapes(self):
+        return [{"type": "slider", "x": "frame_b.x", "y": "frame_b.y", "phi": "frame_a.phi",
+                 "guide": [["frame_a.x", "frame_a.y"], ["frame_b.x", "frame_b.y"]]}]
+
+    def topology(self):
+        return [("joint", self.frame_a, self.frame_b, 1)]

@@ -1,0 +1,138 @@
+"""Structure report of a model: sizes, states, structural index, closed
+loops and the degree of freedom by the seed's eq. 2.1 next to the
+structural one."""
+from collections import Counter
+
+import numpy as np
+
+
+class CheckReport:
+    """What :func:`check` found; ``str(report)`` is the printed form."""
+
+    def __init__(self, **fields):
+        self.__dict__.update(fields)
+
+    def __str__(self):
+        lines = ["Model %s" % self.name,
+                 "  components:        %d (%s)" % (self.n_components, self.component_kinds),
+                 "  equations:         %d flattened, %d after alias elimination, "
+                 "%d after index reduction" % (self.n_flat_equations, self.n_equations,
+                                               self.n_reduced_equations),
+                 "  unknowns:          %d (%d eliminated as aliases)"
+                 % (self.n_variables, self.n_aliases),
+                 "  parameters:        %d" % self.n_parameters,
+                 "  structural index:  %d%s" % (self.structural_index,
+                                                 " (equations differentiated up to %d times)"
+                                                 % (self.structural_index - 1)
+                                                 if self.structural_index > 1 else ""),
+                 "  states:            %s" % (", ".join(self.states) or "none"),
+                 "  closed loops:      %d" % self.loops]
+        if self.grubler is not None:
+            lines.append("  degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, "
+                         "g = %d joints), %d structural (position states)"
+                         % (self.grubler, self.links, self.joints, self.structural_dof))
+        else:
+            lines.append("  degree of freedom: %d structural (position states); no planar "
+                         "joints declared for eq. 2.1" % self.structural_dof)
+        return "\n".join(lines)
+
+
+def _planar_topology(model):
+    """Links, joints and loops from the components' topology() declarations."""
+    parent = {}
+
+    def find(k):
+        parent.setdefault(k, k)
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    def union(a, b):
+        ra, rb = find(a), find(b)
+        if ra != rb:
+            parent[ra] = rb
+
+    for comp in model.components():
+        for a, b in comp._connections:
+            union(("c", id(a)), ("c", id(b)))
+    joints, any_item = [], False
+    ground = ("ground",)
+    find(ground)
+    used = [ground]
+    for comp in model.components():
+        for item in comp.topology():
+            any_item = True
+            kind = item[0]
+            if kind == "ground":
+                for f in item[1]:
+                    union(("c", id(f)), ground)
+                    used.append(("c", id(f)))
+            elif kind == "rigid":
+                frames = item[1]
+                for f in frames[1:]:
+                    union(("c", id(frames[0])), ("c", id(f)))
+                used += [("c", id(f)) for f in frames]
+            elif kind == "joint":
+                joints.append((item[1], item[2], item[3]))
+                used += [("c", id(item[1])), ("c", id(item[2]))]
+    if not any_item:
+        return None
+    groups = {find(k) for k in used}
+    n = len(groups)
+    g = len(joints)
+    F = 3 * (n - 1) - sum(3 - f for _, _, f in joints)
+    # loops: edges - vertices + connected components of the link graph
+    comp_parent = {grp: grp for grp in groups}
+
+    def cfind(k):
+        while comp_parent[k] != k:
+            k = comp_parent[k]
+        return k
+    for a, b, _ in joints:
+        ra, rb = cfind(find(("c", id(a)))), cfind(find(("c", id(b))))
+        if ra != rb:
+            comp_parent[ra] = rb
+    n_components = len({cfind(grp) for grp in groups})
+    loops = g - n + n_components
+    return n, g, F, max(loops, 0)
+
+
+def _index(differentiations, differential):
+    """Differentiation index: 0 for an ODE, 1 for a DAE solvable without
+    differentiation, else one more than the differentiations needed."""
+    if differentiations:
+        return differentiations + 1
+    return 0 if np.all(differential) else 1
+
+
+def check(model):
+    """Compile ``model`` (a Component instance or a CompiledModel) and return a
+    :class:`CheckReport`; raises the project's errors for a broken model."""
+    from .compiler import CompiledModel
+    cm = model if isinstance(model, CompiledModel) else CompiledModel(model)
+    root = cm.model
+    p = cm.parameter_values()
+    z, d = cm.initial_values(0.0, p)
+    sel = cm.select(0.0, z, p, d)
+    form = cm.formulation(sel)
+    R = cm.R
+    state_nodes = [j for j, diff in zip(form.y_nodes, form.differential) if diff]
+    states = [cm.node_names[j] for j in state_nodes]
+    position_states = [j for j in state_nodes
+                       if R.var_level[j] == 0 and R.A[j] >= 0 and R.A[j] in set(state_nodes)]
+    topo = _planar_topology(root)
+    kinds = Counter(type(c).__name__ for c in root.components() if c is not root)
+    return CheckReport(
+        name=type(root).__name__,
+        n_components=sum(kinds.values()),
+        component_kinds=", ".join("%s %d" % kv for kv in sorted(kinds.items())),
+        n_flat_equations=cm.n_flat_equations,
+        n_equations=len(cm.equations), n_reduced_equations=R.n_eq,
+        n_variables=len(cm.all_variables), n_aliases=len(cm.aliases),
+        n_parameters=len(cm.parameters),
+        structural_index=_index(R.structural_index(), form.differential),
+        states=states, structural_dof=len(position_states),
+        loops=topo[3] if topo else 0,
+        grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
+        joints=topo[1] if topo else 0)

@@ -1,0 +1,150 @@
+"""The ``acausal2d`` command line: simulate, check, compare.
+
+Exit codes: 0 success, 1 comparison failed, 2 error in the model or the
+input (the message names what to change; no traceback).
+"""
+import argparse
+import os
+import sys
+import time
+
+from .errors import Acausal2dError
+
+
+def _parse_set(items):
+    params = {}
+    for item in items or ():
+        if "=" not in item:
+            raise Acausal2dError("--set takes comp.param=value, got %r" % item)
+        name, value = item.split("=", 1)
+        try:
+            vals = [float(v) for v in value.split(",")]
+        except ValueError:
+            raise Acausal2dError("--set %s: %r is not a number (vectors: 1,0)" % (name, value)) \
+                from None
+        params[name.strip()] = vals[0] if len(vals) == 1 else tuple(vals)
+    return params
+
+
+class _Progress:
+    """A progress bar on stderr over simulated time, shown after 1 s."""
+
+    def __init__(self, stream=sys.stderr):
+        self.start = time.perf_counter()
+        self.stream = stream
+        self.shown = False
+
+    def __call__(self, t, t_end):
+        if time.perf_counter() - self.start < 1.0:
+            return
+        self.shown = True
+        frac = min(max(t / t_end if t_end else 1.0, 0.0), 1.0)
+        bar = "#" * int(30 * frac)
+        self.stream.write("\r  [%-30s] t = %.4g / %.4g s" % (bar, t, t_end))
+        self.stream.flush()
+
+    def close(self):
+        if self.shown:
+            self.stream.write("\n")
+
+
+def cmd_simulate(args):
+    from .compiler import compile_model
+    from .loader import load_model
+    model = load_model(args.model_file, args.model)
+    cm = compile_model(model)
+    progress = _Progress()
+    try:
+        res = cm.simulate(stop_time=args.stop_time, params=_parse_set(args.set), rtol=args.rtol,
+                          intervals=args.intervals, progress=progress)
+    finally:
+        progress.close()
+    out = args.out
+    os.makedirs(out, exist_ok=True)
+    res.to_csv(os.path.join(out, "result.csv"))
+    names = [n.strip() for n in args.plot.split(",")] if args.plot else list(res.outputs)
+    pngs = []
+    for name in names:
+        path = os.path.join(out, name.replace("/", "_") + ".png")
+        pngs.append(res.plot([name], path, title=name))
+    if not names:
+        print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
+    res.animate(os.path.join(out, "animation.html"),
+                traces=[t.strip() for t in args.trace.split(",")] if args.trace else ())
+    st = res.stats
+    print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d output points, %d events, "
+          "%d state re-selections, %d residual evaluations -> %s/ (result.csv, %d plots, "
+          "animation.html)" % (type(model).__name__, res.time[-1] - res.time[0],
+                               st["wall_time"], st["compile_time"], len(res.time), st["events"],
+                               st["reselections"], st["nfev"], out, len(pngs)))
+    return 0
+
+
+def cmd_check(args):
+    from .check import check
+    from .loader import load_model
+    print(check(load_model(args.model_file, args.model)))
+    return 0
+
+
+def cmd_compare(args):
+    from .compare import run_compare_cli
+    mapping = {}
+    for item in args.map or ():
+        if "=" not in item:
+            raise Acausal2dError("--map takes ref_name=our_name, got %r" % item)
+        a, b = item.split("=", 1)
+        mapping[a.strip()] = b.strip()
+    signals = [s.strip() for s in args.signals.split(",")] if args.signals else None
+    return run_compare_cli(args.result, args.reference, signals=signals, mapping=mapping or None,
+                           abs_tol=args.abs_tol, rel_tol=args.rel_tol, out_dir=args.out)
+
+
+def build_parser():
+    """The argparse parser of the ``acausal2d`` command."""
+    p = argparse.ArgumentParser(prog="acausal2d", description=__doc__.split("\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+    s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
+    s.add_argument("model_file")
+    s.add_argument("--model", help="model class in the file (if it defines several)")
+    s.add_argument("--stop-time", type=float)
+    s.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="parameter value (vectors as 1,0); repeatable")
+    s.add_argument("--rtol", type=float)
+    s.add_argument("--intervals", type=int, help="number of output intervals")
+    s.add_argument("--plot", help="comma-separated signals to plot (default: model outputs)")
+    s.add_argument("--trace", help="comma-separated frames whose path the animation draws")
+    s.add_argument("--out", default="out", help="output directory (default: out)")
+    s.set_defaults(func=cmd_simulate)
+    c = sub.add_parser("check", help="print the structure of a model")
+    c.add_argument("model_file")
+    c.add_argument("--model")
+    c.set_defaults(func=cmd_check)
+    m = sub.add_parser("compare", help="compare a result CSV with a reference CSV")
+    m.add_argument("result")
+    m.add_argument("reference")
+    m.add_argument("--signals", help="comma-separated reference columns to check")
+    m.add_argument("--map", action="append", metavar="REF=OURS",
+                   help="reference column = our column; repeatable")
+    m.add_argument("--abs-tol", type=float)
+    m.add_argument("--rel-tol", type=float)
+    m.add_argument("--out", help="directory for the comparison plots")
+    m.set_defaults(func=cmd_compare)
+    return p
+
+
+def main(argv=None):
+    """Entry point of the ``acausal2d`` command."""
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except Acausal2dError as exc:
+        print("error: %s" % exc, file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

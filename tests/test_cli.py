@@ -1,0 +1,133 @@
+"""The command line through its real entry point (subprocess)."""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED_REF = os.path.join(ROOT, "..", "shared", "references", "PistonEngine.csv")
+
+
+def run(*args):
+    exe = shutil.which("acausal2d")
+    cmd = [exe] if exe else [sys.executable, "-m", "acausal2d"]
+    return subprocess.run(cmd + list(args), capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture(scope="module")
+def engine_out(tmp_path_factory):
+    out = tmp_path_factory.mktemp("engine")
+    proc = run("simulate", os.path.join(ROOT, "models", "piston_engine.py"), "--out", str(out))
+    assert proc.returncode == 0, proc.stderr
+    return out, proc
+
+
+def test_simulate_writes_csv_plots_and_animation(engine_out):
+    out, proc = engine_out
+    assert "PistonEngine: simulated 10 s" in proc.stdout
+    with open(out / "result.csv") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0][0] == "time"
+    assert "revoluteDrive.phi" in rows[0]
+    assert len(rows) == 5002                      # header + 5001 output points
+    k = rows[0].index("revoluteDrive.phi")
+    assert float(rows[-1][k]) == pytest.approx(-16.8149394961727, abs=2e-3)
+    pngs = sorted(p.name for p in out.glob("*.png"))
+    assert "revoluteDrive.phi.png" in pngs
+    assert (out / "revoluteDrive.phi.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    html = (out / "animation.html").read_text()
+    assert "<canvas" in html and "<script src" not in html
+
+
+def test_simulate_with_parameter_and_stop_time(tmp_path):
+    proc = run("simulate", os.path.join(ROOT, "models", "pendulum.py"), "--out", str(tmp_path),
+               "--stop-time", "0.5", "--set", "body.m=2", "--set", "rod.r=0.5,0")
+    assert proc.returncode == 0, proc.stderr
+    with open(tmp_path / "result.csv") as fh:
+        rows = list(csv.reader(fh))
+    assert float(rows[-1][0]) == pytest.approx(0.5)
+    assert float(rows[1][rows[0].index("body.frame_a.x")]) == pytest.approx(0.5)
+
+
+def test_check_prints_structure_and_both_dof_counts():
+    proc = run("check", os.path.join(ROOT, "models", "piston_engine.py"))
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout
+    assert "states:            revoluteDrive.phi, der(revoluteDrive.phi)" in out
+    assert "structural index:  3" in out
+    assert "closed loops:      1" in out
+    assert ("degree of freedom: 1 by seed eq. 2.1 (n = 4 links with ground, g = 4 joints), "
+            "1 structural") in out
+
+
+@pytest.mark.skipif(not os.path.exists(SHARED_REF), reason="shared reference file not present")
+def test_compare_passes_against_shared_reference(engine_out, tmp_path):
+    out, _ = engine_out
+    proc = run("compare", str(out / "result.csv"), SHARED_REF, "--out", str(tmp_path))
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "revoluteDrive.phi" in proc.stdout and "PASS" in proc.stdout
+    assert (tmp_path / "revoluteDrive.phi.png").exists()
+
+
+def test_compare_fails_on_perturbed_signal(engine_out, tmp_path):
+    out, _ = engine_out
+    with open(out / "result.csv") as fh:
+        rows = list(csv.reader(fh))
+    k = rows[0].index("revoluteDrive.w")
+    ref = tmp_path / "reference.csv"
+    with open(ref, "w", newline="") as fh:
+        w = csv.writer(fh, quoting=csv.QUOTE_NONNUMERIC)
+        w.writerow(["Time", "revoluteDrive.phi", "revoluteDrive.w"])
+        for i, row in enumerate(rows[1::10]):
+            wv = float(row[k]) + (5e-3 if i == 200 else 0.0)
+            w.writerow([float(row[0]), float(row[rows[0].index("revoluteDrive.phi")]), wv])
+    proc = run("compare", str(out / "result.csv"), str(ref))
+    assert proc.returncode == 1
+    lines = {ln.split()[0]: ln for ln in proc.stdout.splitlines() if ln.strip()}
+    assert "FAIL" in lines["revoluteDrive.w"]
+    assert "PASS" in lines["revoluteDrive.phi"]
+    assert "5.0000e-03" in lines["revoluteDrive.w"]
+
+
+BROKEN_UNBALANCED = textwrap.dedent('''
+    from acausal2d import Component, Variable, der
+
+    class Broken(Component):
+        x = Variable()
+        y = Variable()
+
+        def equations(self):
+            return [der(self.x) == -self.x]
+''')
+
+BROKEN_UNCONNECTED = textwrap.dedent('''
+    from acausal2d import Component, start
+    from acausal2d.library.rotational import Inertia, Torque
+
+    class Broken(Component):
+        def __init__(self):
+            super().__init__()
+            self.inertia = Inertia(phi=start(0, fixed=True), w=start(0, fixed=True))
+            self.torque = Torque()
+            self.connect(self.torque.flange, self.inertia.flange_a)
+''')
+
+
+@pytest.mark.parametrize("source,message", [
+    (BROKEN_UNBALANCED, "under-determined: 1 equations for 2 unknowns"),
+    (BROKEN_UNCONNECTED, "connector torque.tau_in must be connected"),
+], ids=["unbalanced", "unconnected"])
+@pytest.mark.parametrize("command", ["simulate", "check"])
+def test_broken_model_gives_error_and_exit_code_2(tmp_path, source, message, command):
+    path = tmp_path / "broken.py"
+    path.write_text(source)
+    args = [command, str(path)] + (["--out", str(tmp_path / "o")] if command == "simulate" else [])
+    proc = run(*args)
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("error: ")
+    assert message in proc.stderr
+    assert "Traceback" not in proc.stderr + proc.stdout
