@@ -97,11 +97,12 @@ class CompiledModel:
         self.crossings = crossings
         self.g_nodes_fn = ca.Function("g_nodes", [self.t, z, self.p, self.d], [crossings]) \
             if crossings is not None else None
-        alias_exprs = [a.offset if a.rep is None else a.sign * a.rep.sym + a.offset
-                       for a in self.aliases]
+        # eliminated variables: value = sign * node value + offset(parameters)
         self.alias_names = [a.var.name for a in self.aliases]
-        self.alias_fn = ca.Function("aliases", [z, self.p],
-                                    [ca.vertcat(*alias_exprs) if alias_exprs else ca.SX(0, 1)])
+        self.alias_node = np.array([-1 if a.rep is None else R.var_index[symbols.key(a.rep.sym)]
+                                    for a in self.aliases], dtype=int)
+        self.alias_sign = np.array([float(a.sign) for a in self.aliases])
+        self.alias_offset_fn = _as_function_of_params([a.offset for a in self.aliases], self.p)
         self._formulations = {}
         self.outputs = list(getattr(model, "outputs", ()))
         self.compile_time = _time.perf_counter() - t0
@@ -156,13 +157,13 @@ class CompiledModel:
     def relation_values(self, t, z, p, d):
         if not self.relations:
             return d
-        g = np.asarray(self.g_nodes_fn(t, z, p, d)).ravel()
+        g = self.g_nodes_fn(t, z, p, d).full().ravel()
         return np.array([r.value(gv) for r, gv in zip(self.relations, g)])
 
     def initial_values(self, t0, p):
         """Consistent node values and relation values at t0."""
         z = np.zeros(self.R.n_var)
-        z[self.level0] = np.asarray(self.start_fn(p)).ravel()
+        z[self.level0] = self.start_fn(p).full().ravel()
         held = self.held
         d = np.zeros(len(self.relations))
         d = self.relation_values(t0, z, p, d)
@@ -202,7 +203,9 @@ class CompiledModel:
         times, Z, events, stats = integrate(self, z0, d0, p, output_times, rtol, atol, progress)
         stats["wall_time"] = _time.perf_counter() - wall
         stats["compile_time"] = self.compile_time
-        A = np.asarray(self.alias_fn.map(len(times))(Z.T, np.repeat(p[:, None], len(times), 1)))
-        A = A.T if A.size else np.zeros((len(times), 0))
+        offsets = self.alias_offset_fn(p).full().ravel()
+        bound = self.alias_node < 0
+        A = Z[:, np.where(bound, 0, self.alias_node)] * self.alias_sign + offsets
+        A[:, bound] = offsets[bound]
         return Result(times, self.node_names, Z, self.alias_names, A,
                       list(self.param_index), p, events, stats, self.outputs, self)

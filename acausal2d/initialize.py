@@ -34,7 +34,7 @@ class InitialSystem:
         self.shape = (sp_.size1(), sp_.size2())
 
     def residual(self, t, z, p, d):
-        return np.asarray(self.E(t, z, p, d)).ravel()
+        return self.E(t, z, p, d).full().ravel()
 
     def jacobian(self, t, z, p, d):
         nz = np.asarray(self.J(t, z, p, d).nonzeros(), dtype=float)

@@ -176,6 +176,79 @@ class _CapturedStderr:
         return False
 
 
+class _StartError(Exception):
+    pass
+
+
+def _run_solve(solver, t, remaining, y0, yp0, form, out_t, out_z):
+    """One IDA call over all remaining output times; stops at an event."""
+    tspan = np.concatenate([[t], remaining])
+    mid = len(tspan) == 2
+    if mid:   # two times would make IDA return its internal steps
+        tspan = np.array([t, 0.5 * (t + tspan[1]), tspan[1]])
+    try:
+        sol = solver.solve(tspan, y0, yp0)
+    except Exception as exc:
+        raise _StartError(exc) from None
+    ts, ys, yps = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
+    event = sol if sol.status == 2 else None
+    n = len(ts) - (1 if event is not None else 0)
+    for k in range(1, n):
+        if mid and k == 1:
+            continue
+        out_t.append(float(ts[k]))
+        out_z.append(form.nodes_from(ys[k], yps[k]))
+    if event is not None:
+        event = _Event(float(sol.t_events[-1]), np.asarray(sol.y_events)[-1],
+                       np.asarray(sol.yp_events)[-1], np.asarray(sol.i_events)[-1])
+    last = _Event(float(ts[-1]), ys[-1], yps[-1], None) if len(ts) else None
+    return _Outcome(sol, last), event
+
+
+def _run_steps(solver, t, remaining, y0, yp0, form, out_t, out_z, progress, t_end):
+    """Output by output, reporting progress; stops at an event."""
+    try:
+        solver.init_step(t, y0, yp0)
+    except Exception as exc:
+        raise _StartError(exc) from None
+    last_report = _time.perf_counter()
+    sol = None
+    for t_out in remaining:
+        sol = solver.step(float(t_out))
+        if sol.status == 2:
+            return _Outcome(sol, None), _Event(float(sol.t), np.asarray(sol.y),
+                                               np.asarray(sol.yp), np.asarray(sol.i_events))
+        if not sol.success:
+            break
+        out_t.append(float(sol.t))
+        out_z.append(form.nodes_from(sol.y, sol.yp))
+        if _time.perf_counter() - last_report > 0.1:
+            last_report = _time.perf_counter()
+            progress(float(sol.t), t_end)
+    last = _Event(float(sol.t), np.asarray(sol.y), np.asarray(sol.yp), None) \
+        if sol is not None else None
+    return _Outcome(sol, last), None
+
+
+class _Event:
+    __slots__ = ("t", "y", "yp", "i_events")
+
+    def __init__(self, t, y, yp, i_events):
+        self.t, self.y, self.yp, self.i_events = t, y, yp, i_events
+
+
+class _Outcome:
+    """Status of a segment run and the last point reached."""
+
+    def __init__(self, sol, last):
+        self.success = bool(sol.success) if sol is not None else True
+        self.status = sol.status if sol is not None else 0
+        self.message = str(getattr(sol, "message", ""))
+        self.nfev = int(getattr(sol, "nfev", 0) or 0) if sol is not None else 0
+        self.njev = int(getattr(sol, "njev", 0) or 0) if sol is not None else 0
+        self.last = last
+
+
 def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     """Integrate the compiled model ``cm`` from consistent node values z0.
 
@@ -192,7 +265,6 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     selection = cm.select(t, z, p, d)
     nominal = np.array(cm.nominal)
     eps = 1e-12 * max(1.0, abs(t_end))
-    last_report = _time.perf_counter()
     while t < t_end - eps:
         form = cm.formulation(selection)
         prob = _Problem(form, p, d, 1.0)
@@ -206,34 +278,26 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         event = None
         with _CapturedStderr() as err:
             try:
-                solver.init_step(t, y0, yp0)
-            except Exception as exc:
-                sol = None
-                start_error = exc
-            else:
+                if progress is None:
+                    sol, event = _run_solve(solver, t, remaining, y0, yp0, form, out_t, out_z)
+                else:
+                    sol, event = _run_steps(solver, t, remaining, y0, yp0, form, out_t, out_z,
+                                            progress, t_end)
                 start_error = None
-                for t_out in remaining:
-                    sol = solver.step(float(t_out))
-                    if sol.status == 2:
-                        event = sol
-                        break
-                    if not sol.success:
-                        break
-                    out_t.append(float(sol.t))
-                    out_z.append(form.nodes_from(sol.y, sol.yp))
-                    if progress is not None and _time.perf_counter() - last_report > 0.1:
-                        last_report = _time.perf_counter()
-                        progress(float(sol.t), t_end)
+            except _StartError as exc:
+                sol, start_error = None, exc.args[0]
         if start_error is not None:
             raise SimulationError("IDA could not start at t=%.6g: %s" % (t, start_error),
                                   time=t) from None
         if sol is not None:
-            stats["nfev"] += int(getattr(sol, "nfev", 0) or 0)
-            stats["njev"] += int(getattr(sol, "njev", 0) or 0)
+            stats["nfev"] += sol.nfev
+            stats["njev"] += sol.njev
         if event is None and sol is not None and not sol.success:
-            tf = float(sol.t)
-            var = _worst_variable(cm, form, prob, tf, np.asarray(sol.y), np.asarray(sol.yp))
-            detail = err.text.replace("\n", " ").strip() or str(sol.message).strip()
+            last = sol.last
+            tf = last.t if last is not None else t
+            var = _worst_variable(cm, form, prob, tf, last.y, last.yp) if last is not None \
+                else None
+            detail = " ".join(err.text.split()) or sol.message.strip()
             raise SimulationError(
                 "Integration failed at t=%.6g (IDA status %s: %s)%s." % (
                     tf, sol.status, detail,
@@ -241,9 +305,8 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
                 time=tf, status=sol.status, variable=var)
         if event is None:
             break
-        te = float(event.t)
-        ye, ype = np.asarray(event.y), np.asarray(event.yp)
-        ze = form.nodes_from(ye, ype)
+        te = event.t
+        ze = form.nodes_from(event.y, event.yp)
         which = np.nonzero(np.asarray(event.i_events).ravel())[0]
         rel_hits = [int(k) for k in which if k < prob.n_rel]
         out_t.append(te)
