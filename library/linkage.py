@@ -110,6 +110,34 @@ class _Body:
         return _moment(self.S, ref, self.F) + self.T
 
 
+# --------------------------------------------------------------- init workaround
+INIT_KICK = True
+"""Workaround for the consistent-initialization line search of the compiler
+(acausal2d/initialize.py accepts a Newton step only if the max-norm of the
+residual decreases; from zero start values of the velocity/acceleration
+nodes the first full Newton step of a mechanism with rotating guides
+increases it through the Coriolis products, so the search stalls although
+undamped Newton converges in two steps).  The drive elements DAN and SAN
+add one decoupled scalar ``init_kick`` with ``init_kick^3 + init_kick = 0``
+and start value 30: its large initial residual lets the first full steps
+through; it converges to 0 and carries no physics.  Set ``INIT_KICK =
+False`` (before building a model) once the compiler initializes level by
+level."""
+
+
+def _add_init_kick(comp):
+    if INIT_KICK:
+        comp.add_variable("init_kick", start=30.0,
+                          doc="initialization workaround (no physics), converges to 0")
+
+
+def _init_kick_equations(comp):
+    if "init_kick" in comp._var_decls:
+        k = comp.init_kick
+        return [k ** 3 + k == 0]
+    return []
+
+
 # --------------------------------------------------------------- assembly
 class _Assembly:
     """Numeric-symbolic pre-assembly of all linkage elements of one model:
@@ -411,6 +439,7 @@ class DAN(_Linkage):
     def __init__(self, **kw):
         super().__init__(**kw)
         self._default_half(kw, "xSLrel", "lL")
+        _add_init_kick(self)
         self.ctr2D1 = Frame(ground=_GROUND, doc="housing at P1")
         self.ctr2D2 = Frame(doc="link plane at P")
         self.ctrR1 = RotationalFlange(doc="housing (support) flange")
@@ -423,9 +452,10 @@ class DAN(_Linkage):
         (x1, y1, a1), = p1
         r = asm.get(self.ctrR2)
         phi = r["phi"] if r and "phi" in r else self.phiL0
+        om = r["w"] if r and "w" in r else self.omL0
         xP, yP = x1 + self.lL * ca.cos(phi), y1 + self.lL * ca.sin(phi)
         dx, dy = _rot(phi, self.xSLrel, self.ySLrel)
-        self._set_starts({"phiL": phi, "omL": self.omL0, "xSL": x1 + dx, "ySL": y1 + dy})
+        self._set_starts({"phiL": phi, "omL": om, "xSL": x1 + dx, "ySL": y1 + dy})
         self._set_port(asm, self.ctr2D2, {"x": xP, "y": yP, "phi": phi})
         self._set_port(asm, self.ctrR2, {"phi": phi})
         self._set_port(asm, self.ctrR1, {"phi": a1})
@@ -440,7 +470,7 @@ class DAN(_Linkage):
         dx, dy = _rot(phi, self.xSLrel, self.ySLrel)                          # A.21, A.22
         L = _Body(self.mL, self.JL, self.xSL, self.ySL, phi, self._g())
         F1 = (f1.fx, f1.fy)          # joint force housing -> link (massless housing)
-        return [
+        return _init_kick_equations(self) + [
             self.omL == der(phi),
             self.xSL == x1 + dx, self.ySL == y1 + dy,
             f2.x == P[0], f2.y == P[1], f2.phi == phi,                        # Tabelle B.3
@@ -492,6 +522,7 @@ class SAN(_Linkage):
 
     def __init__(self, **kw):
         super().__init__(**kw)
+        _add_init_kick(self)
         self.ctr2D1 = Frame(ground=_GROUND, doc="guide at P1")
         self.ctr2D2 = Frame(doc="slider plane at P")
         self.ctrT1 = TranslationalFlange(doc="guide support flange")
@@ -524,7 +555,7 @@ class SAN(_Linkage):
         S = _Body(self.mS, self.JS, self.xSS, self.ySS, self.phiS, self._g())
         Ft, Fu = self.ctrT2.f, self.ctrT1.f
         Fn = self.Fn
-        return [
+        return _init_kick_equations(self) + [
             self.phiS == a,                                 # B.22
             self.xSS == PS[0] + dx, self.ySS == PS[1] + dy,
             f2.x == P[0], f2.y == P[1], f2.phi == a,        # Tabelle B.6

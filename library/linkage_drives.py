@@ -22,7 +22,7 @@ import numpy as np
 from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
 from acausal2d.dsl import Component, Parameter, Variable
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.symbols import der, time
+from acausal2d.symbols import der, time, time_derivative
 
 __all__ = ["Preset", "TorqueSource", "ForceSource", "RelativeAngle", "RelativePosition",
            "RelativeDisplacement", "TorqueSensor", "ForceSensor"]
@@ -98,8 +98,10 @@ class Preset(Component):
         return _spline_expr(t, self.table)
 
     def _linkage_seed(self):
+        """Start pose for the linkage pre-assembly: position and speed at t = 0."""
         pot = "s" if self.translational else "phi"
-        return [(self.flange, {pot: self.motion(0.0)})]
+        w0 = ca.substitute(time_derivative(self.motion(time)), time, ca.SX(0.0))
+        return [(self.flange, {pot: self.motion(0.0), "w": w0})]
 
     def equations(self):
         pot = self.flange.s if self.translational else self.flange.phi

@@ -512,25 +512,35 @@ def test_browser_screenshot_cli(page_path, tmp_path):
     message and uncaught exception as a ``:CONSOLE`` line; the page itself
     never writes to the console, so any such line is an error).
     """
+    images = screenshot_frames(page_path, (0, 200), tmp_path, "cli")
+    assert_canvas_drawn(images[0], "frame 0")
+    assert_canvas_drawn(images[1], "frame 200")
+    assert_differ(images[0], images[1])
+
+
+def screenshot_frames(page_path, frames, tmp_path, prefix):
+    """Screenshots of ``page_path`` at the given frames (``#frame=N``), taken
+    in parallel by headless Chromium and saved as artifacts
+    ``tests/artifacts/<prefix>_frame<N>.png``; fails on any console message."""
     require_chromium()
     ARTIFACTS.mkdir(exist_ok=True)
     runs = []
-    for frame in (0, 200):
-        png = ARTIFACTS / f"cli_frame{frame}.png"
+    for frame in frames:
+        png = ARTIFACTS / f"{prefix}_frame{frame}.png"
         if png.exists():
             png.unlink()
-        log = open(tmp_path / f"chromium_{frame}.log", "w+b")
+        log = open(tmp_path / f"chromium_{prefix}_{frame}.log", "w+b")
         proc = subprocess.Popen(
-            [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / f'profile{frame}'}",
+            [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / f'profile_{prefix}{frame}'}",
              f"--screenshot={png}", "--enable-logging=stderr", "--v=0",
-             page_path.resolve().as_uri() + f"#frame={frame}"],
+             pathlib.Path(page_path).resolve().as_uri() + f"#frame={frame}"],
             stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
             start_new_session=True)
         runs.append((frame, png, log, proc))
     images = []
     for frame, png, log, proc in runs:
         try:
-            proc.wait(timeout=30)
+            proc.wait(timeout=60)
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
@@ -541,6 +551,4 @@ def test_browser_screenshot_cli(page_path, tmp_path):
         console = [line for line in text.splitlines() if ":CONSOLE" in line or "Uncaught" in line]
         assert console == [], f"console output at frame {frame}: {console}"
         images.append(read_png(png))
-    assert_canvas_drawn(images[0], "frame 0")
-    assert_canvas_drawn(images[1], "frame 200")
-    assert_differ(images[0], images[1])
+    return images

@@ -131,3 +131,17 @@ def test_broken_model_gives_error_and_exit_code_2(tmp_path, source, message, com
     assert proc.stderr.startswith("error: ")
     assert message in proc.stderr
     assert "Traceback" not in proc.stderr + proc.stdout
+
+
+def test_simulated_animation_draws_in_browser(engine_out, tmp_path):
+    """The animation page written by `acausal2d simulate` for the piston
+    engine, opened in headless Chromium at two frames: the mechanism is drawn
+    (non-blank canvas with steel-blue links), scrubbing to another frame
+    changes the picture, and the console stays silent.  Screenshots are kept
+    in tests/artifacts/engine_frame*.png."""
+    from test_animation import assert_canvas_drawn, assert_differ, screenshot_frames
+    out, _ = engine_out
+    first, later = screenshot_frames(out / "animation.html", (0, 150), tmp_path, "engine")
+    assert_canvas_drawn(first, "frame 0")
+    assert_canvas_drawn(later, "frame 150")
+    assert_differ(first, later)

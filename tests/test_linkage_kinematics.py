@@ -85,7 +85,7 @@ class CrankTest(Component):
 
 
 def run(model, stop=1.0):
-    res = acausal2d.simulate(model, stop_time=stop, rtol=1e-9,
+    res = acausal2d.simulate(model, stop_time=stop, rtol=1e-8,
                              output_times=np.linspace(0, stop, N_OUT))
     return res
 
