@@ -71,6 +71,10 @@ def cmd_simulate(args):
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
     res.animate(os.path.join(out, "animation.html"),
                 traces=[t.strip() for t in args.trace.split(",")] if args.trace else ())
+    for sing in res.singularities:
+        print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
+    if res.stopped:
+        print("  " + res.stopped)
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d output points, %d events, "
           "%d state re-selections, %d residual evaluations -> %s/ (result.csv, %d plots, "

@@ -154,6 +154,28 @@ class CompiledModel:
             return J[eqs][:, nodes].toarray()
         return select_dummies(self.R, self.n_original, self.priority, self.nominal, jac)
 
+    def block_conditioning(self, t, z, p, d, eqs, nodes):
+        """Smallest singular value of the nominal-scaled Jacobian block of
+        equations ``eqs`` w.r.t. variable nodes ``nodes``, and the left
+        singular vector (weights of the equations in the singularity)."""
+        J = self.init_system.jacobian(t, z, p, d).tocsr()
+        H = J[eqs][:, nodes].toarray() * np.array([self.nominal[j] for j in nodes])[None, :]
+        u, sv, _ = np.linalg.svd(H)
+        return float(sv[-1]) / max(float(sv[0]), 1e-300), u[:, -1]
+
+    def singular_elements(self, eqs, weights):
+        """Components whose equations take part in a singular block."""
+        w = np.abs(weights)
+        names = []
+        for i in np.argsort(-w):
+            if w[i] < 0.2 * w.max():
+                break
+            eq = self.equations[self.R.eq_origin[eqs[i]]]
+            name = eq.owner.describe() if eq.owner is not None else eq.origin
+            if name not in names:
+                names.append(name)
+        return names
+
     def relation_values(self, t, z, p, d):
         if not self.relations:
             return d
@@ -207,5 +229,8 @@ class CompiledModel:
         bound = self.alias_node < 0
         A = Z[:, np.where(bound, 0, self.alias_node)] * self.alias_sign + offsets
         A[:, bound] = offsets[bound]
-        return Result(times, self.node_names, Z, self.alias_names, A,
-                      list(self.param_index), p, events, stats, self.outputs, self)
+        res = Result(times, self.node_names, Z, self.alias_names, A,
+                     list(self.param_index), p, events, stats, self.outputs, self)
+        res.singularities = stats.pop("singularities", [])
+        res.stopped = stats.pop("stopped", None)
+        return res

@@ -177,6 +177,7 @@ class Component:
         d["_param_values"] = {}
         d["_connections"] = []
         d["_overrides"] = {}
+        d["_var_infos"] = {}
         for cls in reversed(type(self).__mro__):
             for name, attr in vars(cls).items():
                 if isinstance(attr, Parameter):
@@ -276,6 +277,25 @@ class Component:
                                        % (a.describe(), a.describe()))
         self._connections.append((a, b))
 
+    def on_flatten(self):
+        """Hook called once per flattening, after all symbols of the model
+        exist and before any ``equations()`` is called (e.g. to reset caches
+        built from symbols).  Default: nothing."""
+
+    def set_start(self, name, value):
+        """Set the start value (a guess: number or parameter expression) of
+        the variable ``name`` of this component or of one of its connectors
+        (``"frame_a.x"``), unless the model gave one with :func:`start`.
+        Meant for ``equations()`` / ``on_flatten()`` of elements that compute
+        assembly guesses, such as branch choices from a parameter K."""
+        info = self._var_infos.get(name)
+        if info is None:
+            raise ModelDefinitionError("%s has no variable %r" % (self.describe(), name))
+        ov = self._overrides.get(name)
+        if isinstance(ov, start) and ov.value is not None or isinstance(ov, numbers.Real):
+            return
+        info.start = value
+
     def equations(self):
         """Return this component's equations: CasADi expressions written as
         ``lhs == rhs`` (or residuals that must vanish), possibly nested in
@@ -355,9 +375,14 @@ class Component:
             for i in range(decl.size):
                 pname = _join(path, name) + ("[%d]" % i if decl.size > 1 else "")
                 params_out.append((pname, sym[i], float(vals[i]), decl))
+        self._var_infos.clear()
         for name, decl in self._var_decls.items():
             sym = symbols.new_variable(_join(path, name))
             self._var_syms[name] = sym
-            vars_out.append(VarInfo(_join(path, name), sym, decl, self))
-        for conn in self._connectors.values():
+            self._var_infos[name] = VarInfo(_join(path, name), sym, decl, self)
+            vars_out.append(self._var_infos[name])
+        for cname, conn in self._connectors.items():
+            n0 = len(vars_out)
             conn._bind(vars_out)
+            for info in vars_out[n0:]:
+                self._var_infos[cname + "." + info.name.rsplit(".", 1)[1]] = info

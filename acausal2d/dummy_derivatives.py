@@ -9,7 +9,10 @@ default < prefer < always) and, inside one priority class, takes the best
 conditioned columns at the current point (QR with column pivoting on
 nominal-scaled columns).  Where a class offered a real choice, the level is
 *dynamic*: the integrator watches the determinant of the chosen block and
-re-selects when it decays (e.g. a slider-crank passing a dead centre).
+re-selects when it decays (e.g. a slider-crank passing a dead centre).  The
+block of the highest level is always watched: when no other choice is better
+conditioned, the mechanism itself is at a singular position (a limit
+position of a driven linkage, a branch point of a dyad).
 """
 import casadi as ca
 import numpy as np
@@ -18,6 +21,9 @@ import scipy.linalg as sla
 from . import symbols
 from .dsl import STATE_SELECT
 from .errors import SimulationError
+
+_MAX_MONITOR = 40          # largest dummy block whose determinant is watched during a run
+_MAX_DET_NODES = 20000     # ... and the largest symbolic determinant
 
 
 class Level:
@@ -153,6 +159,7 @@ class Formulation:
         self.sub_nodes = np.array(self.sub_nodes, dtype=int)
         self.sub_from = np.array(self.sub_from, dtype=int)
         self.state_deriv = np.array([A[j] if is_state[j] else -1 for j in self.y_nodes])
+        self.all_deriv = np.array([A[j] for j in self.y_nodes])
         cj = ca.SX.sym("cj")
         Jac = ca.jacobian(F, y) + cj * ca.jacobian(F, yp)
         self.sparse = n >= 100
@@ -160,21 +167,29 @@ class Formulation:
         args = [t, y, yp, p, d]
         self.res_fn = ca.Function("res", args, [F])
         self.jac_fn = ca.Function("iteration_matrix", args + [cj], [Jac])
-        if crossings is not None and crossings.numel():
-            g = ca.substitute(crossings, node_syms, repl)
-            self.g_fn = ca.Function("g", args, [g])
-        else:
-            self.g_fn = None
-        self.monitors = []
-        for lv in selection.levels:
-            if lv.dynamic and len(lv.eqs) <= 12:
+        # zero crossings: relation functions, then determinants of watched dummy blocks
+        g = [ca.substitute(crossings, node_syms, repl)] \
+            if crossings is not None and crossings.numel() else []
+        self.n_rel = g[0].numel() if g else 0
+        # watched dummy blocks: every level with a choice (events trigger a
+        # re-selection) and the highest level (scanned for singular positions)
+        self.monitor_levels, self.scan_levels, dets = [], [], {}
+        for k, lv in enumerate(selection.levels):
+            if (k == 0 or lv.dynamic) and len(lv.eqs) <= _MAX_MONITOR:
                 Hs = ca.jacobian(ca.vertcat(*[R.eq_expr[i] for i in lv.eqs]),
                                  ca.vertcat(*[R.var_sym[j] for j in lv.chosen]))
-                self.monitors.append(ca.substitute(Hs, node_syms, repl))
-        if self.monitors:
-            self.monitor_fn = ca.Function("blocks", args, self.monitors)
-        else:
-            self.monitor_fn = None
+                det = ca.det(Hs)
+                if ca.n_nodes(det) > _MAX_DET_NODES:
+                    continue        # too large to watch cheaply
+                dets[k] = ca.substitute(det, node_syms, repl)
+                self.scan_levels.append(k)
+                if lv.dynamic:
+                    self.monitor_levels.append(k)
+                    g.append(dets[k])
+        self.n_mon = len(self.monitor_levels)
+        self.det_fn = ca.Function("dets", args, [ca.vertcat(*[dets[k] for k in self.scan_levels])]) \
+            if self.scan_levels else None
+        self.event_fn = ca.Function("events", args, [ca.vertcat(*g)]) if g else None
 
     def nodes_from(self, y, yp):
         """Values of all variable nodes from IDA's y and yp."""
@@ -184,9 +199,11 @@ class Formulation:
         return z
 
     def y_from(self, z):
-        """IDA's (y, yp) from consistent node values."""
+        """IDA's (y, yp) from consistent node values; algebraic components get
+        their derivative too where it is known, so that IDA's first error
+        test sees consistent values."""
         y = z[self.y_pos]
         yp = np.zeros_like(y)
-        st = self.state_deriv >= 0
-        yp[st] = z[self.state_deriv[st]]
+        st = self.all_deriv >= 0
+        yp[st] = z[self.all_deriv[st]]
         return y, yp

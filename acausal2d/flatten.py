@@ -8,7 +8,6 @@ declared with ``ground=``).
 import casadi as ca
 import numpy as np
 
-from .connectors import Connector
 from .errors import ModelDefinitionError
 
 
@@ -16,11 +15,12 @@ class Equation:
     """One scalar residual equation ``expr == 0`` and where it comes from.
     ``text`` shows it as written (formatted on first use)."""
 
-    __slots__ = ("expr", "origin", "_text", "_sides")
+    __slots__ = ("expr", "origin", "_text", "_sides", "owner")
 
-    def __init__(self, expr, origin, text=None, sides=None):
+    def __init__(self, expr, origin, text=None, sides=None, owner=None):
         self.expr = expr
         self.origin = origin
+        self.owner = owner          # the Component that wrote it (None: connections)
         self._text = text
         self._sides = sides
 
@@ -51,10 +51,10 @@ class FlatModel:
         self.equations = equations        # list of Equation
 
 
-def _residuals(item, origin, out, counter):
+def _residuals(item, origin, out, counter, owner=None):
     if isinstance(item, (list, tuple)):
         for sub in item:
-            _residuals(sub, origin, out, counter)
+            _residuals(sub, origin, out, counter, owner)
         return
     if isinstance(item, (bool, np.bool_)):
         raise ModelDefinitionError(
@@ -75,7 +75,7 @@ def _residuals(item, origin, out, counter):
             res, sides = lhs - rhs, (lhs, rhs)
         else:
             res, sides = el, None
-        eq = Equation(res, "%s equation %d" % (origin, counter[0]), sides=sides)
+        eq = Equation(res, "%s equation %d" % (origin, counter[0]), sides=sides, owner=owner)
         if res.is_constant():
             raise ModelDefinitionError(
                 "%s equation %d (%s) contains no unknowns" % (origin, counter[0], eq.text))
@@ -107,6 +107,8 @@ def flatten(model):
     comps = list(model.components())
     for comp in comps:
         comp._bind(params, variables)
+    for comp in comps:
+        comp.on_flatten()
     equations = []
     for comp in comps:
         origin = comp.describe()
@@ -117,7 +119,7 @@ def flatten(model):
         except Exception as exc:
             raise ModelDefinitionError("%s: equations() failed: %s: %s"
                                        % (origin, type(exc).__name__, exc)) from None
-        _residuals(items if items is not None else [], origin, equations, [0])
+        _residuals(items if items is not None else [], origin, equations, [0], comp)
     equations.extend(_connection_equations(model, comps))
     return FlatModel(model, variables, params, equations)
 

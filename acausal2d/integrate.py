@@ -21,7 +21,33 @@ import sksundae as sun  # noqa: E402
 from .errors import InitializationError, SimulationError  # noqa: E402
 from .initialize import solve_consistent  # noqa: E402
 
-_MONITOR_THRESHOLD = 0.25
+_MONITOR_THRESHOLD = 0.25      # re-check the state selection when a block's |det| drops 4x
+_MAX_SINGULAR_EVENTS = 60       # then stop watching (a mechanism resting at a singular position)
+
+
+def _reselect(cm, selection, form, hits, t, z, p, d):
+    """After a watched dummy block decayed: a better-conditioned selection,
+    or (None, singularity record) if the mechanism itself is singular."""
+    worst = None
+    for m in hits:
+        lv = selection.levels[form.monitor_levels[m]]
+        cond, u = cm.block_conditioning(t, z, p, d, lv.eqs, lv.chosen)
+        if worst is None or cond < worst[0]:
+            worst = (cond, lv, u)
+    cond, lv, u = worst
+    try:
+        new = cm.select(t, z, p, d)
+    except SimulationError:
+        new = None
+    if new is not None and new.dummies != selection.dummies:
+        better = min(cm.block_conditioning(t, z, p, d, nl.eqs, nl.chosen)[0]
+                     for nl in new.levels)
+        if better > 2.0 * cond:
+            return new, None
+    if cond > _SINGULAR_CONDITION:
+        return selection, None      # decayed, but far from singular: keep watching
+    return selection, {"time": t, "elements": cm.singular_elements(lv.eqs, u),
+                       "kind": "singular position", "condition": cond}
 
 
 class _Buffered:
@@ -42,22 +68,20 @@ class _Buffered:
 
 
 class _Problem:
-    def __init__(self, form, p, d, n_monitor_ref):
+    """IDA callbacks of one formulation with fixed parameters and relation
+    values; ``monitor`` switches the watching of dummy blocks."""
+
+    def __init__(self, form, p, d, monitor=True):
         n = form.n
         t = np.zeros(1)
         z = np.zeros(n)
         self.form = form
         self.res = _Buffered(form.res_fn, [t, z, z, p, d])
         self.jac = _Buffered(form.jac_fn, [t, z, z, p, d, np.zeros(1)])
-        self.g = _Buffered(form.g_fn, [t, z, z, p, d]) if form.g_fn is not None else None
-        self.mon = _Buffered(form.monitor_fn, [t, z, z, p, d]) \
-            if form.monitor_fn is not None else None
-        self.mon_ref = n_monitor_ref
-        self._blocks = []
-        for blk in form.monitors:
-            r, c = blk.sparsity().get_triplet()
-            self._blocks.append((np.zeros(blk.shape), np.array(r, dtype=int),
-                                 np.array(c, dtype=int)))
+        self.ev = _Buffered(form.event_fn, [t, z, z, p, d]) if form.event_fn is not None else None
+        self.n_rel = form.n_rel
+        self.n_mon = form.n_mon if monitor else 0
+        self.mon_ref = np.ones(form.n_mon)
         sparsity = form.jac_sparsity
         if form.sparse:
             colind = np.array(sparsity.colind())
@@ -66,8 +90,6 @@ class _Problem:
         else:
             r, c = sparsity.get_triplet()
             self.rows, self.cols = np.array(r, dtype=int), np.array(c, dtype=int)
-        self.n_rel = len(self.g.outs[0]) if self.g is not None else 0
-        self.n_mon = len(form.monitors) if self.mon is not None else 0
 
     def resfn(self, t, y, yp, res):
         a = self.res.args
@@ -90,34 +112,30 @@ class _Problem:
             JJ.fill(0.0)
             JJ[self.rows, self.cols] = self.jac.outs[0]
 
-    def monitor_values(self, t, y, yp):
-        a = self.mon.args
+    def _eval_events(self, t, y, yp):
+        a = self.ev.args
         a[0][0] = t
         a[1][:] = y
         a[2][:] = yp
-        self.mon.eval()
-        out = np.empty(len(self._blocks))
-        for k, (m, r, c) in enumerate(self._blocks):
-            m[r, c] = self.mon.outs[k]
-            out[k] = abs(np.linalg.det(m))
-        return out
+        self.ev.eval()
+        return self.ev.outs[0]
+
+    def monitor_values(self, t, y, yp):
+        """|det| of the watched dummy blocks."""
+        return np.abs(self._eval_events(t, y, yp)[self.n_rel:])
 
     def eventsfn(self, t, y, yp, events):
-        if self.g is not None:
-            a = self.g.args
-            a[0][0] = t
-            a[1][:] = y
-            a[2][:] = yp
-            self.g.eval()
-            events[:self.n_rel] = self.g.outs[0]
+        out = self._eval_events(t, y, yp)
+        n = self.n_rel
+        events[:n] = out[:n]
         if self.n_mon:
-            events[self.n_rel:] = self.monitor_values(t, y, yp) / self.mon_ref - _MONITOR_THRESHOLD
+            events[n:] = np.abs(out[n:]) / self.mon_ref - _MONITOR_THRESHOLD
 
 
 def _solver(prob, rtol, atol):
     form = prob.form
     n_ev = prob.n_rel + prob.n_mon
-    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=200000,
+    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=50000,
                 algebraic_idx=np.where(~form.differential)[0] if np.any(~form.differential)
                 else None)
     if form.sparse:
@@ -156,20 +174,29 @@ def _worst_variable(cm, form, prob, t, y, yp):
 
 
 class _CapturedStderr:
-    """Redirect the C-level stderr (where SUNDIALS prints its messages) to a
-    temporary file; the text is available as ``.text`` afterwards."""
+    """Redirect the C-level stdout and stderr (where SUNDIALS prints its
+    messages) to a temporary file; the text is available as ``.text``."""
 
     def __enter__(self):
         import tempfile
+        sys.stdout.flush()
         sys.stderr.flush()
         self._file = tempfile.TemporaryFile(mode="w+b")
-        self._saved = os.dup(2)
+        self._saved = [os.dup(1), os.dup(2)]
+        os.dup2(self._file.fileno(), 1)
         os.dup2(self._file.fileno(), 2)
         return self
 
     def __exit__(self, *exc):
-        os.dup2(self._saved, 2)
-        os.close(self._saved)
+        try:   # C stdio buffers must be written while the redirection holds
+            import ctypes
+            ctypes.CDLL(None).fflush(None)
+        except (OSError, AttributeError):
+            pass
+        os.dup2(self._saved[0], 1)
+        os.dup2(self._saved[1], 2)
+        for fd in self._saved:
+            os.close(fd)
         self._file.seek(0)
         self.text = self._file.read().decode("utf-8", "replace").strip()
         self._file.close()
@@ -249,6 +276,53 @@ class _Outcome:
         self.last = last
 
 
+_SINGULAR_CONDITION = 1e-4     # relative smallest singular value of a singular block
+
+
+def _limit_position(cm, selection, p, d, t, z):
+    """Singularity record if the highest dummy block is singular at z."""
+    lv = selection.levels[0] if selection.levels else None
+    if lv is None:
+        return None
+    cond, u = cm.block_conditioning(t, z, p, d, lv.eqs, lv.chosen)
+    if cond > _SINGULAR_CONDITION:
+        return None
+    return {"time": t, "elements": cm.singular_elements(lv.eqs, u), "kind": "limit position",
+            "condition": cond}
+
+
+def _scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, found):
+    """Find singular positions passed in the output points of a segment: the
+    determinant of a watched dummy block changes sign, or has a local minimum
+    far below its typical size."""
+    n = len(out_t) - start
+    if form.det_fn is None or n < 3:
+        return
+    Z = np.array(out_z[start:])
+    T = np.array(out_t[start:])
+    Y = Z[:, form.y_pos]
+    YP = np.zeros_like(Y)
+    st = form.state_deriv >= 0
+    YP[:, st] = Z[:, form.state_deriv[st]]
+    dets = form.det_fn.map(n)(T[None, :], Y.T, YP.T, np.repeat(p[:, None], n, 1),
+                              np.repeat(np.asarray(d, float)[:, None], n, 1)).full()
+    for row, k in zip(dets, form.scan_levels):
+        scale = np.max(np.abs(row))
+        if scale == 0:
+            continue
+        a = np.abs(row) / scale
+        sign = np.sign(row)
+        for i in range(1, n - 1):
+            crossing = sign[i] != sign[i + 1] and sign[i] != 0
+            minimum = a[i] < 1e-3 and a[i] <= a[i - 1] and a[i] < a[i + 1]
+            if not (crossing or minimum):
+                continue
+            lv = selection.levels[k]
+            cond, u = cm.block_conditioning(T[i], Z[i], p, d, lv.eqs, lv.chosen)
+            found.append({"time": float(T[i]), "elements": cm.singular_elements(lv.eqs, u),
+                          "kind": "singular position passed", "condition": cond})
+
+
 def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     """Integrate the compiled model ``cm`` from consistent node values z0.
 
@@ -264,10 +338,15 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     stats = {"segments": 0, "events": 0, "reselections": 0, "nfev": 0, "njev": 0}
     selection = cm.select(t, z, p, d)
     nominal = np.array(cm.nominal)
+    singularities = []
+    stats["singularities"] = singularities
+    n_singular = 0
+    monitor = True
     eps = 1e-12 * max(1.0, abs(t_end))
     while t < t_end - eps:
         form = cm.formulation(selection)
-        prob = _Problem(form, p, d, 1.0)
+        prob = _Problem(form, p, d, monitor)
+        seg_start = len(out_t)
         y0, yp0 = form.y_from(z)
         if prob.n_mon:
             prob.mon_ref = np.maximum(prob.monitor_values(t, y0, yp0), 1e-300)
@@ -292,6 +371,19 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         if sol is not None:
             stats["nfev"] += sol.nfev
             stats["njev"] += sol.njev
+        _scan_singular_positions(cm, form, selection, p, d, out_t, out_z, seg_start,
+                                 singularities)
+        limit = None
+        if event is None and sol is not None and not sol.success and sol.last is not None:
+            limit = _limit_position(cm, selection, p, d, sol.last.t,
+                                    form.nodes_from(sol.last.y, sol.last.yp))
+        if limit is not None:
+            # the run ends at a singular position: report it and keep the data
+            singularities.append(limit)
+            stats["stopped"] = ("stopped at t=%.6g: the mechanism reached a limit position in %s "
+                                "(its position equations become singular; the drive cannot "
+                                "move further)" % (limit["time"], ", ".join(limit["elements"])))
+            break
         if event is None and sol is not None and not sol.success:
             last = sol.last
             tf = last.t if last is not None else t
@@ -330,10 +422,24 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
             out_t.append(te)
             out_z.append(z.copy())
         else:
-            stats["reselections"] += 1
             z = ze
-            selection = cm.select(te, z, p, d)
-            events.append((te, "state re-selection"))
+            hits = [int(k) - prob.n_rel for k in which if k >= prob.n_rel]
+            new_sel, singular = _reselect(cm, selection, form, hits, te, z, p, d)
+            if new_sel is not selection:
+                stats["reselections"] += 1
+                selection = new_sel
+                events.append((te, "state re-selection"))
+            elif singular is not None:
+                if singularities and set(singularities[-1]["elements"]) == \
+                        set(singular["elements"]) and singularities[-1]["kind"] == singular["kind"]:
+                    singularities[-1]["time"] = te
+                    singularities[-1]["condition"] = singular["condition"]
+                else:
+                    singularities.append(singular)
+                    events.append((te, "singular position in %s" % ", ".join(singular["elements"])))
+                n_singular += 1
+                if n_singular > _MAX_SINGULAR_EVENTS:
+                    monitor = False
         t = te
     if progress is not None:
         progress(out_t[-1], t_end)

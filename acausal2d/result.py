@@ -13,7 +13,9 @@ class Result:
     any unknown, eliminated alias, derivative (``"der(revolute.phi)"``) or
     parameter.  Event instants appear twice (left and right limit).
     ``events`` lists (time, description); ``stats`` holds counters and wall
-    times.
+    times.  ``singularities`` lists the singular positions met during the
+    run (dicts with time, element, kind) and ``stopped`` says why a run
+    ended early (None if it reached its stop time).
     """
 
     def __init__(self, time, node_names, node_values, alias_names, alias_values,
@@ -31,6 +33,8 @@ class Result:
         self.stats = dict(stats or {})
         self.outputs = list(outputs)
         self.model = model
+        self.singularities = []
+        self.stopped = None
 
     @property
     def names(self):

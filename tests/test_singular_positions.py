@@ -1,0 +1,79 @@
+"""Singular positions: a double rocker whose input link is driven past the
+end of its range stops at the limit position with a report naming the
+elements, not with a raw solver failure."""
+import math
+
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d import Component, start
+from acausal2d.library.planar import Fixed, FixedTranslation, Revolute
+from acausal2d.library.rotational import Position
+from acausal2d.library.signals import TimeFunction
+
+A, B, C, D = 0.6, 1.4, 0.9, 1.0        # input, coupler, output rocker, ground (non-Grashof)
+PHI0, RATE = math.radians(60.0), -0.5
+
+
+def _assembly(phi):
+    """Closed-form position of the four-bar for input angle phi (one branch)."""
+    b = np.array([A * math.cos(phi), A * math.sin(phi)])
+    dvec = np.array([D, 0.0]) - b
+    L = np.linalg.norm(dvec)
+    e = dvec / L
+    x = (B * B - C * C + L * L) / (2 * L)
+    c = b + x * e + math.sqrt(B * B - x * x) * np.array([-e[1], e[0]])
+    return b, c
+
+
+class DrivenDoubleRocker(Component):
+    """Four revolute joints; the input joint follows phi0 + rate*t."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        pb, pc = _assembly(PHI0)
+        th_b = math.atan2(pc[1] - pb[1], pc[0] - pb[0])
+        th_c = math.atan2(-pc[1], D - pc[0])      # rocker frame points from C to D
+        self.ground_a = Fixed()
+        self.ground_d = Fixed(r=(D, 0.0))
+        self.ja = Revolute(use_flange=True, phi=start(PHI0))
+        self.crank = FixedTranslation(r=(A, 0.0))
+        self.jb = Revolute(phi=start(th_b - PHI0))
+        self.coupler = FixedTranslation(r=(B, 0.0))
+        self.jc = Revolute(phi=start(th_c - th_b))
+        self.rocker = FixedTranslation(r=(C, 0.0))
+        self.jd = Revolute()
+        self.drive = Position()
+        self.angle = TimeFunction(lambda t: PHI0 + RATE * t)
+        self.connect(self.angle.y, self.drive.phi_in)
+        self.connect(self.drive.flange, self.ja.flange_a)
+        self.connect(self.ground_a.frame, self.ja.frame_a)
+        self.connect(self.ja.frame_b, self.crank.frame_a)
+        self.connect(self.crank.frame_b, self.jb.frame_a)
+        self.connect(self.jb.frame_b, self.coupler.frame_a)
+        self.connect(self.coupler.frame_b, self.jc.frame_a)
+        self.connect(self.jc.frame_b, self.rocker.frame_a)
+        self.connect(self.rocker.frame_b, self.jd.frame_b)
+        self.connect(self.ground_d.frame, self.jd.frame_a)
+
+
+def test_double_rocker_stops_at_limit_position():
+    res = acausal2d.simulate(DrivenDoubleRocker(), stop_time=4.0, rtol=1e-8, intervals=400)
+    # limit: coupler folded onto the output rocker, |BD| = B - C
+    phi_lim = math.acos((A * A + D * D - (B - C) ** 2) / (2 * A * D))
+    t_lim = (phi_lim - PHI0) / RATE
+    assert res.stopped is not None and "limit position" in res.stopped
+    assert res.time[-1] == pytest.approx(t_lim, abs=1e-4)
+    assert res.time[-1] < 4.0
+    sing = res.singularities[-1]
+    assert sing["kind"] == "limit position"
+    assert sing["time"] == pytest.approx(t_lim, abs=1e-4)
+    assert "FixedTranslation 'coupler'" in sing["elements"]
+    assert "FixedTranslation 'rocker'" in sing["elements"]
+    # up to the limit the motion is the closed-form one
+    for k in range(0, len(res.time), 20):
+        phi = res["ja.phi"][k]
+        _, pc = _assembly(phi)
+        assert res["rocker.frame_a.x"][k] == pytest.approx(pc[0], abs=1e-7)
+        assert res["rocker.frame_a.y"][k] == pytest.approx(pc[1], abs=1e-7)
