@@ -45,3 +45,25 @@ def test_dsd_offset_larger_than_distance():
             self.connect(self.crank.ctr2D2, self.dyad.ctr2D2)
     with pytest.raises(acausal2d.InitializationError, match="DSD 'dyad'"):
         acausal2d.compile_model(M())
+
+
+def test_double_rocker_driven_past_its_range_stops_at_limit():
+    """Non-Grashof four-bar (crank 0.1, coupler 0.15, rocker 0.2, ground 0.3):
+    the input link can only swing while |P P2| <= coupler + rocker; driven at
+    constant speed it reaches that limit (coupler and rocker stretched) and
+    the run stops there with a report naming the dyad."""
+    a, b, c, d = 0.1, 0.15, 0.2, 0.3
+    phi0 = math.radians(60.0)
+    model = FourBar(lL1=b, lL2=c, d=d)
+    res = acausal2d.simulate(model, stop_time=1.0, rtol=1e-8, intervals=200,
+                             params={"preset.om": 1.0, "preset.phi0": phi0})
+    # the input range ends where |P - P2| = b + c: cos(phi) = (a^2 + d^2 - (b+c)^2) / (2 a d)
+    phi_lim = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    t_lim = phi_lim - phi0
+    assert 0 < t_lim < 1.0
+    assert res.stopped is not None and "limit position" in res.stopped
+    assert "DDD 'dyad'" in res.stopped
+    sing = res.singularities[-1]
+    assert sing["kind"] == "limit position"
+    assert sing["time"] == pytest.approx(t_lim, abs=1e-4)
+    assert res.final("crank.phiL") == pytest.approx(phi_lim, abs=1e-4)
