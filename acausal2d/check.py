@@ -5,6 +5,8 @@ from collections import Counter
 
 import numpy as np
 
+from .unionfind import UnionFind, connector_sets
+
 
 class CheckReport:
     """What :func:`check` found; ``str(report)`` is the printed form."""
@@ -39,23 +41,15 @@ class CheckReport:
 
 def _planar_topology(model):
     """Links, joints and loops from the components' topology() declarations."""
-    parent = {}
+    conn_sets, _ = connector_sets(model)
+    links = UnionFind()
 
     def find(k):
-        parent.setdefault(k, k)
-        while parent[k] != k:
-            parent[k] = parent[parent[k]]
-            k = parent[k]
-        return k
+        return links.find(conn_sets.find(k[1]) if k[0] == "c" else k)
 
     def union(a, b):
-        ra, rb = find(a), find(b)
-        if ra != rb:
-            parent[ra] = rb
+        links.union(find(a), find(b))
 
-    for comp in model.components():
-        for a, b in comp._connections:
-            union(("c", id(a)), ("c", id(b)))
     joints, any_item = [], False
     ground = ("ground",)
     find(ground)
@@ -83,17 +77,12 @@ def _planar_topology(model):
     g = len(joints)
     F = 3 * (n - 1) - sum(3 - f for _, _, f in joints)
     # loops: edges - vertices + connected components of the link graph
-    comp_parent = {grp: grp for grp in groups}
-
-    def cfind(k):
-        while comp_parent[k] != k:
-            k = comp_parent[k]
-        return k
+    graph = UnionFind()
+    for grp in groups:
+        graph.add(grp)
     for a, b, _ in joints:
-        ra, rb = cfind(find(("c", id(a)))), cfind(find(("c", id(b))))
-        if ra != rb:
-            comp_parent[ra] = rb
-    n_components = len({cfind(grp) for grp in groups})
+        graph.union(find(("c", id(a))), find(("c", id(b))))
+    n_components = len({graph.find(grp) for grp in groups})
     loops = g - n + n_components
     return n, g, F, max(loops, 0)
 

@@ -9,6 +9,7 @@ import casadi as ca
 import numpy as np
 
 from .errors import ModelDefinitionError
+from .unionfind import UnionFind
 
 
 class Equation:
@@ -134,14 +135,7 @@ def _is_descendant(comp, ancestor):
 
 
 def _connection_equations(model, comps):
-    parent = {}
-
-    def find(k):
-        while parent[k] != k:
-            parent[k] = parent[parent[k]]
-            k = parent[k]
-        return k
-
+    sets = UnionFind()
     members = {}
     for scope in comps:
         for a, b in scope._connections:
@@ -156,18 +150,15 @@ def _connection_equations(model, comps):
                 side = "outside" if c.owner is scope else "inside"
                 k = (id(c), side)
                 members[k] = (c, side)
-                parent.setdefault(k, k)
                 keys.append(k)
-            ra, rb = find(keys[0]), find(keys[1])
-            if ra != rb:
-                parent[ra] = rb
-    sets = {}
+            sets.union(keys[0], keys[1])
+    groups = {}
     for k in members:
-        sets.setdefault(find(k), []).append(members[k])
+        groups.setdefault(sets.find(k), []).append(members[k])
 
     eqs = []
     connected_inside = set()
-    for elems in sets.values():
+    for elems in groups.values():
         elems.sort(key=lambda e: e[0].path)
         conns = [c for c, _ in elems]
         names = ", ".join(c.path for c in conns)

@@ -67,6 +67,7 @@ import numpy as np
 
 from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
 from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d.unionfind import connector_sets
 from acausal2d.errors import InitializationError, ModelDefinitionError
 from acausal2d.symbols import der
 
@@ -126,27 +127,9 @@ class _Assembly:
 
     def __init__(self, root):
         self.root = root
-        parent = {}
-
-        def find(k):
-            while parent[k] != k:
-                parent[k] = parent[parent[k]]
-                k = parent[k]
-            return k
         comps = list(root.components())
-        for comp in comps:
-            for conn in comp._connectors.values():
-                parent.setdefault(id(conn), id(conn))
-        connected = set()
-        for comp in comps:
-            for a, b in comp._connections:
-                for c in (a, b):
-                    parent.setdefault(id(c), id(c))
-                    connected.add(id(c))
-                ra, rb = find(id(a)), find(id(b))
-                if ra != rb:
-                    parent[ra] = rb
-        self._find = find
+        sets, connected = connector_sets(root)
+        self._find = sets.find
         self.connected = connected
         self.values = {}
         self.checks = []
