@@ -103,6 +103,18 @@ class CompiledModel:
                                     for a in self.aliases], dtype=int)
         self.alias_sign = np.array([float(a.sign) for a in self.aliases])
         self.alias_offset_fn = _as_function_of_params([a.offset for a in self.aliases], self.p)
+        # derivatives of eliminated variables: der^k(var) = sign * der^k(rep)
+        self.alias_der_names, self.alias_der_node, self.alias_der_sign = [], [], []
+        for a, j, sign in zip(self.aliases, self.alias_node, self.alias_sign):
+            name = a.var.name
+            while j >= 0 and R.A[j] >= 0:
+                j = R.A[j]
+                name = "der(%s)" % name
+                self.alias_der_names.append(name)
+                self.alias_der_node.append(j)
+                self.alias_der_sign.append(sign)
+        self.alias_der_node = np.array(self.alias_der_node, dtype=int)
+        self.alias_der_sign = np.array(self.alias_der_sign)
         self._formulations = {}
         self.outputs = list(getattr(model, "outputs", ()))
         self.compile_time = _time.perf_counter() - t0
@@ -229,7 +241,8 @@ class CompiledModel:
         bound = self.alias_node < 0
         A = Z[:, np.where(bound, 0, self.alias_node)] * self.alias_sign + offsets
         A[:, bound] = offsets[bound]
-        res = Result(times, self.node_names, Z, self.alias_names, A,
+        A = np.hstack([A, Z[:, self.alias_der_node] * self.alias_der_sign])
+        res = Result(times, self.node_names, Z, self.alias_names + self.alias_der_names, A,
                      list(self.param_index), p, events, stats, self.outputs, self)
         res.singularities = stats.pop("singularities", [])
         res.stopped = stats.pop("stopped", None)
