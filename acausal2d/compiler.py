@@ -87,11 +87,10 @@ class CompiledModel:
             [self.node_info[j].start for j in level0], self.p)
         self.level0 = np.array(level0, dtype=int)
         self.fixed_nodes = [j for j in level0 if self.node_info[j].fixed]
-        has_start = [False] * R.n_var
+        self.has_start = [False] * R.n_var
         for j in level0:
             st = self.node_info[j].start
-            has_start[j] = not (isinstance(st, (int, float)) and st == 0.0)
-        self.held = choose_initial_conditions(R, self.fixed_nodes, self.priority_names, has_start)
+            self.has_start[j] = not (isinstance(st, (int, float)) and st == 0.0)
         z = ca.vertcat(*R.var_sym)
         crossings = ca.vertcat(*[r.g for r in self.relations]) if self.relations else None
         self.crossings = crossings
@@ -194,11 +193,25 @@ class CompiledModel:
         g = self.g_nodes_fn(t, z, p, d).full().ravel()
         return np.array([r.value(gv) for r, gv in zip(self.relations, g)])
 
+    def _held_at_start(self, t0, z, p):
+        """Nodes held at initialization (see choose_initial_conditions); ties
+        are broken by the states a selection at the start guess integrates."""
+        R = self.R
+        states = ()
+        if len(self.fixed_nodes) < R.n_var - R.n_eq:
+            try:
+                sel = self.select(t0, z, p, np.zeros(len(self.relations)))
+                states = [j for j in range(R.n_var) if R.A[j] >= 0 and R.A[j] not in sel.dummies]
+            except Acausal2dError:
+                states = ()
+        return choose_initial_conditions(R, self.fixed_nodes, self.priority_names,
+                                         self.has_start, states)
+
     def initial_values(self, t0, p):
         """Consistent node values and relation values at t0."""
         z = np.zeros(self.R.n_var)
         z[self.level0] = self.start_fn(p).full().ravel()
-        held = self.held
+        held = self._held_at_start(t0, z, p)
         d = np.zeros(len(self.relations))
         d = self.relation_values(t0, z, p, d)
         for _ in range(10):

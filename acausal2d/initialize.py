@@ -43,10 +43,12 @@ class InitialSystem:
         return sp.csr_matrix((nz, (self.rows, self.cols)), shape=self.shape)
 
 
-def choose_initial_conditions(R, fixed_nodes, priority, has_start):
+def choose_initial_conditions(R, fixed_nodes, priority, has_start, states=()):
     """Which node values to hold at t0: the user's ``fixed_nodes`` plus, if
     the system has more freedom, start values of state candidates picked by
-    priority and structural matching.  Returns the list of held nodes."""
+    priority, then by having a start value, then by being among ``states``
+    (the states a selection at the start guess would integrate), and by
+    structural matching.  Returns the list of held nodes."""
     n_var, n_eq = R.n_var, R.n_eq
     need = n_var - n_eq
     held = list(dict.fromkeys(fixed_nodes))
@@ -85,8 +87,9 @@ def choose_initial_conditions(R, fixed_nodes, priority, has_start):
     for e in range(len(inc)):
         augment(e)
     cands = [j for j in range(n_var) if R.A[j] >= 0 and j not in set(held)]
+    states = set(states)
     cands.sort(key=lambda j: (-STATE_SELECT.index(priority[j]), 0 if has_start[j] else 1,
-                              R.var_level[j], str(R.var_sym[j])))
+                              0 if j in states else 1, R.var_level[j], str(R.var_sym[j])))
     for j in cands:
         if len(held) >= need:
             break

@@ -5,4 +5,10 @@
 - :mod:`acausal2d.library.rotational`: 1D rotational elements.
 - :mod:`acausal2d.library.translational`: 1D translational elements.
 - :mod:`acausal2d.library.signals`: signal sources.
+- :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (seed Anhang B).
+- :mod:`acausal2d.library.linkage_drives`: motion presets, sources and
+  measuring modules for the linkage elements.
+- :mod:`acausal2d.library.belt`: belt and rope drives (seed ch. 4.4): elastic
+  belt spans, belt with tension spring, belt with draw-off nozzle, circular
+  pulleys and drums with optional bearing friction.
 """
