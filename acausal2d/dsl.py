@@ -277,6 +277,12 @@ class Component:
                                        % (a.describe(), a.describe()))
         self._connections.append((a, b))
 
+    def before_flatten(self):
+        """Hook called once per flattening for every component, before any
+        symbol exists: the place to compute parameter values or start values
+        from the whole model's numeric data (e.g. a belt layout).  Default:
+        nothing."""
+
     def on_flatten(self):
         """Hook called once per flattening, after all symbols of the model
         exist and before any ``equations()`` is called (e.g. to reset caches

@@ -107,6 +107,8 @@ def flatten(model):
     params, variables = [], []
     comps = list(model.components())
     for comp in comps:
+        comp.before_flatten()
+    for comp in comps:
         comp._bind(params, variables)
     for comp in comps:
         comp.on_flatten()

@@ -92,16 +92,15 @@ _PI = math.pi
 # --------------------------------------------------------------------------
 class _BandElement(Component):
     """Base of the belt-library elements: runs :func:`prepare_belts` on the
-    whole model once, before the first of its elements is bound."""
+    whole model once, before its symbols are created."""
 
-    def _bind(self, params_out, vars_out):
+    def before_flatten(self):
         root = self
         while root._parent is not None:
             root = root._parent
         if not root.__dict__.get("_belts_prepared", False):
             root.__dict__["_belts_prepared"] = True
             prepare_belts(root)
-        super()._bind(params_out, vars_out)
 
 
 def _gravity(comp):
