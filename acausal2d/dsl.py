@@ -292,14 +292,15 @@ class Component:
         """Set the start value (a guess: number or parameter expression) of
         the variable ``name`` of this component or of one of its connectors
         (``"frame_a.x"``), unless the model gave one with :func:`start`.
-        Meant for ``equations()`` / ``on_flatten()`` of elements that compute
-        assembly guesses, such as branch choices from a parameter K."""
-        info = self._var_infos.get(name)
-        if info is None:
-            raise ModelDefinitionError("%s has no variable %r" % (self.describe(), name))
+        Meant for ``before_flatten()``, ``on_flatten()`` or ``equations()``
+        of elements that compute assembly guesses, such as branch choices
+        from a parameter K."""
         ov = self._overrides.get(name)
         if isinstance(ov, start) and ov.value is not None or isinstance(ov, numbers.Real):
             return
+        info = self._var_infos.get(name) or self._var_decls.get(name)
+        if info is None:
+            raise ModelDefinitionError("%s has no variable %r" % (self.describe(), name))
         info.start = value
 
     def equations(self):
