@@ -197,6 +197,26 @@ def eliminate_aliases(equations, variables, examine=None):
     return kept, remaining, aliases, changed
 
 
+def eliminate_all_aliases(equations, variables):
+    """Alias passes until none is left (a substitution can turn an equation
+    into a new alias); returns (equations, variables, aliases) with every
+    alias expressed in a remaining variable."""
+    aliases = []
+    examine = None
+    while True:
+        equations, variables, new, examine = eliminate_aliases(equations, variables, examine)
+        if not new:
+            return equations, variables, aliases
+        by_var = {symbols.key(b.var.sym): b for b in new}
+        for a in aliases:
+            b = by_var.get(symbols.key(a.rep.sym)) if a.rep is not None else None
+            if b is not None:       # a.var = a.sign*(b.sign*b.rep + b.offset) + a.offset
+                a.offset = a.sign * b.offset + a.offset
+                a.sign = a.sign * b.sign
+                a.rep = b.rep
+        aliases.extend(new)
+
+
 def _merge_attrs(rep, member, sign, off):
     """member = sign*rep + off: let rep inherit member's start attributes."""
     if STATE_SELECT.index(member.state_select) > STATE_SELECT.index(rep.state_select):

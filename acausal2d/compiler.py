@@ -11,7 +11,7 @@ import casadi as ca
 import numpy as np
 
 from . import symbols
-from .aliases import eliminate_aliases
+from .aliases import eliminate_all_aliases
 from .balance import check_balance
 from .dsl import STATE_SELECT
 from .dummy_derivatives import Formulation, select_dummies
@@ -55,21 +55,7 @@ class CompiledModel:
             else ca.SX(0, 1)
         equations, variables = flat.equations, list(flat.variables)
         check_balance(equations, variables)
-        self.aliases = []
-        examine = None
-        while True:
-            equations, variables, new, examine = eliminate_aliases(equations, variables, examine)
-            if not new:
-                break
-            if self.aliases:
-                by_var = {symbols.key(b.var.sym): b for b in new}
-                for a in self.aliases:
-                    b = by_var.get(symbols.key(a.rep.sym)) if a.rep is not None else None
-                    if b is not None:       # a.var = a.sign*(b.sign*b.rep + b.offset) + a.offset
-                        a.offset = a.sign * b.offset + a.offset
-                        a.sign = a.sign * b.sign
-                        a.rep = b.rep
-            self.aliases.extend(new)
+        equations, variables, self.aliases = eliminate_all_aliases(equations, variables)
         self.equations = equations
         self.variables = variables
         check_balance(equations, variables)
