@@ -151,14 +151,20 @@ class CompiledModel:
             return J[eqs][:, nodes].toarray()
         return select_dummies(self.R, self.n_original, self.priority, self.nominal, jac)
 
-    def block_conditioning(self, t, z, p, d, eqs, nodes):
-        """Smallest singular value of the nominal-scaled Jacobian block of
-        equations ``eqs`` w.r.t. variable nodes ``nodes``, and the left
-        singular vector (weights of the equations in the singularity)."""
-        J = self.init_system.jacobian(t, z, p, d).tocsr()
-        H = J[eqs][:, nodes].toarray() * np.array([self.nominal[j] for j in nodes])[None, :]
-        u, sv, _ = np.linalg.svd(H)
-        return float(sv[-1]) / max(float(sv[0]), 1e-300), u[:, -1]
+    def block_conditioning(self, t, z, p, d, level):
+        """How regular the dummy block of a selection level is at z: the
+        smallest singular value of the nominal-scaled block (its equations
+        against the chosen dummies) relative to the largest singular value of
+        the equations against all candidates; and the left singular vector
+        (weights of the equations in the near-singularity)."""
+        J = self.init_system.jacobian(t, z, p, d).tocsr()[level.eqs]
+        scale = np.array(self.nominal)
+
+        def scaled(nodes):
+            return J[:, nodes].toarray() * scale[nodes][None, :]
+        u, sv, _ = np.linalg.svd(scaled(level.chosen))
+        top = np.linalg.norm(scaled(level.cands), 2)
+        return float(sv[-1]) / max(float(top), 1e-300), u[:, -1]
 
     def singular_elements(self, eqs, weights):
         """Components whose equations take part in a singular block."""

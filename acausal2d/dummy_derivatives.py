@@ -71,8 +71,7 @@ def _pick(H, prio, need, what):
         k = min(int(np.sum(d > tol)), need - len(chosen))
         if k == 0:
             continue
-        nonzero = int(np.sum(np.linalg.norm(M, axis=0) > tol))
-        if nonzero > k:
+        if len(idx) > k:        # structurally, another choice was possible
             choice = True
         chosen.extend(idx[p] for p in piv[:k])
         Q, _ = np.linalg.qr(H[:, chosen])

@@ -29,9 +29,11 @@ def _reselect(cm, selection, form, hits, t, z, p, d):
     """After a watched dummy block decayed: a better-conditioned selection,
     or (None, singularity record) if the mechanism itself is singular."""
     worst = None
-    for m in hits:
-        lv = selection.levels[form.monitor_levels[m]]
-        cond, u = cm.block_conditioning(t, z, p, d, lv.eqs, lv.chosen)
+    levels = range(len(selection.levels)) if hits is None else \
+        [form.monitor_levels[m] for m in hits]
+    for k in levels:
+        lv = selection.levels[k]
+        cond, u = cm.block_conditioning(t, z, p, d, lv)
         if worst is None or cond < worst[0]:
             worst = (cond, lv, u)
     cond, lv, u = worst
@@ -40,8 +42,7 @@ def _reselect(cm, selection, form, hits, t, z, p, d):
     except SimulationError:
         new = None
     if new is not None and new.dummies != selection.dummies:
-        better = min(cm.block_conditioning(t, z, p, d, nl.eqs, nl.chosen)[0]
-                     for nl in new.levels)
+        better = min(cm.block_conditioning(t, z, p, d, nl)[0] for nl in new.levels)
         if better > 2.0 * cond:
             return new, None
     if cond > _SINGULAR_CONDITION:
@@ -276,6 +277,21 @@ class _Outcome:
         self.last = last
 
 
+def _consistent_for(cm, selection, t, z, p, d):
+    """Node values made exactly consistent while holding the states of
+    ``selection`` (IDA's interpolated derivatives at an event are only
+    accurate to the tolerance, and a new state choice turns some of them
+    into algebraic unknowns)."""
+    form = cm.formulation(selection)
+    held = list(np.asarray(form.y_nodes)[form.differential])
+    try:
+        return solve_consistent(cm.init_system, t, z, p, d, held, z[held],
+                                cm.describe_equation, cm.node_name)
+    except InitializationError as exc:
+        raise SimulationError("Re-initialization after the state re-selection at t=%.6g "
+                              "failed:\n%s" % (t, exc), time=t) from None
+
+
 _SINGULAR_CONDITION = 1e-4     # relative smallest singular value of a singular block
 
 
@@ -284,7 +300,7 @@ def _limit_position(cm, selection, p, d, t, z):
     lv = selection.levels[0] if selection.levels else None
     if lv is None:
         return None
-    cond, u = cm.block_conditioning(t, z, p, d, lv.eqs, lv.chosen)
+    cond, u = cm.block_conditioning(t, z, p, d, lv)
     if cond > _SINGULAR_CONDITION:
         return None
     return {"time": t, "elements": cm.singular_elements(lv.eqs, u), "kind": "limit position",
@@ -318,7 +334,7 @@ def _scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, fou
             if not (crossing or minimum):
                 continue
             lv = selection.levels[k]
-            cond, u = cm.block_conditioning(T[i], Z[i], p, d, lv.eqs, lv.chosen)
+            cond, u = cm.block_conditioning(T[i], Z[i], p, d, lv)
             found.append({"time": float(T[i]), "elements": cm.singular_elements(lv.eqs, u),
                           "kind": "singular position passed", "condition": cond})
 
@@ -374,9 +390,17 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         _scan_singular_positions(cm, form, selection, p, d, out_t, out_z, seg_start,
                                  singularities)
         limit = None
-        if event is None and sol is not None and not sol.success and sol.last is not None:
-            limit = _limit_position(cm, selection, p, d, sol.last.t,
-                                    form.nodes_from(sol.last.y, sol.last.yp))
+        if event is None and sol is not None and not sol.success and sol.last is not None \
+                and sol.last.t > t:
+            z_last = form.nodes_from(sol.last.y, sol.last.yp)
+            new_sel, _ = _reselect(cm, selection, form, None, sol.last.t, z_last, p, d)
+            if new_sel is not selection:       # the state choice failed, not the mechanism
+                stats["reselections"] += 1
+                events.append((sol.last.t, "state re-selection"))
+                selection, t = new_sel, sol.last.t
+                z = _consistent_for(cm, selection, t, z_last, p, d)
+                continue
+            limit = _limit_position(cm, selection, p, d, sol.last.t, z_last)
         if limit is not None:
             # the run ends at a singular position: report it and keep the data
             singularities.append(limit)
@@ -429,6 +453,7 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
                 stats["reselections"] += 1
                 selection = new_sel
                 events.append((te, "state re-selection"))
+                z = _consistent_for(cm, selection, te, z, p, d)
             elif singular is not None:
                 if singularities and set(singularities[-1]["elements"]) == \
                         set(singular["elements"]) and singularities[-1]["kind"] == singular["kind"]:
