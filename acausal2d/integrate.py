@@ -26,8 +26,11 @@ _MAX_SINGULAR_EVENTS = 60       # then stop watching (a mechanism resting at a s
 
 
 def _reselect(cm, selection, form, hits, t, z, p, d):
-    """After a watched dummy block decayed: a better-conditioned selection,
-    or (None, singularity record) if the mechanism itself is singular."""
+    """After a watched dummy block decayed (``hits``: monitor indices; None:
+    all levels): returns (selection, singularity) - a better-conditioned new
+    selection and None, or the current selection with a singularity record
+    if the mechanism itself is singular there (None if it is only less well
+    conditioned than before)."""
     worst = None
     levels = range(len(selection.levels)) if hits is None else \
         [form.monitor_levels[m] for m in hits]
@@ -36,6 +39,8 @@ def _reselect(cm, selection, form, hits, t, z, p, d):
         cond, u = cm.block_conditioning(t, z, p, d, lv)
         if worst is None or cond < worst[0]:
             worst = (cond, lv, u)
+    if worst is None:            # no dummy derivatives: nothing to re-select
+        return selection, None
     cond, lv, u = worst
     try:
         new = cm.select(t, z, p, d)
