@@ -5,7 +5,8 @@ are CasADi functions evaluated through ``Function.buffer()``.  The run is
 split into segments at events: a relation changes its value (then the
 system is re-initialized with the states held), or a dynamically selected
 dummy block becomes ill-conditioned (then the states are re-selected at
-that point).  Event instants are recorded twice (left and right limit).
+that point, see :mod:`acausal2d.singularities`).  Event instants are
+recorded twice (left and right limit).
 """
 import os
 import sys
@@ -20,40 +21,9 @@ import sksundae as sun  # noqa: E402
 
 from .errors import InitializationError, SimulationError  # noqa: E402
 from .initialize import solve_consistent  # noqa: E402
+from .singularities import (MAX_SINGULAR_EVENTS, MONITOR_THRESHOLD, consistent_for,  # noqa: E402
+                            limit_position, reselect, scan_singular_positions)
 
-_MONITOR_THRESHOLD = 0.25      # re-check the state selection when a block's |det| drops 4x
-_MAX_SINGULAR_EVENTS = 60       # then stop watching (a mechanism resting at a singular position)
-
-
-def _reselect(cm, selection, form, hits, t, z, p, d):
-    """After a watched dummy block decayed (``hits``: monitor indices; None:
-    all levels): returns (selection, singularity) - a better-conditioned new
-    selection and None, or the current selection with a singularity record
-    if the mechanism itself is singular there (None if it is only less well
-    conditioned than before)."""
-    worst = None
-    levels = range(len(selection.levels)) if hits is None else \
-        [form.monitor_levels[m] for m in hits]
-    for k in levels:
-        lv = selection.levels[k]
-        cond, u = cm.block_conditioning(t, z, p, d, lv)
-        if worst is None or cond < worst[0]:
-            worst = (cond, lv, u)
-    if worst is None:            # no dummy derivatives: nothing to re-select
-        return selection, None
-    cond, lv, u = worst
-    try:
-        new = cm.select(t, z, p, d)
-    except SimulationError:
-        new = None
-    if new is not None and new.dummies != selection.dummies:
-        better = min(cm.block_conditioning(t, z, p, d, nl)[0] for nl in new.levels)
-        if better > 2.0 * cond:
-            return new, None
-    if cond > _SINGULAR_CONDITION:
-        return selection, None      # decayed, but far from singular: keep watching
-    return selection, {"time": t, "elements": cm.singular_elements(lv.eqs, u),
-                       "kind": "singular position", "condition": cond}
 
 
 class _Buffered:
@@ -135,7 +105,7 @@ class _Problem:
         n = self.n_rel
         events[:n] = out[:n]
         if self.n_mon:
-            events[n:] = np.abs(out[n:]) / self.mon_ref - _MONITOR_THRESHOLD
+            events[n:] = np.abs(out[n:]) / self.mon_ref - MONITOR_THRESHOLD
 
 
 def _solver(prob, rtol, atol):
@@ -282,68 +252,6 @@ class _Outcome:
         self.last = last
 
 
-def _consistent_for(cm, selection, t, z, p, d):
-    """Node values made exactly consistent while holding the states of
-    ``selection`` (IDA's interpolated derivatives at an event are only
-    accurate to the tolerance, and a new state choice turns some of them
-    into algebraic unknowns)."""
-    form = cm.formulation(selection)
-    held = list(np.asarray(form.y_nodes)[form.differential])
-    try:
-        return solve_consistent(cm.init_system, t, z, p, d, held, z[held],
-                                cm.describe_equation, cm.node_name)
-    except InitializationError as exc:
-        raise SimulationError("Re-initialization after the state re-selection at t=%.6g "
-                              "failed:\n%s" % (t, exc), time=t) from None
-
-
-_SINGULAR_CONDITION = 1e-4     # relative smallest singular value of a singular block
-
-
-def _limit_position(cm, selection, p, d, t, z):
-    """Singularity record if the highest dummy block is singular at z."""
-    lv = selection.levels[0] if selection.levels else None
-    if lv is None:
-        return None
-    cond, u = cm.block_conditioning(t, z, p, d, lv)
-    if cond > _SINGULAR_CONDITION:
-        return None
-    return {"time": t, "elements": cm.singular_elements(lv.eqs, u), "kind": "limit position",
-            "condition": cond}
-
-
-def _scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, found):
-    """Find singular positions passed in the output points of a segment: the
-    determinant of a watched dummy block changes sign, or has a local minimum
-    far below its typical size."""
-    n = len(out_t) - start
-    if form.det_fn is None or n < 3:
-        return
-    Z = np.array(out_z[start:])
-    T = np.array(out_t[start:])
-    Y = Z[:, form.y_pos]
-    YP = np.zeros_like(Y)
-    st = form.state_deriv >= 0
-    YP[:, st] = Z[:, form.state_deriv[st]]
-    dets = form.det_fn.map(n)(T[None, :], Y.T, YP.T, np.repeat(p[:, None], n, 1),
-                              np.repeat(np.asarray(d, float)[:, None], n, 1)).full()
-    for row, k in zip(dets, form.scan_levels):
-        scale = np.max(np.abs(row))
-        if scale == 0:
-            continue
-        a = np.abs(row) / scale
-        sign = np.sign(row)
-        for i in range(1, n - 1):
-            crossing = sign[i] != sign[i + 1] and sign[i] != 0
-            minimum = a[i] < 1e-3 and a[i] <= a[i - 1] and a[i] < a[i + 1]
-            if not (crossing or minimum):
-                continue
-            lv = selection.levels[k]
-            cond, u = cm.block_conditioning(T[i], Z[i], p, d, lv)
-            found.append({"time": float(T[i]), "elements": cm.singular_elements(lv.eqs, u),
-                          "kind": "singular position passed", "condition": cond})
-
-
 def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     """Integrate the compiled model ``cm`` from consistent node values z0.
 
@@ -392,20 +300,20 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         if sol is not None:
             stats["nfev"] += sol.nfev
             stats["njev"] += sol.njev
-        _scan_singular_positions(cm, form, selection, p, d, out_t, out_z, seg_start,
+        scan_singular_positions(cm, form, selection, p, d, out_t, out_z, seg_start,
                                  singularities)
         limit = None
         if event is None and sol is not None and not sol.success and sol.last is not None \
                 and sol.last.t > t:
             z_last = form.nodes_from(sol.last.y, sol.last.yp)
-            new_sel, _ = _reselect(cm, selection, form, None, sol.last.t, z_last, p, d)
+            new_sel, _ = reselect(cm, selection, form, None, sol.last.t, z_last, p, d)
             if new_sel is not selection:       # the state choice failed, not the mechanism
                 stats["reselections"] += 1
                 events.append((sol.last.t, "state re-selection"))
                 selection, t = new_sel, sol.last.t
-                z = _consistent_for(cm, selection, t, z_last, p, d)
+                z = consistent_for(cm, selection, t, z_last, p, d)
                 continue
-            limit = _limit_position(cm, selection, p, d, sol.last.t, z_last)
+            limit = limit_position(cm, selection, p, d, sol.last.t, z_last)
         if limit is not None:
             # the run ends at a singular position: report it and keep the data
             singularities.append(limit)
@@ -453,12 +361,12 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         else:
             z = ze
             hits = [int(k) - prob.n_rel for k in which if k >= prob.n_rel]
-            new_sel, singular = _reselect(cm, selection, form, hits, te, z, p, d)
+            new_sel, singular = reselect(cm, selection, form, hits, te, z, p, d)
             if new_sel is not selection:
                 stats["reselections"] += 1
                 selection = new_sel
                 events.append((te, "state re-selection"))
-                z = _consistent_for(cm, selection, te, z, p, d)
+                z = consistent_for(cm, selection, te, z, p, d)
             elif singular is not None:
                 if singularities and set(singularities[-1]["elements"]) == \
                         set(singular["elements"]) and singularities[-1]["kind"] == singular["kind"]:
@@ -468,7 +376,7 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
                     singularities.append(singular)
                     events.append((te, "singular position in %s" % ", ".join(singular["elements"])))
                 n_singular += 1
-                if n_singular > _MAX_SINGULAR_EVENTS:
+                if n_singular > MAX_SINGULAR_EVENTS:
                     monitor = False
         t = te
     if progress is not None:
