@@ -151,7 +151,6 @@ def eliminate_aliases(equations, variables, examine=None):
                 _merge_attrs(info[rb], info[ra], sign, off)
 
     aliases = []
-    src, dst = [], []
     for k in list(parent):
         rep, sign, off = find(k)
         if rep == k:
@@ -163,25 +162,7 @@ def eliminate_aliases(equations, variables, examine=None):
             aliases.append(Alias(var, info[rep], sign, off))
             if var.fixed and not info[rep].fixed:
                 _merge_attrs(info[rep], var, sign, off)
-        sym = var.sym
-        level = 0
-        while True:
-            if level == 0:
-                src.append(sym)
-                dst.append(off if rep is None else sign * info[rep].sym + off)
-            else:
-                src.append(sym)
-                if rep is None:
-                    dst.append(0.0)
-                else:
-                    r = info[rep].sym
-                    for _ in range(level):
-                        r = symbols.derivative_symbol(r)
-                    dst.append(sign * r)
-            if not symbols.has_derivative(sym):
-                break
-            sym = symbols.derivative_symbol(sym)
-            level += 1
+    src, dst = substitution(aliases)
     eliminated = {symbols.key(a.var.sym) for a in aliases}
     changed = set()
     if src and kept:
@@ -195,6 +176,29 @@ def eliminate_aliases(equations, variables, examine=None):
                 changed.add(id(kept[i]))
     remaining = [v for v in variables if symbols.key(v.sym) not in eliminated]
     return kept, remaining, aliases, changed
+
+
+def substitution(aliases):
+    """(symbols, replacements) that remove the aliased variables and their
+    derivatives from expressions: der^k(var) -> sign * der^k(rep) (+ offset
+    for k = 0)."""
+    src, dst = [], []
+    for a in aliases:
+        sym, level = a.var.sym, 0
+        while True:
+            src.append(sym)
+            if a.rep is None:
+                dst.append(a.offset if level == 0 else 0.0)
+            else:
+                r = a.rep.sym
+                for _ in range(level):
+                    r = symbols.derivative_symbol(r)
+                dst.append(a.sign * r + (a.offset if level == 0 else 0.0))
+            if not symbols.has_derivative(sym):
+                break
+            sym = symbols.derivative_symbol(sym)
+            level += 1
+    return src, dst
 
 
 def eliminate_all_aliases(equations, variables):

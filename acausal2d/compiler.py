@@ -12,10 +12,11 @@ import numpy as np
 
 from . import symbols
 from .aliases import eliminate_all_aliases
+from .aliases import substitution as alias_substitution
 from .balance import check_balance
 from .dsl import STATE_SELECT
 from .dummy_derivatives import Formulation, select_dummies
-from .errors import Acausal2dError, ModelDefinitionError
+from .errors import Acausal2dError, InitializationError, ModelDefinitionError
 from .flatten import flatten
 from .initialize import InitialSystem, choose_initial_conditions, solve_consistent
 from .pantelides import pantelides
@@ -78,6 +79,11 @@ class CompiledModel:
             st = self.node_info[j].start
             self.has_start[j] = not (isinstance(st, (int, float)) and st == 0.0)
         z = ca.vertcat(*R.var_sym)
+        if self.relations and self.aliases:    # crossing functions in the remaining unknowns
+            src, dst = alias_substitution(self.aliases)
+            for r, g in zip(self.relations, ca.substitute([r.g for r in self.relations], src,
+                                                          [ca.SX(x) for x in dst])):
+                r.g = g
         crossings = ca.vertcat(*[r.g for r in self.relations]) if self.relations else None
         self.crossings = crossings
         self.g_nodes_fn = ca.Function("g_nodes", [self.t, z, self.p, self.d], [crossings]) \
@@ -206,13 +212,26 @@ class CompiledModel:
         held = self._held_at_start(t0, z, p)
         d = np.zeros(len(self.relations))
         d = self.relation_values(t0, z, p, d)
+        error = None
         for _ in range(10):
-            zc = solve_consistent(self.init_system, t0, z, p, d, held, z[held],
-                                  self.describe_equation, self.node_name)
+            try:
+                zc = solve_consistent(self.init_system, t0, z, p, d, held, z[held],
+                                      self.describe_equation, self.node_name)
+            except InitializationError as exc:
+                # the relations guessed from the start values may be the wrong ones:
+                # take them from where Newton ended and try again
+                error = exc
+                dn = self.relation_values(t0, exc.last, p, d)
+                if np.array_equal(dn, d):
+                    raise
+                d = dn
+                continue
             dn = self.relation_values(t0, zc, p, d)
             if np.array_equal(dn, d):
                 return zc, d
             d = dn
+        if error is not None:
+            raise error
         return zc, d
 
     # ------------------------------------------------------------ simulate

@@ -103,6 +103,13 @@ def choose_initial_conditions(R, fixed_nodes, priority, has_start, states=()):
     return held
 
 
+def _failure(z, message):
+    """InitializationError carrying the last Newton iterate (``.last``)."""
+    exc = InitializationError(message)
+    exc.last = z
+    return exc
+
+
 def solve_consistent(system, t, z0, p, d, held, held_values, describe_eq, node_name,
                      tol=1e-10, max_iter=60):
     """Newton solve of E(t, z) = 0 with z[held] = held_values, from z0."""
@@ -157,8 +164,8 @@ def solve_consistent(system, t, z0, p, d, held, held_values, describe_eq, node_n
     res = r[:system.shape[0]]
     worst = np.argsort(-np.abs(res))[:6]
     lines = ["  - %s   (residual %.3g)" % (describe_eq(i), res[i]) for i in worst if abs(res[i]) > tol]
-    raise InitializationError(
-        "No consistent initial values found (the mechanism cannot assemble, or start values "
-        "are too far from a solution). Largest remaining residuals:\n%s\nCheck the "
-        "geometry (link lengths that cannot close a loop) and the start values of %s."
-        % ("\n".join(lines), ", ".join(node_name(j) for j in held[:8])))
+    raise _failure(z,
+                   "No consistent initial values found (the mechanism cannot assemble, or "
+                   "start values are too far from a solution). Largest remaining residuals:\n%s\n"
+                   "Check the geometry (link lengths that cannot close a loop) and the start "
+                   "values of %s." % ("\n".join(lines), ", ".join(node_name(j) for j in held[:8])))
