@@ -1,6 +1,8 @@
 """1D rotational mechanics (Modelica.Mechanics.Rotational conventions):
 flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
+import casadi as ca
+
 from acausal2d.connectors import RealInput, RotationalFlange
 from acausal2d.dsl import Component, Parameter, Variable
 from acausal2d.symbols import der
@@ -116,3 +118,108 @@ class Position(Component):
 
     def equations(self):
         return [self.flange.phi == self.phi_in.u]
+
+
+class Clutch(Component):
+    """Friction clutch (disc clutch, seed ch. 8.2 "discClutch1") between
+    ``flange_a`` and ``flange_b``, engaged by the signal input
+    ``f_normalized`` (0 = open, 1 = fully closed; Modelica's Clutch
+    convention).
+
+    Normal force ``fn = fn_max * f_normalized`` and friction torque capacity
+    ``T_max = mu * cgeo * fn`` (``cgeo``: effective friction radius times the
+    number of friction faces).  ``phi_rel = flange_b.phi - flange_a.phi``,
+    ``w_rel = der(phi_rel)``; the torque ``tau`` acts on flange_b like a
+    damper's (``flange_b.tau = tau``, ``flange_a.tau = -tau``).
+
+    Coulomb friction with sticking is regularised by a linear zone of width
+    ``w_s`` (Karnopp-like saturation)::
+
+        tau = T_max * sat(w_rel / w_s),  sat(x) = min(max(x, -1), 1).
+
+    The two kinks of ``sat`` are relations, so entering and leaving the
+    linear zone are events: while slipping (``|w_rel| > w_s``) the torque is
+    exactly Coulomb, ``T_max sign(w_rel)``.  Inside the zone the clutch
+    behaves as a very stiff viscous coupling with the coefficient
+    ``T_max / w_s``: "sticking" means that both flanges turn at the same speed
+    up to ``w_rel = w_s * tau / T_max`` (``|w_rel| < w_s``, the creep), and the
+    clutch slips again (an event) when the torque it has to transmit exceeds
+    ``T_max``.  The relative speed decays inside the zone with the time
+    constant ``J_eff * w_s / T_max`` (``J_eff = J_a J_b/(J_a + J_b)``), so a
+    small ``w_s`` makes the model stiff but not slower for IDA (implicit).
+    The time from engagement to sticking therefore matches the Coulomb
+    closed form ``J_eff * w_rel0 / T_max`` up to about ``J_eff * w_s / T_max``
+    (times a few for the exponential tail).  A clutch with ``f_normalized =
+    0`` transmits nothing.
+
+    Outputs: ``phi_rel``, ``w_rel``, ``tau``, ``T_max``; the friction power
+    dissipated in the clutch is ``tau * w_rel`` (>= 0).
+    """
+    mu = Parameter(0.3, "1", "friction coefficient")
+    fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1")
+    cgeo = Parameter(0.1, "m", "effective friction radius x number of friction faces")
+    w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)")
+    phi_rel = Variable(unit="rad", state_select="avoid",
+                       doc="relative angle flange_b - flange_a")
+    w_rel = Variable(unit="rad/s", doc="relative angular velocity")
+    tau = Variable(unit="N.m", doc="friction torque acting on flange_b")
+    T_max = Variable(unit="N.m", doc="friction torque capacity mu cgeo fn")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange_a = RotationalFlange()
+        self.flange_b = RotationalFlange()
+        self.f_normalized = RealInput()
+
+    def equations(self):
+        x = self.w_rel / self.w_s
+        sat = ca.fmin(ca.fmax(x, -1.0), 1.0)
+        return [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
+                self.w_rel == der(self.phi_rel),
+                self.T_max == self.mu * self.cgeo * self.fn_max * self.f_normalized.u,
+                self.tau == self.T_max * sat,
+                self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
+
+
+class AsyncMotor(Component):
+    """Asynchronous (induction) motor with the static torque-speed
+    characteristic of Kloss and the rotor inertia ``J``.
+
+    Slip ``s = (w_sync - w)/w_sync`` with the synchronous speed ``w_sync``
+    (= 2 pi f / number of pole pairs); air-gap torque (Kloss)::
+
+        T_el = 2 T_k / (s/s_k + s_k/s) = 2 T_k s s_k / (s^2 + s_k^2)
+
+    with the breakdown torque ``T_k`` at the breakdown slip ``s_k`` (the
+    second form has no singularity at s = 0).  The rotor:
+    ``J der(w) = T_el + flange.tau`` (``flange.tau``: torque of the load on
+    the rotor).  The stator is fixed in the ground.  The electrical
+    transients are neglected (static characteristic), which is the usual
+    simplification for drive-train simulations.  Starting torque
+    ``T_el(s=1) = 2 T_k s_k/(1 + s_k^2)``.
+
+    Outputs: ``phi``, ``w``, ``s``, ``T_el``, ``P_mech = T_el * w`` (air-gap
+    power minus rotor copper losses = mechanical power of the rotor).
+    Start at rest by default (``w=start(0, fixed=True)``), or give
+    ``w=start(w_sync, fixed=True)`` for a motor running idle at t0.
+    """
+    J = Parameter(0.01, "kg.m2", "rotor inertia")
+    w_sync = Parameter(157.07963267948966, "rad/s", "synchronous speed (default 50 Hz, 2 pole pairs)")
+    T_k = Parameter(40.0, "N.m", "breakdown torque")
+    s_k = Parameter(0.2, "1", "breakdown slip")
+    phi = Variable(unit="rad", fixed=True, doc="rotor angle")
+    w = Variable(unit="rad/s", fixed=True, doc="rotor angular velocity")
+    s = Variable(unit="1", doc="slip")
+    T_el = Variable(unit="N.m", doc="air-gap torque (Kloss)")
+    P_mech = Variable(unit="W", doc="mechanical power T_el * w")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+
+    def equations(self):
+        return [self.flange.phi == self.phi, self.w == der(self.phi),
+                self.s == (self.w_sync - self.w) / self.w_sync,
+                self.T_el == 2 * self.T_k * self.s * self.s_k / (self.s ** 2 + self.s_k ** 2),
+                self.J * der(self.w) == self.T_el + self.flange.tau,
+                self.P_mech == self.T_el * self.w]

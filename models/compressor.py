@@ -1,0 +1,419 @@
+"""Compressor with belt drive, tensioner, clutch, crank drive and pneumatics
+(seed ch. 8.2, Bild 8.7-8.9).
+
+Structure (seed Bild 8.8): an asynchronous motor drives, through the disc
+clutch "discClutch1", the drive pulley "FixPulley1".  A closed elastic belt
+runs from the drive pulley over the tight span "BeltSpring1" to the driven
+pulley "FixPulley2", back over "BeltSpring3" to the tensioner pulley and
+over "BeltSpring2" to the drive pulley again.  The tensioner pulley sits on a
+bell-crank lever pivoted in the frame and held by a spring-damper ("Belt
+Tensor").  The driven pulley (with flywheel) turns the crank of a
+slider-crank; the piston compresses air in a cylinder with an intake and a
+discharge check valve (library/pneumatics.py).  The clutch closes at
+t = 2 s and opens at t = 10 s; the span forces (Bild 8.9) show the start-up
+peaks, the periodic steady state of the running compressor and the run-out.
+
+Layout (x to the right, y up, metres; all pulleys turn counter-clockwise
+when driven, all winding directions w = +1, the belt loop is traversed
+counter-clockwise: drive -> span2 -> tensioner -> span3 -> driven -> span1
+-> drive):
+
+    drive pulley P1 (0, 0), r1 = 50 mm; driven pulley P2 (0.45, 0),
+    r2 = 150 mm (ratio 3); tensioner pulley r3 = 35 mm on the lever arm
+    0.10 m from the pivot A (0.12, -0.17), arm at 15 deg at t0, pushing the
+    slack span (span2/span3, below the pulleys) outwards; second lever arm
+    0.08 m pointing down at t0, the spring-damper from its end B to the
+    anchor C = B - (0.15, 0).
+
+Span names as in the seed: ``span1`` = BeltSpring1 (tight span, driven ->
+drive, on top), ``span2`` = BeltSpring2 (drive -> tensioner),
+``span3`` = BeltSpring3 (tensioner -> driven).
+
+Values the seed does not give (chosen here):
+
+- motor: 4-pole, 50 Hz asynchronous motor (w_sync = 157.08 rad/s), Kloss
+  breakdown torque T_k = 40 N m at s_k = 0.2 (about a 2.2 kW motor), rotor
+  inertia 0.01 kg m^2, started at rest at t = 0 (runs up in about 0.1 s with
+  the clutch open);
+- clutch: mu = 0.3, fn_max = 1500 N, cgeo = 0.11 m (two faces at 55 mm):
+  capacity 49.5 N m; closed by a linear ramp of f_normalized 0 -> 1 over
+  2.00..2.05 s, opened by a ramp 1 -> 0 over 10.00..10.05 s; regularisation
+  width w_s = 0.01 rad/s (library/rotational.py, Clutch);
+- pulleys: drive J1 = 2e-3 kg m^2 (pulley + clutch disc), driven pulley with
+  flywheel J2 = 0.25 kg m^2, tensioner m = 0.3 kg, J = 1e-4 kg m^2;
+  bearing friction only on the crank shaft, modelled as the driven
+  pulley's bearing friction (library/belt.py): mu = 0.1 on a 50 mm shaft
+  (r_pin = 25 mm), loaded by the belt forces only, sign regularised with
+  omega_s = 0.01 rad/s -- it lets the compressor run out to standstill
+  after the clutch opens (without it the frictionless crank keeps rocking
+  on the gas spring of the trapped air); the other bearings, the slider
+  and the piston are frictionless;
+- belt (V-belt): stiffness c = 1.5e5 N per unit strain, damping d = 150 N s
+  per unit strain, all spans start with the pretension 250 N;
+- tensioner: massless lever, spring c_s = 2e4 N/m, damper d_s = 300 N s/m;
+  the spring's unstretched length is computed so that the lever is in
+  equilibrium at t0 with 250 N in every span (``tensioner_preload``);
+- crank drive: crank radius 35 mm (stroke 70 mm), connecting rod 140 mm;
+  crank (with counterweight, centre of gravity on the axis) 2 kg,
+  I = 0.01 kg m^2; rod 0.4 kg at its middle, I = m l^2/12; piston 0.6 kg;
+  the cylinder axis is vertical above the crank shaft (which is the driven
+  pulley's axis); start at bottom dead centre at rest (a static
+  equilibrium under gravity);
+- pneumatics: bore 80 mm, dead-space height 3 mm (15 cm^3, 4.3 % of the
+  swept volume 352 cm^3), air (kappa = 1.4, R = 287 J/(kg K)), adiabatic,
+  intake from 1 bar / 20 degC, discharge into a reservoir at 8 bar
+  (absolute), valve conductances 5e-6 kg/(s Pa) (check valves as events);
+- gravity -9.81 m/s^2 in y.
+
+Results (rtol 1e-6): the motor runs up idle in ~0.1 s; when the clutch
+closes it slips at its capacity for ~0.08 s, the tight span peaks at about
+1090 N; the compressor then runs at ~52 rad/s (500 rpm) and the span forces
+repeat every revolution (span 1: 256..648 N, spans 2 and 3: 177..265 N)
+within about 1 s -- earlier than the seed's ~6 s, which depends on the
+(unknown) damping of the seed's belt and tensioner; per revolution the
+cylinder takes 86.2 J (1 % above the ideal adiabatic compressor with
+clearance), the bearing 9.1 J, the belt/tensioner/clutch 0.09 J.  After the
+clutch opens the compressor stops within a few revolutions and rocks on the
+trapped air until the bearing friction has taken that energy (~15 s).
+
+Checks (tests/test_compressor.py): the states at bottom dead centre and
+the span forces over the crank angle of consecutive revolutions agree
+(periodic steady state); over a steady revolution the work of the belt on
+the driven pulley equals the indicated work of the cylinder plus the
+bearing friction (1e-4); the motor delivers slightly more (belt,
+tensioner and clutch losses positive, below 1 %); indicated work and
+delivered mass against the ideal compressor; start-up peak, no slack span,
+run-out to rest.
+
+Run ``python models/compressor.py`` to simulate and write the span forces
+(Bild 8.9) and the drive quantities as PNG files into ./out/.
+"""
+import math
+import os
+
+import casadi as ca
+import numpy as np
+
+from acausal2d import Component, start
+from acausal2d.connectors import Frame
+from acausal2d.dsl import Parameter, Variable
+from acausal2d.library import rotational, translational
+from acausal2d.library.belt import Belt, Pulley, connect_band, tangent
+from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
+from acausal2d.library.pneumatics import GasCylinder
+from acausal2d.library.signals import TimeFunction
+from acausal2d.symbols import der
+
+G = 9.81
+# belt drive
+P1 = (0.0, 0.0)
+R1 = 0.05
+P2 = (0.45, 0.0)
+R2 = 0.15
+R3 = 0.035
+PIVOT = (0.12, -0.17)
+ARM1 = 0.10
+ARM2 = 0.08
+LEVER0 = math.radians(15.0)
+SPRING_DX = 0.15
+C_BELT = 1.5e5
+D_BELT = 150.0
+F0 = 250.0
+C_SPRING = 2e4
+D_SPRING = 300.0
+M_TENS = 0.3
+# crank drive and cylinder
+RC = 0.035
+LR = 0.14
+BORE = 0.08
+H_DEAD = 0.003
+# clutch timing
+T_CLOSE, T_OPEN, T_RAMP = 2.0, 10.0, 0.05
+
+
+def clutch_signal(t):
+    """f_normalized of the clutch: ramps 0 -> 1 over [2, 2.05] s and
+    1 -> 0 over [10, 10.05] s."""
+    up = ca.fmin(ca.fmax((t - T_CLOSE) / T_RAMP, 0.0), 1.0)
+    down = ca.fmin(ca.fmax((t - T_OPEN) / T_RAMP, 0.0), 1.0)
+    return up - down
+
+
+class SpringDamper2D(Component):
+    """Linear spring-damper between the origins of two frames:
+    ``F = c (l - l0) + d der(l)`` along the line, tension positive, no
+    moments (the "Belt Tensor" element of seed Bild 8.8)."""
+    c = Parameter(1e4, "N/m", "spring rate")
+    d = Parameter(0.0, "N.s/m", "damping coefficient")
+    l0 = Parameter(0.1, "m", "unstretched length")
+    l = Variable(start=0.1, unit="m", state_select="avoid", doc="distance frame_a - frame_b")
+    F = Variable(unit="N", doc="force, tension positive")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+
+    def equations(self):
+        a, b = self.frame_a, self.frame_b
+        dx, dy = b.x - a.x, b.y - a.y
+        ex, ey = dx / self.l, dy / self.l
+        return [self.l == ca.sqrt(dx ** 2 + dy ** 2),
+                self.F == self.c * (self.l - self.l0) + self.d * der(self.l),
+                a.fx == -self.F * ex, a.fy == -self.F * ey,
+                b.fx == self.F * ex, b.fy == self.F * ey, a.t == 0, b.t == 0]
+
+
+def tensioner_geometry():
+    """Initial points: tensioner axis T, lever ends B and anchor C."""
+    T = (PIVOT[0] + ARM1 * math.cos(LEVER0), PIVOT[1] + ARM1 * math.sin(LEVER0))
+    B = (PIVOT[0], PIVOT[1] - ARM2)
+    C = (B[0] - SPRING_DX, B[1])
+    return T, B, C
+
+
+def tensioner_preload(F=F0):
+    """Unstretched spring length for lever equilibrium at t0 with the force
+    F in both spans at the tensioner and gravity on the tensioner pulley."""
+    T, B, C = tensioner_geometry()
+    # span2: drive K2 -> tensioner K1; span3: tensioner K2 -> driven K1
+    g2, _ = tangent((P1[0], P1[1], -R1), (T[0], T[1], R3))
+    g3, _ = tangent((T[0], T[1], -R3), (P2[0], P2[1], R2))
+    Rx = F * (math.cos(g3) - math.cos(g2))
+    Ry = F * (math.sin(g3) - math.sin(g2)) - M_TENS * G
+    M = (T[0] - PIVOT[0]) * Ry - (T[1] - PIVOT[1]) * Rx
+    ls = math.hypot(C[0] - B[0], C[1] - B[1])
+    ux, uy = (C[0] - B[0]) / ls, (C[1] - B[1]) / ls
+    arm = (B[0] - PIVOT[0]) * uy - (B[1] - PIVOT[1]) * ux
+    Fs = -M / arm
+    if Fs <= 0:
+        raise ValueError("the tensioner spring would have to push (F_s = %g N)" % Fs)
+    return ls - Fs / C_SPRING, Fs
+
+
+class Compressor(Component):
+    """Compressor drive of seed ch. 8.2 (see the module docstring).
+
+    Outputs: span forces ``span1.F`` (tight span), ``span2.F``,
+    ``span3.F``; motor speed ``motor.w``; crank angle/speed
+    ``crank.phi``/``crank.w``; clutch torque ``clutch.tau``; cylinder
+    pressure ``cyl.p``; tensioner lever angle ``lever.phi``."""
+    experiment = {"stop_time": 16.0, "intervals": 3200, "rtol": 1e-6}
+    outputs = ["span1.F", "span2.F", "span3.F", "motor.w", "crank.w", "clutch.tau",
+               "cyl.p", "lever.phi"]
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        T, B, C = tensioner_geometry()
+        l0_spring, _ = tensioner_preload()
+        # --- motor and clutch
+        self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2,
+                                           phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11, w_s=0.01)
+        self.engage = TimeFunction(clutch_signal)
+        self.connect(self.engage.y, self.clutch.f_normalized)
+        self.connect(self.motor.flange, self.clutch.flange_a)
+        # --- belt drive
+        self.drive = Pulley(r=R1, x0=P1[0], y0=P1[1], w=1, J=2e-3)
+        self.driven = Pulley(r=R2, x0=P2[0], y0=P2[1], w=1, J=0.25, friction=True,
+                             mu=0.1, r_pin=0.025, omega_s=0.01)
+        self.tens = Pulley(r=R3, x0=T[0], y0=T[1], w=1, m=M_TENS, J=1e-4)
+        self.connect(self.clutch.flange_b, self.drive.ctrR)
+        eps0 = F0 / C_BELT
+        for k in (1, 2, 3):
+            setattr(self, "span%d" % k, Belt(c=C_BELT, d=D_BELT, eps=start(eps0, fixed=True)))
+        connect_band(self, self.span1, 1, self.driven, 2)
+        connect_band(self, self.span1, 2, self.drive, 1)
+        connect_band(self, self.span2, 1, self.drive, 2)
+        connect_band(self, self.span2, 2, self.tens, 1)
+        connect_band(self, self.span3, 1, self.tens, 2)
+        connect_band(self, self.span3, 2, self.driven, 1)
+        # --- tensioner: bell-crank lever with spring-damper
+        self.pivot = Fixed(r=PIVOT)
+        self.lever = Revolute(phi=start(LEVER0, fixed=True), w=start(0.0, fixed=True))
+        self.arm1 = FixedTranslation(r=(ARM1, 0.0))
+        self.arm2 = FixedTranslation(r=(-ARM2 * math.sin(LEVER0), -ARM2 * math.cos(LEVER0)))
+        self.anchor = Fixed(r=C)
+        self.spring = SpringDamper2D(c=C_SPRING, d=D_SPRING, l0=l0_spring, l=start(SPRING_DX))
+        self.connect(self.pivot.frame, self.lever.frame_a)
+        self.connect(self.lever.frame_b, self.arm1.frame_a)
+        self.connect(self.lever.frame_b, self.arm2.frame_a)
+        self.connect(self.arm1.frame_b, self.tens.ctr2D1)
+        self.connect(self.arm2.frame_b, self.spring.frame_a)
+        self.connect(self.spring.frame_b, self.anchor.frame)
+        # --- crank drive on the driven pulley's shaft, cylinder above it
+        self.shaft = Fixed(r=P2)
+        self.crank = Revolute(use_flange=True, state_select="always",
+                              phi=start(-math.pi / 2, fixed=True), w=start(0.0, fixed=True))
+        self.crank_body = Body(m=2.0, I=0.01)
+        self.crank_arm = FixedTranslation(r=(RC, 0.0))
+        self.pin = Revolute(phi=start(math.pi))
+        self.rod_a = FixedTranslation(r=(LR / 2, 0.0))
+        self.rod_body = Body(m=0.4, I=0.4 * LR ** 2 / 12)
+        self.rod_b = FixedTranslation(r=(LR / 2, 0.0))
+        self.wrist = Revolute(phi=start(-math.pi / 2))
+        self.piston = Body(m=0.6, I=1e-3)
+        self.guide = Prismatic(r=(0.0, 1.0), use_flange=True, s=start(LR - RC))
+        self.connect(self.driven.ctrR, self.crank.flange_a)
+        self.connect(self.shaft.frame, self.crank.frame_a)
+        self.connect(self.crank.frame_b, self.crank_body.frame_a)
+        self.connect(self.crank.frame_b, self.crank_arm.frame_a)
+        self.connect(self.crank_arm.frame_b, self.pin.frame_a)
+        self.connect(self.pin.frame_b, self.rod_a.frame_a)
+        self.connect(self.rod_a.frame_b, self.rod_body.frame_a)
+        self.connect(self.rod_a.frame_b, self.rod_b.frame_a)
+        self.connect(self.rod_b.frame_b, self.wrist.frame_a)
+        self.connect(self.wrist.frame_b, self.piston.frame_a)
+        self.connect(self.shaft.frame, self.guide.frame_a)
+        self.connect(self.guide.frame_b, self.piston.frame_a)
+        area = math.pi * BORE ** 2 / 4
+        self.cyl = GasCylinder(A=area, p_amb=1e5, p_in=1e5, p_out=8e5,
+                               G_in=5e-6, G_out=5e-6)
+        self.head = translational.Fixed(s0=LR + RC + H_DEAD)
+        self.connect(self.guide.flange_a, self.cyl.flange_a)
+        self.connect(self.cyl.flange_b, self.head.flange)
+
+
+# --------------------------------------------------------------------------
+# evaluation helpers (used by the tests and the plots)
+# --------------------------------------------------------------------------
+def revolutions(res, t_from, t_to):
+    """Start times of the crank revolutions in [t_from, t_to] (the crank
+    angle passing bottom dead centre, -pi/2 + 2 pi k)."""
+    t = res.time
+    phi = res["crank.phi"] + math.pi / 2
+    k = np.floor(phi / (2 * math.pi))
+    idx = np.nonzero(np.diff(k) != 0)[0]
+    out = []
+    for i in idx:
+        target = 2 * math.pi * max(k[i], k[i + 1])
+        # linear interpolation of the crossing
+        a = (target - phi[i]) / (phi[i + 1] - phi[i])
+        tc = t[i] + a * (t[i + 1] - t[i])
+        if t_from <= tc <= t_to:
+            out.append(tc)
+    return out
+
+
+def over_crank_angle(res, name, t0, t1, n=360):
+    """``name`` sampled at n equidistant crank angles of the revolution
+    starting at t0 and ending at t1 (linear interpolation in time)."""
+    t = res.time
+    sel = (t >= t0 - 1e-3) & (t <= t1 + 1e-3)
+    phi = res["crank.phi"][sel]
+    grid = phi[0] + (np.interp(t1, t[sel], res["crank.phi"][sel]) - phi[0]) * np.arange(n) / n
+    grid[0] = np.interp(t0, t[sel], res["crank.phi"][sel])
+    return np.interp(grid, phi, res[name][sel])
+
+
+def cycle_work(res, t0, t1):
+    """Works over [t0, t1] (trapezoidal rule on the output grid):
+    W_belt -- belt on the driven pulley (tight minus slack side times r2,
+    times the pulley's angle), W_ind -- indicated work of the cylinder
+    (integral of (p - p_amb) dV, taken by the gas), W_motor -- motor
+    mechanical work, W_fric -- work dissipated by the crank-shaft bearing
+    friction."""
+    t = res.time
+    sel = (t >= t0) & (t <= t1)
+    tt = t[sel]
+
+    def integ(y):
+        return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(tt)))
+    w2 = res["driven.w_rel"][sel]
+    M2 = (res["span1.F"][sel] - res["span3.F"][sel]) * R2
+    return {"W_belt": integ(M2 * w2), "W_ind": integ(res["cyl.P_gas"][sel]),
+            "W_motor": integ(res["motor.P_mech"][sel]),
+            "W_fric": -integ(res["driven.T_f"][sel] * w2)}
+
+
+def plot(res, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    files = []
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    for k, lab in ((1, "span 1 (tight, driven -> drive)"), (2, "span 2 (drive -> tensioner)"),
+                   (3, "span 3 (tensioner -> driven)")):
+        ax.plot(res.time, res["span%d.F" % k], lw=0.8, label=lab)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("span force [N]")
+    ax.set_title("Compressor: span forces, clutch closes at 2 s, opens at 10 s (Bild 8.9)")
+    ax.grid(True)
+    ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    files.append(os.path.join(out, "compressor_span_forces.png"))
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, axs = plt.subplots(4, 1, figsize=(9, 9), sharex=True)
+    axs[0].plot(res.time, res["motor.w"], label="motor")
+    axs[0].plot(res.time, 3 * res["crank.w"], label="crank x 3 (ratio)")
+    axs[0].set_ylabel("speed [rad/s]")
+    axs[0].legend(fontsize=8)
+    axs[1].plot(res.time, res["clutch.tau"], lw=0.8, label="clutch torque")
+    axs[1].plot(res.time, res["motor.T_el"], lw=0.8, label="motor torque")
+    axs[1].set_ylabel("torque [N m]")
+    axs[1].legend(fontsize=8)
+    axs[2].plot(res.time, res["cyl.p"] / 1e5, lw=0.6)
+    axs[2].set_ylabel("cylinder p [bar]")
+    axs[3].plot(res.time, np.degrees(res["lever.phi"]), lw=0.8)
+    axs[3].set_ylabel("tensioner lever [deg]")
+    axs[3].set_xlabel("time [s]")
+    for a in axs:
+        a.grid(True)
+    fig.tight_layout()
+    files.append(os.path.join(out, "compressor_drive.png"))
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    revs = revolutions(res, 9.4, 10.0)
+    if len(revs) >= 3:
+        fig, ax = plt.subplots(figsize=(7, 4))
+        ang = np.arange(360)
+        for k in (1, 2, 3):
+            for j in range(len(revs) - 3, len(revs) - 1):
+                ax.plot(ang, over_crank_angle(res, "span%d.F" % k, revs[j], revs[j + 1]),
+                        lw=0.8, label="span %d, rev. %d" % (k, j))
+        ax.set_xlabel("crank angle from bottom dead centre [deg]")
+        ax.set_ylabel("span force [N]")
+        ax.set_title("Steady state: two consecutive revolutions")
+        ax.grid(True)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        files.append(os.path.join(out, "compressor_steady_state.png"))
+        fig.savefig(files[-1], dpi=110)
+        plt.close(fig)
+    return files
+
+
+if __name__ == "__main__":
+    import time as _time
+
+    from acausal2d import compile_model
+    out = os.path.join(os.getcwd(), "out")
+    os.makedirs(out, exist_ok=True)
+    t0 = _time.perf_counter()
+    cm = compile_model(Compressor())
+    t1 = _time.perf_counter()
+    # the experiment's 5 ms grid plus a 0.1 ms window over the last steady
+    # revolutions (for the work integrals and the steady-state plot)
+    stop = Compressor.experiment["stop_time"]
+    ot = np.unique(np.concatenate([np.linspace(0.0, stop, Compressor.experiment["intervals"] + 1),
+                                   np.linspace(9.4, 10.0, 6001)]))
+    res = cm.simulate(output_times=ot)
+    t2 = _time.perf_counter()
+    print("compile %.2f s, simulate %.2f s (16 s simulated), %d events"
+          % (t1 - t0, t2 - t1, len(res.events)))
+    revs = revolutions(res, 9.4, 10.0)
+    if len(revs) >= 2:
+        w = cycle_work(res, revs[-2], revs[-1])
+        print("last steady revolution %.4f..%.4f s: belt work on driven pulley %.2f J, "
+              "indicated work %.2f J, bearing friction %.2f J, motor work %.2f J"
+              % (revs[-2], revs[-1], w["W_belt"], w["W_ind"], w["W_fric"], w["W_motor"]))
+    for k in (1, 2, 3):
+        sel = (res.time > 8.0) & (res.time < 10.0)
+        print("span%d: max %.1f N (all), steady range %.1f .. %.1f N"
+              % (k, res["span%d.F" % k].max(), res["span%d.F" % k][sel].min(),
+                 res["span%d.F" % k][sel].max()))
+    for f in plot(res, out):
+        print("wrote", f)
