@@ -11,4 +11,6 @@
 - :mod:`acausal2d.library.belt`: belt and rope drives (seed ch. 4.4): elastic
   belt spans, belt with tension spring, belt with draw-off nozzle, circular
   pulleys and drums with optional bearing friction.
+- :mod:`acausal2d.library.pneumatics`: gas cylinder with check valves.
+- :mod:`acausal2d.library.crane`: carriage and hook of the cable crane.
 """
