@@ -11,6 +11,9 @@
 - :mod:`acausal2d.library.belt`: belt and rope drives (seed ch. 4.4): elastic
   belt spans, belt with tension spring, belt with draw-off nozzle, circular
   pulleys and drums with optional bearing friction.
+- :mod:`acausal2d.library.belt_curved`: pulley and drum with curved contour
+  (seed eq. 4.100-4.122); contours from a function, a table, a Fourier
+  series or a support function.
 - :mod:`acausal2d.library.pneumatics`: gas cylinder with check valves.
 - :mod:`acausal2d.library.crane`: carriage and hook of the cable crane.
 """

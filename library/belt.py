@@ -18,6 +18,10 @@ Elements and ports (seed names)
   fixed on the contour (seed end of ch. 4.4.4).
 - :class:`RopeDrive` -- a rope end (point) moved along a straight line by the
   signal ``s_in`` (for pulling a rope with a drive function).
+- The pulley and drum with curved contour (eq. 4.100-4.122) are in
+  :mod:`acausal2d.library.belt_curved` (``CurvedPulley``, ``CurvedDrum``);
+  they have the same ports and connect to the spans in the same way.  The
+  start values of spans ending on them come from :func:`tangent_any`.
 
 Band connection (seed ch. 4.1)
 ------------------------------
@@ -82,7 +86,7 @@ from acausal2d.errors import ModelDefinitionError
 from acausal2d.symbols import der
 
 __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
-           "connect_band", "prepare_belts", "tangent", "open_belt_closed_form"]
+           "connect_band", "prepare_belts", "tangent", "tangent_any", "open_belt_closed_form"]
 
 _PI = math.pi
 
@@ -278,7 +282,6 @@ class NozzleBelt(_BandElement):
 class _Wheel(_BandElement):
     """Mass, housing, flange and bearing friction shared by pulley and drum."""
     needs_world = True
-    r = Parameter(0.05, "m", "radius of the belt contour")
     x0 = Parameter(0.0, "m", "x of the axis P1 at t0 (fixed position if ctr2D1 is unconnected)")
     y0 = Parameter(0.0, "m", "y of the axis P1 at t0 (fixed position if ctr2D1 is unconnected)")
     phi0 = Parameter(0.0, "rad", "housing angle if ctr2D1 is unconnected")
@@ -402,6 +405,7 @@ class Pulley(_Wheel):
     ``kappa2``, ``beta``, ``l_con``, ``F_bear`` (bearing force magnitude),
     ``T_f``.
     """
+    r = Parameter(0.05, "m", "radius of the belt contour")
     n_beta = Parameter(0.0, "1", "whole turns added to the wrap angle (set by prepare_belts)")
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (world)")
     kappa2 = Variable(unit="rad", state_select="avoid", doc="contact angle of K2 (world)")
@@ -441,6 +445,7 @@ class Drum(_Wheel):
     running off its end).  Contact angle ``kappa1 = gamma1 + w pi/2``,
     ``ctrB1.L = -w r (phi - kappa1)`` and the forces as in :class:`Pulley`.
     """
+    r = Parameter(0.05, "m", "radius of the belt contour")
     alpha_fix = Parameter(0.0, "rad", "angle of the fastened rope end in the drum frame")
     n_wound = Parameter(0.0, "1", "whole turns of rope on the drum")
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (world)")
@@ -518,6 +523,44 @@ def tangent(a, b):
     return g, l
 
 
+def tangent_any(a, b):
+    """:func:`tangent` for span ends that may also be curved contours.
+
+    ``a`` and ``b`` are ``(cx, cy, rho)`` tuples as in :func:`tangent` or
+    geometry objects of curved wheels (``library/belt_curved.py``) with the
+    methods ``approx()`` (an equivalent ``(cx, cy, rho)`` circle) and
+    ``support(ux, uy)`` (the world contact point whose outward normal is the
+    unit vector ``u``).  Starting from the circle approximation, the span
+    angle is refined by fixed-point iteration: contact points for the
+    current span direction, new direction from the contact points.  Returns
+    ``(gamma, l)`` like :func:`tangent`."""
+    if isinstance(a, tuple) and isinstance(b, tuple):
+        return tangent(a, b)
+    ta = a if isinstance(a, tuple) else a.approx()
+    tb = b if isinstance(b, tuple) else b.approx()
+    g, l = tangent(ta, tb)
+
+    def end(geo, g, sign):
+        px, py = -math.sin(g), math.cos(g)
+        if isinstance(geo, tuple):
+            return geo[0] + sign * geo[2] * px, geo[1] + sign * geo[2] * py
+        return geo.support(sign * geo.side * px, sign * geo.side * py)
+
+    for _ in range(200):
+        ax, ay = end(a, g, 1.0)
+        bx, by = end(b, g, -1.0)
+        g_new = math.atan2(by - ay, bx - ax)
+        g_new = g + math.remainder(g_new - g, 2 * _PI)
+        l = math.hypot(bx - ax, by - ay)
+        if abs(g_new - g) < 1e-13:
+            g = g_new
+            break
+        g = g_new
+    else:
+        raise ModelDefinitionError("no common tangent found between %r and %r" % (a, b))
+    return math.atan2(math.sin(g), math.cos(g)), l
+
+
 def open_belt_closed_form(r1, r2, d):
     """Closed form of the open belt around two circles (centre distance d):
     wrap angles ``(beta1, beta2)`` = (pi + 2 asin((r1-r2)/d),
@@ -546,6 +589,8 @@ def _frame_geometry(conn):
     from acausal2d.library import planar
     owner = conn.owner
     name = conn._name
+    if hasattr(owner, "_band_geometry") and name in ("ctrK1", "ctrK2"):
+        return owner._band_geometry(name)
     if isinstance(owner, _Wheel) and name in ("ctrK1", "ctrK2"):
         s = owner.w if name == "ctrK1" else -owner.w
         return (float(_num(owner, "x0")), float(_num(owner, "y0")),
@@ -609,8 +654,8 @@ def prepare_belts(model):
             n = end_geometry(span, "ctr2D3")
             if a is None or b is None or n is None:
                 continue
-            g1, l1 = tangent(a, (n[0], n[1], 0.0))
-            g2, l2 = tangent((n[0], n[1], 0.0), b)
+            g1, l1 = tangent_any(a, (n[0], n[1], 0.0))
+            g2, l2 = tangent_any((n[0], n[1], 0.0), b)
             for name, val in (("gamma1", g1), ("gamma2", g2), ("l1", l1), ("l2", l2),
                               ("l", l1 + l2), ("l_u", l1 + l2), ("l_u0", l1 + l2)):
                 if name not in span._overrides:
@@ -623,7 +668,7 @@ def prepare_belts(model):
             elif a is None or b is None:
                 continue
             else:
-                gam, l = tangent(a, b)
+                gam, l = tangent_any(a, b)
                 span._overrides["gamma"] = start(gam)
                 if "l" not in span._overrides:
                     span._overrides["l"] = start(l)
@@ -641,6 +686,9 @@ def prepare_belts(model):
         w = wheel.w
         g1 = leaving.get((id(wheel), 1))
         g2 = leaving.get((id(wheel), 2))
+        if hasattr(wheel, "_prepare_start"):      # curved contours (belt_curved.py)
+            wheel._prepare_start(g1, g2)
+            continue
         if g1 is not None:
             k1 = g1 + w * _PI / 2
             if "kappa1" in wheel._var_decls and "kappa1" not in wheel._overrides:

@@ -1,0 +1,277 @@
+"""Pulley with curved contour (library/belt_curved.py, seed eq. 4.100-4.122)
+and the non-circular toothed belt drive (models/noncircular_belt_drive.py,
+seed ch. 7.3.2)."""
+import math
+
+import casadi as ca
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d import Component, start
+from acausal2d.library import rotational, signals
+from acausal2d.library.belt import Belt, Drum, Pulley, connect_band, tangent_any
+from acausal2d.library.belt_curved import (Contour, CurvedDrum, CurvedPulley, SupportContour,
+                                           _ContourGeometry)
+from acausal2d.library.planar import Body, Fixed, Prismatic
+from conftest import load_model_class
+
+R1, R2 = 0.1, 0.05
+C2 = (0.5, 0.1)
+
+
+def smooth_angle(t):
+    return 2.0 * (t - ca.sin(2 * t) / 2)
+
+
+class TwoPulleys(Component):
+    """Driven pulley p1 and free pulley p2 (J 1e-4) with a closed elastic
+    belt (as tests/test_belt.py); ``kind`` selects the pulley element."""
+
+    def __init__(self, kind="circular", c=1e6, **kw):
+        super().__init__(**kw)
+        eps0 = 100.0 / c
+        if kind == "circular":
+            self.p1 = Pulley(r=R1, x0=0.0, y0=0.0, w=1)
+            self.p2 = Pulley(r=R2, x0=C2[0], y0=C2[1], w=1, J=1e-4)
+        else:
+            make = Contour.circle if kind == "polar" else SupportContour
+            self.p1 = CurvedPulley(make(R1), x0=0.0, y0=0.0, w=1)
+            self.p2 = CurvedPulley(make(R2), x0=C2[0], y0=C2[1], w=1, J=1e-4)
+        self.span_a = Belt(c=c, d=c * 1e-4, eps=start(eps0, fixed=True))
+        self.span_b = Belt(c=c, d=c * 1e-4, eps=start(eps0, fixed=True))
+        connect_band(self, self.span_a, 1, self.p1, 2)
+        connect_band(self, self.span_a, 2, self.p2, 1)
+        connect_band(self, self.span_b, 1, self.p2, 2)
+        connect_band(self, self.span_b, 2, self.p1, 1)
+        self.drive = rotational.Position()
+        self.sig = signals.TimeFunction(smooth_angle)
+        self.connect(self.sig.y, self.drive.phi_in)
+        self.connect(self.drive.flange, self.p1.ctrR)
+
+
+@pytest.fixture(scope="module")
+def circular_result():
+    return acausal2d.simulate(TwoPulleys("circular"), stop_time=2.0, rtol=1e-10,
+                              output_times=np.linspace(0.0, 2.0, 101))
+
+
+@pytest.mark.parametrize("kind", ["polar", "support"])
+def test_circle_contour_reproduces_circular_pulley(circular_result, kind):
+    ref = circular_result
+    res = acausal2d.simulate(TwoPulleys(kind), stop_time=2.0, rtol=1e-10,
+                             output_times=np.linspace(0.0, 2.0, 101))
+    for name in ("span_a.F", "span_b.F", "span_a.l", "span_b.l", "span_a.gamma", "span_b.gamma",
+                 "p1.beta", "p2.beta", "p2.w_rel", "p1.ctrK1.x", "p1.ctrK1.y", "p2.ctrK2.x",
+                 "p2.ctrK2.y", "p1.ctrB1.L", "p2.ctrB2.L", "p1.F_bear"):
+        assert np.max(np.abs(res[name] - ref[name])) < 1e-8, name
+    # the free pulley's angle (~9.5 rad) agrees to the integration tolerance
+    assert np.max(np.abs(res["p2.phi"] - ref["p2.phi"])) < 1e-8 * 10
+    # contact angles: pulley frame (curved) versus world frame (circular)
+    for k in (1, 2):
+        assert np.max(np.abs(res["p1.kappa%d" % k] + res["p1.phi"] - ref["p1.kappa%d" % k])) \
+            < 1e-9
+
+
+A_ELL, B_ELL = 0.1, 0.08
+
+
+def ellipse(k):
+    return A_ELL * B_ELL / ca.sqrt((B_ELL * ca.cos(k)) ** 2 + (A_ELL * ca.sin(k)) ** 2)
+
+
+class EllipseDrive(Component):
+    """An elliptic pulley (polar contour from a Python function) driven at
+    one revolution per second drives a circular free pulley with a soft
+    belt, whose length changes with the ellipse's orientation."""
+
+    def __init__(self, contour, **kw):
+        super().__init__(**kw)
+        self.p1 = CurvedPulley(contour, x0=0.0, y0=0.0, w=1)
+        self.p2 = CurvedPulley(Contour.circle(0.06), x0=0.6, y0=-0.05, w=1, J=2e-4)
+        self.span_a = Belt(c=2e3, d=2.0, eps=start(0.05, fixed=True))
+        self.span_b = Belt(c=2e3, d=2.0, eps=start(0.05, fixed=True))
+        connect_band(self, self.span_a, 1, self.p1, 2)
+        connect_band(self, self.span_a, 2, self.p2, 1)
+        connect_band(self, self.span_b, 1, self.p2, 2)
+        connect_band(self, self.span_b, 2, self.p1, 1)
+        self.drive = rotational.Position()
+        self.sig = signals.TimeFunction(lambda t: 2 * math.pi * (t - ca.sin(2 * t) / 2))
+        self.connect(self.sig.y, self.drive.phi_in)
+        self.connect(self.drive.flange, self.p1.ctrR)
+
+
+def test_elliptic_contour_contacts_and_tangency():
+    con = Contour.from_function(ellipse, symmetry=2)
+    # arc length: closed-form series against the exact perimeter of the ellipse
+    from scipy.special import ellipe
+    perim = 4 * A_ELL * ellipe(1 - (B_ELL / A_ELL) ** 2)
+    assert abs(con.perimeter - perim) < 1e-13
+    k = np.linspace(-7.0, 7.0, 2001)
+    ds = np.gradient(con.s(k), k, edge_order=2)
+    assert np.max(np.abs(ds - np.hypot(con.r(k), con.dr(k)))) < 1e-5   # FD of a smooth s
+    T = 3.5
+    res = acausal2d.simulate(EllipseDrive(con), stop_time=T, rtol=1e-10,
+                             output_times=np.linspace(0.0, T, 351))
+    assert res.events == []
+    phi = res["p1.phi"]
+    assert phi[-1] > 2 * math.pi * 3          # more than three revolutions
+    for kk in (1, 2):
+        kap = res["p1.kappa%d" % kk]
+        # unwrapped contact angle (pulley frame) runs backwards over the turns
+        assert kap[0] - kap[-1] > 2 * math.pi * 3
+        assert np.max(np.abs(np.diff(kap))) < 1.0
+        # contact point lies on the contour
+        x = res["p1.ctrK%d.x" % kk]
+        y = res["p1.ctrK%d.y" % kk]
+        xb = np.cos(phi) * x + np.sin(phi) * y
+        yb = -np.sin(phi) * x + np.cos(phi) * y
+        r = con.r(kap)
+        assert np.max(np.abs(xb - r * np.cos(kap))) < 1e-9
+        assert np.max(np.abs(yb - r * np.sin(kap))) < 1e-9
+        # span tangent to the contour: normalised cross product of the contour
+        # tangent (world) and the span direction
+        dr = con.dr(kap)
+        tx = dr * np.cos(kap + phi) - r * np.sin(kap + phi)
+        ty = dr * np.sin(kap + phi) + r * np.cos(kap + phi)
+        g = res["p1.ctrB%d.gamma" % kk]
+        cross = (tx * np.sin(g) - ty * np.cos(g)) / np.hypot(tx, ty)
+        assert np.max(np.abs(cross)) < 1e-9
+    # the free span geometry equals an independent tangent construction
+    i = len(res.time) - 1
+    geo1 = _ContourGeometry(0.0, 0.0, float(phi[i]), con, -1)     # p1 K2, start of span_a
+    geo2 = _ContourGeometry(0.6, -0.05, 0.0, Contour.circle(0.06), 1)
+    gam, l = tangent_any(geo1, geo2)
+    assert abs(math.remainder(res["span_a.gamma"][i] - gam, 2 * math.pi)) < 1e-9
+    assert abs(res["span_a.l"][i] - l) < 1e-9
+    # both spans stay taut
+    assert np.all(res["span_a.F"] > 0) and np.all(res["span_b.F"] > 0)
+
+
+def test_table_contour_fits_the_spline():
+    k = np.linspace(0, 2 * math.pi, 72, endpoint=False)
+    r = A_ELL * B_ELL / np.sqrt((B_ELL * np.cos(k)) ** 2 + (A_ELL * np.sin(k)) ** 2)
+    con = Contour.from_table(k, r, n_harm=64)
+    assert con.kind == "table"
+    assert con.fit_error < 1e-6
+    assert np.max(np.abs(con.r(k) - r)) < 1e-6
+    ref = Contour.from_function(ellipse, symmetry=2)
+    assert abs(con.perimeter - ref.perimeter) < 1e-6
+
+
+def test_support_contour_arc_length_and_polar_form():
+    c = SupportContour(0.2, a=[0.03, 0.004], b=[0.0, 0.001], base=2)
+    psi = np.linspace(0.0, 2 * math.pi, 40001)
+    x, y = c.point(psi)
+    seg = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    assert np.max(np.abs(c.s(psi) - c.s(0.0) - seg)) < 1e-8        # chord error ~ h^2
+    assert abs(c.s(2 * math.pi) - c.perimeter) < 1e-14
+    pol = c.polar()
+    kap = np.arctan2(y, x)
+    assert np.max(np.abs(pol.r(kap) - np.hypot(x, y))) < 1e-12
+    m1, J1, s1 = c.mass_properties(0.02, 7850.0)
+    m2, J2, s2 = pol.mass_properties(0.02, 7850.0)
+    assert abs(m1 - m2) < 1e-10 * m1 and abs(J1 - J2) < 1e-10 * J1
+    with pytest.raises(acausal2d.ModelDefinitionError):
+        SupportContour(0.1, a=[0.05], base=2)          # p + p'' < 0: not convex
+
+
+class Hoist(Component):
+    """Drum (circular, or curved with a circular contour) lifting a body."""
+
+    def __init__(self, curved, **kw):
+        super().__init__(**kw)
+        if curved:
+            self.drum = CurvedDrum(Contour.circle(0.1), x0=-0.1, y0=0.0, w=1, J=0.01)
+        else:
+            self.drum = Drum(r=0.1, x0=-0.1, y0=0.0, w=1, J=0.01)
+        self.rope = Belt(c=1e6, d=1e3, eps=start(2 * 9.81 / 1e6, fixed=True))
+        self.guide = Fixed()
+        self.slider = Prismatic(r=(0.0, 1.0), s=start(-1.0, fixed=True), v=start(0.0, fixed=True))
+        self.body = Body(m=2.0, I=0.01, x=start(0.0), y=start(-1.0))
+        self.connect(self.guide.frame, self.slider.frame_a)
+        self.connect(self.slider.frame_b, self.body.frame_a)
+        connect_band(self, self.rope, 1, self.drum, 1)
+        self.connect(self.rope.ctr2D2, self.body.frame_a)
+        self.drive = rotational.Position()
+        self.sig = signals.TimeFunction(lambda t: 0.5 * (t - ca.sin(2 * t) / 2))
+        self.connect(self.sig.y, self.drive.phi_in)
+        self.connect(self.drive.flange, self.drum.ctrR)
+
+
+def test_curved_drum_with_circle_matches_drum():
+    out = [acausal2d.simulate(Hoist(curved), stop_time=1.5, rtol=1e-10,
+                              output_times=np.linspace(0.0, 1.5, 31)) for curved in (False, True)]
+    for name in ("rope.F", "body.y", "drum.F_bear"):
+        assert np.max(np.abs(out[0][name] - out[1][name])) < 1e-8, name
+    lw = out[1]["drum.l_wound"]
+    assert np.max(np.abs((lw - lw[0]) - (out[0]["drum.l_wound"] - out[0]["drum.l_wound"][0]))) \
+        < 1e-9
+
+
+# --------------------------------------------------------------------------
+# non-circular toothed belt drive (seed ch. 7.3.2)
+# --------------------------------------------------------------------------
+design = load_model_class("noncircular_belt_drive.py", "design")
+belt_length = load_model_class("noncircular_belt_drive.py", "belt_length")
+g_ratio = load_model_class("noncircular_belt_drive.py", "g_ratio")
+NonCircularBeltDrive = load_model_class("noncircular_belt_drive.py", "NonCircularBeltDrive")
+
+
+def test_noncircular_design_keeps_belt_length():
+    des = design()
+    assert des.residual < 1e-9
+    phi = np.linspace(0.0, 2 * math.pi, 61)
+    L, lev = belt_length(des, phi)
+    # constant belt length (tangent construction on the final contours)
+    assert np.max(L) - np.min(L) < 1e-9
+    # both spans transmit the designed ratio (lever arms through the pole)
+    g = g_ratio(phi)
+    assert np.max(np.abs(lev[:, 0] / lev[:, 1] - g)) < 1e-8
+    assert np.max(np.abs(lev[:, 2] / lev[:, 3] - g)) < 1e-8
+    i = 1 / g
+    assert i.max() / i.min() == pytest.approx(1.5, abs=1e-12)
+    assert np.mean(g[:-1]) == pytest.approx(0.5, abs=1e-12)
+    # 80 and 160 teeth of 8 mm; convex contours
+    assert des.contour1.perimeter == pytest.approx(0.64, abs=1e-12)
+    assert des.contour2.perimeter == pytest.approx(1.28, abs=1e-9)
+    assert des.contour1.rho_min > 0 and des.contour2.rho_min > 0
+
+
+@pytest.fixture(scope="module")
+def drive_result():
+    return acausal2d.simulate(NonCircularBeltDrive(), stop_time=2.0, rtol=1e-8,
+                              output_times=np.linspace(0.0, 2.0, 721))
+
+
+def test_noncircular_drive_follows_designed_ratio(drive_result):
+    res = drive_result
+    model = NonCircularBeltDrive()
+    des = model.des
+    dev = np.max(np.abs(res["ratio"] / res["ratio_design"] - 1.0))
+    # Tolerance: the belt is elastic, so the large pulley lags behind the
+    # rigid motion by its accelerating torque over the torsional stiffness of
+    # the two spans, dphi2 = J2 alpha2 / k_t with alpha2 = g'(phi1) w1^2 and
+    # k_t = 2 (c / l) h2^2.  The ratio error is then about
+    # J2 max|g''| w1^2 / (k_t g_min) (quasi-static; the excitation is far
+    # below the drive's natural frequency of ~25 Hz).
+    J2 = des.contour2.mass_properties(0.02, 7850.0)[1]
+    lam, bet, w1 = des.lam, des.bet, 2 * math.pi
+    h2_min = des.contour2.p(np.linspace(0, math.pi, 2001)).min()
+    k_t = 2 * (1e5 / des.a) * h2_min ** 2
+    est = J2 * 0.5 * (lam + 4 * bet) * w1 ** 2 / (k_t * 0.5 * (1 - lam + bet))
+    assert 2e-4 < est < 3e-3
+    assert dev < 2 * est
+    # the large pulley turns exactly once per two turns of the small one
+    assert res["large.phi"][-1] == pytest.approx(2 * math.pi, abs=1e-3)
+
+
+def test_noncircular_drive_span_forces(drive_result):
+    res = drive_result
+    for span in ("upper", "lower"):
+        F = res[span + ".F"]
+        assert np.all(F > 50.0) and np.all(F < 150.0)
+        assert abs(np.mean(F) - 100.0) < 5.0
+    # no load torque: the spans only carry the accelerating torque of the large
+    # pulley, so their forces swing in opposite directions
+    assert np.corrcoef(res["upper.F"], res["lower.F"])[0, 1] < 0
