@@ -54,6 +54,34 @@ flipped).  Start values follow parameter changes made with
 ``simulate(params=...)`` without recompiling.  A user start value
 (``DDD(phiL1=start(...))``) overrides the assembled guess.
 
+Drawing and topology
+--------------------
+``shapes()`` draws what the VDI symbol shows, with result signals only:
+links between the element's points, revolute joints (white circles) at its
+pins, sliders on dashed guides for prismatic pairs, a ground symbol at each
+triangle port that is unconnected (fixed to ground), the rigid arm from the
+connection point to the placed point when a connected port has an offset,
+and a small disc at each centre of gravity of a massive link that lies off
+the pins.  Unconnected placed points are the parameters ``(xn0, yn0)``.  A
+point that is no result signal -- the placed point Pn of DAN/SAN/FGP/SSD/SDS
+and the DDS guide origin when that port is connected with an offset -- is
+drawn at the connection point (guides are then left out).  The slider foot
+points ``xPS, yPS`` (SAN, DSD), ``xPS1, yPS1`` (SSD, SDS) and ``xPS2, yPS2``
+(SSD) are variables for this purpose.
+
+``topology()`` (seed eq. 2.1) uses the element's *output* frames as its
+links: every moving body of an element has exactly one plug port (DAN crank
+``ctr2D2``; SAN slider ``ctr2D2``; DDD links ``ctr2D3``/``ctr2D4``; DDS link
+``ctr2D3``, slider ``ctr2D4``; DSD guide ``ctr2D3``, slider ``ctr2D4``;
+SSD/SDS sliders ``ctr2D3``/``ctr2D4``), and the triangle ports (housings,
+guides) are the plane of the predecessor they are mounted on.  So the inner
+pin P of a dyad needs no frame of its own: it is the joint between the two
+output frames, and a dyad adds 2 links and 3 joints (f = 1 each) between its
+input ports.  Unconnected triangle ports are declared ``("ground", ...)``.
+FGP is rigid with its predecessor (``("rigid", [ctr2D1, ctr2D2])``).  The
+motion presets declare nothing: eq. 2.1 counts the mechanism's DOF, which
+a drive uses up but does not remove from the chain.
+
 Sign conventions differing from the extracted seed text (typos there):
 slider foot points are ``PS = P_guide + x_G (cos phi_U, sin phi_U)`` in all
 elements (the seed's B.10/B.99 print ``x_P1 - x_G cos``, contradicting B.126,
@@ -346,6 +374,62 @@ class _Linkage(Component):
         vals = [self._place_value(n, asm) for n in ports]
         return None if any(v is None for v in vals) else vals
 
+    # ------------------------------------------------ drawing and topology
+    def _is_connected(self, conn):
+        """True if ``conn`` appears in a connect statement of the model."""
+        _, connected = connector_sets(_root(self))
+        return id(conn) in connected
+
+    def _grounded(self, conn):
+        """True if ``conn`` is a triangle port fixed to ground (unconnected)."""
+        return conn.ground is not None and not self._is_connected(conn)
+
+    def _port_point(self, n):
+        """[X, Y] signal references (relative to the element) of the placed
+        point Pn of input port n, for ports that have no output frame at Pn.
+        Unconnected: the parameters ``(xn0, yn0)`` (results contain
+        parameters).  Connected with zero offset (``frameRef='relative'``,
+        ``xn0 = yn0 = 0``): the connection point ``ctr2Dn``.  Otherwise Pn is
+        not a result signal and the connection point is returned as an
+        approximation (second value False)."""
+        conn = self._conn(n)
+        if not self._is_connected(conn):
+            return ["x%d0" % n, "y%d0" % n], True
+        exact = (self._frame_ref.get(n) == "relative"
+                 and float(self._param_values["x%d0" % n]) == 0.0
+                 and float(self._param_values["y%d0" % n]) == 0.0)
+        return ["ctr2D%d.x" % n, "ctr2D%d.y" % n], exact
+
+    def _housing_shapes(self, n, point, phi=0.0):
+        """Ground symbol at ``point`` when port n is fixed to ground, or the
+        rigid arm from the connection point to ``point`` when the port is
+        connected with an offset (``point`` must be the exact Pn)."""
+        conn = self._conn(n)
+        if self._grounded(conn):
+            return [{"type": "ground", "x": point[0], "y": point[1], "phi": phi}]
+        if self._is_connected(conn) and list(point) != ["ctr2D%d.x" % n, "ctr2D%d.y" % n]:
+            exact_at_c = (self._frame_ref.get(n) == "relative"
+                          and float(self._param_values["x%d0" % n]) == 0.0
+                          and float(self._param_values["y%d0" % n]) == 0.0)
+            if not exact_at_c:
+                return [{"type": "link", "points": [["ctr2D%d.x" % n, "ctr2D%d.y" % n],
+                                                    list(point)]}]
+        return []
+
+    def _body_shape(self, mass, xrel, yrel, xS, yS):
+        """Small disc at a centre of gravity that is off the pins (massive
+        bodies only)."""
+        pv = self._param_values
+        if float(pv[mass]) > 0.0 and (float(pv[xrel]) != 0.0 or float(pv[yrel]) != 0.0):
+            return [{"type": "body", "x": xS, "y": yS}]
+        return []
+
+    def _ground_ports(self, *ports):
+        """("ground", [...]) item for the given triangle ports that are
+        unconnected (fixed to ground by the flattener), or nothing."""
+        frames = [self._conn(n) for n in ports if self._grounded(self._conn(n))]
+        return [("ground", frames)] if frames else []
+
 
 class _FakeAssembly:
     """Assembly view in which the given unknown ports sit at the origin."""
@@ -465,6 +549,19 @@ class DAN(_Linkage):
         ]
 
 
+    def shapes(self):
+        P1, _ = self._port_point(1)
+        P = ["ctr2D2.x", "ctr2D2.y"]
+        return (self._housing_shapes(1, P1)
+                + [{"type": "link", "points": [P1, P]},
+                   {"type": "joint", "x": P1[0], "y": P1[1]},
+                   {"type": "joint", "x": P[0], "y": P[1]}]
+                + self._body_shape("mL", "xSLrel", "ySLrel", "xSL", "ySL"))
+
+    def topology(self):
+        # housing plane (ctr2D1) -- revolute at P1 -- crank (ctr2D2)
+        return self._ground_ports(1) + [("joint", self.ctr2D1, self.ctr2D2, 1)]
+
 _placement_params(DAN, (1,))
 
 
@@ -499,6 +596,8 @@ class SAN(_Linkage):
     TPS = Variable(unit="N.m", doc="moment guide -> slider")
     xSS = Variable(unit="m", doc="centre of gravity of the slider, x")
     ySS = Variable(unit="m", doc="centre of gravity of the slider, y")
+    xPS = Variable(unit="m", doc="slider foot point PS on the guide, x (for drawing)")
+    yPS = Variable(unit="m", doc="slider foot point PS on the guide, y (for drawing)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -517,7 +616,8 @@ class SAN(_Linkage):
         c, s = ca.cos(a), ca.sin(a)
         xPS, yPS = x1 + xG * c, y1 + xG * s
         dx, dy = _rot(a, self.xSrel, self.ySrel)
-        self._set_starts({"xG": xG, "phiS": a, "xSS": xPS + dx, "ySS": yPS + dy})
+        self._set_starts({"xG": xG, "phiS": a, "xSS": xPS + dx, "ySS": yPS + dy,
+                          "xPS": xPS, "yPS": yPS})
         self._set_port(asm, self.ctr2D2, {"x": xPS - self.v * s, "y": yPS + self.v * c, "phi": a})
         self._set_port(asm, self.ctrT2, {"s": xG})
         self._set_port(asm, self.ctrT1, {"s": 0.0})
@@ -537,6 +637,7 @@ class SAN(_Linkage):
         return [
             self.phiS == a,                                 # B.22
             self.xSS == PS[0] + dx, self.ySS == PS[1] + dy,
+            self.xPS == PS[0], self.yPS == PS[1],
             f2.x == P[0], f2.y == P[1], f2.phi == a,        # Tabelle B.6
             self.ctrT2.s == self.xG, self.ctrT1.s == 0,
             # slider B.28-B.30 (joint: normal force, moment; drive force Ft along e)
@@ -550,6 +651,21 @@ class SAN(_Linkage):
             + _moment((x1, y1), C1, (Fu * e[0], Fu * e[1])) == 0,
         ]
 
+
+    def shapes(self):
+        P1, exact1 = self._port_point(1)
+        PS, P = ["xPS", "yPS"], ["ctr2D2.x", "ctr2D2.y"]
+        slider = {"type": "slider", "x": PS[0], "y": PS[1], "phi": "phiS"}
+        if exact1:
+            slider["guide"] = [P1, PS]
+        return (self._housing_shapes(1, P1, "phiS")
+                + [slider,
+                   {"type": "link", "points": [PS, P]},
+                   {"type": "joint", "x": P[0], "y": P[1]}])
+
+    def topology(self):
+        # guide plane (ctr2D1) -- prismatic -- slider (ctr2D2)
+        return self._ground_ports(1) + [("joint", self.ctr2D1, self.ctr2D2, 1)]
 
 _placement_params(SAN, (1,))
 
@@ -610,6 +726,17 @@ class FGP(_Linkage):
             f1.t + f2.t + _moment(P, C1, (f2.fx, f2.fy)) + L.moment(C1) == 0,         # B.41
         ]
 
+
+    def shapes(self):
+        P1, _ = self._port_point(1)
+        P = ["ctr2D2.x", "ctr2D2.y"]
+        return (self._housing_shapes(1, P1, "phiL")
+                + [{"type": "link", "points": [P1, P]}]
+                + self._body_shape("mL", "xSLrel", "ySLrel", "xSL", "ySL"))
+
+    def topology(self):
+        # part of the predecessor's plane: no joint, one rigid link
+        return self._ground_ports(1) + [("rigid", [self.ctr2D1, self.ctr2D2])]
 
 _placement_params(FGP, (1,))
 
@@ -737,6 +864,22 @@ class DDD(_Linkage):
             f2.t + self.ctrR1.tau + _moment(P2, C2, (-f2.fx, -f2.fy)) == 0,
         ]
 
+
+    def shapes(self):
+        P1, P2, P = ["ctr2D3.x", "ctr2D3.y"], ["ctr2D4.x", "ctr2D4.y"], ["xP", "yP"]
+        return (self._housing_shapes(1, P1) + self._housing_shapes(2, P2)
+                + [{"type": "link", "points": [P1, P]},
+                   {"type": "link", "points": [P2, P]}]
+                + [{"type": "joint", "x": q[0], "y": q[1]} for q in (P1, P2, P)]
+                + self._body_shape("mL1", "xSL1rel", "ySL1rel", "xSL1", "ySL1")
+                + self._body_shape("mL2", "xSL2rel", "ySL2rel", "xSL2", "ySL2"))
+
+    def topology(self):
+        # links: link 1 = ctr2D3, link 2 = ctr2D4; revolutes at P1, P2, P
+        return self._ground_ports(1, 2) + [
+            ("joint", self.ctr2D1, self.ctr2D3, 1),
+            ("joint", self.ctr2D2, self.ctr2D4, 1),
+            ("joint", self.ctr2D3, self.ctr2D4, 1)]
 
 _placement_params(DDD, (1, 2))
 
@@ -885,6 +1028,27 @@ class DDS(_Linkage):
         ]
 
 
+    def shapes(self):
+        P1, PS, P = ["ctr2D3.x", "ctr2D3.y"], ["ctr2D4.x", "ctr2D4.y"], ["xP", "yP"]
+        P2, exact2 = self._port_point(2)
+        slider = {"type": "slider", "x": PS[0], "y": PS[1], "phi": "phiS"}
+        if exact2:
+            slider["guide"] = [P2, PS]
+        return (self._housing_shapes(1, P1) + self._housing_shapes(2, P2, "phiS")
+                + [{"type": "link", "points": [P1, P]}, slider,
+                   {"type": "link", "points": [PS, P]},
+                   {"type": "joint", "x": P1[0], "y": P1[1]},
+                   {"type": "joint", "x": P[0], "y": P[1]}]
+                + self._body_shape("mL", "xSLrel", "ySLrel", "xSL", "ySL"))
+
+    def topology(self):
+        # links: link = ctr2D3, slider = ctr2D4; revolutes at P1 and P,
+        # prismatic between the guide plane (ctr2D2) and the slider
+        return self._ground_ports(1, 2) + [
+            ("joint", self.ctr2D1, self.ctr2D3, 1),
+            ("joint", self.ctr2D3, self.ctr2D4, 1),
+            ("joint", self.ctr2D2, self.ctr2D4, 1)]
+
 _placement_params(DDS, (1, 2))
 
 
@@ -937,6 +1101,8 @@ class DSD(_Linkage):
     ySU = Variable(unit="m", doc="centre of gravity of the guide, y")
     xSS = Variable(unit="m", doc="centre of gravity of the slider, x")
     ySS = Variable(unit="m", doc="centre of gravity of the slider, y")
+    xPS = Variable(unit="m", doc="slider foot point PS on the guide, x (for drawing)")
+    yPS = Variable(unit="m", doc="slider foot point PS on the guide, y (for drawing)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -958,7 +1124,7 @@ class DSD(_Linkage):
         xPS, yPS = x1 + xG * ca.cos(a), y1 + xG * ca.sin(a)
         dU, dS = _rot(a, self.xSUrel, self.ySUrel), _rot(a, self.xSSrel, self.ySSrel)
         self._set_starts({"phiU": a, "xG": xG, "xSU": x1 + dU[0], "ySU": y1 + dU[1],
-                          "xSS": xPS + dS[0], "ySS": yPS + dS[1]})
+                          "xSS": xPS + dS[0], "ySS": yPS + dS[1], "xPS": xPS, "yPS": yPS})
         self._set_port(asm, self.ctr2D3, {"x": x1, "y": y1, "phi": a})
         self._set_port(asm, self.ctr2D4, {"x": x2, "y": y2, "phi": a})
         self._set_port(asm, self.ctrT1, {"s": xG})
@@ -985,6 +1151,7 @@ class DSD(_Linkage):
             y2 == PS[1] + self.v * c,                               # B.133
             self.xSU == x1 + dU[0], self.ySU == y1 + dU[1],
             self.xSS == PS[0] + dS[0], self.ySS == PS[1] + dS[1],
+            self.xPS == PS[0], self.yPS == PS[1],
             f3.x == x1, f3.y == y1, f3.phi == a,                    # Tabelle B.18
             f4.x == x2, f4.y == y2, f4.phi == a,
             self.ctrT1.s == self.xG, self.ctrT2.s == 0,
@@ -1001,6 +1168,24 @@ class DSD(_Linkage):
             f2.t + _moment(P2, C2, (-f2.fx, -f2.fy)) == 0,
         ]
 
+
+    def shapes(self):
+        P1, P2, PS = ["ctr2D3.x", "ctr2D3.y"], ["ctr2D4.x", "ctr2D4.y"], ["xPS", "yPS"]
+        return (self._housing_shapes(1, P1) + self._housing_shapes(2, P2)
+                + [{"type": "link", "points": [P1, PS]},
+                   {"type": "slider", "x": PS[0], "y": PS[1], "phi": "phiU"},
+                   {"type": "link", "points": [PS, P2]},
+                   {"type": "joint", "x": P1[0], "y": P1[1]},
+                   {"type": "joint", "x": P2[0], "y": P2[1]}]
+                + self._body_shape("mU", "xSUrel", "ySUrel", "xSU", "ySU"))
+
+    def topology(self):
+        # links: guide = ctr2D3, slider = ctr2D4; revolutes at P1 and P2,
+        # prismatic between guide and slider
+        return self._ground_ports(1, 2) + [
+            ("joint", self.ctr2D1, self.ctr2D3, 1),
+            ("joint", self.ctr2D2, self.ctr2D4, 1),
+            ("joint", self.ctr2D3, self.ctr2D4, 1)]
 
 _placement_params(DSD, (1, 2))
 
@@ -1059,6 +1244,10 @@ class SSD(_Linkage):
     ySS1 = Variable(unit="m", doc="centre of gravity of slider 1, y")
     xSS2 = Variable(unit="m", doc="centre of gravity of slider 2, x")
     ySS2 = Variable(unit="m", doc="centre of gravity of slider 2, y")
+    xPS1 = Variable(unit="m", doc="foot point PS1 of slider 1 on guide 1, x (for drawing)")
+    yPS1 = Variable(unit="m", doc="foot point PS1 of slider 1 on guide 1, y (for drawing)")
+    xPS2 = Variable(unit="m", doc="foot point PS2 of slider 2 on guide 2, x (for drawing)")
+    yPS2 = Variable(unit="m", doc="foot point PS2 of slider 2 on guide 2, y (for drawing)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -1080,7 +1269,8 @@ class SSD(_Linkage):
         d1, d2 = _rot(a1, self.xSS1rel, self.ySS1rel), _rot(a2, self.xSS2rel, self.ySS2rel)
         self._set_starts({"xG1": xG1, "xG2": xG2, "phiS1": a1, "phiS2": a2,
                           "xSS1": PS1[0] + d1[0], "ySS1": PS1[1] + d1[1],
-                          "xSS2": PS2[0] + d2[0], "ySS2": PS2[1] + d2[1]})
+                          "xSS2": PS2[0] + d2[0], "ySS2": PS2[1] + d2[1],
+                          "xPS1": PS1[0], "yPS1": PS1[1], "xPS2": PS2[0], "yPS2": PS2[1]})
         self._set_port(asm, self.ctr2D3, {"x": P[0], "y": P[1], "phi": a1})
         self._set_port(asm, self.ctr2D4, {"x": x2, "y": y2, "phi": a2})
         return True
@@ -1109,6 +1299,8 @@ class SSD(_Linkage):
             y2 == PS2[1] + self.v2 * n2[1],                               # B.177
             self.xSS1 == PS1[0] + d1[0], self.ySS1 == PS1[1] + d1[1],
             self.xSS2 == PS2[0] + d2[0], self.ySS2 == PS2[1] + d2[1],
+            self.xPS1 == PS1[0], self.yPS1 == PS1[1],
+            self.xPS2 == PS2[0], self.yPS2 == PS2[1],
             f3.x == P[0], f3.y == P[1], f3.phi == a1,                     # Tabelle B.21
             f4.x == x2, f4.y == y2, f4.phi == a2,
             # massless guide 1 (B.182-B.184), moments about C1
@@ -1128,6 +1320,29 @@ class SSD(_Linkage):
             f2.t + _moment(P2, C2, (-f2.fx, -f2.fy)) == 0,
         ]
 
+
+    def shapes(self):
+        P1, exact1 = self._port_point(1)
+        P, P2 = ["ctr2D3.x", "ctr2D3.y"], ["ctr2D4.x", "ctr2D4.y"]
+        PS1, PS2 = ["xPS1", "yPS1"], ["xPS2", "yPS2"]
+        slider1 = {"type": "slider", "x": PS1[0], "y": PS1[1], "phi": "phiS1"}
+        if exact1:
+            slider1["guide"] = [P1, PS1]
+        return (self._housing_shapes(1, P1, "phiS1") + self._housing_shapes(2, P2)
+                + [slider1,
+                   {"type": "link", "points": [PS1, P]},
+                   {"type": "slider", "x": PS2[0], "y": PS2[1], "phi": "phiS2",
+                    "guide": [P, PS2]},
+                   {"type": "link", "points": [PS2, P2]},
+                   {"type": "joint", "x": P2[0], "y": P2[1]}])
+
+    def topology(self):
+        # links: slider 1 = ctr2D3, slider 2 = ctr2D4; prismatic guide 1
+        # (ctr2D1) - slider 1, prismatic slider 1 - slider 2, revolute at P2
+        return self._ground_ports(1, 2) + [
+            ("joint", self.ctr2D1, self.ctr2D3, 1),
+            ("joint", self.ctr2D3, self.ctr2D4, 1),
+            ("joint", self.ctr2D2, self.ctr2D4, 1)]
 
 _placement_params(SSD, (1, 2))
 
@@ -1187,6 +1402,8 @@ class SDS(_Linkage):
     ySS1 = Variable(unit="m", doc="centre of gravity of slider 1, y")
     xSS2 = Variable(unit="m", doc="centre of gravity of slider 2, x")
     ySS2 = Variable(unit="m", doc="centre of gravity of slider 2, y")
+    xPS1 = Variable(unit="m", doc="foot point PS1 of slider 1 on guide 1, x (for drawing)")
+    yPS1 = Variable(unit="m", doc="foot point PS1 of slider 1 on guide 1, y (for drawing)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -1208,7 +1425,8 @@ class SDS(_Linkage):
         self._set_starts({"xG1": xG1, "xG2": xG2, "phiS1": a1, "phiS2": a2,
                           "xP": P[0], "yP": P[1],
                           "xSS1": PS1[0] + d1[0], "ySS1": PS1[1] + d1[1],
-                          "xSS2": PS2[0] + d2[0], "ySS2": PS2[1] + d2[1]})
+                          "xSS2": PS2[0] + d2[0], "ySS2": PS2[1] + d2[1],
+                          "xPS1": PS1[0], "yPS1": PS1[1]})
         self._set_port(asm, self.ctr2D3, {"x": P[0], "y": P[1], "phi": a1})
         self._set_port(asm, self.ctr2D4, {"x": PS2[0], "y": PS2[1], "phi": a2})
         return True
@@ -1237,6 +1455,7 @@ class SDS(_Linkage):
             self.yP == PS2[1] + self.v2 * n2[1],                           # B.216
             self.xSS1 == PS1[0] + d1[0], self.ySS1 == PS1[1] + d1[1],
             self.xSS2 == PS2[0] + d2[0], self.ySS2 == PS2[1] + d2[1],
+            self.xPS1 == PS1[0], self.yPS1 == PS1[1],
             f3.x == P[0], f3.y == P[1], f3.phi == a1,                      # Tabelle B.24
             f4.x == PS2[0], f4.y == PS2[1], f4.phi == a2,
             # massless guides B.221-B.226
@@ -1254,6 +1473,31 @@ class SDS(_Linkage):
             N2[1] - FP[1] + f4.fy + S2.F[1] == 0,
             self.T2 + f4.t + _moment(P, PS2, (-FP[0], -FP[1])) + S2.moment(PS2) == 0,
         ]
+
+
+    def shapes(self):
+        P1, exact1 = self._port_point(1)
+        P2, exact2 = self._port_point(2)
+        P, PS1, PS2 = ["xP", "yP"], ["xPS1", "yPS1"], ["ctr2D4.x", "ctr2D4.y"]
+        slider1 = {"type": "slider", "x": PS1[0], "y": PS1[1], "phi": "phiS1"}
+        slider2 = {"type": "slider", "x": PS2[0], "y": PS2[1], "phi": "phiS2"}
+        if exact1:
+            slider1["guide"] = [P1, PS1]
+        if exact2:
+            slider2["guide"] = [P2, PS2]
+        return (self._housing_shapes(1, P1, "phiS1") + self._housing_shapes(2, P2, "phiS2")
+                + [slider1, slider2,
+                   {"type": "link", "points": [PS1, P]},
+                   {"type": "link", "points": [PS2, P]},
+                   {"type": "joint", "x": P[0], "y": P[1]}])
+
+    def topology(self):
+        # links: slider 1 = ctr2D3, slider 2 = ctr2D4; prismatic guide 1
+        # (ctr2D1) - slider 1 and guide 2 (ctr2D2) - slider 2, revolute at P
+        return self._ground_ports(1, 2) + [
+            ("joint", self.ctr2D1, self.ctr2D3, 1),
+            ("joint", self.ctr2D2, self.ctr2D4, 1),
+            ("joint", self.ctr2D3, self.ctr2D4, 1)]
 
 
 _placement_params(SDS, (1, 2))

@@ -89,6 +89,12 @@ class Preset(Component):
         self.translational = translational
         self.flange = TranslationalFlange() if translational else RotationalFlange()
 
+    def topology(self):
+        """Nothing: the seed's eq. 2.1 counts the degree of freedom of the
+        mechanism; a preset uses that DOF up (the driven flange follows the
+        motion) but adds no link or joint to the planar chain."""
+        return []
+
     def motion(self, t):
         """The prescribed angle (position) as an expression of time t."""
         if self.kind == "speed":
