@@ -142,6 +142,10 @@ class _Span(_BandElement):
                 b.fx == self.F * c, b.fy == self.F * s,
                 a.t == 0, b.t == 0]
 
+    def shapes(self):
+        """A straight belt span from P1 to P2."""
+        return [{"type": "belt", "points": [["ctr2D1.x", "ctr2D1.y"], ["ctr2D2.x", "ctr2D2.y"]]}]
+
 
 class Belt(_Span):
     """Elastic belt or rope span between P1 and P2 (seed 4.4.1, eq. 4.52-4.66).
@@ -225,6 +229,14 @@ class SpringBelt(_Span):
             self.F == ca.if_else(self.l_dF > 0, self.k * self.l_dF + self.b * der(self.l_dF), 0.0),
         ]
 
+    def shapes(self):
+        """The span from P1 to P2 with the spring drawn over it.  The model
+        does not locate the spring along the span (the inextensible band
+        pieces on both sides are massless), so the zig-zag spans P1 - P2."""
+        ends = [["ctr2D1.x", "ctr2D1.y"], ["ctr2D2.x", "ctr2D2.y"]]
+        return [{"type": "belt", "points": ends},
+                {"type": "spring", "a": ends[0], "b": ends[1]}]
+
 
 class NozzleBelt(_BandElement):
     """Elastic belt through a draw-off nozzle (seed 4.4.2, eq. 4.67-4.77).
@@ -274,6 +286,12 @@ class NozzleBelt(_BandElement):
                 b.fx == self.F * c2, b.fy == self.F * s2,            # 4.74, 4.75
                 n.fx == -a.fx - b.fx, n.fy == -a.fy - b.fy,          # 4.76, 4.77
                 a.t == 0, b.t == 0, n.t == 0]
+
+    def shapes(self):
+        """The band P1 - nozzle P3 - P2 and the nozzle as a joint."""
+        return [{"type": "belt", "points": [["ctr2D1.x", "ctr2D1.y"], ["ctr2D3.x", "ctr2D3.y"],
+                                            ["ctr2D2.x", "ctr2D2.y"]]},
+                {"type": "joint", "x": "ctr2D3.x", "y": "ctr2D3.y"}]
 
 
 # --------------------------------------------------------------------------
@@ -358,6 +376,21 @@ class _Wheel(_BandElement):
         else:
             eqs.append(0 == mom)
         return eqs
+
+    def shapes(self):
+        """The wheel at its axis P1, turned by its absolute angle ``phi``
+        (radius: the parameter ``r``, so that a changed value is drawn), and
+        a ground symbol at the axis when the housing ``ctr2D1`` is
+        unconnected (fixed in the ground at ``x0, y0``)."""
+        root = self
+        while root._parent is not None:
+            root = root._parent
+        housing = self.ctr2D1
+        connected = any(a is housing or b is housing
+                        for comp in root.components() for a, b in comp._connections)
+        out = [] if connected else [{"type": "ground", "x": "ctr2D1.x", "y": "ctr2D1.y"}]
+        out.append({"type": "pulley", "x": "ctr2D1.x", "y": "ctr2D1.y", "r": "r", "phi": "phi"})
+        return out
 
 
 class Pulley(_Wheel):
@@ -489,6 +522,10 @@ class RopeDrive(_BandElement):
         e = (ca.cos(self.angle), ca.sin(self.angle))
         return [f.x == self.x0 + self.s_in.u * e[0], f.y == self.y0 + self.s_in.u * e[1],
                 f.phi == 0, self.F == -(f.fx * e[0] + f.fy * e[1])]
+
+    def shapes(self):
+        """The driven rope end as a joint."""
+        return [{"type": "joint", "x": "frame.x", "y": "frame.y"}]
 
 
 # --------------------------------------------------------------------------

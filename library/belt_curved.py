@@ -605,6 +605,22 @@ class _CurvedWheel(_Wheel):
         delta = port.gamma - ang
         return x, y, dr * ca.sin(delta) - r * ca.cos(delta)
 
+    def shapes(self):
+        """The wheel as :class:`~acausal2d.library.belt.Pulley` draws it,
+        with the contour sampled (240 points) as constant points in the
+        pulley frame, turned by the absolute angle ``phi``; ``r`` is the
+        largest contour radius."""
+        n = 240
+        x, y = self.contour.point(np.linspace(0.0, _TWO_PI, n, endpoint=False))
+        pts = [[float(a), float(b)] for a, b in zip(x, y)]
+        r_max = float(np.max(np.hypot(x, y)))
+        out = super().shapes()
+        for sh in out:
+            if sh["type"] == "pulley":
+                sh["r"] = r_max
+                sh["contour"] = pts
+        return out
+
 
 class CurvedPulley(_CurvedWheel):
     """Pulley with curved contour "Bandrolle mit Kurvenkontur" (seed 4.4.5,

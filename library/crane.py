@@ -119,8 +119,11 @@ class Carriage(Component):
         cy = sum(b for _, b in offs.values()) / len(offs)
         names = sorted(offs, key=lambda n: math.atan2(offs[n][1] - cy, offs[n][0] - cx))
         pts = [[name + ".x", name + ".y"] for name in names]
+        # the mounts (pulley axes, rope fastenings) as pins on the outline
+        pins = [{"type": "joint", "x": name + ".x", "y": name + ".y"}
+                for name in self.mount_offsets if name != "frame_a"]
         return [{"type": "link", "points": pts + [pts[0]], "width": 0.05},
-                {"type": "trace", "x": "frame_a.x", "y": "frame_a.y"}]
+                {"type": "trace", "x": "frame_a.x", "y": "frame_a.y"}] + pins
 
     def topology(self):
         return [("rigid", [getattr(self, name) for name in self.mount_offsets])]
@@ -153,7 +156,9 @@ class Hook(Component):
                 self.m * der(der(self.y)) == f.fy + self.m * g[1]]
 
     def shapes(self):
-        return [{"type": "body", "x": "x", "y": "y", "r": 0.3},
+        # the load as a disc of the default screen size (a world radius of
+        # a few decimetres vanishes in the view of a whole crane)
+        return [{"type": "body", "x": "x", "y": "y"},
                 {"type": "trace", "x": "x", "y": "y"}]
 
 

@@ -1,0 +1,200 @@
+"""The belt-drive elements draw themselves in the animation scene: pulleys
+and drums at their axes (turned by their angle), belt spans between their
+contact points, curved pulleys with their contour, ground symbols at fixed
+pulleys (library/belt.py, library/belt_curved.py, library/crane.py)."""
+import importlib.util
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+from acausal2d import compile_model
+from acausal2d.animation import render_html, validate_scene
+from acausal2d.library.belt import Drum, Pulley
+from acausal2d.library.belt_curved import CurvedPulley
+from acausal2d.scene import build_scene
+
+MODELS = pathlib.Path(__file__).resolve().parent.parent / "models"
+
+
+def _load(name):
+    spec = importlib.util.spec_from_file_location("belt_drawing_" + name, MODELS / (name + ".py"))
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _run(model, stop_time, intervals=20, **kw):
+    res = compile_model(model).simulate(stop_time=stop_time,
+                                        output_times=np.linspace(0.0, stop_time, intervals + 1),
+                                        **kw)
+    scene = build_scene(res)
+    validate_scene(scene)
+    html = render_html(scene)          # the page builds from the scene
+    assert "acausal2d-data" in html
+    return model, res, scene
+
+
+def _by_type(scene, kind):
+    return [s for s in scene["shapes"] if s["type"] == kind]
+
+
+def _sig(scene, value):
+    """Values of a shape field over the frames (constant or signal)."""
+    if isinstance(value, str):
+        return np.asarray(scene["signals"][value], dtype=float)
+    return np.full(len(scene["time"]), float(value))
+
+
+def _check_pulleys(model, res, scene, classes=(Pulley, Drum, CurvedPulley)):
+    """Every wheel of the model is drawn once at its axis with its radius and
+    absolute angle; returns {path: shape}."""
+    wheels = {c.path: c for c in model.components() if isinstance(c, classes)}
+    shapes = {}
+    for sh in _by_type(scene, "pulley"):
+        path = sh["x"].rsplit(".ctr2D1.x", 1)[0]
+        assert path in wheels and path not in shapes
+        shapes[path] = sh
+    assert set(shapes) == set(wheels)
+    for path, sh in shapes.items():
+        assert sh["y"] == path + ".ctr2D1.y" and sh["phi"] == path + ".phi"
+        np.testing.assert_array_equal(_sig(scene, sh["x"]), res[path + ".ctr2D1.x"])
+        np.testing.assert_array_equal(_sig(scene, sh["y"]), res[path + ".ctr2D1.y"])
+        np.testing.assert_array_equal(_sig(scene, sh["phi"]), res[path + ".phi"])
+        comp = wheels[path]
+        if "contour" not in sh:
+            assert np.all(_sig(scene, sh["r"]) == float(comp._param_values["r"]))
+    return shapes
+
+
+def _check_belts(scene, spans, contacts):
+    """``spans``: {span path: (end 1, end 2)} of the expected belt shapes;
+    the end points are the span's frames and coincide with ``contacts``
+    (world points named by result signals) at every frame."""
+    belts = _by_type(scene, "belt")
+    assert len(belts) == len(spans)
+    for sh in belts:
+        span = sh["points"][0][0].rsplit(".ctr2D1.x", 1)[0]
+        assert span in spans
+        assert sh["points"] == [[span + ".ctr2D1.x", span + ".ctr2D1.y"],
+                                [span + ".ctr2D2.x", span + ".ctr2D2.y"]]
+        for (px, py), other in zip(sh["points"], spans[span]):
+            if other is None:
+                continue
+            np.testing.assert_allclose(_sig(scene, px), contacts[other + ".x"], atol=1e-9)
+            np.testing.assert_allclose(_sig(scene, py), contacts[other + ".y"], atol=1e-9)
+
+
+def _grounds_at(scene, names):
+    pts = {(s["x"], s["y"]) for s in _by_type(scene, "ground")}
+    return {n for n in names if (n + ".ctr2D1.x", n + ".ctr2D1.y") in pts}
+
+
+def test_pulley_block_drawing():
+    mod = _load("pulley_block")
+    model, res, scene = _run(mod.PulleyBlock(), 1.0)
+    shapes = _check_pulleys(model, res, scene)
+    assert len(shapes) == 4
+    # fixed upper block at y = 0, lower block moves with the load
+    assert np.allclose(res["U1.ctr2D1.y"], 0.0) and np.allclose(res["U3.ctr2D1.y"], 0.0)
+    assert res["L2.ctr2D1.y"][-1] > res["L2.ctr2D1.y"][0]          # lifted
+    for name, r in mod.RADII.items():
+        assert np.allclose(_sig(scene, shapes[name]["r"]), r)
+    # ground symbols only at the pulleys fixed in the ground
+    assert _grounds_at(scene, mod.PULLEYS) == {"U1", "U3"}
+    contacts = {n: res[n] for n in res.names}
+    spans = {"rope1": ("pull.frame", "U1.ctrK1"), "rope2": ("U1.ctrK2", "L2.ctrK1"),
+             "rope3": ("L2.ctrK2", "U3.ctrK1"), "rope4": ("U3.ctrK2", "L4.ctrK1"),
+             "rope5": ("L4.ctrK2", "anchor.frame")}
+    _check_belts(scene, spans, contacts)
+    # the spans are tangent: contact point at distance r from the axis,
+    # span direction perpendicular to the radius
+    for span, (a, b) in spans.items():
+        for end, (node, sign) in enumerate(((a, 1), (b, -1))):
+            wheel = node.split(".")[0]
+            if wheel not in mod.RADII:
+                continue
+            dx = res[node + ".x"] - res[wheel + ".ctr2D1.x"]
+            dy = res[node + ".y"] - res[wheel + ".ctr2D1.y"]
+            np.testing.assert_allclose(np.hypot(dx, dy), mod.RADII[wheel], rtol=1e-9)
+            g = res[span + ".gamma"]
+            np.testing.assert_allclose(dx * np.cos(g) + dy * np.sin(g), 0.0, atol=1e-9)
+    # the rope end is drawn
+    assert {"type": "joint", "x": "pull.frame.x", "y": "pull.frame.y"} in scene["shapes"]
+
+
+def test_noncircular_belt_drive_drawing():
+    mod = _load("noncircular_belt_drive")
+    model, res, scene = _run(mod.NonCircularBeltDrive(), 0.1)
+    shapes = _check_pulleys(model, res, scene)
+    assert set(shapes) == {"small", "large"}
+    assert _grounds_at(scene, shapes) == {"small", "large"}
+    for name, contour in (("small", model.des.contour1), ("large", model.des.contour2)):
+        sh = shapes[name]
+        pts = np.asarray(sh["contour"], dtype=float)
+        assert pts.shape[0] >= 100 and pts.shape[1] == 2
+        rad = np.hypot(pts[:, 0], pts[:, 1])
+        assert sh["r"] == pytest.approx(rad.max())
+        # the sampled outline is the contour: its perimeter
+        closed = np.vstack([pts, pts[:1]])
+        per = np.sum(np.hypot(*np.diff(closed, axis=0).T))
+        assert per == pytest.approx(contour.perimeter, rel=1e-3)
+    np.testing.assert_allclose(_sig(scene, shapes["large"]["x"]), 0.8)
+    # the belt ends are the contact points on the contours: in the pulley
+    # frame, the contact point lies on the sampled outline
+    contacts = {n: res[n] for n in res.names}
+    _check_belts(scene, {"upper": ("large.ctrK2", "small.ctrK1"),
+                         "lower": ("small.ctrK2", "large.ctrK1")}, contacts)
+    for name in ("small", "large"):
+        pts = np.asarray(shapes[name]["contour"], dtype=float)
+        for k in ("ctrK1", "ctrK2"):
+            phi = res[name + ".phi"]
+            dx = res["%s.%s.x" % (name, k)] - res[name + ".ctr2D1.x"]
+            dy = res["%s.%s.y" % (name, k)] - res[name + ".ctr2D1.y"]
+            lx = np.cos(phi) * dx + np.sin(phi) * dy
+            ly = -np.sin(phi) * dx + np.cos(phi) * dy
+            d = np.min(np.hypot(pts[:, 0][None, :] - lx[:, None],
+                                pts[:, 1][None, :] - ly[:, None]), axis=1)
+            assert np.max(d) < 0.01          # within the sampling spacing
+
+
+def test_cable_crane_drawing():
+    mod = _load("cable_crane")
+    model, res, scene = _run(mod.CableCrane(), 0.5, intervals=5)
+    shapes = _check_pulleys(model, res, scene)
+    pulleys = set(mod.MAST_PULLEYS) | set(mod.CARRIAGE_PULLEYS)
+    assert set(shapes) == pulleys | set(mod.DRUMS)
+    assert len(_by_type(scene, "pulley")) == 9 + 2
+    for name in mod.DRUMS:
+        assert np.allclose(_sig(scene, shapes[name]["r"]), mod.R_DRUM)
+    # mast pulleys and drums are fixed in the ground, carriage pulleys not
+    assert _grounds_at(scene, shapes) == set(mod.MAST_PULLEYS) | set(mod.DRUMS)
+    for name in mod.CARRIAGE_PULLEYS:
+        np.testing.assert_allclose(res[name + ".ctr2D1.x"], res["carriage.%s.x" % name])
+    n_spans = sum(len(nodes) - 1 for nodes in mod.ROPES.values())
+    assert n_spans == 12
+    belts = _by_type(scene, "belt")
+    assert len(belts) == n_spans
+    # hook (load) and carriage are drawn
+    assert any(s["type"] == "body" and s["x"] == "hook.x" for s in scene["shapes"])
+    assert any(s["type"] == "link" and s["points"][0][0].startswith("carriage.")
+               for s in scene["shapes"])
+
+
+def test_compressor_drawing():
+    mod = _load("compressor")
+    model, res, scene = _run(mod.Compressor(), 0.2)
+    shapes = _check_pulleys(model, res, scene)
+    assert set(shapes) == {"drive", "driven", "tens"}
+    assert _grounds_at(scene, shapes) == {"drive", "driven"}
+    np.testing.assert_allclose(_sig(scene, shapes["drive"]["x"]), mod.P1[0])
+    np.testing.assert_allclose(_sig(scene, shapes["driven"]["y"]), mod.P2[1])
+    contacts = {n: res[n] for n in res.names}
+    _check_belts(scene, {"span1": ("driven.ctrK2", "drive.ctrK1"),
+                         "span2": ("drive.ctrK2", "tens.ctrK1"),
+                         "span3": ("tens.ctrK2", "driven.ctrK1")}, contacts)
+    # the gas cylinder has no planar positions and draws nothing
+    assert model.cyl.shapes() == []
+    assert not any(isinstance(v, str) and v.startswith("cyl.")
+                   for s in scene["shapes"] for v in (s.get("x"), s.get("y")))
