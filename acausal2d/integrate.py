@@ -10,7 +10,6 @@ recorded twice (left and right limit).
 """
 import os
 import sys
-import time as _time
 import warnings
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
@@ -22,7 +21,7 @@ import sksundae as sun  # noqa: E402
 from .errors import InitializationError, SimulationError  # noqa: E402
 from .initialize import solve_consistent  # noqa: E402
 from .singularities import (MAX_SINGULAR_EVENTS, MONITOR_THRESHOLD, consistent_for,  # noqa: E402
-                            limit_position, reselect, scan_singular_positions)
+                            limit_position, reselect, scan_singular_positions, step_over)
 
 
 
@@ -43,6 +42,10 @@ class _Buffered:
             self.buf.set_res(k, memoryview(o))
 
 
+_MAX_STEPS = 5000     # IDA steps per output interval before a run is looked at again
+_STALLED = 20         # steps 1e6 times shorter than the longest, in a row: IDA stalls
+
+
 class _Problem:
     """IDA callbacks of one formulation with fixed parameters and relation
     values; ``monitor`` switches the watching of dummy blocks."""
@@ -52,6 +55,7 @@ class _Problem:
         t = np.zeros(1)
         z = np.zeros(n)
         self.form = form
+        self.steps, self.t_last = 0, None
         self.res = _Buffered(form.res_fn, [t, z, z, p, d])
         self.jac = _Buffered(form.jac_fn, [t, z, z, p, d, np.zeros(1)])
         self.ev = _Buffered(form.event_fn, [t, z, z, p, d]) if form.event_fn is not None else None
@@ -68,6 +72,9 @@ class _Problem:
             self.rows, self.cols = np.array(r, dtype=int), np.array(c, dtype=int)
 
     def resfn(self, t, y, yp, res):
+        if t != self.t_last:          # IDA evaluates each step attempt at a new time
+            self.t_last = t
+            self.steps += 1
         a = self.res.args
         a[0][0] = t
         a[1][:] = y
@@ -111,7 +118,7 @@ class _Problem:
 def _solver(prob, rtol, atol):
     form = prob.form
     n_ev = prob.n_rel + prob.n_mon
-    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=50000,
+    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=_MAX_STEPS,
                 algebraic_idx=np.where(~form.differential)[0] if np.any(~form.differential)
                 else None)
     if form.sparse:
@@ -214,7 +221,6 @@ def _run_steps(solver, t, remaining, y0, yp0, form, out_t, out_z, progress, t_en
         solver.init_step(t, y0, yp0)
     except Exception as exc:
         raise _StartError(exc) from None
-    last_report = _time.perf_counter()
     sol = None
     for t_out in remaining:
         sol = solver.step(float(t_out))
@@ -225,12 +231,48 @@ def _run_steps(solver, t, remaining, y0, yp0, form, out_t, out_z, progress, t_en
             break
         out_t.append(float(sol.t))
         out_z.append(form.nodes_from(sol.y, sol.yp))
-        if _time.perf_counter() - last_report > 0.1:
-            last_report = _time.perf_counter()
-            progress(float(sol.t), t_end)
+        progress(float(sol.t), t_end)
     last = _Event(float(sol.t), np.asarray(sol.y), np.asarray(sol.yp), None) \
         if sol is not None else None
     return _Outcome(sol, last), None
+
+
+def _approach(prob, rtol, atol, start, t_next):
+    """Re-take IDA's internal steps from the point ``start`` (the last
+    output it reached) towards the next output time after a failure.
+
+    Returns ``(t, node values, how)`` of the last step completed, ``how``
+    saying why it stopped: "reached" (t_next), "steps" (the step budget
+    used up while the run goes well), "stalled" (near a singular position
+    IDA may go on with steps of vanishing length) or "failed"; None if it
+    cannot take a single step."""
+    solver = _solver(prob, rtol, atol)
+    last, how = None, "failed"
+    try:
+        with _CapturedStderr():
+            solver.init_step(start.t, start.y, start.yp)
+            t_prev, longest, stalled = start.t, 0.0, 0
+            for _ in range(_MAX_STEPS):
+                sol = solver.step(t_next, method="onestep", tstop=t_next)
+                if not sol.success or sol.status == 2:
+                    break
+                last = (float(sol.t), np.asarray(sol.y).copy(), np.asarray(sol.yp).copy())
+                h = last[0] - t_prev
+                t_prev, longest = last[0], max(longest, h)
+                stalled = stalled + 1 if h < 1e-6 * longest else 0
+                if stalled >= _STALLED:
+                    how = "stalled"
+                    break
+                if last[0] >= t_next:
+                    how = "reached"
+                    break
+            else:
+                how = "steps"
+    except Exception:
+        pass
+    if last is None:
+        return None
+    return last[0], prob.form.nodes_from(last[1], last[2]), how
 
 
 class _Event:
@@ -256,15 +298,17 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
     """Integrate the compiled model ``cm`` from consistent node values z0.
 
     times: output times (the first is the start time).  progress: optional
-    callable(t, t_end) called about ten times a second.  Returns (times,
-    node values [n_times x n_nodes], events, stats)."""
+    callable(t, t_end) called at every output point (it throttles itself).
+    Returns (times, node values [n_times x n_nodes], events, stats); stats
+    counts segments, events, state re-selections, integrator steps
+    (attempted, including rejected ones), residual and Jacobian evaluations."""
     t_end = float(times[-1])
     t = float(times[0])
     z = np.array(z0, dtype=float)
     d = np.array(d0, dtype=float)
     out_t, out_z = [t], [z.copy()]
     events = []
-    stats = {"segments": 0, "events": 0, "reselections": 0, "nfev": 0, "njev": 0}
+    stats = {"segments": 0, "events": 0, "reselections": 0, "steps": 0, "nfev": 0, "njev": 0}
     selection = cm.select(t, z, p, d)
     nominal = np.array(cm.nominal)
     singularities = []
@@ -297,14 +341,15 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         if start_error is not None:
             raise SimulationError("IDA could not start at t=%.6g: %s" % (t, start_error),
                                   time=t) from None
+        stats["steps"] += prob.steps
         if sol is not None:
             stats["nfev"] += sol.nfev
             stats["njev"] += sol.njev
         scan_singular_positions(cm, form, selection, p, d, out_t, out_z, seg_start,
                                  singularities)
         limit = None
-        if event is None and sol is not None and not sol.success and sol.last is not None \
-                and sol.last.t > t:
+        failed = event is None and sol is not None and not sol.success and sol.last is not None
+        if failed and sol.last.t > t:
             z_last = form.nodes_from(sol.last.y, sol.last.yp)
             new_sel, _ = reselect(cm, selection, form, None, sol.last.t, z_last, p, d)
             if new_sel is not selection:       # the state choice failed, not the mechanism
@@ -313,7 +358,36 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
                 selection, t = new_sel, sol.last.t
                 z = consistent_for(cm, selection, t, z_last, p, d)
                 continue
-            limit = limit_position(cm, selection, p, d, sol.last.t, z_last)
+        if failed:
+            t_next = float(times[times > sol.last.t + eps][0]) \
+                if np.any(times > sol.last.t + eps) else t_end
+            approach = _approach(prob, rtol, a, sol.last, t_next)
+            if approach is not None and approach[2] in ("reached", "steps") \
+                    and approach[0] > sol.last.t:
+                # IDA used up its step budget on a run that goes on well: next segment
+                t = approach[0]
+                z = consistent_for(cm, selection, t, approach[1], p, d)
+                if approach[2] == "reached":
+                    out_t.append(t)
+                    out_z.append(z.copy())
+                continue
+            if approach is None:      # IDA stopped right where it failed: start from there
+                approach = (sol.last.t, form.nodes_from(sol.last.y, sol.last.yp), "failed")
+            jump = step_over(cm, selection, p, d, approach[0], approach[1], t_end, times)
+            if jump is not None:
+                # a singular position the motion passes through: continue beyond it
+                t_land, z, record, filled = jump
+                singularities.append(record)
+                events.append((record["time"], "singular position passed in %s"
+                               % ", ".join(record["elements"])))
+                for t_out, z_out in filled:
+                    out_t.append(t_out)
+                    out_z.append(z_out)
+                t = t_land
+                continue
+            if sol.last.t > t:
+                limit = limit_position(cm, selection, p, d, sol.last.t,
+                                       form.nodes_from(sol.last.y, sol.last.yp))
         if limit is not None:
             # the run ends at a singular position: report it and keep the data
             singularities.append(limit)

@@ -3,8 +3,13 @@
 A dummy block whose determinant decays (watched by zero crossings) calls for
 a new state selection if a better-conditioned one exists; if none does, the
 mechanism itself is at a singular position.  Positions passed between
-output points are found by scanning the block determinants; a run that
-cannot continue at a singular block ends as a limit position.
+output points are found by scanning the block determinants.  Where IDA
+gives up just before a singular position (its Newton iteration fails on the
+near-singular block), :func:`step_over` predicts the motion through it and
+lands on the branch that continues the motion (a crank of a change-point
+four-bar turning through the position where the dyad's two branches meet);
+a run that can continue nowhere past a singular block ends as a limit
+position.
 """
 import numpy as np
 
@@ -104,3 +109,129 @@ def scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, foun
             cond, u = cm.block_conditioning(T[i], Z[i], p, d, lv)
             found.append({"time": float(T[i]), "elements": cm.singular_elements(lv.eqs, u),
                           "kind": "singular position passed", "condition": cond})
+
+
+def _taylor(cm, z, h):
+    """Node values at time distance h predicted from z by the Taylor series
+    along each derivative chain (x + h der(x) + h^2/2 der(der(x)) ...)."""
+    A = np.asarray(cm.R.A)
+    out = np.array(z, dtype=float)
+    idx = np.arange(len(z))
+    valid = np.ones(len(z), dtype=bool)
+    coef = 1.0
+    for k in range(1, 8):
+        nxt = np.where(valid, A[idx], -1)
+        valid = nxt >= 0
+        if not valid.any():
+            break
+        idx = np.where(valid, nxt, 0)
+        coef *= h / k
+        out[valid] += coef * z[idx[valid]]
+    return out
+
+
+def _worst_level(cm, selection, t, z, p, d):
+    """(relative smallest singular value, level, left singular vector) of the
+    worst-conditioned dummy block at z, or None without dummy blocks."""
+    worst = None
+    for lv in selection.levels:
+        cond, u = cm.block_conditioning(t, z, p, d, lv)
+        if worst is None or cond < worst[0]:
+            worst = (cond, lv, u)
+    return worst
+
+
+def step_over(cm, selection, p, d, t_f, z_f, t_end, output_times):
+    """Continue the motion through a singular position just ahead of the
+    last point (t_f, z_f) that IDA reached.
+
+    Along the Taylor prediction from z_f, the worst dummy block's relative
+    smallest singular value has a minimum near zero at t_s.  The motion is
+    then re-solved (Newton, states held at their predicted values) at a
+    landing time beyond t_s, at 1, 2, 4 ... 64 times the distance t_s - t_f
+    past it; a landing counts where Newton converges, the block is four
+    times better conditioned than at z_f (where IDA could not go on), and
+    the displacement since z_f and
+    the velocities agree with the prediction (the branch that continues the
+    motion, not the one crossing it).  Returns ``None`` if there is no such
+    position or landing (a limit position, or a failure of another kind),
+    else ``(t_land, z_land, record, filled)``: the singularity record and
+    the (time, node values) of the output times inside the jump."""
+    worst = _worst_level(cm, selection, t_f, z_f, p, d)
+    if worst is None:
+        return None
+    cond_f = worst[0]
+    span = t_end - t_f
+    if span <= 0 or cond_f <= 0:
+        return None
+
+    def cond_at(h):
+        return _worst_level(cm, selection, t_f + h, _taylor(cm, z_f, h), p, d)[0]
+
+    # distance to the singular position: the conditioning falls linearly
+    delta = 1e-6 * max(span, 1e-3)
+    slope = (cond_at(delta) - cond_f) / delta
+    if not slope < 0:
+        return None
+    estimate = min(cond_f / -slope, span)
+    grid = np.linspace(0.0, 2.0 * estimate, 41)[1:]
+    values = [cond_at(h) for h in grid]
+    k = int(np.argmin(values))
+    lo = grid[k - 1] if k > 0 else 0.0
+    hi = grid[min(k + 1, len(grid) - 1)]
+    golden = (np.sqrt(5.0) - 1.0) / 2.0
+    for _ in range(40):                  # golden-section search of the minimum
+        a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+        if cond_at(a) < cond_at(b):
+            hi = b
+        else:
+            lo = a
+    h_s = 0.5 * (lo + hi)
+    z_s = _taylor(cm, z_f, h_s)
+    cond_s, lv, u = _worst_level(cm, selection, t_f + h_s, z_s, p, d)
+    if cond_s > SINGULAR_CONDITION:
+        return None
+    form = cm.formulation(selection)
+    held = list(np.asarray(form.y_nodes)[form.differential])
+    R = cm.R
+    A = np.asarray(R.A)
+    level = np.asarray(R.var_level)
+    pos = np.nonzero((level == 0) & (A >= 0))[0]       # positions with a velocity
+    vel = A[pos]
+
+    def solve_at(t, guess):
+        try:
+            return solve_consistent(cm.init_system, t, guess, p, d, held, guess[held],
+                                    cm.describe_equation, cm.node_name)
+        except InitializationError:
+            return None
+
+    for m in (1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0):
+        h = h_s * (1.0 + m)
+        if h > span:
+            h = span
+        if h <= h_s:
+            break
+        guess = _taylor(cm, z_f, h)
+        z_new = solve_at(t_f + h, guess)
+        if z_new is None:
+            continue
+        if _worst_level(cm, selection, t_f + h, z_new, p, d)[0] < 4.0 * cond_f:
+            continue
+        moved = guess[pos] - z_f[pos]
+        scale = np.linalg.norm(moved) + 1e-12 * (1.0 + np.linalg.norm(z_f[pos]))
+        if np.linalg.norm(z_new[pos] - guess[pos]) > 0.1 * scale:
+            continue
+        v_pred = guess[vel]
+        if np.linalg.norm(z_new[vel] - v_pred) > 0.1 * np.linalg.norm(v_pred) + 1e-9:
+            continue
+        t_land = t_f + h
+        filled = []
+        for t_out in output_times[(output_times > t_f) & (output_times < t_land)]:
+            g = _taylor(cm, z_f, t_out - t_f)
+            z_out = solve_at(float(t_out), g)
+            filled.append((float(t_out), z_out if z_out is not None else g))
+        record = {"time": t_f + h_s, "elements": cm.singular_elements(lv.eqs, u),
+                  "kind": "singular position passed", "condition": cond_s}
+        return t_land, z_new, record, filled
+    return None

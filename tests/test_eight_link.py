@@ -59,8 +59,7 @@ def test_power_balance_kinematic(model_module):
     cls = model_module.EightLinkVDI2729
     cm = acausal2d.compile_model(cls())
     T = model_module.PERIOD
-    times = np.concatenate([[0.0, 1e-6], np.linspace(0.0, T, 361)[1:]])
-    res = cm.simulate(stop_time=T, rtol=1e-10, output_times=times)
+    res = cm.simulate(stop_time=T, rtol=1e-10, output_times=np.linspace(0.0, T, 361))
     phi = res["dAN1.phiL"]
     assert abs(phi[-1] - 2 * math.pi) < 1e-9                  # one full revolution
     tau, w = res["preset1.tau"], res["preset1.w"]
@@ -68,7 +67,8 @@ def test_power_balance_kinematic(model_module):
     _, dE = energy_terms(res, cm, model_module.BODIES)
     amplitude = np.max(np.abs(tau))
     assert amplitude > 1e-3
-    assert np.max(np.abs(tau * w - dE)) < 1e-6 * amplitude * 1.5
+    # T w = dE/dt, as a torque: T = (dE/dt) / w to 1e-6 of the torque amplitude
+    assert np.max(np.abs(tau - dE / w)) < 1e-6 * amplitude
     # the drive power integrates to the energy change over the revolution
     E, _ = energy_terms(res, cm, model_module.BODIES)
     work = np.trapezoid(tau * w, res.time) if hasattr(np, "trapezoid") else np.trapz(tau * w, res.time)

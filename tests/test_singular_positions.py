@@ -1,6 +1,8 @@
 """Singular positions: a double rocker whose input link is driven past the
 end of its range stops at the limit position with a report naming the
-elements, not with a raw solver failure."""
+elements, not with a raw solver failure; a parallelogram four-bar whose
+crank turns through the change points (the dyad's two branches meet) is
+followed on its branch and the positions passed are reported."""
 import math
 
 import numpy as np
@@ -8,8 +10,11 @@ import pytest
 
 import acausal2d
 from acausal2d import Component, start
+from acausal2d.library.linkage import DAN, DDD
+from acausal2d.library.linkage_drives import Preset
 from acausal2d.library.planar import Fixed, FixedTranslation, Revolute
 from acausal2d.library.rotational import Position
+from vdi2729_reference import vdi_dan, vdi_ddd
 from acausal2d.library.signals import TimeFunction
 
 A, B, C, D = 0.6, 1.4, 0.9, 1.0        # input, coupler, output rocker, ground (non-Grashof)
@@ -77,3 +82,54 @@ def test_double_rocker_stops_at_limit_position():
         _, pc = _assembly(phi)
         assert res["rocker.frame_a.x"][k] == pytest.approx(pc[0], abs=1e-7)
         assert res["rocker.frame_a.y"][k] == pytest.approx(pc[1], abs=1e-7)
+
+
+class Parallelogram(Component):
+    """Crank 0.1 m about the origin, coupler 0.4 m, rocker 0.1 m about
+    (0.4, 0): at crank angles 0 and pi all four links are collinear and the
+    parallelogram and the antiparallelogram branch of the dyad meet."""
+
+    def __init__(self, K=1, **kw):
+        super().__init__(**kw)
+        self.preset = Preset(om=2 * math.pi, phi0=0.3)
+        self.crank = DAN(lL=0.1)
+        self.dyad = DDD(lL1=0.4, lL2=0.1, x20=0.4, y20=0.0, K=K)
+        self.connect(self.preset.flange, self.crank.ctrR2)
+        self.connect(self.crank.ctr2D2, self.dyad.ctr2D1)
+
+
+def _branches(phi):
+    """Closed form: the dyad's point P on the parallelogram branch
+    (P = B0 + crank vector) and on the antiparallelogram branch (the other
+    intersection of the two circles)."""
+    B0 = np.array([0.4, 0.0])
+    P1 = vdi_dan(np.zeros(2), 0.1, phi)
+    par = B0 + (P1 - np.zeros(2))
+    both = [vdi_ddd(P1, B0, 0.4, 0.1, K) for K in (1, -1)]
+    anti = max(both, key=lambda q: np.linalg.norm(q - par))
+    return par, anti
+
+
+@pytest.mark.parametrize("K", [1, -1])
+def test_change_point_four_bar_is_followed_through_branch_points(K):
+    """Two crank revolutions: the branch K picked at t = 0 is kept through
+    the four change points (crank angle pi, 2 pi, 3 pi, 4 pi) - not flipped
+    to the other branch, which re-applying K at every instant would do - and
+    each passage is reported with its time and the dyad."""
+    res = acausal2d.simulate(Parallelogram(K), stop_time=2.0, rtol=1e-8, intervals=400)
+    assert res.stopped is None and res.time[-1] == pytest.approx(2.0, abs=1e-12)
+    phi = res["crank.phiL"]
+    P = np.column_stack([res["dyad.xP"], res["dyad.yP"]])
+    par0, anti0 = _branches(phi[0])
+    on_par = np.linalg.norm(P[0] - par0) < 1e-9
+    assert on_par or np.linalg.norm(P[0] - anti0) < 1e-9
+    assert on_par == (K == 1)       # K = 1: P left of P1 -> P2, here the parallelogram
+    err = [np.linalg.norm(P[k] - _branches(p)[0 if on_par else 1]) for k, p in enumerate(phi)]
+    assert max(err) < 1e-8
+    # the output link: parallel to the crank, or turning the other way round
+    turn = res["dyad.phiL2"][-1] - res["dyad.phiL2"][0]
+    assert turn == pytest.approx(4 * math.pi if on_par else -4 * math.pi, abs=1e-8)
+    passed = [s for s in res.singularities if s["kind"] == "singular position passed"]
+    expected = [(k * math.pi - 0.3) / (2 * math.pi) for k in (1, 2, 3, 4)]
+    assert [s["time"] for s in passed] == pytest.approx(expected, abs=1e-6)
+    assert all("DDD 'dyad'" in s["elements"] for s in passed)
