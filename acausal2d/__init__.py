@@ -16,6 +16,10 @@ from .dsl import Component, Parameter, Variable, start  # noqa: E402,F401
 from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
                      SimulationError, StructuralError)
 from .symbols import der, time  # noqa: E402,F401
+# imported as functions here, so that importing the submodules of the same
+# names later does not replace them in the package namespace
+from .check import check  # noqa: E402,F401
+from .compare import compare  # noqa: E402,F401
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
@@ -35,18 +39,6 @@ def simulate(model, stop_time=None, **options):
     from .compiler import CompiledModel
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
-
-
-def check(model):
-    """Structure report of ``model`` (see :func:`acausal2d.check.check`)."""
-    from .check import check as _check
-    return _check(model)
-
-
-def compare(result, reference, **options):
-    """Compare a result with reference curves (see :func:`acausal2d.compare.compare`)."""
-    from .compare import compare as _compare
-    return _compare(result, reference, **options)
 
 
 def load_model(path, name=None, **kwargs):

@@ -26,17 +26,32 @@ def _parse_set(items):
     return params
 
 
-class _Progress:
-    """A progress bar on stderr over simulated time, shown after 1 s."""
+PROGRESS_DELAY = 1.0      # s of wall time before the progress bar appears
+PROGRESS_INTERVAL = 0.1   # s of wall time between two updates
 
-    def __init__(self, stream=sys.stderr):
+
+class _Progress:
+    """A progress bar over simulated time, shown after ``PROGRESS_DELAY``
+    and updated at most every ``PROGRESS_INTERVAL`` seconds.  It writes to a
+    duplicate of the standard error descriptor taken when it is created,
+    so it stays visible while the integrator captures descriptor 2 for the
+    SUNDIALS messages."""
+
+    def __init__(self, stream=None):
         self.start = time.perf_counter()
+        self.last = None
+        if stream is None:
+            sys.stderr.flush()
+            stream = os.fdopen(os.dup(sys.stderr.fileno()), "w")
         self.stream = stream
         self.shown = False
 
     def __call__(self, t, t_end):
-        if time.perf_counter() - self.start < 1.0:
+        now = time.perf_counter()
+        if now - self.start < PROGRESS_DELAY or \
+                (self.last is not None and now - self.last < PROGRESS_INTERVAL and t < t_end):
             return
+        self.last = now
         self.shown = True
         frac = min(max(t / t_end if t_end else 1.0, 0.0), 1.0)
         bar = "#" * int(30 * frac)
@@ -44,14 +59,19 @@ class _Progress:
         self.stream.flush()
 
     def close(self):
+        """End the bar's line (if it was shown) and release the stream."""
         if self.shown:
             self.stream.write("\n")
+        self.stream.flush()
 
 
 def cmd_simulate(args):
+    from .compare import safe_filename
     from .compiler import compile_model
     from .loader import load_model
     model = load_model(args.model_file, args.model)
+    out = args.out
+    os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
     cm = compile_model(model)
     progress = _Progress()
     try:
@@ -59,13 +79,11 @@ def cmd_simulate(args):
                           intervals=args.intervals, progress=progress)
     finally:
         progress.close()
-    out = args.out
-    os.makedirs(out, exist_ok=True)
     res.to_csv(os.path.join(out, "result.csv"))
     names = [n.strip() for n in args.plot.split(",")] if args.plot else list(res.outputs)
     pngs = []
     for name in names:
-        path = os.path.join(out, name.replace("/", "_") + ".png")
+        path = os.path.join(out, safe_filename(name) + ".png")
         pngs.append(res.plot([name], path, title=name))
     if not names:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
@@ -76,11 +94,12 @@ def cmd_simulate(args):
     if res.stopped:
         print("  " + res.stopped)
     st = res.stats
-    print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d output points, %d events, "
-          "%d state re-selections, %d residual evaluations -> %s/ (result.csv, %d plots, "
-          "animation.html)" % (type(model).__name__, res.time[-1] - res.time[0],
-                               st["wall_time"], st["compile_time"], len(res.time), st["events"],
-                               st["reselections"], st["nfev"], out, len(pngs)))
+    print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d steps, %d output points, "
+          "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
+          "%d plot%s, animation.html)" % (
+              type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
+              st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
+              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s"))
     return 0
 
 
@@ -143,6 +162,9 @@ def main(argv=None):
     try:
         return args.func(args)
     except Acausal2dError as exc:
+        print("error: %s" % exc, file=sys.stderr)
+        return 2
+    except OSError as exc:      # files: --out on an existing file, unreadable CSV ...
         print("error: %s" % exc, file=sys.stderr)
         return 2
     except KeyboardInterrupt:

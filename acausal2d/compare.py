@@ -561,7 +561,9 @@ def compare(result, reference, signals=None, mapping=None, abs_tol=None, rel_tol
 # plots
 # ---------------------------------------------------------------------------
 
-def _safe_filename(name):
+def safe_filename(name):
+    """``name`` (a signal such as ``der(body.x)``) as a file name: characters
+    other than letters, digits, ``.``, ``_`` and ``-`` become ``_``."""
     s = re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip()
     if not s or s.startswith("."):
         s = "_" + s
@@ -579,7 +581,7 @@ def plot_comparison(comparison, plot_dir):
     os.makedirs(plot_dir, exist_ok=True)
     paths, used = [], set()
     for r in comparison.rows:
-        base = _safe_filename(r.name)
+        base = safe_filename(r.name)
         stem, n = base, 2
         while stem.lower() in used:
             stem = "%s_%d" % (base, n)

@@ -250,11 +250,21 @@ class CompiledModel:
         stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
         rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
         intervals = int(intervals if intervals is not None else exp.get("intervals", 500))
+        if not rtol > 0:
+            raise Acausal2dError("rtol must be positive, got %g" % rtol)
+        if atol is not None and not atol > 0:
+            raise Acausal2dError("atol must be positive, got %g" % atol)
         if output_times is None:
+            if not stop > start_time:
+                raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
+                                     % (stop, start_time))
+            if intervals < 1:
+                raise Acausal2dError("intervals must be at least 1, got %d" % intervals)
             output_times = np.linspace(start_time, stop, intervals + 1)
         output_times = np.asarray(output_times, dtype=float)
-        if stop <= start_time and len(output_times) < 2:
-            raise Acausal2dError("stop_time must be larger than start_time")
+        if output_times.ndim != 1 or len(output_times) < 2 or \
+                np.any(np.diff(output_times) <= 0):
+            raise Acausal2dError("output_times must be at least two increasing times")
         p = self.parameter_values(params)
         wall = _time.perf_counter()
         z0, d0 = self.initial_values(float(output_times[0]), p)

@@ -1,5 +1,6 @@
 """Simulation results: every variable by its dotted name."""
 import csv
+import os
 
 import numpy as np
 
@@ -66,9 +67,11 @@ class Result:
 
     def to_csv(self, path, names=None):
         """Write a CSV file with a ``time`` column and the given variables (all
-        by default, derivatives excluded)."""
+        by default, derivatives excluded); creates the folder if needed."""
         if names is None:
             names = [n for n in self._index if not n.startswith("der(")]
+        folder = os.path.dirname(os.path.abspath(path))
+        os.makedirs(folder, exist_ok=True)
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(["time"] + list(names))

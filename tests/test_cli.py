@@ -43,6 +43,56 @@ def test_simulate_writes_csv_plots_and_animation(engine_out):
     assert "<canvas" in html and "<script src" not in html
 
 
+def test_summary_line_counts_steps_and_evaluations(engine_out):
+    import re
+    _, proc = engine_out
+    m = re.search(r"(\d+) steps, (\d+) output points, (\d+) events, (\d+) state "
+                  r"re-selections, (\d+) residual evaluations", proc.stdout)
+    assert m, proc.stdout
+    steps, points, events, _, nfev = (int(g) for g in m.groups())
+    assert points == 5001 and events == 0
+    # IDA takes many steps over 10 s of a spinning crank; each needs residuals
+    assert 100 < steps < nfev
+    assert "3 plots" in proc.stdout
+
+
+def test_progress_bar_is_visible_while_integrating(tmp_path, monkeypatch, capfd):
+    """The bar is written while IDA runs (the integrator captures file
+    descriptor 2 for the SUNDIALS messages; the bar must not vanish there)."""
+    from acausal2d import cli
+    monkeypatch.setattr(cli, "PROGRESS_DELAY", 0.0)
+    monkeypatch.setattr(cli, "PROGRESS_INTERVAL", 0.0)
+    code = cli.main(["simulate", os.path.join(ROOT, "models", "pendulum.py"), "--out",
+                     str(tmp_path), "--stop-time", "1", "--intervals", "20"])
+    assert code == 0
+    err = capfd.readouterr().err
+    assert err.count("t = ") >= 20                  # one update per output point
+    assert "[%s] t = 1 / 1 s" % ("#" * 30) in err   # and the full bar at the end
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--stop-time", "-1"], "stop_time (-1 s) must be larger than start_time (0 s)"),
+    (["--stop-time", "0"], "stop_time (0 s) must be larger than start_time (0 s)"),
+    (["--intervals", "0"], "intervals must be at least 1, got 0"),
+    (["--rtol", "0"], "rtol must be positive, got 0"),
+], ids=["negative-stop", "zero-stop", "no-intervals", "zero-rtol"])
+def test_bad_numbers_are_errors_with_exit_code_2(tmp_path, args, message):
+    proc = run("simulate", os.path.join(ROOT, "models", "pendulum.py"),
+               "--out", str(tmp_path / "o"), *args)
+    assert proc.returncode == 2
+    assert message in proc.stderr
+    assert "Traceback" not in proc.stderr + proc.stdout
+
+
+def test_out_on_an_existing_file_is_an_error_before_simulating(tmp_path):
+    blocker = tmp_path / "taken"
+    blocker.write_text("not a folder")
+    proc = run("simulate", os.path.join(ROOT, "models", "pendulum.py"), "--out", str(blocker))
+    assert proc.returncode == 2
+    assert proc.stderr.startswith("error: ") and "taken" in proc.stderr
+    assert "Traceback" not in proc.stderr and "simulated" not in proc.stdout
+
+
 def test_simulate_with_parameter_and_stop_time(tmp_path):
     proc = run("simulate", os.path.join(ROOT, "models", "pendulum.py"), "--out", str(tmp_path),
                "--stop-time", "0.5", "--set", "body.m=2", "--set", "rod.r=0.5,0")
