@@ -157,10 +157,15 @@ def _worst_variable(cm, form, prob, t, y, yp):
 
 
 class _CapturedStderr:
-    """Redirect the C-level stdout and stderr (where SUNDIALS prints its
-    messages) to a temporary file; the text is available as ``.text``."""
+    """Capture what SUNDIALS and scikit-sundae print while IDA runs: the
+    C-level stdout and stderr go to a temporary file, and Python's
+    ``sys.stdout``/``sys.stderr`` (scikit-sundae prints its error messages
+    with ``print``; in a notebook or under pytest these are Python objects,
+    not the descriptors) to a string buffer.  The text is available as
+    ``.text``."""
 
     def __enter__(self):
+        import io
         import tempfile
         sys.stdout.flush()
         sys.stderr.flush()
@@ -168,9 +173,13 @@ class _CapturedStderr:
         self._saved = [os.dup(1), os.dup(2)]
         os.dup2(self._file.fileno(), 1)
         os.dup2(self._file.fileno(), 2)
+        self._streams = (sys.stdout, sys.stderr)
+        self._python = io.StringIO()
+        sys.stdout = sys.stderr = self._python
         return self
 
     def __exit__(self, *exc):
+        sys.stdout, sys.stderr = self._streams
         try:   # C stdio buffers must be written while the redirection holds
             import ctypes
             ctypes.CDLL(None).fflush(None)
@@ -181,7 +190,8 @@ class _CapturedStderr:
         for fd in self._saved:
             os.close(fd)
         self._file.seek(0)
-        self.text = self._file.read().decode("utf-8", "replace").strip()
+        text = self._file.read().decode("utf-8", "replace") + self._python.getvalue()
+        self.text = text.strip()
         self._file.close()
         return False
 
@@ -237,17 +247,19 @@ def _run_steps(solver, t, remaining, y0, yp0, form, out_t, out_z, progress, t_en
     return _Outcome(sol, last), None
 
 
-def _approach(prob, rtol, atol, start, t_next):
+def _approach(prob, rtol, atol, start, t_next, keep):
     """Re-take IDA's internal steps from the point ``start`` (the last
     output it reached) towards the next output time after a failure.
 
-    Returns ``(t, node values, how)`` of the last step completed, ``how``
-    saying why it stopped: "reached" (t_next), "steps" (the step budget
-    used up while the run goes well), "stalled" (near a singular position
-    IDA may go on with steps of vanishing length) or "failed"; None if it
-    cannot take a single step."""
+    Returns ``(t, node values, how, steps)`` of the last step completed,
+    ``how`` saying why it stopped: "reached" (t_next), "steps" (the step
+    budget used up while the run goes well), "stalled" (near a singular
+    position IDA may go on with steps of vanishing length) or "failed";
+    ``steps`` holds (times, z[keep]) of all steps taken.  None if it cannot
+    take a single step."""
+    form = prob.form
     solver = _solver(prob, rtol, atol)
-    last, how = None, "failed"
+    last, how, times, kept = None, "failed", [], []
     try:
         with _CapturedStderr():
             solver.init_step(start.t, start.y, start.yp)
@@ -257,6 +269,8 @@ def _approach(prob, rtol, atol, start, t_next):
                 if not sol.success or sol.status == 2:
                     break
                 last = (float(sol.t), np.asarray(sol.y).copy(), np.asarray(sol.yp).copy())
+                times.append(last[0])
+                kept.append(form.nodes_from(last[1], last[2])[keep])
                 h = last[0] - t_prev
                 t_prev, longest = last[0], max(longest, h)
                 stalled = stalled + 1 if h < 1e-6 * longest else 0
@@ -272,7 +286,26 @@ def _approach(prob, rtol, atol, start, t_next):
         pass
     if last is None:
         return None
-    return last[0], prob.form.nodes_from(last[1], last[2]), how
+    return last[0], form.nodes_from(last[1], last[2]), how, (times, kept)
+
+
+def _state_history(cm, form, out_t, out_z, seg_start, approach):
+    """(times, values, derivatives) of the held states of ``form`` at the
+    output points of the current segment and the steps of the approach."""
+    held = np.asarray(form.y_nodes)[form.differential]
+    if not len(held):
+        return None
+    keep = np.concatenate([held, np.asarray(cm.R.A)[held]])
+    ts = list(out_t[seg_start:])
+    rows = [z[keep] for z in out_z[seg_start:]]
+    if approach is not None:
+        ts += approach[3][0]
+        rows += approach[3][1]
+    if not ts:
+        return None
+    ts, order = np.unique(np.asarray(ts), return_index=True)
+    rows = np.asarray(rows)[order]
+    return ts, rows[:, :len(held)], rows[:, len(held):]
 
 
 class _Event:
@@ -361,7 +394,9 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
         if failed:
             t_next = float(times[times > sol.last.t + eps][0]) \
                 if np.any(times > sol.last.t + eps) else t_end
-            approach = _approach(prob, rtol, a, sol.last, t_next)
+            held = np.asarray(form.y_nodes)[form.differential]
+            keep = np.concatenate([held, np.asarray(cm.R.A)[held]]).astype(int)
+            approach = _approach(prob, rtol, a, sol.last, t_next, keep)
             if approach is not None and approach[2] in ("reached", "steps") \
                     and approach[0] > sol.last.t:
                 # IDA used up its step budget on a run that goes on well: next segment
@@ -371,9 +406,11 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
                     out_t.append(t)
                     out_z.append(z.copy())
                 continue
+            history = _state_history(cm, form, out_t, out_z, seg_start, approach)
             if approach is None:      # IDA stopped right where it failed: start from there
                 approach = (sol.last.t, form.nodes_from(sol.last.y, sol.last.yp), "failed")
-            jump = step_over(cm, selection, p, d, approach[0], approach[1], t_end, times)
+            jump = step_over(cm, selection, p, d, approach[0], approach[1], history, t_end,
+                             times)
             if jump is not None:
                 # a singular position the motion passes through: continue beyond it
                 t_land, z, record, filled = jump

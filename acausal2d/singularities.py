@@ -141,22 +141,53 @@ def _worst_level(cm, selection, t, z, p, d):
     return worst
 
 
-def step_over(cm, selection, p, d, t_f, z_f, t_end, output_times):
+def _hermite(history, t_f, gap):
+    """Extrapolation of the held states from ``history`` = (times, values,
+    derivatives) of accepted integration points before t_f: a Hermite
+    polynomial (value and derivative) through up to three points near
+    t_f - 2 gap, t_f - gap and t_f.  Returns a function of t, or None if
+    the history has fewer than two points far enough apart."""
+    if history is None:
+        return None
+    ts, S, Sd = history
+    picks = []
+    for target in (t_f - 2.0 * gap, t_f - gap, t_f):
+        i = int(np.argmin(np.abs(ts - target)))
+        if not picks or ts[i] > ts[picks[-1]] + 0.25 * gap:
+            picks.append(i)
+    if len(picks) < 2:
+        return None
+    tau = (ts[picks] - t_f) / gap
+    deg = 2 * len(picks)
+    q = np.arange(deg)
+    M = np.vstack([tau[:, None] ** q[None, :],
+                   q[None, :] * tau[:, None] ** np.maximum(q - 1, 0)[None, :]])
+    coef = np.linalg.solve(M, np.vstack([S[picks], gap * Sd[picks]]))
+
+    def at(t):
+        return ((t - t_f) / gap) ** q @ coef
+    return at
+
+
+def step_over(cm, selection, p, d, t_f, z_f, history, t_end, output_times):
     """Continue the motion through a singular position just ahead of the
     last point (t_f, z_f) that IDA reached.
 
     Along the Taylor prediction from z_f, the worst dummy block's relative
     smallest singular value has a minimum near zero at t_s.  The motion is
-    then re-solved (Newton, states held at their predicted values) at a
-    landing time beyond t_s, at 1, 2, 4 ... 64 times the distance t_s - t_f
-    past it; a landing counts where Newton converges, the block is four
+    then re-solved (Newton) at a landing time beyond t_s, at 1, 2, 3, 4, 6
+    ... 64 times the distance t_s - t_f past it, with the states held at
+    values extrapolated from ``history`` (times, values and derivatives of
+    the held states at accepted integration points before t_f; see
+    :func:`_hermite`) and the other unknowns started from the Taylor
+    prediction.  A landing counts where Newton converges, the block is four
     times better conditioned than at z_f (where IDA could not go on), and
-    the displacement since z_f and
-    the velocities agree with the prediction (the branch that continues the
-    motion, not the one crossing it).  Returns ``None`` if there is no such
-    position or landing (a limit position, or a failure of another kind),
-    else ``(t_land, z_land, record, filled)``: the singularity record and
-    the (time, node values) of the output times inside the jump."""
+    the displacement since z_f and the velocities agree with the prediction
+    (the branch that continues the motion, not the one crossing it).
+    Returns ``None`` if there is no such position or landing (a limit
+    position, or a failure of another kind), else ``(t_land, z_land,
+    record, filled)``: the singularity record and the (time, node values)
+    of the output times inside the jump."""
     worst = _worst_level(cm, selection, t_f, z_f, p, d)
     if worst is None:
         return None
@@ -193,11 +224,18 @@ def step_over(cm, selection, p, d, t_f, z_f, t_end, output_times):
         return None
     form = cm.formulation(selection)
     held = list(np.asarray(form.y_nodes)[form.differential])
+    states = _hermite(history, t_f, h_s) if held else None
     R = cm.R
     A = np.asarray(R.A)
     level = np.asarray(R.var_level)
     pos = np.nonzero((level == 0) & (A >= 0))[0]       # positions with a velocity
     vel = A[pos]
+
+    def predict(h):
+        guess = _taylor(cm, z_f, h)
+        if states is not None:
+            guess[held] = states(t_f + h)
+        return guess
 
     def solve_at(t, guess):
         try:
@@ -206,13 +244,13 @@ def step_over(cm, selection, p, d, t_f, z_f, t_end, output_times):
         except InitializationError:
             return None
 
-    for m in (1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0):
+    for m in (1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 16.0, 32.0, 64.0):
         h = h_s * (1.0 + m)
         if h > span:
             h = span
         if h <= h_s:
             break
-        guess = _taylor(cm, z_f, h)
+        guess = predict(h)
         z_new = solve_at(t_f + h, guess)
         if z_new is None:
             continue
@@ -228,7 +266,7 @@ def step_over(cm, selection, p, d, t_f, z_f, t_end, output_times):
         t_land = t_f + h
         filled = []
         for t_out in output_times[(output_times > t_f) & (output_times < t_land)]:
-            g = _taylor(cm, z_f, t_out - t_f)
+            g = predict(t_out - t_f)
             z_out = solve_at(float(t_out), g)
             filled.append((float(t_out), z_out if z_out is not None else g))
         record = {"time": t_f + h_s, "elements": cm.singular_elements(lv.eqs, u),

@@ -13,7 +13,7 @@ from acausal2d import Component, start
 from acausal2d.library.linkage import DAN, DDD
 from acausal2d.library.linkage_drives import Preset
 from acausal2d.library.planar import Fixed, FixedTranslation, Revolute
-from acausal2d.library.rotational import Position
+from acausal2d.library.rotational import Inertia, Position
 from vdi2729_reference import vdi_dan, vdi_ddd
 from acausal2d.library.signals import TimeFunction
 
@@ -133,3 +133,39 @@ def test_change_point_four_bar_is_followed_through_branch_points(K):
     expected = [(k * math.pi - 0.3) / (2 * math.pi) for k in (1, 2, 3, 4)]
     assert [s["time"] for s in passed] == pytest.approx(expected, abs=1e-6)
     assert all("DDD 'dyad'" in s["elements"] for s in passed)
+
+
+class SwingingParallelogram(Component):
+    """The parallelogram force-driven: massive links under gravity and a
+    flywheel on the crank, started at 0.3 rad with 2 pi rad/s.  Too little
+    energy to turn over: the crank swings about its lowest position through
+    both change points (crank angle 0 and -pi) again and again."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flywheel = Inertia(J=0.01, phi=start(0.3, fixed=True),
+                                w=start(2 * math.pi, fixed=True))
+        self.crank = DAN(lL=0.1, mL=1.0, JL=0.001)
+        self.dyad = DDD(lL1=0.4, lL2=0.1, x20=0.4, y20=0.0, K=1,
+                        mL1=1.0, JL1=0.02, mL2=1.0, JL2=0.001)
+        self.connect(self.flywheel.flange_a, self.crank.ctrR2)
+        self.connect(self.crank.ctr2D2, self.dyad.ctr2D1)
+
+
+def test_force_driven_change_point_four_bar_keeps_its_branch():
+    """Dynamic analysis: the swinging parallelogram passes the change points
+    on the parallelogram branch (rocker parallel to the crank), and every
+    passage is reported at crank angle 0 or -pi."""
+    res = acausal2d.simulate(SwingingParallelogram(), stop_time=1.0, rtol=1e-8, intervals=400)
+    assert res.stopped is None and res.time[-1] == pytest.approx(1.0, abs=1e-12)
+    phi = res["crank.phiL"]
+    rocker = np.unwrap(res["dyad.phiL2"])
+    assert np.max(np.abs(rocker - phi - (rocker[0] - phi[0]))) < 1e-8
+    # it swings: both change points are passed, back and forth
+    assert np.min(phi) < -math.pi + 0.1 and np.max(phi) > 0.1
+    passed = [s for s in res.singularities if s["kind"] == "singular position passed"]
+    assert len(passed) >= 3
+    for s in passed:
+        angle = res.at("crank.phiL", s["time"])
+        assert abs(angle - math.pi * round(angle / math.pi)) < 1e-3
+        assert "DDD 'dyad'" in s["elements"]
