@@ -83,6 +83,7 @@ import numpy as np
 from acausal2d.connectors import BandPort, Frame, RealInput, RotationalFlange
 from acausal2d.dsl import Component, Parameter, Variable, start
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.planar import is_connected, root_component, start_value as _start_of
 from acausal2d.symbols import der
 
 __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
@@ -99,9 +100,7 @@ class _BandElement(Component):
     whole model once, before its symbols are created."""
 
     def before_flatten(self):
-        root = self
-        while root._parent is not None:
-            root = root._parent
+        root = root_component(self)
         if not root.__dict__.get("_belts_prepared", False):
             root.__dict__["_belts_prepared"] = True
             prepare_belts(root)
@@ -382,15 +381,25 @@ class _Wheel(_BandElement):
         (radius: the parameter ``r``, so that a changed value is drawn), and
         a ground symbol at the axis when the housing ``ctr2D1`` is
         unconnected (fixed in the ground at ``x0, y0``)."""
-        root = self
-        while root._parent is not None:
-            root = root._parent
-        housing = self.ctr2D1
-        connected = any(a is housing or b is housing
-                        for comp in root.components() for a, b in comp._connections)
-        out = [] if connected else [{"type": "ground", "x": "ctr2D1.x", "y": "ctr2D1.y"}]
+        out = ([] if is_connected(self.ctr2D1)
+               else [{"type": "ground", "x": "ctr2D1.x", "y": "ctr2D1.y"}])
         out.append({"type": "pulley", "x": "ctr2D1.x", "y": "ctr2D1.y", "r": "r", "phi": "phi"})
         return out
+
+    def topology(self):
+        """Planar topology for seed eq. 2.1: the wheel is a link joined to
+        its housing ``ctr2D1`` by a revolute joint (f = 1), as the pulley
+        ("Rolle") of seed Bild 2.1 c.  The wheel has no frame of its own; its
+        contact frames (``ctrK1``, and ``ctrK2`` of a pulley) -- the wheel
+        side of the band joints -- stand for it (``("rigid", contacts)``).
+        The spans connected there are force elements and declare nothing,
+        so the contacts join no other link.  While ``ctr2D1`` is unconnected
+        the housing is fixed to ground at ``x0, y0`` (``("ground",
+        [ctr2D1])``), like the triangle ports of the linkage elements;
+        otherwise it belongs to the link it is connected to."""
+        contacts = [self._connectors[n] for n in ("ctrK1", "ctrK2") if n in self._connectors]
+        items = [] if is_connected(self.ctr2D1) else [("ground", [self.ctr2D1])]
+        return items + [("rigid", contacts), ("joint", self.ctr2D1, contacts[0], 1)]
 
 
 class Pulley(_Wheel):
@@ -608,16 +617,6 @@ def open_belt_closed_form(r1, r2, d):
 
 def _num(comp, name):
     return np.asarray(comp._param_values[name], dtype=float)
-
-
-def _start_of(comp, name):
-    ov = comp._overrides.get(name)
-    if isinstance(ov, start) and ov.value is not None:
-        return float(ov.value)
-    if isinstance(ov, (int, float)):
-        return float(ov)
-    decl = comp._var_decls.get(name)
-    return float(decl.start) if decl is not None else 0.0
 
 
 def _frame_geometry(conn):

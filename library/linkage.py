@@ -95,8 +95,9 @@ import numpy as np
 
 from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
 from acausal2d.dsl import Component, Parameter, Variable
-from acausal2d.unionfind import connector_sets
 from acausal2d.errors import InitializationError, ModelDefinitionError
+from acausal2d.library.planar import is_connected, root_component
+from acausal2d.unionfind import connector_sets
 from acausal2d.symbols import der
 
 __all__ = ["DAN", "SAN", "FGP", "DDD", "DDS", "DSD", "SSD", "SDS", "AssemblyError",
@@ -234,14 +235,8 @@ class _Assembly:
             cur.setdefault(name, v)
 
 
-def _root(comp):
-    while comp._parent is not None:
-        comp = comp._parent
-    return comp
-
-
 def _ensure_assembly(comp):
-    root = _root(comp)
+    root = root_component(comp)
     asm = root.__dict__.get("_linkage_assembly")
     if asm is None:
         asm = _Assembly(root)
@@ -290,7 +285,7 @@ class _Linkage(Component):
             self._param_values[name] = 0.5 * float(self._param_values[length])
 
     def on_flatten(self):
-        _root(self).__dict__["_linkage_assembly"] = None   # new symbols: reassemble
+        root_component(self).__dict__["_linkage_assembly"] = None   # new symbols: reassemble
         self._rel.clear()
 
     def _g(self):
@@ -375,14 +370,9 @@ class _Linkage(Component):
         return None if any(v is None for v in vals) else vals
 
     # ------------------------------------------------ drawing and topology
-    def _is_connected(self, conn):
-        """True if ``conn`` appears in a connect statement of the model."""
-        _, connected = connector_sets(_root(self))
-        return id(conn) in connected
-
     def _grounded(self, conn):
         """True if ``conn`` is a triangle port fixed to ground (unconnected)."""
-        return conn.ground is not None and not self._is_connected(conn)
+        return conn.ground is not None and not is_connected(conn)
 
     def _port_point(self, n):
         """[X, Y] signal references (relative to the element) of the placed
@@ -393,7 +383,7 @@ class _Linkage(Component):
         not a result signal and the connection point is returned as an
         approximation (second value False)."""
         conn = self._conn(n)
-        if not self._is_connected(conn):
+        if not is_connected(conn):
             return ["x%d0" % n, "y%d0" % n], True
         exact = (self._frame_ref.get(n) == "relative"
                  and float(self._param_values["x%d0" % n]) == 0.0
@@ -407,7 +397,7 @@ class _Linkage(Component):
         conn = self._conn(n)
         if self._grounded(conn):
             return [{"type": "ground", "x": point[0], "y": point[1], "phi": phi}]
-        if self._is_connected(conn) and list(point) != ["ctr2D%d.x" % n, "ctr2D%d.y" % n]:
+        if is_connected(conn) and list(point) != ["ctr2D%d.x" % n, "ctr2D%d.y" % n]:
             exact_at_c = (self._frame_ref.get(n) == "relative"
                           and float(self._param_values["x%d0" % n]) == 0.0
                           and float(self._param_values["y%d0" % n]) == 0.0)

@@ -7,11 +7,15 @@ data only; velocities and accelerations are produced by index reduction.
 The flows of a :class:`~acausal2d.connectors.Frame` are the force and torque
 acting on the element from the connected part (seed eq. 4.1 at the nodes).
 """
+import math
+
 import casadi as ca
+import numpy as np
 
 from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
-from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d.dsl import Component, Parameter, Variable, start
 from acausal2d.symbols import der
+from acausal2d.unionfind import connector_sets
 
 
 class PlanarWorld(Component):
@@ -27,6 +31,56 @@ def _gravity(comp):
     if world is None:  # the flattener adds a world to the root model
         raise RuntimeError("no PlanarWorld in the model")
     return world.g
+
+
+# --------------------------------------------------------------------------
+# connection queries for drawing and topology (shared with library/belt.py)
+# --------------------------------------------------------------------------
+def root_component(comp):
+    """The outermost model that ``comp`` is part of (``comp`` itself if it
+    has no parent)."""
+    while comp._parent is not None:
+        comp = comp._parent
+    return comp
+
+
+def is_connected(conn):
+    """True if the connector ``conn`` appears in a connect statement of its
+    model (see :func:`acausal2d.unionfind.connector_sets`)."""
+    _, connected = connector_sets(root_component(conn.owner))
+    return id(conn) in connected
+
+
+def fixed_of(conn):
+    """The :class:`Fixed` whose frame is in the connection set of ``conn``
+    (directly or through other connections), or None: the frame ``conn`` is
+    then fixed in the world at that element's ``r``, ``phi``."""
+    root = root_component(conn.owner)
+    sets, _ = connector_sets(root)
+    k = sets.find(id(conn))
+    for comp in root.components():
+        if isinstance(comp, Fixed) and sets.find(id(comp.frame)) == k:
+            return comp
+    return None
+
+
+def start_value(comp, name):
+    """Numeric start value of the variable ``name`` of ``comp``: the value
+    given with :func:`~acausal2d.dsl.start` (or a number) when the component
+    was created, else the declaration's default (0.0 when that is not a
+    number, e.g. a parameter expression set by an assembly)."""
+    ov = comp._overrides.get(name)
+    if isinstance(ov, start) and ov.value is not None:
+        value = ov.value
+    elif isinstance(ov, (int, float)):
+        value = ov
+    else:
+        decl = comp._var_decls.get(name)
+        value = decl.start if decl is not None else 0.0
+    try:
+        return float(value)
+    except (TypeError, ValueError, RuntimeError):
+        return 0.0
 
 
 class Fixed(Component):
@@ -149,15 +203,22 @@ class Prismatic(Component):
     """Prismatic joint: frame_b moves by s along the unit vector of r
     (resolved in frame_a); same angle; v = der(s).  With ``use_flange=True`` a
     1D translational flange (position s, driving force f) and a support flange
-    (fixed at 0) are added.  ``state_select`` applies to s and v."""
+    (fixed at 0) are added.  ``state_select`` applies to s and v.
+
+    ``guide=(s_min, s_max)`` (drawing only) is the range of s that the
+    animation draws as the guide when one frame is fixed in the world; see
+    :meth:`shapes`."""
     r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a")
     s = Variable(unit="m", doc="relative position")
     v = Variable(unit="m/s", doc="relative velocity")
 
-    def __init__(self, use_flange=False, state_select="prefer", **kw):
+    def __init__(self, use_flange=False, state_select="prefer", guide=None, **kw):
         super().__init__(**kw)
         self._var_decls["s"].state_select = state_select
         self._var_decls["v"].state_select = state_select
+        if guide is not None:
+            guide = (float(guide[0]), float(guide[1]))
+        self.guide_range = guide
         self.frame_a = Frame()
         self.frame_b = Frame()
         self.use_flange = use_flange
@@ -184,8 +245,42 @@ class Prismatic(Component):
         return eqs
 
     def shapes(self):
-        return [{"type": "slider", "x": "frame_b.x", "y": "frame_b.y", "phi": "frame_a.phi",
-                 "guide": [["frame_a.x", "frame_a.y"], ["frame_b.x", "frame_b.y"]]}]
+        """The slider block on its guide.
+
+        When one frame is fixed in the world -- its connection set holds the
+        frame of a :class:`Fixed` (see :func:`fixed_of`) -- and the other is
+        not, the block is drawn at the moving frame (``frame_a`` when
+        ``frame_b`` is the fixed one, as in a slider-crank whose cylinder is
+        the ground) and the guide as a constant line through the fixed
+        frame along the axis r: it covers the positions of the moving frame
+        for s in ``guide`` (constructor argument), by default from s = 0
+        (the fixed frame) to twice the start value of s, or s = -|r|/2 ..
+        |r|/2 when that start value is 0.  Its end points are numbers from
+        the parameter values of the Fixed and of r at drawing time.  When
+        neither frame is fixed, the block is at frame_b and the guide runs
+        from frame_a to it."""
+        fixed_a, fixed_b = fixed_of(self.frame_a), fixed_of(self.frame_b)
+        if fixed_a is None and fixed_b is None:
+            return [{"type": "slider", "x": "frame_b.x", "y": "frame_b.y", "phi": "frame_a.phi",
+                     "guide": [["frame_a.x", "frame_a.y"], ["frame_b.x", "frame_b.y"]]}]
+        if fixed_a is None:
+            moving, ground, sign = "frame_a", fixed_b, -1.0     # frame_a = frame_b - s e
+        else:
+            moving, ground, sign = "frame_b", fixed_a, 1.0      # frame_b = frame_a + s e
+        gx, gy = (float(v) for v in np.ravel(ground._param_values["r"]))
+        gphi = float(ground._param_values["phi"])
+        rx, ry = (float(v) for v in np.ravel(self._param_values["r"]))
+        norm = math.hypot(rx, ry)
+        cg, sg = math.cos(gphi), math.sin(gphi)
+        ex, ey = (cg * rx - sg * ry) / norm, (sg * rx + cg * ry) / norm
+        if self.guide_range is not None:
+            ends = self.guide_range
+        else:
+            s0 = start_value(self, "s")
+            ends = (0.0, 2.0 * s0) if s0 != 0.0 else (-norm / 2, norm / 2)
+        guide = [[gx + sign * e * ex, gy + sign * e * ey] for e in ends]
+        return [{"type": "slider", "x": moving + ".x", "y": moving + ".y",
+                 "phi": moving + ".phi", "guide": guide}]
 
     def topology(self):
         return [("joint", self.frame_a, self.frame_b, 1)]

@@ -163,6 +163,11 @@ class SpringDamper2D(Component):
                 a.fx == -self.F * ex, a.fy == -self.F * ey,
                 b.fx == self.F * ex, b.fy == self.F * ey, a.t == 0, b.t == 0]
 
+    def shapes(self):
+        """A zig-zag spring from the origin of frame_a to that of frame_b."""
+        return [{"type": "spring", "a": ["frame_a.x", "frame_a.y"],
+                 "b": ["frame_b.x", "frame_b.y"]}]
+
 
 def tensioner_geometry():
     """Initial points: tensioner axis T, lever ends B and anchor C."""
@@ -272,6 +277,22 @@ class Compressor(Component):
         self.head = translational.Fixed(s0=LR + RC + H_DEAD)
         self.connect(self.guide.flange_a, self.cyl.flange_a)
         self.connect(self.cyl.flange_b, self.head.flange)
+
+    def topology(self):
+        """The shaft coupling for seed eq. 2.1.  The driven pulley and the
+        crank are one shaft at P2: the pulley's flange drives the crank
+        joint's flange (``driven.ctrR`` = ``crank.flange_a``), so the two
+        revolute joints there (pulley bearing, crank joint) are coupled.
+        Eq. 2.1 sees only the joints (pulley and crank as two links), so
+        the coupling is declared as one more restriction, like the "+ 1"
+        for the coupled band joints of seed Bild 2.1 b/c: a joint with
+        f = 2 (3 - f = 1) between the pulley and the crank.  Count: links
+        ground, drive, driven, tensioner pulley, lever, crank, rod, piston
+        (n = 8); revolute joints of the three pulleys, lever, crank, pin,
+        wrist and the prismatic guide (8 x f = 1) plus the coupling:
+        F = 3 (8 - 1) - 8 x 2 - 1 = 4 (drive pulley, tensioner lever,
+        tensioner pulley, crank shaft)."""
+        return [("joint", self.driven.ctrK1, self.crank.frame_b, 2)]
 
 
 # --------------------------------------------------------------------------

@@ -198,3 +198,69 @@ def test_compressor_drawing():
     assert model.cyl.shapes() == []
     assert not any(isinstance(v, str) and v.startswith("cyl.")
                    for s in scene["shapes"] for v in (s.get("x"), s.get("y")))
+
+
+def test_compressor_tensioner_spring_drawing():
+    # the "Belt Tensor" spring-damper is drawn as a spring from the end B of
+    # the lever's second arm to the fixed anchor C
+    mod = _load("compressor")
+    model, res, scene = _run(mod.Compressor(), 0.05, intervals=5)
+    springs = _by_type(scene, "spring")
+    assert len(springs) == 1
+    sh = springs[0]
+    assert sh["a"] == ["spring.frame_a.x", "spring.frame_a.y"]
+    assert sh["b"] == ["spring.frame_b.x", "spring.frame_b.y"]
+    np.testing.assert_array_equal(_sig(scene, sh["a"][0]), res["arm2.frame_b.x"])
+    np.testing.assert_array_equal(_sig(scene, sh["a"][1]), res["arm2.frame_b.y"])
+    _, B, C = mod.tensioner_geometry()
+    np.testing.assert_allclose(_sig(scene, sh["a"][0])[0], B[0], atol=1e-9)
+    np.testing.assert_allclose(_sig(scene, sh["a"][1])[0], B[1], atol=1e-9)
+    np.testing.assert_allclose(_sig(scene, sh["b"][0]), C[0], atol=1e-12)
+    np.testing.assert_allclose(_sig(scene, sh["b"][1]), C[1], atol=1e-12)
+
+
+def test_pulley_block_topology():
+    """Seed eq. 2.1, F = 3 (n - 1) - sum (3 - f), for the pulley block.
+
+    Links (n = 6): the ground (with the upper block: U1 and U3 have
+    unconnected housings, the rope anchor is a Fixed), the lower block (the
+    load body rigid with the arms and the housings of L2 and L4), and the
+    four pulley wheels U1, L2, U3, L4.  Joints (g = 4): each wheel turns in
+    its housing, a revolute joint with f = 1.  The five rope sections are
+    elastic force elements (no links, no joints); the rope ends -- fastened
+    to the anchor or moved by the RopeDrive, a motion source like the
+    presets -- add no link.  F = 3 (6 - 1) - 4 (3 - 1) = 15 - 8 = 7: the
+    four pulley angles and x, y, phi of the lower block, the same as the
+    seven position states of the structural count; no closed loop."""
+    from acausal2d.check import check
+    model = _load("pulley_block").PulleyBlock()
+    report = check(model)
+    assert (report.links, report.joints, report.grubler) == (6, 4, 7)
+    assert report.loops == 0
+    assert report.structural_dof == 7
+    # housings: ground items only for the unconnected ones
+    for name, grounded in (("U1", True), ("U3", True), ("L2", False), ("L4", False)):
+        wheel = getattr(model, name)
+        items = wheel.topology()
+        assert (("ground", [wheel.ctr2D1]) in items) == grounded
+        assert ("rigid", [wheel.ctrK1, wheel.ctrK2]) in items
+        assert ("joint", wheel.ctr2D1, wheel.ctrK1, 1) in items
+
+
+@pytest.mark.parametrize("name, cls, expected", [
+    # ground, 3 pulleys, lever, crank, rod, piston; 8 joints with f = 1
+    # plus the coupling of the driven pulley with the crank (f = 2, see
+    # Compressor.topology()): F = 3 * 7 - 8 * 2 - 1 = 4 = drive pulley,
+    # tensioner lever, tensioner pulley, crank shaft
+    ("compressor", "Compressor", (8, 9, 4, 4)),
+    # ground, carriage, 9 pulleys, 2 drums; 11 revolute joints:
+    # F = 3 * 12 - 11 * 2 = 14 = carriage 3 + 9 pulleys + 2 drums (the
+    # drums' angles are prescribed by their drives, which eq. 2.1 counts,
+    # while the structural 14 are carriage 3 + 9 pulleys + hook x, y: the
+    # Hook declares no topology)
+    ("cable_crane", "CableCrane", (13, 11, 14, 14)),
+])
+def test_belt_model_topology(name, cls, expected):
+    from acausal2d.check import check
+    report = check(getattr(_load(name), cls)())
+    assert (report.links, report.joints, report.grubler, report.structural_dof) == expected
