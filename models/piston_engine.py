@@ -33,8 +33,10 @@ class PistonEngine(Component):
         self.rod = FixedTranslation(r=(0.8, 0.0))
         self.revolutePiston = Revolute(state_select=state_select)
         self.bodyPiston = Body(m=3.0, I=0.1)
+        # guide: the cylinder drawn over the piston's travel, x = 0.4 ... 1.2 m
+        # (frame_a = frame_b - s r, s = -1.1 ... -0.5)
         self.prismatic = Prismatic(r=(1.0, 0.0), state_select=state_select,
-                                   s=start(-1.1))
+                                   s=start(-1.1), guide=(-0.4, -1.2))
         self.fixed1 = Fixed()
         self.connect(self.fixed.frame, self.revoluteDrive.frame_a)
         self.connect(self.revoluteDrive.frame_b, self.bodyDrive.frame_a)
