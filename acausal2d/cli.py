@@ -69,10 +69,13 @@ def cmd_simulate(args):
     from .compare import safe_filename
     from .compiler import compile_model
     from .loader import load_model
+    from .scene import trace_signals
     model = load_model(args.model_file, args.model)
     out = args.out
     os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
     cm = compile_model(model)
+    traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
+    trace_signals(traces, cm.names)        # names checked before the run
     progress = _Progress()
     try:
         res = cm.simulate(stop_time=args.stop_time, params=_parse_set(args.set), rtol=args.rtol,
@@ -88,7 +91,7 @@ def cmd_simulate(args):
     if not names:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
     res.animate(os.path.join(out, "animation.html"),
-                traces=[t.strip() for t in args.trace.split(",")] if args.trace else ())
+                traces=traces)
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -136,7 +139,9 @@ def build_parser():
     s.add_argument("--rtol", type=float)
     s.add_argument("--intervals", type=int, help="number of output intervals")
     s.add_argument("--plot", help="comma-separated signals to plot (default: model outputs)")
-    s.add_argument("--trace", help="comma-separated frames whose path the animation draws")
+    s.add_argument("--trace", help="comma-separated points whose path the animation draws "
+                   "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
+                   "(dyad.xP:dyad.yP)")
     s.add_argument("--out", default="out", help="output directory (default: out)")
     s.set_defaults(func=cmd_simulate)
     c = sub.add_parser("check", help="print the structure of a model")

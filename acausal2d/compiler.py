@@ -111,6 +111,12 @@ class CompiledModel:
         self.compile_time = _time.perf_counter() - t0
 
     # ------------------------------------------------------------ helpers
+    @property
+    def names(self):
+        """Names of all time-varying columns a result of this model holds
+        (unknowns, aliases, derivatives), known before simulating."""
+        return self.node_names + self.alias_names + self.alias_der_names
+
     def parameter_values(self, params=None):
         """Numeric parameter vector with overrides ``{dotted name: value}``."""
         vals = np.array([v for _, _, v, _ in self.parameters], dtype=float)

@@ -89,8 +89,9 @@ class Result:
 
     def animate(self, path, traces=(), title=None):
         """Write a self-contained HTML animation of the mechanism, drawn from
-        the components' ``shapes()``; ``traces`` are frame names whose path
-        is drawn.  See :mod:`acausal2d.animation`."""
+        the components' ``shapes()``; ``traces`` are frame names (or
+        ``"x_name:y_name"`` pairs) whose path is drawn.  See
+        :mod:`acausal2d.animation`."""
         from .scene import animate
         return animate(self, path, traces, title)
 

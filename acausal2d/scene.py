@@ -47,10 +47,38 @@ def _signal_names(shape):
     return names
 
 
+def trace_signals(traces, names):
+    """The (x, y) signal names of traced points: each entry of ``traces`` is
+    a frame (``"dyad.ctr2D3"``: its ``.x`` and ``.y``) or a pair of signals
+    ``"x_name:y_name"`` (``"dyad.xP:dyad.yP"``).  ``names``: the signals
+    available; an unknown entry raises an error listing the frames."""
+    from .errors import Acausal2dError
+    available = set(names)
+    pairs = []
+    for entry in traces:
+        entry = entry.strip()
+        if ":" in entry:
+            x, y = (part.strip() for part in entry.split(":", 1))
+        else:
+            x, y = entry + ".x", entry + ".y"
+        missing = [n for n in (x, y) if n not in available]
+        if missing:
+            frames = sorted({n[:-2] for n in available
+                             if n.endswith(".x") and n[:-2] + ".y" in available})
+            raise Acausal2dError(
+                "cannot trace %r: no signal %s.  Trace a frame (%s%s) or a pair of "
+                "signals x_name:y_name." % (entry, " or ".join(repr(n) for n in missing),
+                                            ", ".join(frames[:12]),
+                                            ", ..." if len(frames) > 12 else ""))
+        pairs.append((x, y))
+    return pairs
+
+
 def build_scene(result, traces=(), title=None):
     """Scene dict for :func:`acausal2d.animation.render_html` from a result
-    of a compiled model; ``traces`` are dotted frame names whose path is
-    drawn (coupler curves)."""
+    of a compiled model; ``traces`` are points whose path is drawn (coupler
+    curves): frame names or ``"x_name:y_name"`` pairs, see
+    :func:`trace_signals`."""
     model = result.model.model if result.model is not None else None
     shapes = []
     if model is not None:
@@ -58,8 +86,8 @@ def build_scene(result, traces=(), title=None):
             prefix = comp.path + "." if comp.path else ""
             for shape in comp.shapes():
                 shapes.append(qualify_shape(shape, prefix))
-    for frame in traces:
-        shapes.append({"type": "trace", "x": frame + ".x", "y": frame + ".y"})
+    for x, y in trace_signals(traces, result.names):
+        shapes.append({"type": "trace", "x": x, "y": y})
     signals = {}
     for shape in shapes:
         for name in _signal_names(shape):

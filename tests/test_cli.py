@@ -6,6 +6,7 @@ import subprocess
 import sys
 import textwrap
 
+import numpy as np
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -91,6 +92,34 @@ def test_out_on_an_existing_file_is_an_error_before_simulating(tmp_path):
     assert proc.returncode == 2
     assert proc.stderr.startswith("error: ") and "taken" in proc.stderr
     assert "Traceback" not in proc.stderr and "simulated" not in proc.stdout
+
+
+def test_trace_of_a_frame_and_of_a_signal_pair(tmp_path):
+    """Coupler curves: the crank pin (a frame) and the dyad's point P (no
+    frame of its own: its x, y signals) are traced in the animation."""
+    import json
+    import re
+    proc = run("simulate", os.path.join(ROOT, "models", "four_link_mechanisms.py"),
+               "--model", "DDDD", "--out", str(tmp_path), "--stop-time", "0.5",
+               "--trace", "crank.ctr2D2, dyad.xP:dyad.yP")
+    assert proc.returncode == 0, proc.stderr
+    html = (tmp_path / "animation.html").read_text()
+    data = json.loads(re.search(r'<script id="acausal2d-data" type="application/json">(.*?)'
+                                r'</script>', html, re.S).group(1))
+    traces = [(s["x"], s["y"]) for s in data["shapes"] if s["type"] == "trace"]
+    assert ("crank.ctr2D2.x", "crank.ctr2D2.y") in traces
+    assert ("dyad.xP", "dyad.yP") in traces
+    # the traced point moves on the rocker's circle about B0 = (0.4, 0), radius 0.3
+    x, y = (np.asarray(data["signals"][n], dtype=float) for n in ("dyad.xP", "dyad.yP"))
+    np.testing.assert_allclose(np.hypot(x - 0.4, y), 0.3, atol=1e-6)
+
+
+def test_unknown_trace_is_an_error_before_simulating(tmp_path):
+    proc = run("simulate", os.path.join(ROOT, "models", "four_link_mechanisms.py"),
+               "--model", "DDDD", "--out", str(tmp_path), "--trace", "dyad.P")
+    assert proc.returncode == 2
+    assert "cannot trace 'dyad.P'" in proc.stderr and "dyad.ctr2D3" in proc.stderr
+    assert "simulated" not in proc.stdout and "Traceback" not in proc.stderr
 
 
 def test_simulate_with_parameter_and_stop_time(tmp_path):
