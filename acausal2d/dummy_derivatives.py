@@ -188,13 +188,16 @@ class Formulation:
         self.n_mon = len(self.monitor_levels)
         self.det_fn = ca.Function("dets", args, [ca.vertcat(*[dets[k] for k in self.scan_levels])]) \
             if self.scan_levels else None
+        self.det_scan = None    # buffered evaluation of det_fn over many points (singularities)
         self.event_fn = ca.Function("events", args, [ca.vertcat(*g)]) if g else None
 
     def nodes_from(self, y, yp):
-        """Values of all variable nodes from IDA's y and yp."""
-        z = np.empty(len(self.y_pos) + len(self.sub_nodes))
-        z[self.y_pos] = y
-        z[self.sub_nodes] = yp[self.sub_from]
+        """Values of all variable nodes from IDA's y and yp (vectors, or
+        arrays with one point per row)."""
+        y, yp = np.asarray(y), np.asarray(yp)
+        z = np.empty(y.shape[:-1] + (len(self.y_pos) + len(self.sub_nodes),))
+        z[..., self.y_pos] = y
+        z[..., self.sub_nodes] = yp[..., self.sub_from]
         return z
 
     def y_from(self, z):

@@ -213,11 +213,10 @@ def _run_solve(solver, t, remaining, y0, yp0, form, out_t, out_z):
     ts, ys, yps = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
     event = sol if sol.status == 2 else None
     n = len(ts) - (1 if event is not None else 0)
-    for k in range(1, n):
-        if mid and k == 1:
-            continue
-        out_t.append(float(ts[k]))
-        out_z.append(form.nodes_from(ys[k], yps[k]))
+    keep = np.arange(2 if mid else 1, n)
+    if len(keep):
+        out_t.extend(ts[keep].tolist())
+        out_z.extend(form.nodes_from(ys[keep], yps[keep]))
     if event is not None:
         event = _Event(float(sol.t_events[-1]), np.asarray(sol.y_events)[-1],
                        np.asarray(sol.yp_events)[-1], np.asarray(sol.i_events)[-1])

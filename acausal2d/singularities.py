@@ -79,6 +79,44 @@ def limit_position(cm, selection, p, d, t, z):
             "condition": cond}
 
 
+class _DeterminantScan:
+    """The determinants of a formulation's watched dummy blocks at many
+    points: ``det_fn`` mapped over a chunk of points (parameters and
+    relation values shared) and evaluated through ``Function.buffer()`` on
+    numpy arrays filled in place - converting large arrays to CasADi
+    matrices would cost ten times the evaluation."""
+
+    CHUNK = 256
+
+    def __init__(self, form):
+        K = self.CHUNK
+        fn = form.det_fn.map("det_scan", "serial", K, [3, 4], [])
+        self.buf, self.eval = fn.buffer()
+        self.t = np.zeros(K)
+        self.y = np.zeros((K, form.n))         # column-major n x K = C-order K x n
+        self.yp = np.zeros((K, form.n))
+        self.p = np.zeros(form.det_fn.nnz_in(3))
+        self.d = np.zeros(form.det_fn.nnz_in(4))
+        self.out = np.zeros((K, form.det_fn.nnz_out(0)))
+        for k, a in enumerate((self.t, self.y, self.yp, self.p, self.d)):
+            self.buf.set_arg(k, memoryview(a))
+        self.buf.set_res(0, memoryview(self.out))
+
+    def __call__(self, T, Y, YP, p, d):
+        """Determinants (points x blocks) at times T with rows Y, YP."""
+        self.p[:] = p
+        self.d[:] = d
+        rows = []
+        for s in range(0, len(T), self.CHUNK):
+            m = min(self.CHUNK, len(T) - s)
+            self.t[:m] = T[s:s + m]
+            self.y[:m] = Y[s:s + m]
+            self.yp[:m] = YP[s:s + m]
+            self.eval()
+            rows.append(self.out[:m].copy())
+        return np.vstack(rows)
+
+
 def scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, found):
     """Find singular positions passed in the output points of a segment: the
     determinant of a watched dummy block changes sign, or has a local minimum
@@ -92,8 +130,9 @@ def scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, foun
     YP = np.zeros_like(Y)
     st = form.state_deriv >= 0
     YP[:, st] = Z[:, form.state_deriv[st]]
-    dets = form.det_fn.map(n)(T[None, :], Y.T, YP.T, np.repeat(p[:, None], n, 1),
-                              np.repeat(np.asarray(d, float)[:, None], n, 1)).full()
+    if form.det_scan is None:
+        form.det_scan = _DeterminantScan(form)
+    dets = form.det_scan(T, Y, YP, p, np.asarray(d, float)).T
     for row, k in zip(dets, form.scan_levels):
         scale = np.max(np.abs(row))
         if scale == 0:
