@@ -33,6 +33,14 @@ class CheckReport:
             lines.append("  degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, "
                          "g = %d joints), %d structural (position states)"
                          % (self.grubler, self.links, self.joints, self.structural_dof))
+            if self.structural_dof < self.grubler:
+                lines.append("                     (%d prescribed: drives that give the motion "
+                             "as a function of time, or constraints eq. 2.1 does not see)"
+                             % (self.grubler - self.structural_dof))
+            elif self.structural_dof > self.grubler:
+                lines.append("                     (%d more position states than eq. 2.1 "
+                             "counts: bodies or couplings without a declared topology)"
+                             % (self.structural_dof - self.grubler))
         else:
             lines.append("  degree of freedom: %d structural (position states); no planar "
                          "joints declared for eq. 2.1" % self.structural_dof)
