@@ -288,13 +288,12 @@ def _approach(prob, rtol, atol, start, t_next, keep):
     return last[0], form.nodes_from(last[1], last[2]), how, (times, kept)
 
 
-def _state_history(cm, form, out_t, out_z, seg_start, approach):
-    """(times, values, derivatives) of the held states of ``form`` at the
-    output points of the current segment and the steps of the approach."""
-    held = np.asarray(form.y_nodes)[form.differential]
-    if not len(held):
+def _state_history(out_t, out_z, seg_start, approach, keep, n_held):
+    """(times, values, derivatives) of the held states at the output points
+    of the current segment and the steps of the approach; ``keep`` lists the
+    ``n_held`` held nodes followed by their derivative nodes."""
+    if not n_held:
         return None
-    keep = np.concatenate([held, np.asarray(cm.R.A)[held]])
     ts = list(out_t[seg_start:])
     rows = [z[keep] for z in out_z[seg_start:]]
     if approach is not None:
@@ -304,7 +303,7 @@ def _state_history(cm, form, out_t, out_z, seg_start, approach):
         return None
     ts, order = np.unique(np.asarray(ts), return_index=True)
     rows = np.asarray(rows)[order]
-    return ts, rows[:, :len(held)], rows[:, len(held):]
+    return ts, rows[:, :n_held], rows[:, n_held:]
 
 
 class _Event:
@@ -405,7 +404,7 @@ def integrate(cm, z0, d0, p, times, rtol, atol, progress=None):
                     out_t.append(t)
                     out_z.append(z.copy())
                 continue
-            history = _state_history(cm, form, out_t, out_z, seg_start, approach)
+            history = _state_history(out_t, out_z, seg_start, approach, keep, len(held))
             if approach is None:      # IDA stopped right where it failed: start from there
                 approach = (sol.last.t, form.nodes_from(sol.last.y, sol.last.yp), "failed")
             jump = step_over(cm, selection, p, d, approach[0], approach[1], history, t_end,
