@@ -18,28 +18,12 @@ import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 import sksundae as sun  # noqa: E402
 
+from .buffered import Buffered  # noqa: E402
 from .errors import InitializationError, SimulationError  # noqa: E402
 from .initialize import solve_consistent  # noqa: E402
 from .singularities import (MAX_SINGULAR_EVENTS, MONITOR_THRESHOLD, consistent_for,  # noqa: E402
                             limit_position, reselect, scan_singular_positions, step_over)
 
-
-
-class _Buffered:
-    """A CasADi function bound to fixed numpy input/output arrays."""
-
-    def __init__(self, fn, inputs):
-        self.buf, self.eval = fn.buffer()
-        self.args = []
-        for k, arr in enumerate(inputs):
-            a = np.ascontiguousarray(arr, dtype=float).copy()
-            self.args.append(a)
-            self.buf.set_arg(k, memoryview(a))
-        self.outs = []
-        for k in range(fn.n_out()):
-            o = np.zeros(fn.nnz_out(k))
-            self.outs.append(o)
-            self.buf.set_res(k, memoryview(o))
 
 
 _MAX_STEPS = 5000     # IDA steps per output interval before a run is looked at again
@@ -56,9 +40,9 @@ class _Problem:
         z = np.zeros(n)
         self.form = form
         self.steps, self.t_last = 0, None
-        self.res = _Buffered(form.res_fn, [t, z, z, p, d])
-        self.jac = _Buffered(form.jac_fn, [t, z, z, p, d, np.zeros(1)])
-        self.ev = _Buffered(form.event_fn, [t, z, z, p, d]) if form.event_fn is not None else None
+        self.res = Buffered(form.res_fn, [t, z, z, p, d])
+        self.jac = Buffered(form.jac_fn, [t, z, z, p, d, np.zeros(1)])
+        self.ev = Buffered(form.event_fn, [t, z, z, p, d]) if form.event_fn is not None else None
         self.n_rel = form.n_rel
         self.n_mon = form.n_mon if monitor else 0
         self.mon_ref = np.ones(form.n_mon)

@@ -13,6 +13,7 @@ position.
 """
 import numpy as np
 
+from .buffered import Buffered
 from .errors import InitializationError, SimulationError
 from .initialize import solve_consistent
 
@@ -82,25 +83,20 @@ def limit_position(cm, selection, p, d, t, z):
 class _DeterminantScan:
     """The determinants of a formulation's watched dummy blocks at many
     points: ``det_fn`` mapped over a chunk of points (parameters and
-    relation values shared) and evaluated through ``Function.buffer()`` on
-    numpy arrays filled in place - converting large arrays to CasADi
-    matrices would cost ten times the evaluation."""
+    relation values shared) and evaluated through a :class:`Buffered` on
+    arrays filled in place - converting large arrays to CasADi matrices
+    would cost ten times the evaluation."""
 
     CHUNK = 256
 
     def __init__(self, form):
-        K = self.CHUNK
-        fn = form.det_fn.map("det_scan", "serial", K, [3, 4], [])
-        self.buf, self.eval = fn.buffer()
-        self.t = np.zeros(K)
-        self.y = np.zeros((K, form.n))         # column-major n x K = C-order K x n
-        self.yp = np.zeros((K, form.n))
-        self.p = np.zeros(form.det_fn.nnz_in(3))
-        self.d = np.zeros(form.det_fn.nnz_in(4))
-        self.out = np.zeros((K, form.det_fn.nnz_out(0)))
-        for k, a in enumerate((self.t, self.y, self.yp, self.p, self.d)):
-            self.buf.set_arg(k, memoryview(a))
-        self.buf.set_res(0, memoryview(self.out))
+        K, fn = self.CHUNK, form.det_fn
+        self.fn = Buffered(fn.map("det_scan", "serial", K, [3, 4], []),
+                           [np.zeros(K), np.zeros(K * form.n), np.zeros(K * form.n),
+                            np.zeros(fn.nnz_in(3)), np.zeros(fn.nnz_in(4))])
+        t, y, yp, self.p, self.d = self.fn.args
+        self.t, self.y, self.yp = t, y.reshape(K, form.n), yp.reshape(K, form.n)
+        self.out = self.fn.outs[0].reshape(K, fn.nnz_out(0))
 
     def __call__(self, T, Y, YP, p, d):
         """Determinants (points x blocks) at times T with rows Y, YP."""
@@ -112,7 +108,7 @@ class _DeterminantScan:
             self.t[:m] = T[s:s + m]
             self.y[:m] = Y[s:s + m]
             self.yp[:m] = YP[s:s + m]
-            self.eval()
+            self.fn.eval()
             rows.append(self.out[:m].copy())
         return np.vstack(rows)
 
