@@ -83,7 +83,7 @@ import numpy as np
 from acausal2d.connectors import BandPort, Frame, RealInput, RotationalFlange
 from acausal2d.dsl import Component, Parameter, Variable, start
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library.planar import is_connected, root_component, start_value as _start_of
+from acausal2d.library.planar import is_connected, root_component, start_value
 from acausal2d.symbols import der
 
 __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
@@ -638,7 +638,7 @@ def _frame_geometry(conn):
         return (float(_num(owner, "x0")), float(_num(owner, "y0")), 0.0)
     if isinstance(owner, planar.Body) and name == "frame_a" \
             and ("x" in owner._overrides or "y" in owner._overrides):
-        return (_start_of(owner, "x"), _start_of(owner, "y"), 0.0)
+        return (start_value(owner, "x"), start_value(owner, "y"), 0.0)
     return None
 
 
@@ -699,7 +699,7 @@ def prepare_belts(model):
             gam_a, gam_b = g1, g2 + _PI
         else:
             if "gamma" in span._overrides:
-                gam = _start_of(span, "gamma")
+                gam = start_value(span, "gamma")
                 gam_a, gam_b = gam, gam + _PI
             elif a is None or b is None:
                 continue

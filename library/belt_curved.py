@@ -73,7 +73,8 @@ from acausal2d.connectors import BandPort, Frame
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.dsl import Parameter, Variable
 
-from .belt import _Wheel, _start_of, _num
+from .belt import _Wheel, _num
+from .planar import start_value
 
 __all__ = ["Contour", "SupportContour", "CurvedPulley", "CurvedDrum"]
 
@@ -563,14 +564,14 @@ class _CurvedWheel(_Wheel):
     def _band_geometry(self, name):
         s = self.w if name == "ctrK1" else -self.w
         return _ContourGeometry(float(_num(self, "x0")), float(_num(self, "y0")),
-                                _start_of(self, "phi"), self.contour, s)
+                                start_value(self, "phi"), self.contour, s)
 
     def _start_kappa(self, gamma, s):
         """Contact angle (pulley frame) for the leaving angle gamma with the
         wheel on side s: outward normal s * perp(e), at the angle
         gamma + s pi/2 (world), i.e. on the same branch as the circular
         pulley's kappa = gamma + s pi/2 (so the absolute wound lengths agree)."""
-        theta = gamma + s * _PI / 2 - _start_of(self, "phi")
+        theta = gamma + s * _PI / 2 - start_value(self, "phi")
         return self.contour.support_angle(theta)
 
     def _contact(self, port, kap, side):
@@ -693,7 +694,7 @@ class CurvedPulley(_CurvedWheel):
             k2 = self._start_kappa(g2, -w)
             self.set_start("kappa2", k2)
         if k1 is not None and k2 is not None:
-            k1, k2 = _start_of(self, "kappa1"), _start_of(self, "kappa2")
+            k1, k2 = start_value(self, "kappa1"), start_value(self, "kappa2")
             raw = w * (k2 - k1)
             n = float(-math.floor(raw / _TWO_PI))
             if raw + _TWO_PI * n == 0.0:

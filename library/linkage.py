@@ -382,13 +382,16 @@ class _Linkage(Component):
         ``xn0 = yn0 = 0``): the connection point ``ctr2Dn``.  Otherwise Pn is
         not a result signal and the connection point is returned as an
         approximation (second value False)."""
-        conn = self._conn(n)
-        if not is_connected(conn):
+        if not is_connected(self._conn(n)):
             return ["x%d0" % n, "y%d0" % n], True
-        exact = (self._frame_ref.get(n) == "relative"
-                 and float(self._param_values["x%d0" % n]) == 0.0
-                 and float(self._param_values["y%d0" % n]) == 0.0)
-        return ["ctr2D%d.x" % n, "ctr2D%d.y" % n], exact
+        return ["ctr2D%d.x" % n, "ctr2D%d.y" % n], self._at_connection(n)
+
+    def _at_connection(self, n):
+        """True if the placed point Pn of port n is the connection point
+        itself (``frameRef='relative'`` with ``xn0 = yn0 = 0``)."""
+        return (self._frame_ref.get(n) == "relative"
+                and float(self._param_values["x%d0" % n]) == 0.0
+                and float(self._param_values["y%d0" % n]) == 0.0)
 
     def _housing_shapes(self, n, point, phi=0.0):
         """Ground symbol at ``point`` when port n is fixed to ground, or the
@@ -397,13 +400,9 @@ class _Linkage(Component):
         conn = self._conn(n)
         if self._grounded(conn):
             return [{"type": "ground", "x": point[0], "y": point[1], "phi": phi}]
-        if is_connected(conn) and list(point) != ["ctr2D%d.x" % n, "ctr2D%d.y" % n]:
-            exact_at_c = (self._frame_ref.get(n) == "relative"
-                          and float(self._param_values["x%d0" % n]) == 0.0
-                          and float(self._param_values["y%d0" % n]) == 0.0)
-            if not exact_at_c:
-                return [{"type": "link", "points": [["ctr2D%d.x" % n, "ctr2D%d.y" % n],
-                                                    list(point)]}]
+        c = ["ctr2D%d.x" % n, "ctr2D%d.y" % n]
+        if is_connected(conn) and list(point) != c and not self._at_connection(n):
+            return [{"type": "link", "points": [c, list(point)]}]
         return []
 
     def _body_shape(self, mass, xrel, yrel, xS, yS):
