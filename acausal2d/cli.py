@@ -40,7 +40,8 @@ class _Progress:
     def __init__(self, stream=None):
         self.start = time.perf_counter()
         self.last = None
-        if stream is None:
+        self.own = stream is None
+        if self.own:
             sys.stderr.flush()
             stream = os.fdopen(os.dup(sys.stderr.fileno()), "w")
         self.stream = stream
@@ -59,10 +60,14 @@ class _Progress:
         self.stream.flush()
 
     def close(self):
-        """End the bar's line (if it was shown) and release the stream."""
+        """End the bar's line (if it was shown); close the duplicated
+        descriptor (a stream passed in stays open)."""
         if self.shown:
             self.stream.write("\n")
-        self.stream.flush()
+        if self.own:
+            self.stream.close()
+        else:
+            self.stream.flush()
 
 
 def cmd_simulate(args):
