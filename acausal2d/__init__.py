@@ -10,16 +10,16 @@ _os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is import
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
                     fmin, fmax, sign, if_else, pi)
 
-from .connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
+from .language.connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
                          RotationalFlange, TranslationalFlange)
-from .dsl import Component, Parameter, Variable, start  # noqa: E402,F401
+from .language.dsl import Component, Parameter, Variable, start  # noqa: E402,F401
 from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
                      SimulationError, StructuralError)
-from .symbols import der, time  # noqa: E402,F401
+from .language.symbols import der, time, time_derivative  # noqa: E402,F401
 # imported as functions here, so that importing the submodules of the same
 # names later does not replace them in the package namespace
-from .check import check  # noqa: E402,F401
-from .compare import compare  # noqa: E402,F401
+from .tools.check import check  # noqa: E402,F401
+from .tools.compare import compare  # noqa: E402,F401
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
@@ -27,21 +27,21 @@ Model = Component
 
 def compile_model(model, **options):
     """Flatten, index-reduce and prepare ``model`` for simulation; returns a
-    :class:`~acausal2d.compiler.CompiledModel` that simulates many times with
+    :class:`~acausal2d.compiler.pipeline.CompiledModel` that simulates many times with
     different parameter values without recompiling."""
-    from .compiler import compile_model as _compile
+    from .compiler.pipeline import compile_model as _compile
     return _compile(model, **options)
 
 
 def simulate(model, stop_time=None, **options):
     """Compile (if needed) and simulate ``model``; returns a
-    :class:`~acausal2d.result.Result`.  See :meth:`CompiledModel.simulate`."""
-    from .compiler import CompiledModel
+    :class:`~acausal2d.tools.result.Result`.  See :meth:`CompiledModel.simulate`."""
+    from .compiler.pipeline import CompiledModel
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
 
 
 def load_model(path, name=None, **kwargs):
-    """Instantiate the model of a model file (see :func:`acausal2d.loader.load_model`)."""
-    from .loader import load_model as _load
+    """Instantiate the model of a model file (see :func:`acausal2d.tools.loader.load_model`)."""
+    from .tools.loader import load_model as _load
     return _load(path, name, **kwargs)

@@ -25,7 +25,7 @@ Elements and ports (seed names)
 
 Band connection (seed ch. 4.1)
 ------------------------------
-A :class:`~acausal2d.connectors.BandPort` carries two potentials and is
+A :class:`~acausal2d.language.connectors.BandPort` carries two potentials and is
 connected one-to-one:
 
 - ``gamma``: the direction (unwrapped angle, world frame) in which the span
@@ -80,11 +80,10 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d.connectors import BandPort, Frame, RealInput, RotationalFlange
-from acausal2d.dsl import Component, Parameter, Variable, start
+from acausal2d import (BandPort, Component, der, Frame, Parameter, RealInput,
+                       RotationalFlange, start, Variable)
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library.planar import is_connected, root_component, start_value
-from acausal2d.symbols import der
 
 __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
            "connect_band", "prepare_belts", "tangent", "tangent_any", "open_belt_closed_form"]

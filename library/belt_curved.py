@@ -69,9 +69,8 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d.connectors import BandPort, Frame
+from acausal2d import BandPort, Frame, Parameter, Variable
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.dsl import Parameter, Variable
 
 from .belt import _Wheel, _num
 from .planar import start_value

@@ -33,11 +33,9 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d.connectors import Frame
-from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d import Component, der, Frame, Parameter, Variable
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library.belt import tangent
-from acausal2d.symbols import der
 
 __all__ = ["Carriage", "Hook", "cycloid", "move", "span_geometry"]
 
@@ -58,7 +56,7 @@ class Carriage(Component):
     angle.  Connect pulley housings (``Pulley.ctr2D1``), rope ends or other
     frames to them.  The reference point O of the carriage frame is at
     ``(x, y)`` with angle ``phi`` (outputs; give start values with
-    :func:`~acausal2d.dsl.start`); ``frame_a`` is a frame at O.
+    :func:`~acausal2d.language.dsl.start`); ``frame_a`` is a frame at O.
 
     Equations: mount positions ``r_i = O + R(phi) a_i``; Newton-Euler at the
     centre of gravity ``S = O + R(phi) cog``:

@@ -7,7 +7,7 @@ Elements: :class:`DAN` (rotary drive), :class:`SAN` (linear drive),
 Conventions (common to all elements)
 ------------------------------------
 * Ports carry the seed's names: ``ctr2D1`` .. ``ctr2D4`` are planar frames
-  (:class:`~acausal2d.connectors.Frame`: x, y, phi; fx, fy, t = force and
+  (:class:`~acausal2d.language.connectors.Frame`: x, y, phi; fx, fy, t = force and
   torque acting *on the element* from the connected part, world frame);
   ``ctrR1``/``ctrR2`` are 1D rotational and ``ctrT1``/``ctrT2`` 1D
   translational flanges.
@@ -93,12 +93,11 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
-from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d import (Component, der, Frame, Parameter, RotationalFlange, TranslationalFlange,
+                       Variable)
 from acausal2d.errors import InitializationError, ModelDefinitionError
 from acausal2d.library.planar import is_connected, root_component
-from acausal2d.unionfind import connector_sets
-from acausal2d.symbols import der
+from acausal2d.language.unionfind import connector_sets
 
 __all__ = ["DAN", "SAN", "FGP", "DDD", "DDS", "DSD", "SSD", "SDS", "AssemblyError",
            "assembly_values"]

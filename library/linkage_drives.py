@@ -19,10 +19,9 @@ power use ``der()`` of the compiler.
 import casadi as ca
 import numpy as np
 
-from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
-from acausal2d.dsl import Component, Parameter, Variable
+from acausal2d import (Component, der, Frame, Parameter, RotationalFlange, time,
+                       time_derivative, TranslationalFlange, Variable)
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.symbols import der, time, time_derivative
 
 __all__ = ["Preset", "TorqueSource", "ForceSource", "RelativeAngle", "RelativePosition",
            "RelativeDisplacement", "TorqueSensor", "ForceSensor"]

@@ -4,7 +4,7 @@ positive), as described in the project's reference data README.
 
 Each element states position-level equations, force/torque balances and mass
 data only; velocities and accelerations are produced by index reduction.
-The flows of a :class:`~acausal2d.connectors.Frame` are the force and torque
+The flows of a :class:`~acausal2d.language.connectors.Frame` are the force and torque
 acting on the element from the connected part (seed eq. 4.1 at the nodes).
 """
 import math
@@ -12,10 +12,9 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d.connectors import Frame, RotationalFlange, TranslationalFlange
-from acausal2d.dsl import Component, Parameter, Variable, start
-from acausal2d.symbols import der
-from acausal2d.unionfind import connector_sets
+from acausal2d import (Component, der, Frame, Parameter, RotationalFlange, start,
+                       TranslationalFlange, Variable)
+from acausal2d.language.unionfind import connector_sets
 
 
 class PlanarWorld(Component):
@@ -46,7 +45,7 @@ def root_component(comp):
 
 def is_connected(conn):
     """True if the connector ``conn`` appears in a connect statement of its
-    model (see :func:`acausal2d.unionfind.connector_sets`)."""
+    model (see :func:`acausal2d.language.unionfind.connector_sets`)."""
     _, connected = connector_sets(root_component(conn.owner))
     return id(conn) in connected
 
@@ -66,7 +65,7 @@ def fixed_of(conn):
 
 def start_value(comp, name):
     """Numeric start value of the variable ``name`` of ``comp``: the value
-    given with :func:`~acausal2d.dsl.start` (or a number) when the component
+    given with :func:`~acausal2d.language.dsl.start` (or a number) when the component
     was created, else the declaration's default (0.0 when that is not a
     number, e.g. a parameter expression set by an assembly)."""
     ov = comp._overrides.get(name)

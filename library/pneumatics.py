@@ -51,9 +51,7 @@ follows from the start temperature ``T`` (``fixed``, default ``T_in``):
 """
 import casadi as ca
 
-from acausal2d.connectors import TranslationalFlange
-from acausal2d.dsl import Component, Parameter, Variable
-from acausal2d.symbols import der
+from acausal2d import Component, der, Parameter, TranslationalFlange, Variable
 
 __all__ = ["GasCylinder"]
 

@@ -3,9 +3,7 @@ flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
 import casadi as ca
 
-from acausal2d.connectors import RealInput, RotationalFlange
-from acausal2d.dsl import Component, Parameter, Variable
-from acausal2d.symbols import der
+from acausal2d import Component, der, Parameter, RealInput, RotationalFlange, Variable
 
 
 class Fixed(Component):

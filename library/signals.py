@@ -1,9 +1,7 @@
 """Signal sources (RealOutput ``y``)."""
 import casadi as ca
 
-from acausal2d.connectors import RealOutput
-from acausal2d.dsl import Component, Parameter
-from acausal2d.symbols import time
+from acausal2d import Component, Parameter, RealOutput, time
 
 
 class _Source(Component):

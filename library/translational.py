@@ -1,9 +1,7 @@
 """1D translational mechanics (Modelica.Mechanics.Translational conventions):
 flange.s is the absolute position, flange.f the force acting on the element
 from the connected part."""
-from acausal2d.connectors import RealInput, TranslationalFlange
-from acausal2d.dsl import Component, Parameter, Variable
-from acausal2d.symbols import der
+from acausal2d import Component, der, Parameter, RealInput, TranslationalFlange, Variable
 
 
 class Fixed(Component):

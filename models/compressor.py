@@ -95,14 +95,14 @@ import casadi as ca
 import numpy as np
 
 from acausal2d import Component, start
-from acausal2d.connectors import Frame
-from acausal2d.dsl import Parameter, Variable
+from acausal2d.language.connectors import Frame
+from acausal2d.language.dsl import Parameter, Variable
 from acausal2d.library import rotational, translational
 from acausal2d.library.belt import Belt, Pulley, connect_band, tangent
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
 from acausal2d.library.pneumatics import GasCylinder
 from acausal2d.library.signals import TimeFunction
-from acausal2d.symbols import der
+from acausal2d.language.symbols import der
 
 G = 9.81
 # belt drive

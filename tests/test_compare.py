@@ -1,11 +1,11 @@
-"""Tests of acausal2d.compare: reading result/reference CSV files and
+"""Tests of acausal2d.tools.compare: reading result/reference CSV files and
 comparing signals inside a tolerance tube."""
 import io
 
 import numpy as np
 import pytest
 
-from acausal2d.compare import Comparison, compare, read_csv, run_compare_cli
+from acausal2d.tools.compare import Comparison, compare, read_csv, run_compare_cli
 from acausal2d.errors import Acausal2dError
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

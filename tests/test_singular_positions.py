@@ -176,7 +176,7 @@ def test_buffered_determinant_scan_equals_plain_evaluation():
     determinants in chunks through a buffer; across chunk boundaries
     (600 points, chunks of 256) it gives the values of a plain call."""
     from conftest import load_model_class
-    from acausal2d.singularities import _DeterminantScan
+    from acausal2d.runtime.singularities import _DeterminantScan
     cm = acausal2d.compile_model(load_model_class("piston_engine_dynamic.py",
                                                   "PistonEngineDynamic")())
     p = cm.parameter_values()

@@ -14,7 +14,7 @@ position.
 import numpy as np
 
 from .buffered import Buffered
-from .errors import InitializationError, SimulationError
+from ..errors import InitializationError, SimulationError
 from .initialize import solve_consistent
 
 MONITOR_THRESHOLD = 0.25     # re-check the state selection when a block's |det| drops 4x

@@ -9,9 +9,9 @@ variables of the failed augmenting-path search are differentiated
 symbolically (chain rule over the derivative symbols), so library code never
 writes velocity or acceleration equations.
 """
-from . import symbols
+from ..language import symbols
 from .incidence import variable_incidence
-from .errors import StructuralError
+from ..errors import StructuralError
 
 
 class IndexReduced:

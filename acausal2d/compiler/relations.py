@@ -10,7 +10,7 @@ kept continuous.
 """
 import casadi as ca
 
-from . import symbols
+from ..language import symbols
 
 _REL_OPS = (ca.OP_LT, ca.OP_LE, ca.OP_SIGN, ca.OP_FMIN, ca.OP_FMAX)
 

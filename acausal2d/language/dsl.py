@@ -31,7 +31,7 @@ import numbers
 import numpy as np
 
 from . import symbols
-from .errors import ModelDefinitionError
+from ..errors import ModelDefinitionError
 
 STATE_SELECT = ("never", "avoid", "default", "prefer", "always")
 
@@ -311,7 +311,7 @@ class Component:
 
     def shapes(self):
         """How the component is drawn in the animation: a list of shape dicts
-        (kinds in :mod:`acausal2d.animation`) whose signal names are relative
+        (kinds in :mod:`acausal2d.tools.animation`) whose signal names are relative
         to the component, e.g. ``{"type": "joint", "x": "frame_a.x", "y":
         "frame_a.y"}``.  Default: nothing."""
         return []

@@ -8,7 +8,7 @@ import os
 import sys
 import time
 
-from .errors import Acausal2dError
+from ..errors import Acausal2dError
 
 
 def _parse_set(items):
@@ -72,7 +72,7 @@ class _Progress:
 
 def cmd_simulate(args):
     from .compare import safe_filename
-    from .compiler import compile_model
+    from ..compiler.pipeline import compile_model
     from .loader import load_model
     from .scene import trace_signals
     model = load_model(args.model_file, args.model)

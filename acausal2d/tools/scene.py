@@ -2,7 +2,7 @@
 declarations.
 
 A component declares how it is drawn by returning shape dicts from
-``shapes()`` (see :mod:`acausal2d.animation` for the kinds), with signal
+``shapes()`` (see :mod:`acausal2d.tools.animation` for the kinds), with signal
 names relative to the component (``"frame_a.x"``); this module qualifies
 them with the component's path and collects the signals from the result.
 """
@@ -52,7 +52,7 @@ def trace_signals(traces, names):
     a frame (``"dyad.ctr2D3"``: its ``.x`` and ``.y``) or a pair of signals
     ``"x_name:y_name"`` (``"dyad.xP:dyad.yP"``).  ``names``: the signals
     available; an unknown entry raises an error listing the frames."""
-    from .errors import Acausal2dError
+    from ..errors import Acausal2dError
     available = set(names)
     pairs = []
     for entry in traces:
@@ -75,7 +75,7 @@ def trace_signals(traces, names):
 
 
 def build_scene(result, traces=(), title=None):
-    """Scene dict for :func:`acausal2d.animation.render_html` from a result
+    """Scene dict for :func:`acausal2d.tools.animation.render_html` from a result
     of a compiled model; ``traces`` are points whose path is drawn (coupler
     curves): frame names or ``"x_name:y_name"`` pairs, see
     :func:`trace_signals`."""

@@ -20,7 +20,7 @@ with ``required=True`` must be connected.
 """
 from . import symbols
 from .dsl import Variable, VarInfo, _join
-from .errors import ModelDefinitionError
+from ..errors import ModelDefinitionError
 
 
 class Connector:

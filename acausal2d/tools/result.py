@@ -4,7 +4,7 @@ import os
 
 import numpy as np
 
-from .errors import Acausal2dError
+from ..errors import Acausal2dError
 
 
 class Result:
@@ -83,7 +83,7 @@ class Result:
     def plot(self, names=None, path=None, title=None):
         """Plot signals over time (default: the model's outputs); writes a
         PNG to ``path`` or returns a matplotlib Figure.  See
-        :func:`acausal2d.plotting.plot`."""
+        :func:`acausal2d.tools.plotting.plot`."""
         from .plotting import plot
         return plot(self, names, path, title)
 
@@ -91,7 +91,7 @@ class Result:
         """Write a self-contained HTML animation of the mechanism, drawn from
         the components' ``shapes()``; ``traces`` are frame names (or
         ``"x_name:y_name"`` pairs) whose path is drawn.  See
-        :mod:`acausal2d.animation`."""
+        :mod:`acausal2d.tools.animation`."""
         from .scene import animate
         return animate(self, path, traces, title)
 

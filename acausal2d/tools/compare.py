@@ -3,7 +3,7 @@ OpenModelica) inside a tolerance tube.
 
 Typical use::
 
-    from acausal2d.compare import compare
+    from acausal2d.tools.compare import compare
     cmp = compare("result.csv", "reference.csv", abs_tol=1e-3, plot_dir="plots")
     print(cmp.table())
     assert cmp.passed
@@ -49,7 +49,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import Acausal2dError
+from ..errors import Acausal2dError
 
 DEFAULT_ABS_TOL = 2e-3
 """Absolute tolerance used when neither ``abs_tol`` nor ``rel_tol`` is given."""

@@ -8,8 +8,8 @@ declared with ``ground=``).
 import casadi as ca
 import numpy as np
 
-from .errors import ModelDefinitionError
-from .unionfind import UnionFind
+from ..errors import ModelDefinitionError
+from ..language.unionfind import UnionFind
 
 
 class Equation:

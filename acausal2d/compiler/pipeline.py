@@ -10,18 +10,18 @@ import time as _time
 import casadi as ca
 import numpy as np
 
-from . import symbols
+from ..language import symbols
 from .aliases import eliminate_all_aliases
 from .aliases import substitution as alias_substitution
 from .balance import check_balance
-from .dsl import STATE_SELECT
+from ..language.dsl import STATE_SELECT
 from .dummy_derivatives import Formulation, select_dummies
-from .errors import Acausal2dError, InitializationError, ModelDefinitionError
+from ..errors import Acausal2dError, InitializationError, ModelDefinitionError
 from .flatten import flatten
-from .initialize import InitialSystem, choose_initial_conditions, solve_consistent
+from ..runtime.initialize import InitialSystem, choose_initial_conditions, solve_consistent
 from .pantelides import pantelides
 from .relations import extract_relations
-from .result import Result
+from ..tools.result import Result
 
 
 def compile_model(model):
@@ -243,7 +243,7 @@ class CompiledModel:
     # ------------------------------------------------------------ simulate
     def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
                  start_time=0.0, output_times=None, progress=None):
-        """Simulate and return a :class:`~acausal2d.result.Result`.
+        """Simulate and return a :class:`~acausal2d.tools.result.Result`.
 
         stop_time: end time (default: the model's ``stop_time`` attribute or
         1 s); params: {dotted parameter name: value}; rtol/atol: integrator
@@ -251,7 +251,7 @@ class CompiledModel:
         intervals: number of output intervals (default 500) unless
         ``output_times`` is given; progress: optional callable(t, t_end).
         """
-        from .integrate import integrate
+        from ..runtime.integrate import integrate
         exp = dict(getattr(self.model, "experiment", {}) or {})
         stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
         rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))

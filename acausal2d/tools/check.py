@@ -5,7 +5,7 @@ from collections import Counter
 
 import numpy as np
 
-from .unionfind import UnionFind, connector_sets
+from ..language.unionfind import UnionFind, connector_sets
 
 
 class CheckReport:
@@ -106,7 +106,7 @@ def _index(differentiations, differential):
 def check(model):
     """Compile ``model`` (a Component instance or a CompiledModel) and return a
     :class:`CheckReport`; raises the project's errors for a broken model."""
-    from .compiler import CompiledModel
+    from ..compiler.pipeline import CompiledModel
     cm = model if isinstance(model, CompiledModel) else CompiledModel(model)
     root = cm.model
     p = cm.parameter_values()

@@ -14,8 +14,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .dsl import STATE_SELECT
-from .errors import InitializationError
+from ..language.dsl import STATE_SELECT
+from ..errors import InitializationError
 
 _WATCHDOG = 3   # Newton iterations whose full step is accepted even if the residual grows
 

@@ -18,9 +18,9 @@ import casadi as ca
 import numpy as np
 import scipy.linalg as sla
 
-from . import symbols
-from .dsl import STATE_SELECT
-from .errors import SimulationError
+from ..language import symbols
+from ..language.dsl import STATE_SELECT
+from ..errors import SimulationError
 
 _MAX_MONITOR = 40          # largest dummy block whose determinant is watched during a run
 _MAX_DET_NODES = 20000     # ... and the largest symbolic determinant
@@ -85,7 +85,7 @@ def _pick(H, prio, need, what):
 def select_dummies(R, n_original, priority, nominal, jacobian):
     """Select dummy derivatives.
 
-    R: :class:`~acausal2d.pantelides.IndexReduced`; priority[j], nominal[j]:
+    R: :class:`~acausal2d.compiler.pantelides.IndexReduced`; priority[j], nominal[j]:
     per variable node; jacobian(eq_ids, node_ids) -> dense numpy matrix at the
     current point.  Returns a :class:`Selection`.
     """

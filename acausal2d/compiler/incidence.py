@@ -3,7 +3,7 @@ import casadi as ca
 import numpy as np
 import scipy.sparse as sp
 
-from . import symbols
+from ..language import symbols
 
 
 def variable_incidence(exprs):

@@ -1,7 +1,7 @@
 """PNG plots of result signals (matplotlib, Agg backend)."""
 import os
 
-from .errors import Acausal2dError
+from ..errors import Acausal2dError
 
 
 def plot(result, names=None, path=None, title=None):

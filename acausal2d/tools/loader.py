@@ -4,8 +4,8 @@ import inspect
 import os
 import sys
 
-from .dsl import Component
-from .errors import ModelDefinitionError
+from ..language.dsl import Component
+from ..errors import ModelDefinitionError
 
 
 def load_model(path, name=None, **kwargs):

@@ -5,7 +5,7 @@ are CasADi functions evaluated through ``Function.buffer()``.  The run is
 split into segments at events: a relation changes its value (then the
 system is re-initialized with the states held), or a dynamically selected
 dummy block becomes ill-conditioned (then the states are re-selected at
-that point, see :mod:`acausal2d.singularities`).  Event instants are
+that point, see :mod:`acausal2d.runtime.singularities`).  Event instants are
 recorded twice (left and right limit).
 """
 import os
@@ -19,7 +19,7 @@ import scipy.sparse as sp  # noqa: E402
 import sksundae as sun  # noqa: E402
 
 from .buffered import Buffered  # noqa: E402
-from .errors import InitializationError, SimulationError  # noqa: E402
+from ..errors import InitializationError, SimulationError  # noqa: E402
 from .initialize import solve_consistent  # noqa: E402
 from .singularities import (MAX_SINGULAR_EVENTS, MONITOR_THRESHOLD, consistent_for,  # noqa: E402
                             limit_position, reselect, scan_singular_positions, step_over)

@@ -10,9 +10,9 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import maximum_bipartite_matching
 
-from . import symbols
+from ..language import symbols
 from .incidence import variable_incidence
-from .errors import StructuralError
+from ..errors import StructuralError
 
 _LIST = 20
 

@@ -82,7 +82,7 @@ import pathlib
 
 import numpy as np
 
-from .errors import Acausal2dError
+from ..errors import Acausal2dError
 
 __all__ = ["validate_scene", "render_html", "write_html", "SHAPE_TYPES", "MAX_FRAMES"]
 

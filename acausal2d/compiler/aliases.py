@@ -9,8 +9,8 @@ the main source of aliases.
 """
 import casadi as ca
 
-from . import symbols
-from .dsl import STATE_SELECT
+from ..language import symbols
+from ..language.dsl import STATE_SELECT
 
 _MAX_NODES = 12
 
