@@ -12,7 +12,7 @@ from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs
 
 from .language.connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
                          RotationalFlange, TranslationalFlange)
-from .language.dsl import Component, Parameter, Variable, start  # noqa: E402,F401
+from .language.dsl import Component, Outer, Parameter, Variable, start  # noqa: E402,F401
 from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
                      SimulationError, StructuralError)
 from .language.symbols import der, time, time_derivative  # noqa: E402,F401
@@ -25,18 +25,19 @@ Model = Component
 """Alias of :class:`Component` for top-level models."""
 
 
-def compile_model(model, **options):
+def compile_model(model):
     """Flatten, index-reduce and prepare ``model`` for simulation; returns a
-    :class:`~acausal2d.compiler.pipeline.CompiledModel` that simulates many times with
-    different parameter values without recompiling."""
-    from .compiler.pipeline import compile_model as _compile
-    return _compile(model, **options)
+    :class:`~acausal2d.tools.compiled.CompiledModel` that simulates many
+    times with different parameter values without recompiling."""
+    from .tools.compiled import compile_model as _compile
+    return _compile(model)
 
 
 def simulate(model, stop_time=None, **options):
     """Compile (if needed) and simulate ``model``; returns a
-    :class:`~acausal2d.tools.result.Result`.  See :meth:`CompiledModel.simulate`."""
-    from .compiler.pipeline import CompiledModel
+    :class:`~acausal2d.tools.result.Result`.  See
+    :meth:`~acausal2d.tools.compiled.CompiledModel.simulate`."""
+    from .tools.compiled import CompiledModel
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
 

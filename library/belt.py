@@ -80,13 +80,13 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d import (BandPort, Component, der, Frame, Parameter, RealInput,
-                       RotationalFlange, start, Variable)
+from acausal2d import (BandPort, Component, der, Frame, Outer, Parameter, RealInput,
+                       RotationalFlange, Variable)
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library.planar import is_connected, root_component, start_value
+from acausal2d.library.planar import PlanarWorld, is_connected
 
 __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
-           "connect_band", "prepare_belts", "tangent", "tangent_any", "open_belt_closed_form"]
+           "connect_band", "belt_layout", "tangent", "tangent_any", "open_belt_closed_form"]
 
 _PI = math.pi
 
@@ -95,21 +95,19 @@ _PI = math.pi
 # common machinery
 # --------------------------------------------------------------------------
 class _BandElement(Component):
-    """Base of the belt-library elements: runs :func:`prepare_belts` on the
-    whole model once, before its symbols are created."""
+    """Base of the belt-library elements: start values and wrap-angle turns
+    from the tangent construction of all belts of the model at t0
+    (:func:`belt_layout`, computed once per flattening)."""
 
-    def before_flatten(self):
-        root = root_component(self)
-        if not root.__dict__.get("_belts_prepared", False):
-            root.__dict__["_belts_prepared"] = True
-            prepare_belts(root)
+    def derived_parameters(self, context):
+        return context.shared("belt layout", lambda: belt_layout(context.model)) \
+            .params.get(id(self), {})
+
+    def guesses(self, context):
+        return context.shared("belt layout", lambda: belt_layout(context.model)) \
+            .guesses.get(id(self), {})
 
 
-def _gravity(comp):
-    world = comp.world()
-    if world is None:
-        raise RuntimeError("no PlanarWorld in the model")
-    return world.g
 
 
 # --------------------------------------------------------------------------
@@ -180,7 +178,7 @@ class Belt(_Span):
     """
     c = Parameter(1e6, "N", "stiffness per unit strain (k_Bc)")
     d = Parameter(0.0, "N.s", "damping per unit strain (b_Bc)")
-    eps = Variable(fixed=True, unit="1", doc="strain (l - l_u)/l_u (eq. 4.56)")
+    eps = Variable(fixed=True, nominal=1e-5, unit="1", doc="strain (l - l_u)/l_u (eq. 4.56)")
     l_u = Variable(start=1.0, unit="m", state_select="avoid",
                    doc="unstretched material length in the span (l_x)")
     l_u0 = Variable(start=1.0, unit="m", state_select="avoid",
@@ -255,7 +253,7 @@ class NozzleBelt(_BandElement):
     gamma1 = Variable(unit="rad", doc="angle P1 -> P3 (eq. 4.70)")
     gamma2 = Variable(unit="rad", doc="angle P3 -> P2 (eq. 4.71)")
     F = Variable(unit="N", doc="band force")
-    eps = Variable(fixed=True, unit="1", doc="strain")
+    eps = Variable(fixed=True, nominal=1e-5, unit="1", doc="strain")
     l_u = Variable(start=2.0, unit="m", state_select="avoid", doc="unstretched material length")
     l_u0 = Variable(start=2.0, unit="m", state_select="avoid", doc="constant part of l_u")
 
@@ -297,7 +295,7 @@ class NozzleBelt(_BandElement):
 # --------------------------------------------------------------------------
 class _Wheel(_BandElement):
     """Mass, housing, flange and bearing friction shared by pulley and drum."""
-    needs_world = True
+    world = Outer(PlanarWorld)
     x0 = Parameter(0.0, "m", "x of the axis P1 at t0 (fixed position if ctr2D1 is unconnected)")
     y0 = Parameter(0.0, "m", "y of the axis P1 at t0 (fixed position if ctr2D1 is unconnected)")
     phi0 = Parameter(0.0, "rad", "housing angle if ctr2D1 is unconnected")
@@ -348,9 +346,9 @@ class _Wheel(_BandElement):
             eqs.append(self.T_f == 0)
         # housing (massless): ctr2D1.t carries friction and flange torque
         eqs.append(P.t == self.T_f + R.tau)
-        m_num = float(np.asarray(self._param_values["m"]))
-        J_num = float(np.asarray(self._param_values["J"]))
-        cog = np.asarray(self._param_values["cog"], dtype=float)
+        m_num = float(np.asarray(self.parameter_value("m")))
+        J_num = float(np.asarray(self.parameter_value("J")))
+        cog = np.asarray(self.parameter_value("cog"), dtype=float)
         massive = m_num != 0.0
         offset = massive and np.any(cog != 0.0)
         c, s = ca.cos(self.phi), ca.sin(self.phi)
@@ -364,7 +362,7 @@ class _Wheel(_BandElement):
             mom = mom + (x - Sx) * k.fy - (y - Sy) * k.fx
         mom = mom + self.T_f + R.tau
         if massive:
-            g = _gravity(self)
+            g = self.world.g
             eqs += [self.m * der(der(Sx)) == fx + self.m * g[0],
                     self.m * der(der(Sy)) == fy + self.m * g[1]]
         else:
@@ -615,7 +613,7 @@ def open_belt_closed_form(r1, r2, d):
 
 
 def _num(comp, name):
-    return np.asarray(comp._param_values[name], dtype=float)
+    return np.asarray(comp.parameter_value(name), dtype=float)
 
 
 def _frame_geometry(conn):
@@ -636,17 +634,28 @@ def _frame_geometry(conn):
     if isinstance(owner, RopeDrive):
         return (float(_num(owner, "x0")), float(_num(owner, "y0")), 0.0)
     if isinstance(owner, planar.Body) and name == "frame_a" \
-            and ("x" in owner._overrides or "y" in owner._overrides):
-        return (start_value(owner, "x"), start_value(owner, "y"), 0.0)
+            and (owner.is_given("x") or owner.is_given("y")):
+        return (owner.start_value("x"), owner.start_value("y"), 0.0)
     return None
 
 
-def prepare_belts(model):
-    """Start values and wrap-angle offsets of all belt elements in ``model``
-    from the tangent construction at t0 (see the module docstring).  Called
-    automatically when the model is compiled; safe to call again."""
-    comps = list(model.components())
-    parent = {}
+class Layout:
+    """Result of :func:`belt_layout`: ``guesses[id(element)]`` and
+    ``params[id(element)]`` map variable / parameter names to values."""
+
+    def __init__(self):
+        self.guesses, self.params = {}, {}
+
+    def guess(self, comp, name, value):
+        self.guesses.setdefault(id(comp), {})[name] = value
+
+    def param(self, comp, name, value):
+        self.params.setdefault(id(comp), {})[name] = value
+
+
+def _partners(model):
+    """partners(conn): the other connectors connected to ``conn``."""
+    parent, conns = {}, {}
 
     def find(k):
         while parent[k] != k:
@@ -654,8 +663,7 @@ def prepare_belts(model):
             k = parent[k]
         return k
 
-    conns = {}
-    for comp in comps:
+    for comp in model.components():
         for a, b in comp._connections:
             for c in (a, b):
                 conns[id(c)] = c
@@ -668,71 +676,97 @@ def prepare_belts(model):
         groups.setdefault(find(k), []).append(conns[k])
 
     def partners(conn):
-        if id(conn) not in parent:
-            return []
-        return [c for c in groups[find(id(conn))] if c is not conn]
+        return [c for c in groups[find(id(conn))] if c is not conn] if id(conn) in parent else []
+    return partners
 
-    def end_geometry(span, frame_name):
-        for c in partners(getattr(span, frame_name)):
-            g = _frame_geometry(c)
-            if g is not None:
-                return g
+
+def _nozzle_layout(span, ends, layout):
+    a, b, n = ends("ctr2D1"), ends("ctr2D2"), ends("ctr2D3")
+    if a is None or b is None or n is None:
         return None
+    g1, l1 = tangent_any(a, (n[0], n[1], 0.0))
+    g2, l2 = tangent_any((n[0], n[1], 0.0), b)
+    for name, val in (("gamma1", g1), ("gamma2", g2), ("l1", l1), ("l2", l2),
+                      ("l", l1 + l2), ("l_u", l1 + l2), ("l_u0", l1 + l2)):
+        layout.guess(span, name, val)
+    return g1, g2 + _PI
+
+
+def _span_layout(span, ends, layout):
+    if span.is_given("gamma"):
+        gam = span.start_value("gamma")
+        return gam, gam + _PI
+    a, b = ends("ctr2D1"), ends("ctr2D2")
+    if a is None or b is None:
+        return None
+    gam, length = tangent_any(a, b)
+    layout.guess(span, "gamma", gam)
+    names = set(span.variable_names())
+    for name in ("l", "l_u", "l_u0", "l_x", "l_x0"):
+        if name in names:
+            layout.guess(span, name, length)
+    return gam, gam + _PI
+
+
+def _wheel_layout(wheel, g1, g2, layout):
+    """Contact-angle guesses and wrap turns of a circular wheel (curved
+    wheels compute their own: ``_layout_start``)."""
+    if hasattr(wheel, "_layout_start"):
+        guesses, params = wheel._layout_start(g1, g2)
+        for name, v in guesses.items():
+            layout.guess(wheel, name, v)
+        for name, v in params.items():
+            layout.param(wheel, name, v)
+        return
+    w = wheel.w
+    if g1 is None:
+        return
+    k1 = g1 + w * _PI / 2
+    if "kappa1" in wheel.variable_names():
+        layout.guess(wheel, "kappa1", k1)
+    if isinstance(wheel, Pulley) and g2 is not None:
+        k2 = g2 - w * _PI / 2
+        layout.guess(wheel, "kappa2", k2)
+        if wheel.is_given("kappa2"):
+            k2 = wheel.start_value("kappa2")
+        raw = w * (k2 - k1)
+        n = float(-math.floor(raw / (2 * _PI)))
+        layout.param(wheel, "n_beta", n + 1.0 if raw + 2 * _PI * n == 0.0 else n)
+
+
+def belt_layout(model):
+    """Start values and wrap-angle offsets of all belt elements in ``model``
+    from the tangent construction at t0 (see the module docstring), as a
+    :class:`Layout`; a start value the model gives wins."""
+    partners = _partners(model)
+    layout = Layout()
+
+    def end_geometry(span):
+        def ends(frame_name):
+            for c in partners(getattr(span, frame_name)):
+                g = _frame_geometry(c)
+                if g is not None:
+                    return g
+            return None
+        return ends
 
     leaving = {}   # (id(wheel), contact) -> leaving angle at t0
+    comps = list(model.components())
     for span in comps:
-        if not isinstance(span, (_Span, NozzleBelt)):
-            continue
-        a = end_geometry(span, "ctr2D1")
-        b = end_geometry(span, "ctr2D2")
         if isinstance(span, NozzleBelt):
-            n = end_geometry(span, "ctr2D3")
-            if a is None or b is None or n is None:
-                continue
-            g1, l1 = tangent_any(a, (n[0], n[1], 0.0))
-            g2, l2 = tangent_any((n[0], n[1], 0.0), b)
-            for name, val in (("gamma1", g1), ("gamma2", g2), ("l1", l1), ("l2", l2),
-                              ("l", l1 + l2), ("l_u", l1 + l2), ("l_u0", l1 + l2)):
-                if name not in span._overrides:
-                    span._overrides[name] = start(val)
-            gam_a, gam_b = g1, g2 + _PI
+            gams = _nozzle_layout(span, end_geometry(span), layout)
+        elif isinstance(span, _Span):
+            gams = _span_layout(span, end_geometry(span), layout)
         else:
-            if "gamma" in span._overrides:
-                gam = start_value(span, "gamma")
-                gam_a, gam_b = gam, gam + _PI
-            elif a is None or b is None:
-                continue
-            else:
-                gam, l = tangent_any(a, b)
-                span._overrides["gamma"] = start(gam)
-                if "l" not in span._overrides:
-                    span._overrides["l"] = start(l)
-                for name in ("l_u", "l_u0", "l_x", "l_x0"):
-                    if name in span._var_decls and name not in span._overrides:
-                        span._overrides[name] = start(l)
-                gam_a, gam_b = gam, gam + _PI
-        for frame_name, gam in (("ctr2D1", gam_a), ("ctr2D2", gam_b)):
+            continue
+        if gams is None:
+            continue
+        for frame_name, gam in zip(("ctr2D1", "ctr2D2"), gams):
             for c in partners(getattr(span, frame_name)):
                 if isinstance(c.owner, _Wheel) and c._name in ("ctrK1", "ctrK2"):
                     leaving[(id(c.owner), int(c._name[-1]))] = gam
     for wheel in comps:
-        if not isinstance(wheel, _Wheel):
-            continue
-        w = wheel.w
-        g1 = leaving.get((id(wheel), 1))
-        g2 = leaving.get((id(wheel), 2))
-        if hasattr(wheel, "_prepare_start"):      # curved contours (belt_curved.py)
-            wheel._prepare_start(g1, g2)
-            continue
-        if g1 is not None:
-            k1 = g1 + w * _PI / 2
-            if "kappa1" in wheel._var_decls and "kappa1" not in wheel._overrides:
-                wheel._overrides["kappa1"] = start(k1)
-        if isinstance(wheel, Pulley) and g1 is not None and g2 is not None:
-            k2 = g2 - w * _PI / 2
-            if "kappa2" not in wheel._overrides:
-                wheel._overrides["kappa2"] = start(k2)
-            raw = w * (k2 - k1)
-            wheel._param_values["n_beta"] = float(-math.floor(raw / (2 * _PI)))
-            if raw + 2 * _PI * wheel._param_values["n_beta"] == 0.0:
-                wheel._param_values["n_beta"] += 1.0
+        if isinstance(wheel, _Wheel):
+            _wheel_layout(wheel, leaving.get((id(wheel), 1)), leaving.get((id(wheel), 2)),
+                          layout)
+    return layout

@@ -73,7 +73,6 @@ from acausal2d import BandPort, Frame, Parameter, Variable
 from acausal2d.errors import ModelDefinitionError
 
 from .belt import _Wheel, _num
-from .planar import start_value
 
 __all__ = ["Contour", "SupportContour", "CurvedPulley", "CurvedDrum"]
 
@@ -527,7 +526,7 @@ class SupportContour:
 
 class _ContourGeometry:
     """Initial geometry of a contact of a curved wheel for the tangent
-    construction of prepare_belts (see belt.tangent_any)."""
+    construction of belt_layout (see belt.tangent_any)."""
 
     def __init__(self, cx, cy, phi, contour, side):
         self.cx, self.cy, self.phi, self.contour, self.side = cx, cy, phi, contour, side
@@ -563,14 +562,14 @@ class _CurvedWheel(_Wheel):
     def _band_geometry(self, name):
         s = self.w if name == "ctrK1" else -self.w
         return _ContourGeometry(float(_num(self, "x0")), float(_num(self, "y0")),
-                                start_value(self, "phi"), self.contour, s)
+                                self.start_value("phi"), self.contour, s)
 
     def _start_kappa(self, gamma, s):
         """Contact angle (pulley frame) for the leaving angle gamma with the
         wheel on side s: outward normal s * perp(e), at the angle
         gamma + s pi/2 (world), i.e. on the same branch as the circular
         pulley's kappa = gamma + s pi/2 (so the absolute wound lengths agree)."""
-        theta = gamma + s * _PI / 2 - start_value(self, "phi")
+        theta = gamma + s * _PI / 2 - self.start_value("phi")
         return self.contour.support_angle(theta)
 
     def _contact(self, port, kap, side):
@@ -588,7 +587,7 @@ class _CurvedWheel(_Wheel):
         direction; the seed's atan2/floor construction (4.112, 4.113) and
         additional angle gamma_Z (4.114, 4.115, Tabelle 4.20) are replaced by
         it, the branch (parallel or anti-parallel) being the one of the start
-        values (Tabelle 4.21's role), which are computed by prepare_belts from
+        values (Tabelle 4.21's role), which are computed by belt_layout from
         the winding direction w and then followed continuously."""
         P = self.ctr2D1
         if isinstance(self.contour, SupportContour):
@@ -657,7 +656,7 @@ class CurvedPulley(_CurvedWheel):
     frame) instead of their polar angles, and the tangency conditions are the
     explicit relations given there; everything else is the same.
 
-    Start values: :func:`~acausal2d.library.belt.prepare_belts` (run at
+    Start values: :func:`~acausal2d.library.belt.belt_layout` (run at
     compilation) finds the common tangents of the contours at t0 (pulley
     angle = the start value of ``phi``) by fixed-point iteration
     (:func:`~acausal2d.library.belt.tangent_any`) and sets the contact
@@ -668,7 +667,7 @@ class CurvedPulley(_CurvedWheel):
     Outputs: ``phi``, ``phi_rel``, ``w_rel``, ``kappa1``, ``kappa2``,
     ``beta``, ``l_con``, ``F_bear``, ``T_f``.
     """
-    n_beta = Parameter(0.0, "1", "whole turns added to the wrap angle (set by prepare_belts)")
+    n_beta = Parameter(0.0, "1", "whole turns added to the wrap angle (set by belt_layout)")
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (pulley frame)")
     kappa2 = Variable(unit="rad", state_select="avoid", doc="contact angle of K2 (pulley frame)")
     beta = Variable(unit="rad", state_select="avoid", doc="wrap angle")
@@ -681,24 +680,23 @@ class CurvedPulley(_CurvedWheel):
         self.ctrB1 = BandPort(required=True, doc="band port of K1")
         self.ctrB2 = BandPort(required=True, doc="band port of K2")
 
-    def _prepare_start(self, g1, g2):
-        """Start values of the contact angles and the whole turns of the
-        wrap angle from the leaving angles at t0 (called by prepare_belts)."""
+    def _layout_start(self, g1, g2):
+        """Start guesses of the contact angles and the whole turns of the
+        wrap angle from the leaving angles at t0 (for belt_layout):
+        ({variable: value}, {parameter: value})."""
         w = self.w
-        k1 = k2 = None
+        guesses = {}
         if g1 is not None:
-            k1 = self._start_kappa(g1, w)
-            self.set_start("kappa1", k1)
+            guesses["kappa1"] = self._start_kappa(g1, w)
         if g2 is not None:
-            k2 = self._start_kappa(g2, -w)
-            self.set_start("kappa2", k2)
-        if k1 is not None and k2 is not None:
-            k1, k2 = start_value(self, "kappa1"), start_value(self, "kappa2")
-            raw = w * (k2 - k1)
-            n = float(-math.floor(raw / _TWO_PI))
-            if raw + _TWO_PI * n == 0.0:
-                n += 1.0
-            self._param_values["n_beta"] = n
+            guesses["kappa2"] = self._start_kappa(g2, -w)
+        if len(guesses) < 2:
+            return guesses, {}
+        k1, k2 = (self.start_value(k) if self.is_given(k) else guesses[k]
+                  for k in ("kappa1", "kappa2"))
+        raw = w * (k2 - k1)
+        n = float(-math.floor(raw / _TWO_PI))
+        return guesses, {"n_beta": n + 1.0 if raw + _TWO_PI * n == 0.0 else n}
 
     def equations(self):
         w, C = self.w, self.contour
@@ -737,9 +735,11 @@ class CurvedDrum(_CurvedWheel):
         self.ctrK1 = Frame(required=True, doc="contact point K1")
         self.ctrB1 = BandPort(required=True, doc="band port of K1")
 
-    def _prepare_start(self, g1, g2):
-        if g1 is not None:
-            self.set_start("kappa1", self._start_kappa(g1, self.w))
+    def _layout_start(self, g1, g2):
+        """Start guess of the contact angle (for belt_layout)."""
+        if g1 is None:
+            return {}, {}
+        return {"kappa1": self._start_kappa(g1, self.w)}, {}
 
     def equations(self):
         w, C = self.w, self.contour

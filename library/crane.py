@@ -33,18 +33,14 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d import Component, der, Frame, Parameter, Variable
+from acausal2d import Component, der, Frame, Outer, Parameter, Variable
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library.belt import tangent
+from acausal2d.library.planar import PlanarWorld
 
 __all__ = ["Carriage", "Hook", "cycloid", "move", "span_geometry"]
 
 
-def _gravity(comp):
-    world = comp.world()
-    if world is None:
-        raise RuntimeError("no PlanarWorld in the model")
-    return world.g
 
 
 class Carriage(Component):
@@ -69,7 +65,7 @@ class Carriage(Component):
     their friction torques to the carriage).  Velocities and accelerations
     come from index reduction.
     """
-    needs_world = True
+    world = Outer(PlanarWorld)
     m = Parameter(400.0, "kg", "mass of the carriage (with its pulleys)")
     J = Parameter(80.0, "kg.m2", "rotational inertia about the centre of gravity")
     cog = Parameter((0.0, 0.0), "m", "centre of gravity in the carriage frame")
@@ -104,7 +100,7 @@ class Carriage(Component):
             fx = fx + f.fx
             fy = fy + f.fy
             mom = mom + (self.x + rx - Sx) * f.fy - (self.y + ry - Sy) * f.fx + f.t
-        g = _gravity(self)
+        g = self.world.g
         eqs += [self.m * der(der(Sx)) == fx + self.m * g[0],
                 self.m * der(der(Sy)) == fy + self.m * g[1],
                 self.J * der(der(self.phi)) == mom]
@@ -137,7 +133,7 @@ class Hook(Component):
     """Crane hook with its load: a point mass ``m`` at ``frame`` under
     gravity; the frame does not turn (``phi = 0``), so a rope end fastened
     to it needs no torque.  Outputs ``x``, ``y``."""
-    needs_world = True
+    world = Outer(PlanarWorld)
     m = Parameter(1000.0, "kg", "mass of hook and load")
     x = Variable(unit="m", state_select="prefer", doc="x of the hook")
     y = Variable(unit="m", state_select="prefer", doc="y of the hook")
@@ -148,7 +144,7 @@ class Hook(Component):
 
     def equations(self):
         f = self.frame
-        g = _gravity(self)
+        g = self.world.g
         return [f.x == self.x, f.y == self.y, f.phi == 0,
                 self.m * der(der(self.x)) == f.fx + self.m * g[0],
                 self.m * der(der(self.y)) == f.fy + self.m * g[1]]

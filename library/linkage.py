@@ -93,14 +93,13 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d import (Component, der, Frame, Parameter, RotationalFlange, TranslationalFlange,
+from acausal2d import (Component, der, Frame, Outer, Parameter, RotationalFlange, TranslationalFlange,
                        Variable)
 from acausal2d.errors import InitializationError, ModelDefinitionError
-from acausal2d.library.planar import is_connected, root_component
+from acausal2d.library.planar import PlanarWorld, is_connected
 from acausal2d.language.unionfind import connector_sets
 
-__all__ = ["DAN", "SAN", "FGP", "DDD", "DDS", "DSD", "SSD", "SDS", "AssemblyError",
-           "assembly_values"]
+__all__ = ["DAN", "SAN", "FGP", "DDD", "DDS", "DSD", "SSD", "SDS", "AssemblyError"]
 
 
 class AssemblyError(InitializationError, ModelDefinitionError):
@@ -153,14 +152,16 @@ class _Assembly:
     """Numeric-symbolic pre-assembly of all linkage elements of one model:
     node potentials (x, y, phi or s) as CasADi expressions of parameters."""
 
-    def __init__(self, root):
-        self.root = root
+    def __init__(self, context):
+        root = context.model
+        self.root, self.context = root, context
         comps = list(root.components())
         sets, connected = connector_sets(root)
         self._find = sets.find
         self.connected = connected
         self.values = {}
         self.checks = []
+        self.guesses = {}       # id(element) -> {variable: expression}
         for comp in comps:
             for conn in comp._connectors.values():
                 if conn.ground is not None and id(conn) not in connected:
@@ -194,22 +195,16 @@ class _Assembly:
     def _run_checks(self, comps):
         if not self.checks:
             return
-        syms, vals = [], []
-        for comp in comps:
-            for name, sym in comp._param_syms.items():
-                v = np.atleast_1d(np.asarray(comp._param_values[name], dtype=float))
-                sym = ca.SX(sym)
-                for i in range(sym.numel()):
-                    syms.append(sym[i])
-                    vals.append(v[i])
-        f = ca.Function("checks", [ca.vertcat(*syms)],
-                        [ca.vertcat(*[ca.SX(c[1]) for c in self.checks])])
-        out = np.asarray(f(vals)).ravel()
-        for (elem, _, condition, hint), value in zip(self.checks, out):
+        values = self.context.evaluate([c[1] for c in self.checks])
+        for (elem, _, condition, hint), value in zip(self.checks, values):
             if not value >= -1e-12:
                 raise AssemblyError(
                     "%s cannot assemble at the start: %s is violated (value %.6g). %s"
                     % (elem.describe(), condition, value, hint))
+
+    def start(self, elem, values):
+        """Record start guesses {local variable name: expression} of ``elem``."""
+        self.guesses.setdefault(id(elem), {}).update(values)
 
     def _seed_library(self, comp):
         from acausal2d.library import planar, rotational, translational
@@ -234,35 +229,11 @@ class _Assembly:
             cur.setdefault(name, v)
 
 
-def _ensure_assembly(comp):
-    root = root_component(comp)
-    asm = root.__dict__.get("_linkage_assembly")
-    if asm is None:
-        asm = _Assembly(root)
-        root.__dict__["_linkage_assembly"] = asm
-    return asm
-
-
-def assembly_values(model):
-    """Assembled start configuration of ``model`` after flattening/compiling:
-    {connector path: {potential: expression}} (for inspection and tests)."""
-    asm = model.__dict__.get("_linkage_assembly")
-    if asm is None:
-        return {}
-    out = {}
-    for comp in model.components():
-        for conn in comp._connectors.values():
-            v = asm.get(conn)
-            if v:
-                out[conn.path] = dict(v)
-    return out
-
-
 # --------------------------------------------------------------- base class
 class _Linkage(Component):
     """Common machinery: port placement (Anhang A.1), gravity, start values
     from the VDI pre-assembly."""
-    needs_world = True
+    world = Outer(PlanarWorld)
     _placed_ports = ()     # port numbers n with parameters xn0, yn0, phin0
 
     def __init__(self, **kw):
@@ -277,21 +248,30 @@ class _Linkage(Component):
         super().__init__(**kw)
         self.__dict__["_frame_ref"] = refs
         self.__dict__["_rel"] = {}
+        self.__dict__["_halves"] = []
 
     # centre-of-gravity defaults "l/2" (Tabellen B.2, B.8, B.11, B.14)
     def _default_half(self, kw, name, length):
-        if name not in kw:
-            self._param_values[name] = 0.5 * float(self._param_values[length])
+        """The parameter ``name`` is half of ``length`` unless the model
+        gives it (see :meth:`derived_parameters`)."""
+        self._halves.append((name, length))
 
-    def on_flatten(self):
-        root_component(self).__dict__["_linkage_assembly"] = None   # new symbols: reassemble
+    def derived_parameters(self, context):
+        """Centres of gravity at half the link length unless given ("l/2" in
+        Tabellen B.2, B.8, B.11, B.14)."""
+        return {name: 0.5 * float(self.parameter_value(length))
+                for name, length in self._halves if not self.is_given(name)}
+
+    def guesses(self, context):
+        """Start guesses from the pre-assembly of all linkage elements of the
+        model (computed once per flattening)."""
         self._rel.clear()
+        self.__dict__["_asm"] = context.shared("linkage assembly", lambda: _Assembly(context))
+        return {k: v for k, v in self._asm.guesses.get(id(self), {}).items()
+                if self.has_variable(k)}
 
     def _g(self):
-        w = self.world()
-        if w is None:
-            raise ModelDefinitionError("%s needs a PlanarWorld" % self.describe())
-        return w.g
+        return self.world.g
 
     def _conn(self, n):
         return getattr(self, "ctr2D%d" % n)
@@ -320,7 +300,7 @@ class _Linkage(Component):
 
     def _place(self, n):
         """(x, y, phi) of Pn and of its connection C (A.7-A.9), symbolic."""
-        asm = _ensure_assembly(self)
+        asm = self._asm
         f = self._conn(n)
         xr, yr, pr = self._relative(n, asm)
         dx, dy = _rot(f.phi, xr, yr)
@@ -335,17 +315,10 @@ class _Linkage(Component):
         dx, dy = _rot(c["phi"], xr, yr)
         return c["x"] + dx, c["y"] + dy, c["phi"] + pr
 
-    def _set_starts(self, values):
-        """Start values (guesses) {local variable name: expression}; a start
-        given by the user wins."""
-        for name, value in values.items():
-            if name in self._var_infos:
-                self.set_start(name, value)
-
     def _set_port(self, asm, conn, vals):
         asm.put(conn, vals)
         if conn._owner is self:
-            self._set_starts({"%s.%s" % (conn._name, k): v for k, v in vals.items()})
+            asm.start(self, {"%s.%s" % (conn._name, k): v for k, v in vals.items()})
 
     def _assemble(self, asm):       # pragma: no cover - overridden
         return True
@@ -389,8 +362,8 @@ class _Linkage(Component):
         """True if the placed point Pn of port n is the connection point
         itself (``frameRef='relative'`` with ``xn0 = yn0 = 0``)."""
         return (self._frame_ref.get(n) == "relative"
-                and float(self._param_values["x%d0" % n]) == 0.0
-                and float(self._param_values["y%d0" % n]) == 0.0)
+                and float(self.parameter_value("x%d0" % n)) == 0.0
+                and float(self.parameter_value("y%d0" % n)) == 0.0)
 
     def _housing_shapes(self, n, point, phi=0.0):
         """Ground symbol at ``point`` when port n is fixed to ground, or the
@@ -407,8 +380,8 @@ class _Linkage(Component):
     def _body_shape(self, mass, xrel, yrel, xS, yS):
         """Small disc at a centre of gravity that is off the pins (massive
         bodies only)."""
-        pv = self._param_values
-        if float(pv[mass]) > 0.0 and (float(pv[xrel]) != 0.0 or float(pv[yrel]) != 0.0):
+        pv = self.parameter_value
+        if float(pv(mass)) > 0.0 and (float(pv(xrel)) != 0.0 or float(pv(yrel)) != 0.0):
             return [{"type": "body", "x": xS, "y": yS}]
         return []
 
@@ -438,6 +411,9 @@ class _FakeAssembly:
 
     def check(self, *args):
         pass            # fallback guesses are not checked
+
+    def start(self, elem, values):
+        self.asm.start(elem, values)
 
 
 def _placement_params(cls, ports):
@@ -507,7 +483,7 @@ class DAN(_Linkage):
         om = r["w"] if r and "w" in r else self.omL0
         xP, yP = x1 + self.lL * ca.cos(phi), y1 + self.lL * ca.sin(phi)
         dx, dy = _rot(phi, self.xSLrel, self.ySLrel)
-        self._set_starts({"phiL": phi, "omL": om, "xSL": x1 + dx, "ySL": y1 + dy})
+        asm.start(self, {"phiL": phi, "omL": om, "xSL": x1 + dx, "ySL": y1 + dy})
         self._set_port(asm, self.ctr2D2, {"x": xP, "y": yP, "phi": phi})
         self._set_port(asm, self.ctrR2, {"phi": phi})
         self._set_port(asm, self.ctrR1, {"phi": a1})
@@ -604,7 +580,7 @@ class SAN(_Linkage):
         c, s = ca.cos(a), ca.sin(a)
         xPS, yPS = x1 + xG * c, y1 + xG * s
         dx, dy = _rot(a, self.xSrel, self.ySrel)
-        self._set_starts({"xG": xG, "phiS": a, "xSS": xPS + dx, "ySS": yPS + dy,
+        asm.start(self, {"xG": xG, "phiS": a, "xSS": xPS + dx, "ySS": yPS + dy,
                           "xPS": xPS, "yPS": yPS})
         self._set_port(asm, self.ctr2D2, {"x": xPS - self.v * s, "y": yPS + self.v * c, "phi": a})
         self._set_port(asm, self.ctrT2, {"s": xG})
@@ -694,7 +670,7 @@ class FGP(_Linkage):
             return False
         (x1, y1, a), = p1
         dx, dy = _rot(a, self.xSLrel, self.ySLrel)
-        self._set_starts({"phiL": a, "xSL": x1 + dx, "ySL": y1 + dy})
+        asm.start(self, {"phiL": a, "xSL": x1 + dx, "ySL": y1 + dy})
         self._set_port(asm, self.ctr2D2, {"x": x1 + self.lL * ca.cos(a),
                                           "y": y1 + self.lL * ca.sin(a), "phi": a})
         return True
@@ -809,7 +785,7 @@ class DDD(_Linkage):
         xP, yP, p1, p2 = vdi_ddd(x1, y1, x2, y2, l1, l2, self.K,
                                  sqrt=lambda z: ca.sqrt(ca.fmax(z, 0)))
         d1, d2 = _rot(p1, self.xSL1rel, self.ySL1rel), _rot(p2, self.xSL2rel, self.ySL2rel)
-        self._set_starts({"phiL1": p1, "phiL2": p2, "xP": xP, "yP": yP,
+        asm.start(self, {"phiL1": p1, "phiL2": p2, "xP": xP, "yP": yP,
                           "xSL1": x1 + d1[0], "ySL1": y1 + d1[1],
                           "xSL2": x2 + d2[0], "ySL2": y2 + d2[1]})
         self._set_port(asm, self.ctr2D3, {"x": x1, "y": y1, "phi": p1})
@@ -963,7 +939,7 @@ class DDS(_Linkage):
                                    sqrt=lambda z: ca.sqrt(ca.fmax(z, 0)))
         xPS, yPS = x2 + xG * ca.cos(a), y2 + xG * ca.sin(a)
         dL, dS = _rot(phiL, self.xSLrel, self.ySLrel), _rot(a, self.xSSrel, self.ySSrel)
-        self._set_starts({"phiL": phiL, "xG": xG, "phiS": a, "xP": xP, "yP": yP,
+        asm.start(self, {"phiL": phiL, "xG": xG, "phiS": a, "xP": xP, "yP": yP,
                           "xSL": xP + dL[0], "ySL": yP + dL[1],
                           "xSS": xPS + dS[0], "ySS": yPS + dS[1]})
         self._set_port(asm, self.ctr2D3, {"x": x1, "y": y1, "phi": phiL})
@@ -1111,7 +1087,7 @@ class DSD(_Linkage):
         a, xG = vdi_dsd(x1, y1, x2, y2, self.v, sqrt=lambda z: ca.sqrt(ca.fmax(z, 0)))
         xPS, yPS = x1 + xG * ca.cos(a), y1 + xG * ca.sin(a)
         dU, dS = _rot(a, self.xSUrel, self.ySUrel), _rot(a, self.xSSrel, self.ySSrel)
-        self._set_starts({"phiU": a, "xG": xG, "xSU": x1 + dU[0], "ySU": y1 + dU[1],
+        asm.start(self, {"phiU": a, "xG": xG, "xSU": x1 + dU[0], "ySU": y1 + dU[1],
                           "xSS": xPS + dS[0], "ySS": yPS + dS[1], "xPS": xPS, "yPS": yPS})
         self._set_port(asm, self.ctr2D3, {"x": x1, "y": y1, "phi": a})
         self._set_port(asm, self.ctr2D4, {"x": x2, "y": y2, "phi": a})
@@ -1255,7 +1231,7 @@ class SSD(_Linkage):
         P = (PS1[0] - self.v1 * ca.sin(a1), PS1[1] + self.v1 * ca.cos(a1))
         PS2 = (P[0] + xG2 * ca.cos(a2), P[1] + xG2 * ca.sin(a2))
         d1, d2 = _rot(a1, self.xSS1rel, self.ySS1rel), _rot(a2, self.xSS2rel, self.ySS2rel)
-        self._set_starts({"xG1": xG1, "xG2": xG2, "phiS1": a1, "phiS2": a2,
+        asm.start(self, {"xG1": xG1, "xG2": xG2, "phiS1": a1, "phiS2": a2,
                           "xSS1": PS1[0] + d1[0], "ySS1": PS1[1] + d1[1],
                           "xSS2": PS2[0] + d2[0], "ySS2": PS2[1] + d2[1],
                           "xPS1": PS1[0], "yPS1": PS1[1], "xPS2": PS2[0], "yPS2": PS2[1]})
@@ -1410,7 +1386,7 @@ class SDS(_Linkage):
         PS2 = (x2 + xG2 * ca.cos(a2), y2 + xG2 * ca.sin(a2))
         P = (PS1[0] - self.v1 * ca.sin(a1), PS1[1] + self.v1 * ca.cos(a1))
         d1, d2 = _rot(a1, self.xSS1rel, self.ySS1rel), _rot(a2, self.xSS2rel, self.ySS2rel)
-        self._set_starts({"xG1": xG1, "xG2": xG2, "phiS1": a1, "phiS2": a2,
+        asm.start(self, {"xG1": xG1, "xG2": xG2, "phiS1": a1, "phiS2": a2,
                           "xP": P[0], "yP": P[1],
                           "xSS1": PS1[0] + d1[0], "ySS1": PS1[1] + d1[1],
                           "xSS2": PS2[0] + d2[0], "ySS2": PS2[1] + d2[1],

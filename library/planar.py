@@ -12,7 +12,7 @@ import math
 import casadi as ca
 import numpy as np
 
-from acausal2d import (Component, der, Frame, Parameter, RotationalFlange, start,
+from acausal2d import (Component, der, Frame, Outer, Parameter, RotationalFlange,
                        TranslationalFlange, Variable)
 from acausal2d.language.unionfind import connector_sets
 
@@ -21,32 +21,18 @@ class PlanarWorld(Component):
     """Gravity field for all bodies of the model (default {0, -9.81} m/s²).
 
     Place one in a model to change gravity; a model without one gets the
-    default automatically."""
+    default automatically (elements that need it declare
+    ``world = Outer(PlanarWorld)``)."""
     g = Parameter((0.0, -9.81), "m/s2", "gravity acceleration, world frame")
-
-
-def _gravity(comp):
-    world = comp.world()
-    if world is None:  # the flattener adds a world to the root model
-        raise RuntimeError("no PlanarWorld in the model")
-    return world.g
 
 
 # --------------------------------------------------------------------------
 # connection queries for drawing and topology (shared with library/belt.py)
 # --------------------------------------------------------------------------
-def root_component(comp):
-    """The outermost model that ``comp`` is part of (``comp`` itself if it
-    has no parent)."""
-    while comp._parent is not None:
-        comp = comp._parent
-    return comp
-
-
 def is_connected(conn):
     """True if the connector ``conn`` appears in a connect statement of its
     model (see :func:`acausal2d.language.unionfind.connector_sets`)."""
-    _, connected = connector_sets(root_component(conn.owner))
+    _, connected = connector_sets(conn.owner.root)
     return id(conn) in connected
 
 
@@ -54,32 +40,13 @@ def fixed_of(conn):
     """The :class:`Fixed` whose frame is in the connection set of ``conn``
     (directly or through other connections), or None: the frame ``conn`` is
     then fixed in the world at that element's ``r``, ``phi``."""
-    root = root_component(conn.owner)
+    root = conn.owner.root
     sets, _ = connector_sets(root)
     k = sets.find(id(conn))
     for comp in root.components():
         if isinstance(comp, Fixed) and sets.find(id(comp.frame)) == k:
             return comp
     return None
-
-
-def start_value(comp, name):
-    """Numeric start value of the variable ``name`` of ``comp``: the value
-    given with :func:`~acausal2d.language.dsl.start` (or a number) when the component
-    was created, else the declaration's default (0.0 when that is not a
-    number, e.g. a parameter expression set by an assembly)."""
-    ov = comp._overrides.get(name)
-    if isinstance(ov, start) and ov.value is not None:
-        value = ov.value
-    elif isinstance(ov, (int, float)):
-        value = ov
-    else:
-        decl = comp._var_decls.get(name)
-        value = decl.start if decl is not None else 0.0
-    try:
-        return float(value)
-    except (TypeError, ValueError, RuntimeError):
-        return 0.0
 
 
 class Fixed(Component):
@@ -108,9 +75,9 @@ class Body(Component):
     A.3 with the centre of gravity at the frame origin).
 
     Outputs: x, y, phi of the frame."""
-    needs_world = True
-    m = Parameter(1.0, "kg", "mass")
-    I = Parameter(0.1, "kg.m2", "rotational inertia about the frame origin")
+    world = Outer(PlanarWorld)
+    m = Parameter(1.0, "kg", "mass", min=0.0)
+    I = Parameter(0.1, "kg.m2", "rotational inertia about the frame origin", min=0.0)
     x = Variable(unit="m", doc="x position")
     y = Variable(unit="m", doc="y position")
     phi = Variable(unit="rad", doc="angle")
@@ -121,7 +88,7 @@ class Body(Component):
 
     def equations(self):
         f = self.frame_a
-        g = _gravity(self)
+        g = self.world.g
         return [self.x == f.x, self.y == f.y, self.phi == f.phi,
                 self.m * der(der(self.x)) == f.fx + self.m * g[0],
                 self.m * der(der(self.y)) == f.fy + self.m * g[1],
@@ -170,8 +137,8 @@ class Revolute(Component):
 
     def __init__(self, use_flange=False, state_select="prefer", **kw):
         super().__init__(**kw)
-        self._var_decls["phi"].state_select = state_select
-        self._var_decls["w"].state_select = state_select
+        self.variable("phi").state_select = state_select
+        self.variable("w").state_select = state_select
         self.frame_a = Frame()
         self.frame_b = Frame()
         self.use_flange = use_flange
@@ -213,8 +180,8 @@ class Prismatic(Component):
 
     def __init__(self, use_flange=False, state_select="prefer", guide=None, **kw):
         super().__init__(**kw)
-        self._var_decls["s"].state_select = state_select
-        self._var_decls["v"].state_select = state_select
+        self.variable("s").state_select = state_select
+        self.variable("v").state_select = state_select
         if guide is not None:
             guide = (float(guide[0]), float(guide[1]))
         self.guide_range = guide
@@ -266,16 +233,16 @@ class Prismatic(Component):
             moving, ground, sign = "frame_a", fixed_b, -1.0     # frame_a = frame_b - s e
         else:
             moving, ground, sign = "frame_b", fixed_a, 1.0      # frame_b = frame_a + s e
-        gx, gy = (float(v) for v in np.ravel(ground._param_values["r"]))
-        gphi = float(ground._param_values["phi"])
-        rx, ry = (float(v) for v in np.ravel(self._param_values["r"]))
+        gx, gy = (float(v) for v in np.ravel(ground.parameter_value("r")))
+        gphi = float(ground.parameter_value("phi"))
+        rx, ry = (float(v) for v in np.ravel(self.parameter_value("r")))
         norm = math.hypot(rx, ry)
         cg, sg = math.cos(gphi), math.sin(gphi)
         ex, ey = (cg * rx - sg * ry) / norm, (sg * rx + cg * ry) / norm
         if self.guide_range is not None:
             ends = self.guide_range
         else:
-            s0 = start_value(self, "s")
+            s0 = self.start_value("s")
             ends = (0.0, 2.0 * s0) if s0 != 0.0 else (-norm / 2, norm / 2)
         guide = [[gx + sign * e * ex, gy + sign * e * ey] for e in ends]
         return [{"type": "slider", "x": moving + ".x", "y": moving + ".y",

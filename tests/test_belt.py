@@ -257,7 +257,7 @@ def lift_then_lower(t, Ta=0.5):
     p1 = W_D * Ta / 2
     p2 = p1 + W_D * (1.5 - Ta)
     rev = p2 + W_D * 2 * Ta / math.pi * ca.sin(math.pi * (t - 1.5) / (2 * Ta))
-    p3 = p2 + W_D * 2 * Ta / math.pi
+    p3 = p2                  # back where the reversal began (continuous angle)
     return ca.if_else(t < Ta, up, ca.if_else(t < 1.5, p1 + W_D * (t - Ta),
                                              ca.if_else(t < 2.5, rev, p3 - W_D * (t - 2.5))))
 

@@ -64,7 +64,7 @@ def _check_pulleys(model, res, scene, classes=(Pulley, Drum, CurvedPulley)):
         np.testing.assert_array_equal(_sig(scene, sh["phi"]), res[path + ".phi"])
         comp = wheels[path]
         if "contour" not in sh:
-            assert np.all(_sig(scene, sh["r"]) == float(comp._param_values["r"]))
+            assert np.all(_sig(scene, sh["r"]) == float(comp.parameter_value("r")))
     return shapes
 
 

@@ -26,7 +26,7 @@ def series(res, cm, name, order=0):
         key = "der(%s)" % key
     if key in res:
         return res[key]
-    for a in cm.aliases:
+    for a in cm.system.aliases:
         if a.var.name == name:
             if a.rep is None:
                 return res[name] if order == 0 else np.zeros(len(res.time))

@@ -17,7 +17,7 @@ def test_chain_uses_sparse_solver_and_conserves_energy():
     n = 8
     cm = acausal2d.compile_model(PendulumChain(n))
     res = cm.simulate(stop_time=2.0, rtol=1e-9, intervals=400)
-    form = next(iter(cm._formulations.values()))
+    form = next(iter(cm.system._formulations.values()))
     assert form.sparse and form.n >= 100
     m, inertia, length = 1.0 / n, 0.01 / n, 1.0 / n
     kinetic = np.zeros_like(res.time)

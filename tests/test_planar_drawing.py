@@ -8,8 +8,7 @@ import pytest
 
 from acausal2d import Component, compile_model, start
 from acausal2d.tools.animation import validate_scene
-from acausal2d.library.planar import (Body, Fixed, Prismatic, fixed_of, is_connected,
-                                      start_value)
+from acausal2d.library.planar import Body, Fixed, Prismatic, fixed_of, is_connected
 from acausal2d.tools.scene import build_scene
 from conftest import load_model_class
 
@@ -144,5 +143,5 @@ def test_connection_helpers():
     # through a chain of connections: revolutePiston.frame_b -> prismatic.frame_a
     assert fixed_of(model.revoluteDrive.frame_a) is model.fixed
     assert fixed_of(model.bodyPiston.frame_a) is None
-    assert start_value(model.prismatic, "s") == -1.1
-    assert start_value(model.prismatic, "v") == 0.0
+    assert model.prismatic.start_value("s") == -1.1
+    assert model.prismatic.start_value("v") == 0.0

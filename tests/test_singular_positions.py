@@ -176,12 +176,13 @@ def test_buffered_determinant_scan_equals_plain_evaluation():
     determinants in chunks through a buffer; across chunk boundaries
     (600 points, chunks of 256) it gives the values of a plain call."""
     from conftest import load_model_class
-    from acausal2d.runtime.singularities import _DeterminantScan
+    from acausal2d.runtime.singularities import DeterminantScan as _DeterminantScan
     cm = acausal2d.compile_model(load_model_class("piston_engine_dynamic.py",
                                                   "PistonEngineDynamic")())
     p = cm.parameter_values()
-    z, d = cm.initial_values(0.0, p)
-    form = cm.formulation(cm.select(0.0, z, p, d))
+    point = cm.initial_point()
+    d = point.d
+    form = cm.system.formulation(point.selection)
     assert form.det_fn is not None
     n = 600
     rng = np.random.default_rng(1)

@@ -9,8 +9,10 @@ the main source of aliases.
 """
 import casadi as ca
 
-from ..language import symbols
+import copy
+
 from ..language.dsl import STATE_SELECT
+from ..language.symbols import PARAM
 
 _MAX_NODES = 12
 
@@ -24,20 +26,17 @@ class Alias:
         self.var, self.rep, self.sign, self.offset = var, rep, sign, offset
 
 
-def _param_only(e):
-    for s in ca.symvar(e):
-        if symbols.kind(s) != symbols.PARAM:
-            return False
-    return True
+def _param_only(e, table):
+    return all(table.kind(s) == PARAM for s in ca.symvar(e))
 
 
 _ADD, _SUB, _NEG = ca.OP_ADD, ca.OP_SUB, ca.OP_NEG
 
 
-def _terms(e, sign, vs, rest, depth=0):
+def _terms(e, sign, vs, rest, table, depth=0):
     """Split e into +-1 * symbols and other terms; False if too complex."""
     if e.is_symbolic():
-        if symbols.kind(e) == symbols.PARAM:
+        if table.kind(e) == PARAM:
             rest.append(sign * e)
         else:
             vs.append((sign, e))
@@ -49,28 +48,28 @@ def _terms(e, sign, vs, rest, depth=0):
         return False
     op = e.op()
     if op == _ADD:
-        return _terms(e.dep(0), sign, vs, rest, depth + 1) and \
-            _terms(e.dep(1), sign, vs, rest, depth + 1)
+        return _terms(e.dep(0), sign, vs, rest, table, depth + 1) and \
+            _terms(e.dep(1), sign, vs, rest, table, depth + 1)
     if op == _SUB:
-        return _terms(e.dep(0), sign, vs, rest, depth + 1) and \
-            _terms(e.dep(1), -sign, vs, rest, depth + 1)
+        return _terms(e.dep(0), sign, vs, rest, table, depth + 1) and \
+            _terms(e.dep(1), -sign, vs, rest, table, depth + 1)
     if op == _NEG:
-        return _terms(e.dep(0), -sign, vs, rest, depth + 1)
-    if ca.n_nodes(e) <= _MAX_NODES and _param_only(e):
+        return _terms(e.dep(0), -sign, vs, rest, table, depth + 1)
+    if ca.n_nodes(e) <= _MAX_NODES and _param_only(e, table):
         rest.append(sign * e)
         return True
     return False
 
 
-def _alias_form(expr, varkeys):
+def _alias_form(expr, varkeys, table):
     """Return (vars, coefficients, remainder) if expr is +-v1 (+- v2) + rest
     with rest built from parameters only; else None."""
     vs, rest = [], []
-    if not _terms(expr, 1.0, vs, rest):
+    if not _terms(expr, 1.0, vs, rest, table):
         return None
     if not 1 <= len(vs) <= 2:
         return None
-    keys = [symbols.key(v) for _, v in vs]
+    keys = [v.element_hash() for _, v in vs]
     if len(set(keys)) != len(keys) or any(k not in varkeys for k in keys):
         return None
     total = 0.0
@@ -85,7 +84,7 @@ def _score(info):
     return (prio, 0 if info.fixed else 1, info.name.count("."), len(info.name), info.name)
 
 
-def eliminate_aliases(equations, variables, examine=None):
+def eliminate_aliases(equations, variables, table, examine=None):
     """Run one pass of alias elimination.
 
     equations: list of flatten.Equation; variables: list of VarInfo;
@@ -94,7 +93,7 @@ def eliminate_aliases(equations, variables, examine=None):
     variables removed, ``aliases`` a list of :class:`Alias` and ``changed``
     the ids of the equations the substitution touched.
     """
-    info = {symbols.key(v.sym): v for v in variables}
+    info = {v.sym.element_hash(): v for v in variables}
     parent = {}   # key -> (parent key or None, sign, offset)  var = sign*parent + offset
 
     def find(k):
@@ -111,13 +110,13 @@ def eliminate_aliases(equations, variables, examine=None):
         if examine is not None and id(eq) not in examine:
             kept.append(eq)
             continue
-        form = _alias_form(eq.expr, info)
+        form = _alias_form(eq.expr, info, table)
         if form is None:
             kept.append(eq)
             continue
         vs, cs, rest = form
         if len(vs) == 1:
-            ka = symbols.key(vs[0])
+            ka = vs[0].element_hash()
             ra, sa, oa = find(ka)
             value = -rest / cs[0]            # a = value
             if ra is None:
@@ -126,7 +125,7 @@ def eliminate_aliases(equations, variables, examine=None):
             # sa*ra + oa = value  ->  ra = (value - oa)/sa
             parent[ra] = (None, 0.0, (value - oa) * sa)
             continue
-        ka, kb = symbols.key(vs[0]), symbols.key(vs[1])
+        ka, kb = vs[0].element_hash(), vs[1].element_hash()
         # cs[0]*a + cs[1]*b + rest = 0  ->  a = s*b + c
         s = -cs[1] / cs[0]
         c = -rest / cs[0]
@@ -162,8 +161,8 @@ def eliminate_aliases(equations, variables, examine=None):
             aliases.append(Alias(var, info[rep], sign, off))
             if var.fixed and not info[rep].fixed:
                 _merge_attrs(info[rep], var, sign, off)
-    src, dst = substitution(aliases)
-    eliminated = {symbols.key(a.var.sym) for a in aliases}
+    src, dst = substitution(aliases, table)
+    eliminated = {a.var.sym.element_hash() for a in aliases}
     changed = set()
     if src and kept:
         old = ca.vertcat(*[eq.expr for eq in kept])
@@ -172,13 +171,13 @@ def eliminate_aliases(equations, variables, examine=None):
         if rows:
             exprs = ca.substitute([kept[i].expr for i in rows], src, [ca.SX(x) for x in dst])
             for i, e in zip(rows, exprs):
-                kept[i].expr = e
+                kept[i] = kept[i].with_expr(e)
                 changed.add(id(kept[i]))
-    remaining = [v for v in variables if symbols.key(v.sym) not in eliminated]
+    remaining = [v for v in variables if v.sym.element_hash() not in eliminated]
     return kept, remaining, aliases, changed
 
 
-def substitution(aliases):
+def substitution(aliases, table):
     """(symbols, replacements) that remove the aliased variables and their
     derivatives from expressions: der^k(var) -> sign * der^k(rep) (+ offset
     for k = 0)."""
@@ -192,28 +191,32 @@ def substitution(aliases):
             else:
                 r = a.rep.sym
                 for _ in range(level):
-                    r = symbols.derivative_symbol(r)
+                    r = table.derivative_symbol(r)
                 dst.append(a.sign * r + (a.offset if level == 0 else 0.0))
-            if not symbols.has_derivative(sym):
+            if not table.has_derivative(sym):
                 break
-            sym = symbols.derivative_symbol(sym)
+            sym = table.derivative_symbol(sym)
             level += 1
     return src, dst
 
 
-def eliminate_all_aliases(equations, variables):
+def eliminate_all_aliases(equations, variables, table):
     """Alias passes until none is left (a substitution can turn an equation
     into a new alias); returns (equations, variables, aliases) with every
-    alias expressed in a remaining variable."""
+    alias expressed in a remaining variable.  The inputs are not changed:
+    representatives are copies that inherit the start attributes of their
+    alias sets."""
     aliases = []
     examine = None
+    equations, variables = list(equations), [copy.copy(v) for v in variables]
     while True:
-        equations, variables, new, examine = eliminate_aliases(equations, variables, examine)
+        equations, variables, new, examine = eliminate_aliases(equations, variables, table,
+                                                               examine)
         if not new:
             return equations, variables, aliases
-        by_var = {symbols.key(b.var.sym): b for b in new}
+        by_var = {b.var.sym.element_hash(): b for b in new}
         for a in aliases:
-            b = by_var.get(symbols.key(a.rep.sym)) if a.rep is not None else None
+            b = by_var.get(a.rep.sym.element_hash()) if a.rep is not None else None
             if b is not None:       # a.var = a.sign*(b.sign*b.rep + b.offset) + a.offset
                 a.offset = a.sign * b.offset + a.offset
                 a.sign = a.sign * b.sign

@@ -6,30 +6,20 @@ and, if it is not perfect, reports which equations over-determine which
 unknowns and which unknowns no equation determines (Dulmage-Mendelsohn
 coarse decomposition), naming components and equations.
 """
-import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import maximum_bipartite_matching
-
-from ..language import symbols
-from .incidence import variable_incidence
 from ..errors import StructuralError
+from .incidence import variable_incidence
+from .matching import Matching
 
 _LIST = 20
 
 
-def incidence(equations, variables):
-    """Sparse 0/1 matrix (equations x variables) of the structural incidence;
-    derivatives count for their base variable."""
-    index = {symbols.key(v.sym): j for j, v in enumerate(variables)}
-    syms, m = variable_incidence([eq.expr for eq in equations])
-    col_map = np.array([index.get(symbols.key(symbols.base_and_level(s)[0]), -1) for s in syms],
-                       dtype=int)
-    coo = m.tocoo()
-    keep = col_map[coo.col] >= 0 if len(syms) else np.zeros(0, dtype=bool)
-    A = sp.csr_matrix((np.ones(int(keep.sum())), (coo.row[keep], col_map[coo.col[keep]])),
-                      shape=(len(equations), len(variables)))
-    A.data[:] = 1.0
-    return A
+def incidence_rows(equations, variables, table):
+    """For each equation the sorted indices of the unknowns (``variables``)
+    it contains; derivatives count for their base variable."""
+    index = {v.sym.element_hash(): j for j, v in enumerate(variables)}
+    syms, inc = variable_incidence([eq.expr for eq in equations], table)
+    col = [index.get(table.base_and_level(s)[0].element_hash(), -1) for s in syms]
+    return [sorted({col[c] for c in inc.row(i) if col[c] >= 0}) for i in range(len(equations))]
 
 
 def _names(items, describe):
@@ -44,34 +34,42 @@ def _var_desc(v):
     return "%s (in %s)" % (v.name, owner)
 
 
-def check_balance(equations, variables):
+def check_balance(equations, variables, table):
     """Raise :class:`StructuralError` unless the system is square and has a
     perfect structural matching."""
-    A = incidence(equations, variables)
-    counts = np.diff(A.indptr)
-    empty = np.nonzero(counts == 0)[0]
-    if len(empty):
+    rows = incidence_rows(equations, variables, table)
+    empty = [i for i, r in enumerate(rows) if not r]
+    if empty:
         raise StructuralError(
             "Equation without unknowns (it repeats what other equations already state, e.g. "
             "a connection closing a loop of equal potentials, or a value fixed twice):\n%s\n"
             "Remove it." % _names([equations[i] for i in empty], lambda e: e.describe()))
     n_eq, n_var = len(equations), len(variables)
-    match_eq = maximum_bipartite_matching(A, perm_type="column") if n_eq and n_var else \
-        np.full(n_eq, -1)
-    if n_eq == n_var and (n_eq == 0 or np.all(match_eq >= 0)):
+    m = Matching(rows, n_var).match_all()
+    if n_eq == n_var and m.perfect:
         return
+    _report(equations, variables, rows, m.col_of)
+
+
+def _report(equations, variables, rows, match_eq):
+    """The StructuralError for an imperfect matching (Dulmage-Mendelsohn
+    coarse decomposition: over- and under-determined parts)."""
+    n_eq, n_var = len(equations), len(variables)
     matched_vars = set(int(j) for j in match_eq if j >= 0)
     free_eqs = [i for i in range(n_eq) if match_eq[i] < 0]
     free_vars = [j for j in range(n_var) if j not in matched_vars]
     var_of_eq = {i: int(match_eq[i]) for i in range(n_eq) if match_eq[i] >= 0}
     eq_of_var = {j: i for i, j in var_of_eq.items()}
-    At = A.T.tocsr()
+    cols = [[] for _ in range(n_var)]
+    for i, r in enumerate(rows):
+        for j in r:
+            cols[j].append(i)
     # over-determined part: equations reachable from free equations by alternating paths
     over_eqs, over_vars = set(free_eqs), set()
     stack = list(free_eqs)
     while stack:
         i = stack.pop()
-        for j in A.indices[A.indptr[i]:A.indptr[i + 1]]:
+        for j in rows[i]:
             if j not in over_vars:
                 over_vars.add(j)
                 i2 = eq_of_var.get(j)
@@ -83,7 +81,7 @@ def check_balance(equations, variables):
     stack = list(free_vars)
     while stack:
         j = stack.pop()
-        for i in At.indices[At.indptr[j]:At.indptr[j + 1]]:
+        for i in cols[j]:
             if i not in under_eqs:
                 under_eqs.add(i)
                 j2 = var_of_eq.get(i)

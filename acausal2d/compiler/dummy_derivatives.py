@@ -1,5 +1,4 @@
-"""Dummy-derivative state selection (Mattsson & Soederlind 1993) and the
-index-1 formulation handed to IDA.
+"""Dummy-derivative state selection (Mattsson & Soederlind 1993).
 
 Starting from the highest differentiated equations, each level picks as many
 derivative unknowns as there are differentiated equations such that their
@@ -7,55 +6,34 @@ Jacobian block is regular; those become *dummy* derivatives (algebraic).
 The choice honours state priorities (``state_select``: never < avoid <
 default < prefer < always) and, inside one priority class, takes the best
 conditioned columns at the current point (QR with column pivoting on
-nominal-scaled columns).  Where a class offered a real choice, the level is
-*dynamic*: the integrator watches the determinant of the chosen block and
-re-selects when it decays (e.g. a slider-crank passing a dead centre).  The
-block of the highest level is always watched: when no other choice is better
-conditioned, the mechanism itself is at a singular position (a limit
-position of a driven linkage, a branch point of a dyad).
+nominal-scaled columns).  A level falls apart into independent blocks (the
+connected parts of its equations-by-candidates graph), which are chosen one
+by one, so the dense factorizations stay small.  Where a class offered a
+real choice, the level is *dynamic*: the runtime watches the determinant of
+the chosen block and re-selects when it decays (a slider-crank passing a
+dead centre).
+
+A variable declared ``state_select="always"`` must become a state: if its
+derivative is chosen as a dummy, or no equation is ever differentiated so
+that it could be one, selection raises an error naming it.
 """
-import casadi as ca
 import numpy as np
 import scipy.linalg as sla
 
-from ..language import symbols
+from ..errors import ModelDefinitionError, SimulationError
 from ..language.dsl import STATE_SELECT
-from ..errors import SimulationError
+from ..language.unionfind import UnionFind
+from .structure import Level, Selection
 
-_MAX_MONITOR = 40          # largest dummy block whose determinant is watched during a run
-_MAX_DET_NODES = 20000     # ... and the largest symbolic determinant
-
-
-class Level:
-    """One step of the selection: equations ``eqs``, candidate derivative
-    nodes ``cands``, the chosen dummies and whether there was a choice."""
-
-    __slots__ = ("eqs", "cands", "chosen", "dynamic")
-
-    def __init__(self, eqs, cands, chosen, dynamic):
-        self.eqs, self.cands, self.chosen, self.dynamic = eqs, cands, chosen, dynamic
+_ALWAYS = STATE_SELECT.index("always")
 
 
-class Selection:
-    """Result of :func:`select_dummies`: the set of dummy derivative nodes and
-    the levels it was built from."""
-
-    def __init__(self, dummies, levels):
-        self.dummies = frozenset(dummies)
-        self.levels = levels
-
-    @property
-    def dynamic(self):
-        return any(lv.dynamic for lv in self.levels)
-
-
-def _pick(H, prio, need, what):
+def _pick(H, prio, need):
     """Choose ``need`` columns of H (rows x cands) giving a regular block,
-    lowest priority class first; returns (indices, choice_made)."""
-    chosen = []
-    Q = None
+    lowest priority class first; returns (indices, choice_made) or None if
+    the block is singular."""
+    chosen, Q = [], None
     scale = max(float(np.max(np.abs(H))) if H.size else 0.0, 1e-300)
-    tol = 1e-9 * scale
     choice = False
     for cls in range(len(STATE_SELECT)):
         if len(chosen) == need:
@@ -63,149 +41,95 @@ def _pick(H, prio, need, what):
         idx = [c for c in range(H.shape[1]) if prio[c] == cls]
         if not idx:
             continue
-        M = H[:, idx]
-        if Q is not None:
-            M = M - Q @ (Q.T @ M)
+        M = H[:, idx] if Q is None else H[:, idx] - Q @ (Q.T @ H[:, idx])
         _, r, piv = sla.qr(M, pivoting=True, mode="economic")
         d = np.abs(np.diag(r)) if r.size else np.zeros(0)
-        k = min(int(np.sum(d > tol)), need - len(chosen))
+        k = min(int(np.sum(d > 1e-9 * scale)), need - len(chosen))
         if k == 0:
             continue
-        if len(idx) > k:        # structurally, another choice was possible
-            choice = True
+        choice = choice or len(idx) > k
         chosen.extend(idx[p] for p in piv[:k])
         Q, _ = np.linalg.qr(H[:, chosen])
-    if len(chosen) < need:
-        raise SimulationError(
-            "State selection failed: the derivative equations of %s are singular here "
-            "(the mechanism is at a singular position or a constraint is redundant)." % what)
-    return chosen, choice
+    return (chosen, choice) if len(chosen) == need else None
 
 
-def select_dummies(R, n_original, priority, nominal, jacobian):
-    """Select dummy derivatives.
+def _blocks(s, eqs, cands):
+    """Connected parts of the graph equations ``eqs`` x nodes ``cands``:
+    list of (equation list, candidate list)."""
+    cset = set(cands)
+    uf = UnionFind()
+    for i in eqs:
+        uf.add(("e", i))
+        for j in s.eq_vars[i]:
+            if j in cset:
+                uf.union(("e", i), ("v", j))
+    parts = {}
+    for i in eqs:
+        parts.setdefault(uf.find(("e", i)), ([], []))[0].append(i)
+    for j in cands:
+        key = uf.find(("v", j))
+        if key in parts:
+            parts[key][1].append(j)
+    return list(parts.values())
 
-    R: :class:`~acausal2d.compiler.pantelides.IndexReduced`; priority[j], nominal[j]:
-    per variable node; jacobian(eq_ids, node_ids) -> dense numpy matrix at the
-    current point.  Returns a :class:`Selection`.
+
+def _choose_level(s, eqs, cands, priority, nominal, jacobian):
+    """Dummies of one level, block by block; returns (chosen, dynamic)."""
+    chosen, dynamic = [], False
+    for beqs, bcands in _blocks(s, eqs, cands):
+        H = jacobian(beqs, bcands) * np.array([nominal[j] for j in bcands])[None, :]
+        picked = _pick(H, [priority[j] for j in bcands], len(beqs))
+        if picked is None:
+            what = ", ".join(sorted({"'%s'" % s.var_sym[s.var_base[j]].name()
+                                     for j in bcands})[:6])
+            raise SimulationError(
+                "State selection failed: the derivative equations of the unknowns %s are "
+                "singular here (the mechanism is at a singular position or a constraint is "
+                "redundant)." % what)
+        chosen.extend(bcands[k] for k in picked[0])
+        dynamic = dynamic or picked[1]
+    return chosen, dynamic
+
+
+def select_dummies(s, priority, nominal, jacobian):
+    """Select dummy derivatives for the structure ``s`` (after Pantelides).
+
+    priority[j], nominal[j]: per variable node; jacobian(eq_ids, node_ids)
+    -> dense numpy matrix at the current point.  Returns a
+    :class:`~acausal2d.compiler.structure.Selection`.
     """
-    lower = {R.A[j]: j for j in range(R.n_var) if R.A[j] >= 0}
-    pred = {R.B[i]: i for i in range(R.n_eq) if R.B[i] >= 0}
-    h = [c[-1] for c in R.chains(n_original) if len(c) > 1]
-    z = None
-    dummies, levels = set(), []
+    A, lower = s.var_to_diff, s.var_to_diff.from_diff
+    pred = s.eq_to_diff.from_diff
+    h = [c[-1] for c in s.chains() if len(c) > 1]
+    z, dummies, levels = None, set(), []
     while h:
         if z is None:
-            zs = set()
-            for i in h:
-                zs.update(j for j in R.eq_inc[i] if R.A[j] < 0 and R.var_level[j] >= 1)
-            z = sorted(zs)
-        H = jacobian(h, z) * np.array([nominal[j] for j in z])[None, :]
-        what = ", ".join(sorted({"'%s'" % symbols.base_and_level(R.var_sym[j])[0].name()
-                                 for j in z})[:6])
-        idx, choice = _pick(H, [priority[j] for j in z], len(h), "the unknowns " + what)
-        chosen = [z[k] for k in idx]
+            z = sorted({j for i in h for j in s.eq_vars[i]
+                        if A[j] < 0 and s.var_level[j] >= 1})
+        chosen, dynamic = _choose_level(s, h, z, priority, nominal, jacobian)
         dummies.update(chosen)
-        levels.append(Level(list(h), list(z), chosen, choice))
-        h = [pred[i] for i in h if R.eq_level[i] >= 2]
-        z = sorted(lower[j] for j in chosen if R.var_level[j] >= 2)
-    return Selection(dummies, levels)
+        levels.append(Level(tuple(h), tuple(z), tuple(chosen), dynamic))
+        h = [pred[i] for i in h if s.eq_level[i] >= 2]
+        z = sorted(lower[j] for j in chosen if s.var_level[j] >= 2)
+    _check_always(s, priority, dummies)
+    return Selection(frozenset(dummies), tuple(levels))
 
 
-class Formulation:
-    """The index-1 DAE for one dummy selection.
-
-    y holds every variable node except non-dummy derivatives that are not
-    themselves differentiated (those are replaced by yp of the node below).
-    Link equations ``yp[lower] = y[node]`` tie derivative states.  Provides
-    CasADi functions of (t, y, yp, p, d): residual, iteration matrix
-    dF/dy + cj dF/dyp, zero crossings and the map to all node values.
-    """
-
-    def __init__(self, R, selection, t, p, d, crossings):
-        A = R.A
-        dummy = selection.dummies
-        lower = {A[j]: j for j in range(R.n_var) if A[j] >= 0}
-        n_nodes = R.n_var
-        is_state = [A[j] >= 0 and A[j] not in dummy for j in range(n_nodes)]
-        in_y = [R.var_level[j] == 0 or j in dummy or is_state[j] for j in range(n_nodes)]
-        self.y_nodes = [j for j in range(n_nodes) if in_y[j]]
-        ypos = {j: k for k, j in enumerate(self.y_nodes)}
-        n = len(self.y_nodes)
-        self.n = n
-        y = ca.SX.sym("y", n)
-        yp = ca.SX.sym("yp", n)
-        repl = []
-        self.sub_nodes, self.sub_from = [], []
-        for j in range(n_nodes):
-            if in_y[j]:
-                repl.append(y[ypos[j]])
-            else:
-                repl.append(yp[ypos[lower[j]]])
-                self.sub_nodes.append(j)
-                self.sub_from.append(ypos[lower[j]])
-        links = [yp[ypos[lower[j]]] - y[ypos[j]] for j in self.y_nodes
-                 if R.var_level[j] >= 1 and j not in dummy]
-        node_syms = ca.vertcat(*R.var_sym)
-        repl = ca.vertcat(*repl)
-        eqs = ca.substitute(ca.vertcat(*R.eq_expr), node_syms, repl)
-        F = ca.vertcat(eqs, *links) if links else eqs
-        if F.numel() != n:
-            raise SimulationError("internal error: index-1 system is not square (%d x %d)"
-                                  % (F.numel(), n))
-        self.differential = np.array([is_state[j] for j in self.y_nodes], dtype=bool)
-        self.y_pos = np.array(self.y_nodes, dtype=int)
-        self.sub_nodes = np.array(self.sub_nodes, dtype=int)
-        self.sub_from = np.array(self.sub_from, dtype=int)
-        self.state_deriv = np.array([A[j] if is_state[j] else -1 for j in self.y_nodes])
-        self.all_deriv = np.array([A[j] for j in self.y_nodes])
-        cj = ca.SX.sym("cj")
-        Jac = ca.jacobian(F, y) + cj * ca.jacobian(F, yp)
-        self.sparse = n >= 100
-        self.jac_sparsity = Jac.sparsity()
-        args = [t, y, yp, p, d]
-        self.res_fn = ca.Function("res", args, [F])
-        self.jac_fn = ca.Function("iteration_matrix", args + [cj], [Jac])
-        # zero crossings: relation functions, then determinants of watched dummy blocks
-        g = [ca.substitute(crossings, node_syms, repl)] \
-            if crossings is not None and crossings.numel() else []
-        self.n_rel = g[0].numel() if g else 0
-        # watched dummy blocks: every level with a choice (events trigger a
-        # re-selection) and the highest level (scanned for singular positions)
-        self.monitor_levels, self.scan_levels, dets = [], [], {}
-        for k, lv in enumerate(selection.levels):
-            if (k == 0 or lv.dynamic) and len(lv.eqs) <= _MAX_MONITOR:
-                Hs = ca.jacobian(ca.vertcat(*[R.eq_expr[i] for i in lv.eqs]),
-                                 ca.vertcat(*[R.var_sym[j] for j in lv.chosen]))
-                det = ca.det(Hs)
-                if ca.n_nodes(det) > _MAX_DET_NODES:
-                    continue        # too large to watch cheaply
-                dets[k] = ca.substitute(det, node_syms, repl)
-                self.scan_levels.append(k)
-                if lv.dynamic:
-                    self.monitor_levels.append(k)
-                    g.append(dets[k])
-        self.n_mon = len(self.monitor_levels)
-        self.det_fn = ca.Function("dets", args, [ca.vertcat(*[dets[k] for k in self.scan_levels])]) \
-            if self.scan_levels else None
-        self.det_scan = None    # buffered evaluation of det_fn over many points (singularities)
-        self.event_fn = ca.Function("events", args, [ca.vertcat(*g)]) if g else None
-
-    def nodes_from(self, y, yp):
-        """Values of all variable nodes from IDA's y and yp (vectors, or
-        arrays with one point per row)."""
-        y, yp = np.asarray(y), np.asarray(yp)
-        z = np.empty(y.shape[:-1] + (len(self.y_pos) + len(self.sub_nodes),))
-        z[..., self.y_pos] = y
-        z[..., self.sub_nodes] = yp[..., self.sub_from]
-        return z
-
-    def y_from(self, z):
-        """IDA's (y, yp) from consistent node values; algebraic components get
-        their derivative too where it is known, so that IDA's first error
-        test sees consistent values."""
-        y = z[self.y_pos]
-        yp = np.zeros_like(y)
-        st = self.all_deriv >= 0
-        yp[st] = z[self.all_deriv[st]]
-        return y, yp
+def _check_always(s, priority, dummies):
+    """Every node declared ``always`` must be a state (see module docstring)."""
+    A = s.var_to_diff
+    for j in range(s.n_var):
+        if priority[j] != _ALWAYS or s.var_level[j] != 0:
+            continue
+        if A[j] < 0:
+            raise ModelDefinitionError(
+                "%s has state_select='always', but no equation contains its derivative, so "
+                "it cannot be a state: it is determined by algebraic equations alone. Use "
+                "'prefer', or give an equation with der(%s)." % (s.var_sym[j].name(),
+                                                                  s.var_sym[j].name()))
+        if A[j] in dummies:
+            raise ModelDefinitionError(
+                "%s has state_select='always', but the states of its loop had to be chosen "
+                "elsewhere: its derivative is determined by the constraints (a dummy "
+                "derivative). Give 'always' to fewer variables of the loop, or use 'prefer'."
+                % s.var_sym[j].name())

@@ -8,7 +8,8 @@ declared with ``ground=``).
 import casadi as ca
 import numpy as np
 
-from ..errors import ModelDefinitionError
+from ..errors import Acausal2dError, ModelDefinitionError
+from ..language.context import ModelContext
 from ..language.unionfind import UnionFind
 
 
@@ -33,6 +34,13 @@ class Equation:
             else:
                 self._text = "%s == 0" % _fmt(self.expr)
         return self._text
+
+    def with_expr(self, expr):
+        """A copy of the equation with residual ``expr`` (same origin)."""
+        eq = Equation(expr, self.origin, self._text, self._sides, self.owner)
+        if eq._text is None and self._sides is None:
+            eq._text = self.text
+        return eq
 
     def describe(self):
         """'origin: text' for messages."""
@@ -88,43 +96,57 @@ def _fmt(e):
     return s if len(s) < 160 else s[:157] + "..."
 
 
-def _ensure_world(model):
-    from acausal2d.library.planar import PlanarWorld
-    needs = any(getattr(type(c), "needs_world", False) for c in model.components())
-    if not needs:
-        return
-    if any(isinstance(c, PlanarWorld) for c in model._children.values()):
-        return
-    name = "world"
-    while name in model._children or name in model.__dict__:
-        name += "_"
-    setattr(model, name, PlanarWorld())
+def resolve_outers(model):
+    """Give every :class:`~acausal2d.language.dsl.Outer` declaration of the
+    model's components an instance: where the model holds none, one with
+    default parameters is added to ``model`` (named like the declaration,
+    e.g. ``world``)."""
+    for comp in list(model.components()):
+        for outer in comp.outers():
+            if outer.find(comp) is not None:
+                continue
+            if comp is model and not model._children:
+                continue
+            name = outer.name
+            while name in model._children or name in model.__dict__:
+                name += "_"
+            setattr(model, name, outer.cls())
 
 
-def flatten(model):
-    """Flatten ``model`` (a Component instance) into a :class:`FlatModel`."""
-    _ensure_world(model)
-    params, variables = [], []
+def flatten(model, table):
+    """Flatten ``model`` (a Component instance) into a :class:`FlatModel`
+    whose symbols are created in ``table`` (a
+    :class:`~acausal2d.language.symbols.SymbolTable`)."""
+    resolve_outers(model)
     comps = list(model.components())
+    context = ModelContext(model)
     for comp in comps:
-        comp.before_flatten()
-    for comp in comps:
-        comp._bind(params, variables)
-    for comp in comps:
-        comp.on_flatten()
-    equations = []
-    for comp in comps:
-        origin = comp.describe()
-        try:
-            items = comp.equations()
-        except ModelDefinitionError:
-            raise
-        except Exception as exc:
-            raise ModelDefinitionError("%s: equations() failed: %s: %s"
-                                       % (origin, type(exc).__name__, exc)) from None
-        _residuals(items if items is not None else [], origin, equations, [0], comp)
+        comp._set_derived(_hook(comp, "derived_parameters", context))
+    params, variables = [], []
+    with table.active():
+        for comp in comps:
+            comp._bind(table, params, variables)
+        context.parameters = params
+        for comp in comps:
+            comp._apply_guesses(_hook(comp, "guesses", context))
+        equations = []
+        for comp in comps:
+            items = _hook(comp, "equations")
+            _residuals(items if items is not None else [], comp.describe(), equations, [0],
+                       comp)
     equations.extend(_connection_equations(model, comps))
     return FlatModel(model, variables, params, equations)
+
+
+def _hook(comp, name, *args):
+    """Call a component hook; errors other than the project's name it."""
+    try:
+        return getattr(comp, name)(*args)
+    except Acausal2dError:
+        raise
+    except Exception as exc:
+        raise ModelDefinitionError("%s: %s() failed: %s: %s"
+                                   % (comp.describe(), name, type(exc).__name__, exc)) from None
 
 
 def _is_descendant(comp, ancestor):

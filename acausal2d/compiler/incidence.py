@@ -1,22 +1,33 @@
 """Structural incidence of equations, computed in bulk with CasADi."""
 import casadi as ca
 import numpy as np
-import scipy.sparse as sp
 
-from ..language import symbols
+from ..language.symbols import VAR
 
 
-def variable_incidence(exprs):
-    """For scalar SX ``exprs``: (list of variable symbols appearing, CSR 0/1
-    matrix equations x those symbols).  Parameters, time and discrete values
-    are left out."""
+class Incidence:
+    """A 0/1 matrix (equations x symbols) in compressed rows: the symbols of
+    row i are ``indices[indptr[i]:indptr[i + 1]]``."""
+
+    def __init__(self, n_rows, rows, cols):
+        order = np.lexsort((cols, rows))
+        rows, cols = np.asarray(rows, dtype=int)[order], np.asarray(cols, dtype=int)[order]
+        self.indices = cols
+        self.indptr = np.searchsorted(rows, np.arange(n_rows + 1))
+        self.shape = (n_rows, int(cols.max()) + 1 if len(cols) else 0)
+
+    def row(self, i):
+        return self.indices[self.indptr[i]:self.indptr[i + 1]]
+
+
+def variable_incidence(exprs, table):
+    """For scalar SX ``exprs``: (list of variable symbols appearing, their
+    :class:`Incidence`).  Parameters, time and discrete values are left out."""
     if not exprs:
-        return [], sp.csr_matrix((0, 0))
+        return [], Incidence(0, [], [])
     F = ca.vertcat(*exprs)
-    syms = [s for s in ca.symvar(F) if symbols.kind(s) == symbols.VAR]
+    syms = [s for s in ca.symvar(F) if table.kind(s) == VAR]
     if not syms:
-        return [], sp.csr_matrix((len(exprs), 0))
-    pattern = ca.jacobian_sparsity(F, ca.vertcat(*syms))
-    rows, cols = pattern.get_triplet()
-    m = sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(exprs), len(syms)))
-    return syms, m
+        return [], Incidence(len(exprs), [], [])
+    rows, cols = ca.jacobian_sparsity(F, ca.vertcat(*syms)).get_triplet()
+    return syms, Incidence(len(exprs), rows, cols)

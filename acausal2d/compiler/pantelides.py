@@ -1,113 +1,47 @@
 """Pantelides' algorithm: find which equations must be differentiated.
 
-Works on the bipartite graph of equations and variable symbols (every
-derivative order of a variable is its own node; ``A[j]`` is the node of
-der(j), ``B[i]`` the equation der(i)).  Matching uses only the highest
-derivatives.  Whenever an equation cannot be matched, the equations and
-variables of the failed augmenting-path search are differentiated
-(Pantelides 1988).  The differentiated equations are then built
-symbolically (chain rule over the derivative symbols), so library code never
-writes velocity or acceleration equations.
+A pass over the :class:`~acausal2d.compiler.structure.Structure`: matching
+uses only the highest derivative nodes; whenever an equation cannot be
+matched, the equations and variables of the failed augmenting-path search
+are differentiated (Pantelides 1988).  The differentiated equations are then
+built symbolically (chain rule over the derivative symbols), so library code
+never writes velocity or acceleration equations.
 """
-from ..language import symbols
-from .incidence import variable_incidence
+from dataclasses import replace
+
+import casadi as ca
+
 from ..errors import StructuralError
+from ..language.symbols import time
+from .structure import DiffMap, NodeBuilder
 
 
-class IndexReduced:
-    """Pantelides' result.
+class _Work:
+    """Mutable working copy of the graph while the algorithm runs."""
 
-    eq_expr[i], eq_origin[i] (index of the original equation), eq_level[i]
-    (differentiation order), B[i] (derivative equation or -1);
-    var_sym[j], var_base[j] (index of the level-0 variable), var_level[j],
-    A[j] (derivative node or -1); assign[j] (matched equation of a highest
-    derivative, -1 if none).
-    """
-
-    def __init__(self):
-        self.eq_expr, self.eq_origin, self.eq_level, self.B, self.eq_inc = [], [], [], [], []
-        self.var_sym, self.var_base, self.var_level, self.A = [], [], [], []
-        self.assign = []
-        self.var_index = {}
+    def __init__(self, s):
+        self.nodes = NodeBuilder.of(s)
+        self.eq_vars = [list(v) for v in s.eq_vars]
+        self.eq_origin, self.eq_level = list(s.eq_origin), list(s.eq_level)
+        self.B = list(s.eq_to_diff.to_diff)
+        self.assign = list(s.matching)
+        self.colV, self.colE = set(), set()
 
     @property
-    def n_eq(self):
-        return len(self.eq_expr)
+    def A(self):
+        return self.nodes.to_diff
 
-    @property
-    def n_var(self):
-        return len(self.var_sym)
+    def grow_assign(self):
+        self.assign.extend([-1] * (len(self.nodes.sym) - len(self.assign)))
 
-    def chains(self, n_original):
-        """For each original equation the list [i, B[i], B[B[i]], ...]."""
-        out = []
-        for i in range(n_original):
-            chain = [i]
-            while self.B[chain[-1]] >= 0:
-                chain.append(self.B[chain[-1]])
-            out.append(chain)
-        return out
+    def highest(self, i):
+        return [j for j in self.eq_vars[i] if self.A[j] < 0]
 
-    def structural_index(self):
-        """Largest number of differentiations of an equation (the index is
-        this plus one for systems with algebraic variables)."""
-        return max(self.eq_level) if self.eq_level else 0
-
-
-def pantelides(equations, variables, max_differentiations=None):
-    """Index reduction of ``equations`` (flatten.Equation) in the unknowns
-    ``variables`` (VarInfo); returns :class:`IndexReduced`."""
-    R = IndexReduced()
-
-    def var_node(sym):
-        k = symbols.key(sym)
-        j = R.var_index.get(k)
-        if j is not None:
-            return j
-        base, level = symbols.base_and_level(sym)
-        if level > 0:
-            lower = var_node(_lower(base, level - 1))
-        j = len(R.var_sym)
-        R.var_index[k] = j
-        R.var_sym.append(sym)
-        R.var_base.append(R.var_index[symbols.key(base)] if level > 0 else j)
-        R.var_level.append(level)
-        R.A.append(-1)
-        R.assign.append(-1)
-        if level > 0:
-            R.A[lower] = j
-        return j
-
-    def _lower(base, level):
-        s = base
-        for _ in range(level):
-            s = symbols.derivative_symbol(s)
-        return s
-
-    for v in variables:
-        var_node(v.sym)
-    syms, inc_matrix = variable_incidence([eq.expr for eq in equations])
-    col_node = [var_node(sym) for sym in syms]
-    for n, eq in enumerate(equations):
-        cols = inc_matrix.indices[inc_matrix.indptr[n]:inc_matrix.indptr[n + 1]]
-        R.eq_expr.append(eq.expr)
-        R.eq_origin.append(n)
-        R.eq_level.append(0)
-        R.B.append(-1)
-        R.eq_inc.append(sorted({col_node[c] for c in cols}))
-
-    if max_differentiations is None:
-        max_differentiations = len(equations) + 3
-    A, B, assign = R.A, R.B, R.assign
-    colV, colE = set(), set()
-
-    def highest(i):
-        return [j for j in R.eq_inc[i] if A[j] < 0]
-
-    def augment(i0):
-        colE.add(i0)
-        stack = [[i0, 0, False, highest(i0)]]
-        via = []
+    def augment(self, i0):
+        """Augmenting path from equation i0 (iterative DFS, coloring)."""
+        assign, colV = self.assign, self.colV
+        self.colE.add(i0)
+        stack, via = [[i0, 0, False, self.highest(i0)]], []
         while stack:
             top = stack[-1]
             i, pos, checked, cands = top
@@ -119,81 +53,96 @@ def pantelides(equations, variables, max_differentiations=None):
                         for k in range(len(via) - 1, -1, -1):
                             assign[via[k]] = stack[k][0]
                         return True
-            advanced = False
-            while pos < len(cands):
-                j = cands[pos]
+            while pos < len(cands) and cands[pos] in colV:
                 pos += 1
-                if j not in colV:
-                    colV.add(j)
-                    top[1] = pos
-                    nxt = assign[j]
-                    colE.add(nxt)
-                    via.append(j)
-                    stack.append([nxt, 0, False, highest(nxt)])
-                    advanced = True
-                    break
-            if not advanced:
-                stack.pop()
-                if via:
-                    via.pop()
+            if pos < len(cands):
+                j = cands[pos]
+                top[1] = pos + 1
+                colV.add(j)
+                self.colE.add(assign[j])
+                via.append(j)
+                stack.append([assign[j], 0, False, self.highest(assign[j])])
+                continue
+            stack.pop()
+            if via:
+                via.pop()
         return False
 
-    def differentiate_eq(l):
+    def differentiate(self, l):
         inc = set()
-        for j in R.eq_inc[l]:
+        for j in self.eq_vars[l]:
             inc.add(j)
-            if A[j] < 0:
-                var_node(symbols.derivative_symbol(R.var_sym[j]))
-            inc.add(A[j])
-        n = len(R.eq_expr)
-        R.eq_expr.append(None)        # built symbolically after the structural pass
-        R.eq_origin.append(R.eq_origin[l])
-        R.eq_level.append(R.eq_level[l] + 1)
-        R.B.append(-1)
-        R.eq_inc.append(sorted(inc))
-        B[l] = n
-        return n
+            inc.add(self.nodes.derivative(j))
+        n = len(self.eq_vars)
+        self.eq_vars.append(sorted(inc))
+        self.eq_origin.append(self.eq_origin[l])
+        self.eq_level.append(self.eq_level[l] + 1)
+        self.B.append(-1)
+        self.B[l] = n
 
-    for k in range(len(equations)):
+
+def _reduce(w, s, max_differentiations):
+    for k in range(s.n_original):
         i = k
         while True:
-            colV.clear()
-            colE.clear()
-            if augment(i):
+            w.colV.clear()
+            w.colE.clear()
+            w.grow_assign()
+            if w.augment(i):
                 break
-            if R.eq_level[i] >= max_differentiations:
-                raise StructuralError(
-                    "Index reduction does not terminate: equation '%s' would be differentiated "
-                    "more than %d times. The model is structurally singular (a constraint "
-                    "repeats another one or an unknown is missing)."
-                    % (equations[R.eq_origin[i]].describe(), max_differentiations))
-            for j in list(colV):
-                if A[j] < 0:
-                    var_node(symbols.derivative_symbol(R.var_sym[j]))
-            for l in sorted(colE):
-                differentiate_eq(l)
-            for j in colV:
-                assign[A[j]] = B[assign[j]]
-            i = B[i]
-    _differentiate_symbolically(R)
-    return R
+            if w.eq_level[i] >= max_differentiations:
+                return i
+            for j in list(w.colV):
+                w.nodes.derivative(j)
+            for l in sorted(w.colE):
+                w.differentiate(l)
+            w.grow_assign()
+            for j in w.colV:
+                w.assign[w.A[j]] = w.B[w.assign[j]]
+            i = w.B[i]
+    return None
 
 
-def _differentiate_symbolically(R):
-    """Build the expressions of all differentiated equations, one derivative
-    order at a time, with a single forward-mode derivative per order."""
-    import casadi as ca
-    parent = {R.B[i]: i for i in range(R.n_eq) if R.B[i] >= 0}
+def pantelides(s, describe_equation, max_differentiations=None):
+    """Index reduction of the structure ``s`` (before any differentiation);
+    returns the structure with the differentiated equations, their
+    expressions, the derivative maps and the matching.
+    ``describe_equation(origin)`` names an equation in errors."""
+    if max_differentiations is None:
+        max_differentiations = s.n_original + 3
+    w = _Work(s)
+    stuck = _reduce(w, s, max_differentiations)
+    if stuck is not None:
+        raise StructuralError(
+            "Index reduction does not terminate: equation '%s' would be differentiated "
+            "more than %d times. The model is structurally singular (a constraint "
+            "repeats another one or an unknown is missing)."
+            % (describe_equation(w.eq_origin[stuck]), max_differentiations))
+    w.grow_assign()
+    exprs = _differentiate_symbolically(w, list(s.eq_expr))
+    return replace(s, eq_expr=tuple(exprs), eq_origin=tuple(w.eq_origin),
+                   eq_level=tuple(w.eq_level), eq_vars=tuple(tuple(v) for v in w.eq_vars),
+                   eq_to_diff=DiffMap(tuple(w.B)), var_sym=tuple(w.nodes.sym),
+                   var_base=tuple(w.nodes.base), var_level=tuple(w.nodes.level),
+                   var_to_diff=DiffMap(tuple(w.nodes.to_diff)), matching=tuple(w.assign),
+                   _var_index=dict(w.nodes.index))
+
+
+def _differentiate_symbolically(w, exprs):
+    """Expressions of all differentiated equations, one derivative order at
+    a time, with a single forward-mode derivative per order."""
+    exprs = exprs + [None] * (len(w.eq_vars) - len(exprs))
+    parent = {d: i for i, d in enumerate(w.B) if d >= 0}
+    sym, A = w.nodes.sym, w.nodes.to_diff
     level = 1
     while True:
-        todo = [i for i in range(R.n_eq) if R.eq_expr[i] is None and R.eq_level[i] == level]
+        todo = [i for i in range(len(exprs)) if exprs[i] is None and w.eq_level[i] == level]
         if not todo:
-            break
-        nodes = sorted({j for i in todo for j in R.eq_inc[parent[i]]})
-        V = ca.vertcat(symbols.time, *[R.var_sym[j] for j in nodes])
-        Vdot = ca.vertcat(1, *[R.var_sym[R.A[j]] for j in nodes])
-        F = ca.vertcat(*[R.eq_expr[parent[i]] for i in todo])
-        dF = ca.vertsplit(ca.jtimes(F, V, Vdot))
-        for i, e in zip(todo, dF):
-            R.eq_expr[i] = e
+            return exprs
+        nodes = sorted({j for i in todo for j in w.eq_vars[parent[i]]})
+        V = ca.vertcat(time, *[sym[j] for j in nodes])
+        Vdot = ca.vertcat(1, *[sym[A[j]] for j in nodes])
+        F = ca.vertcat(*[exprs[parent[i]] for i in todo])
+        for i, e in zip(todo, ca.vertsplit(ca.jtimes(F, V, Vdot))):
+            exprs[i] = e
         level += 1

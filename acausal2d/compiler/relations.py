@@ -3,90 +3,116 @@
 Every relation that depends on unknowns or time (``a < b``, ``a <= b`` and the
 relations hidden in ``sign``, ``fmin`` and ``fmax``) is replaced by a discrete
 symbol ``d`` that holds 0 or 1 between events, and a zero-crossing function
-``g`` (positive while the relation is true).  The integrator locates the
-zeros of ``g``, flips ``d`` and re-initializes consistently (Modelica event
-semantics).  Relations among parameters only stay as they are.  ``fabs`` is
-kept continuous.
+``g`` (positive while the relation is true).  The runtime locates the zeros
+of ``g`` (or, for relations of time alone, schedules them), flips ``d`` and
+re-initializes consistently (Modelica event semantics).  Relations among
+parameters only stay as they are.  ``fabs`` is kept continuous.
 """
+from dataclasses import dataclass
+
 import casadi as ca
 
-from ..language import symbols
+from ..language.symbols import TIME, VAR
 
 _REL_OPS = (ca.OP_LT, ca.OP_LE, ca.OP_SIGN, ca.OP_FMIN, ca.OP_FMAX)
 
 
+@dataclass(frozen=True)
 class Relation:
     """A discrete relation value ``sym`` with zero-crossing function ``g``
-    (relation true where g > 0, or g >= 0 when not ``strict``)."""
-
-    __slots__ = ("sym", "g", "strict", "text")
-
-    def __init__(self, sym, g, strict, text):
-        self.sym = sym
-        self.g = g
-        self.strict = strict
-        self.text = text
+    (relation true where g > 0, or g >= 0 when not ``strict``); ``text``
+    shows it as written, ``equation`` is the index of the first equation
+    using it and ``time_only`` says that ``g`` depends on time and
+    parameters alone (a time event)."""
+    sym: object
+    g: object
+    strict: bool
+    text: str
+    equation: int = -1
+    time_only: bool = False
 
     def value(self, g_value):
         """Relation value (0.0 or 1.0) for a crossing-function value."""
         return 1.0 if (g_value > 0 if self.strict else g_value >= 0) else 0.0
 
+    def with_g(self, g):
+        """The same relation with crossing function ``g``."""
+        return Relation(self.sym, g, self.strict, self.text, self.equation, self.time_only)
 
-def extract_relations(exprs):
+
+def _short(e):
+    s = str(e)
+    return s if len(s) <= 80 else s[:77] + "..."
+
+
+class _Scan:
+    """Rebuilds the equations instruction by instruction, replacing relations."""
+
+    def __init__(self, table, dynamic):
+        self.table, self.dyn = table, dynamic
+        self.found = []      # (symbol, g, strict, text, time_only)
+
+    def depends(self, e):
+        return self.dyn is not None and ca.depends_on(e, self.dyn)
+
+    def relation(self, g, strict, text):
+        d = self.table.new_discrete("rel%d" % len(self.found))
+        variables = [s for s in ca.symvar(g) if self.table.kind(s) == VAR]
+        self.found.append((d, g, strict, text, not variables))
+        return d
+
+    def op(self, op, args):
+        a = args[0]
+        b = args[1] if len(args) > 1 else None
+        if op in (ca.OP_LT, ca.OP_LE) and self.depends(b - a):
+            sign = "<" if op == ca.OP_LT else "<="
+            return self.relation(b - a, op == ca.OP_LT, "%s %s %s" % (_short(a), sign, _short(b)))
+        if op == ca.OP_SIGN and self.depends(a):
+            return 2 * self.relation(a, True, "sign(%s)" % _short(a)) - 1
+        if op == ca.OP_FMIN and self.depends(b - a):
+            d = self.relation(b - a, True, "min(%s, %s)" % (_short(a), _short(b)))
+            return ca.if_else(d, a, b)
+        if op == ca.OP_FMAX and self.depends(a - b):
+            d = self.relation(a - b, True, "max(%s, %s)" % (_short(a), _short(b)))
+            return ca.if_else(d, a, b)
+        return ca.SX.unary(op, a) if b is None else ca.SX.binary(op, a, b)
+
+
+def extract_relations(exprs, table):
     """Replace relations in the list of scalar SX ``exprs``; returns
-    (new_exprs, relations)."""
+    (new_exprs, relations).  ``table``: the compilation's symbol table."""
     if not exprs:
-        return exprs, []
+        return list(exprs), []
     allexpr = ca.vertcat(*exprs)
     syms = ca.symvar(allexpr)
     f = ca.Function("rel_scan", [ca.vertcat(*syms)] if syms else [ca.SX(0, 1)], [allexpr])
-    n = f.n_instructions()
-    ops = [f.instruction_id(k) for k in range(n)]
+    ops = [f.instruction_id(k) for k in range(f.n_instructions())]
     if not any(op in _REL_OPS for op in ops):
-        return exprs, []
-    dynamic = [s for s in syms if symbols.kind(s) in (symbols.VAR, symbols.TIME)]
-    dyn = ca.vertcat(*dynamic) if dynamic else None
-    work = {}
-    out = [None] * len(exprs)
-    relations = []
-
-    def depends(e):
-        return dyn is not None and ca.depends_on(e, dyn)
-
-    def relation(g, strict, text):
-        d = symbols.new_discrete("rel%d" % len(relations))
-        relations.append(Relation(d, g, strict, text))
-        return d
-
-    for k in range(n):
-        op = ops[k]
-        ins = f.instruction_input(k)
-        outs = f.instruction_output(k)
+        return list(exprs), []
+    dynamic = [s for s in syms if table.kind(s) in (VAR, TIME)]
+    scan = _Scan(table, ca.vertcat(*dynamic) if dynamic else None)
+    work, out = {}, [None] * len(exprs)
+    for k, op in enumerate(ops):
+        ins, outs = f.instruction_input(k), f.instruction_output(k)
         if op == ca.OP_INPUT:
             work[outs[0]] = syms[ins[1]]
         elif op == ca.OP_OUTPUT:
             out[outs[1]] = work[ins[0]]
         elif op == ca.OP_CONST:
             work[outs[0]] = ca.SX(f.instruction_constant(k))
-        elif op == ca.OP_PARAMETER:
-            raise ValueError("unexpected free parameter in equations")
         else:
-            args = [work[i] for i in ins]
-            if op in (ca.OP_LT, ca.OP_LE) and depends(args[1] - args[0]):
-                g = args[1] - args[0]
-                res = relation(g, op == ca.OP_LT, "%s %s %s" % (args[0], "<" if op == ca.OP_LT else "<=", args[1]))
-            elif op == ca.OP_SIGN and depends(args[0]):
-                d = relation(args[0], True, "%s > 0" % args[0])
-                res = 2 * d - 1
-            elif op == ca.OP_FMIN and depends(args[1] - args[0]):
-                d = relation(args[1] - args[0], True, "%s < %s" % (args[0], args[1]))
-                res = ca.if_else(d, args[0], args[1])
-            elif op == ca.OP_FMAX and depends(args[0] - args[1]):
-                d = relation(args[0] - args[1], True, "%s > %s" % (args[0], args[1]))
-                res = ca.if_else(d, args[0], args[1])
-            elif len(args) == 1:
-                res = ca.SX.unary(op, args[0])
-            else:
-                res = ca.SX.binary(op, args[0], args[1])
-            work[outs[0]] = res
-    return out, relations
+            work[outs[0]] = scan.op(op, [work[i] for i in ins])
+    return out, _with_equations(scan.found, out)
+
+
+def _with_equations(found, exprs):
+    """Relations with the index of the first equation that uses each."""
+    if not found:
+        return []
+    rows, cols = ca.jacobian_sparsity(ca.vertcat(*exprs),
+                                      ca.vertcat(*[d for d, *_ in found])).get_triplet()
+    first = {}
+    for r, c in zip(rows, cols):
+        first[c] = min(first.get(c, r), r)
+    return [Relation(d, g, strict, text, first.get(k, -1), time_only)
+            for k, (d, g, strict, text, time_only) in enumerate(found)]

@@ -18,7 +18,6 @@ potential names to values or parameter expressions (a callable receiving the
 owning component is evaluated when the model is flattened).  A connector
 with ``required=True`` must be connected.
 """
-from . import symbols
 from .dsl import Variable, VarInfo, _join
 from ..errors import ModelDefinitionError
 
@@ -65,13 +64,13 @@ class Connector:
             return "<unattached %s>" % self.kind
         return "%s (%s)" % (self.path, type(self._owner).__name__)
 
-    def _bind(self, vars_out):
+    def _bind(self, table, vars_out):
         self._syms = {}
         for name in self.potentials + self.flows:
             decl = Variable(unit=self.units.get(name, ""),
                             nominal=self.nominal.get(name, 1.0))
             full = _join(self.path, name)
-            sym = symbols.new_variable(full)
+            sym = table.new_variable(full)
             self._syms[name] = sym
             vars_out.append(VarInfo(full, sym, decl, self._owner))
 

@@ -4,7 +4,7 @@ A component is a Python class::
 
     class Spring(Component):
         '''Linear rotational spring.'''
-        c = Parameter(1.0, "N.m/rad", "spring constant")
+        c = Parameter(1.0, "N.m/rad", "spring constant", positive=True)
         phi_rel = Variable(unit="rad", doc="relative angle")
 
         def __init__(self, **kw):
@@ -23,40 +23,99 @@ recompilation.  Variables may be declared on the class or assigned in
 ``__init__``; their start values and attributes are changed per instance with
 :func:`start` (``Revolute(phi=start(0, fixed=True))``).  Models are components
 that hold other components as attributes and wire their connectors with
-:meth:`Component.connect`.  Symbols are created when the model is flattened;
-``equations()`` is only called then.
+:meth:`Component.connect`.  A component that uses a model-wide component
+(the gravity field of the planar library) declares it with :class:`Outer`.
+
+Hooks a component may define, called once per flattening in this order:
+:meth:`~Component.derived_parameters` (numeric values of parameters computed
+from the whole model), :meth:`~Component.guesses` (start guesses),
+:meth:`~Component.equations`.  After a simulation, :meth:`~Component.shapes`
+and :meth:`~Component.topology` describe drawing and structure.
 """
+import math
 import numbers
 
 import numpy as np
 
-from . import symbols
 from ..errors import ModelDefinitionError
 
 STATE_SELECT = ("never", "avoid", "default", "prefer", "always")
+
+
+def _fmt_value(v):
+    arr = np.atleast_1d(np.asarray(v, dtype=float))
+    return "%g" % arr[0] if arr.size == 1 else "(%s)" % ", ".join("%g" % x for x in arr)
 
 
 class Parameter:
     """A parameter declared on a component class.
 
     ``default`` is a number or a tuple of numbers (a vector parameter);
-    ``unit`` is the SI unit and ``doc`` a one-line description.  Inside
-    ``equations()`` the attribute is a CasADi symbol; elsewhere (e.g. in
-    ``__init__``) it is the numeric value.
+    ``unit`` is the SI unit and ``doc`` a one-line description.  The value
+    rules ``min``/``max`` (inclusive bounds) and ``positive`` (> 0) are
+    checked wherever a value is set.  Inside ``equations()`` the attribute
+    is a CasADi symbol; elsewhere (e.g. in ``__init__``) it is the numeric
+    value.
     """
 
-    def __init__(self, default, unit="", doc=""):
+    def __init__(self, default, unit="", doc="", min=None, max=None, positive=False):
         self.default = default
         self.unit = unit
         self.doc = doc
+        self.min, self.max, self.positive = min, max, bool(positive)
         self.name = None
 
     def __set_name__(self, owner, name):
         self.name = name
 
+    def __repr__(self):
+        return "Parameter(%s%s%s%s)" % (
+            _fmt_value(self.default), ", %r" % self.unit if self.unit else "",
+            ", %r" % self.doc if self.doc else "", ", " + self.rule if self.rule else "")
+
     @property
     def size(self):
+        """Number of scalars of the parameter (2 for a planar vector)."""
         return int(np.size(self.default))
+
+    @property
+    def rule(self):
+        """The value rule as text ('> 0', '>= 0', '0 <= value <= 1') or ''."""
+        parts = []
+        if self.positive:
+            parts.append("> 0")
+        if self.min is not None and not (self.positive and self.min <= 0):
+            parts.append(">= %g" % self.min)
+        if self.max is not None:
+            parts.append("<= %g" % self.max)
+        return " and ".join(parts)
+
+    def validated(self, value, where):
+        """``value`` as float (scalar) or tuple of floats; raises
+        :class:`ModelDefinitionError` naming ``where`` (component and
+        parameter) if it has the wrong type or size, is not finite or breaks
+        the declared rule."""
+        desc = "%s: parameter %s" % (where, self.name)
+        if isinstance(value, (str, bytes)) or value is None or isinstance(value, bool):
+            raise ModelDefinitionError("%s = %r is not a number%s" % (
+                desc, value, " (give %d numbers)" % self.size if self.size > 1 else ""))
+        try:
+            arr = np.asarray(value, dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise ModelDefinitionError("%s = %r is not a number" % (desc, value)) from None
+        if arr.size != self.size:
+            raise ModelDefinitionError("%s takes %d value%s, got %r" % (
+                desc, self.size, "s" if self.size > 1 else "", value))
+        if not np.all(np.isfinite(arr)):
+            raise ModelDefinitionError("%s = %r is not finite; give a finite number" % (desc, value))
+        for x in arr:
+            bad = (self.positive and not x > 0) or (self.min is not None and x < self.min) \
+                or (self.max is not None and x > self.max)
+            if bad:
+                raise ModelDefinitionError("%s = %s breaks its rule %s (%s%s)" % (
+                    desc, _fmt_value(arr), self.rule, self.doc or "value",
+                    ", " + self.unit if self.unit else ""))
+        return float(arr[0]) if self.size == 1 else tuple(float(x) for x in arr)
 
     def __get__(self, obj, objtype=None):
         if obj is None:
@@ -64,7 +123,20 @@ class Parameter:
         sym = obj._param_syms.get(self.name)
         if sym is not None:
             return sym
-        return obj._param_values[self.name]
+        return obj.parameter_value(self.name)
+
+
+def _check_state_select(value, where):
+    if value not in STATE_SELECT:
+        raise ModelDefinitionError("%sstate_select must be one of %s, not %r"
+                                   % (where, ", ".join(STATE_SELECT), value))
+
+
+def _check_nominal(value, where):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or \
+            not math.isfinite(value) or not value > 0:
+        raise ModelDefinitionError("%snominal must be a positive finite number, not %r"
+                                   % (where, value))
 
 
 class Variable:
@@ -72,15 +144,14 @@ class Variable:
 
     start: start value (a guess unless ``fixed``); fixed: hold the start
     value at initialization; nominal: magnitude used for scaling and
-    tolerances; state_select: one of ``never, avoid, default, prefer,
+    tolerances (> 0); state_select: one of ``never, avoid, default, prefer,
     always`` (Modelica's StateSelect) to guide state selection.
     """
 
     def __init__(self, start=0.0, fixed=False, nominal=1.0, state_select="default",
                  unit="", doc=""):
-        if state_select not in STATE_SELECT:
-            raise ModelDefinitionError("state_select must be one of %s, not %r"
-                                       % (", ".join(STATE_SELECT), state_select))
+        _check_state_select(state_select, "")
+        _check_nominal(nominal, "")
         self.start = start
         self.fixed = fixed
         self.nominal = nominal
@@ -92,12 +163,16 @@ class Variable:
     def __set_name__(self, owner, name):
         self.name = name
 
+    def __repr__(self):
+        return "Variable(unit=%r%s)" % (self.unit, ", doc=%r" % self.doc if self.doc else "")
+
     def __get__(self, obj, objtype=None):
         if obj is None:
             return self
         return obj._var_symbol(self.name)
 
     def copy(self):
+        """An independent copy (each component instance owns its declarations)."""
         v = Variable(self.start, self.fixed, self.nominal, self.state_select, self.unit, self.doc)
         v.name = self.name
         return v
@@ -109,15 +184,20 @@ class start:
     Attributes left as None keep the component's default."""
 
     def __init__(self, value=None, fixed=None, state_select=None, nominal=None):
-        if state_select is not None and state_select not in STATE_SELECT:
-            raise ModelDefinitionError("state_select must be one of %s, not %r"
-                                       % (", ".join(STATE_SELECT), state_select))
+        if state_select is not None:
+            _check_state_select(state_select, "start(): ")
+        if nominal is not None:
+            _check_nominal(nominal, "start(): ")
+        if value is not None and not isinstance(value, bool) and isinstance(value, numbers.Real) \
+                and not math.isfinite(value):
+            raise ModelDefinitionError("start(): the start value must be finite, not %r" % value)
         self.value = value
         self.fixed = fixed
         self.state_select = state_select
         self.nominal = nominal
 
     def apply(self, var):
+        """Write the given attributes into the declaration ``var``."""
         if self.value is not None:
             var.start = self.value
         if self.fixed is not None:
@@ -126,6 +206,42 @@ class start:
             var.state_select = self.state_select
         if self.nominal is not None:
             var.nominal = self.nominal
+
+
+class Outer:
+    """A model-wide component this component uses (Modelica's inner/outer):
+    ``world = Outer(PlanarWorld)`` on a class makes ``self.world`` the
+    nearest instance of ``PlanarWorld`` among the children of the
+    component's ancestors (the model it is part of, then that model's
+    parent, ...).  If the model holds none, flattening adds one with
+    default parameters to the outermost model."""
+
+    def __init__(self, cls):
+        self.cls = cls
+        self.name = None
+
+    def __set_name__(self, owner, name):
+        self.name = name
+
+    def find(self, comp):
+        """The instance ``comp`` uses, or None if the model holds none."""
+        node = comp._parent
+        while node is not None:
+            for child in node._children.values():
+                if isinstance(child, self.cls):
+                    return child
+            node = node._parent
+        return None
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            return self
+        found = self.find(obj)
+        if found is None:
+            raise ModelDefinitionError(
+                "%s uses a %s, but its model holds none; it is added when the model is "
+                "compiled" % (obj.describe(), self.cls.__name__))
+        return found
 
 
 class VarInfo:
@@ -161,23 +277,15 @@ class Component:
     the class, create connectors and sub-components in ``__init__`` (after
     calling ``super().__init__(**kw)``), wire them with :meth:`connect` and
     return their equations from :meth:`equations`.  Keyword arguments set
-    parameter values or, with :func:`start`, variable attributes.
+    parameter values or, with :func:`start` (or a number), variable
+    attributes.
     """
 
     def __init__(self, **kwargs):
         d = self.__dict__
-        d["_name"] = None
-        d["_parent"] = None
-        d["_path"] = None
-        d["_children"] = {}
-        d["_connectors"] = {}
-        d["_var_decls"] = {}
-        d["_var_syms"] = {}
-        d["_param_syms"] = {}
-        d["_param_values"] = {}
-        d["_connections"] = []
-        d["_overrides"] = {}
-        d["_var_infos"] = {}
+        d.update(_name=None, _parent=None, _children={}, _connectors={}, _var_decls={},
+                 _var_syms={}, _param_syms={}, _param_values={}, _given=set(), _derived={},
+                 _connections=[], _overrides={}, _var_infos={})
         for cls in reversed(type(self).__mro__):
             for name, attr in vars(cls).items():
                 if isinstance(attr, Parameter):
@@ -186,22 +294,78 @@ class Component:
                     d["_var_decls"][name] = attr.copy()
         for name, value in kwargs.items():
             if name in d["_param_values"]:
-                decl = self._param_decl(name)
-                if np.size(value) != decl.size:
-                    raise ModelDefinitionError(
-                        "%s: parameter %r takes %d value(s), got %r"
-                        % (type(self).__name__, name, decl.size, value))
-                d["_param_values"][name] = value
+                decl = self.parameter_declaration(name)
+                d["_param_values"][name] = decl.validated(value, type(self).__name__)
+                d["_given"].add(name)
             else:
                 d["_overrides"][name] = value
 
     # ----------------------------------------------------------- declarations
-    def _param_decl(self, name):
+    def parameter_declaration(self, name):
+        """The :class:`Parameter` declared on the class as ``name``."""
         for cls in type(self).__mro__:
             attr = vars(cls).get(name)
             if isinstance(attr, Parameter):
                 return attr
-        raise KeyError(name)
+        raise ModelDefinitionError("%s has no parameter %r; parameters: %s" % (
+            type(self).__name__, name, ", ".join(sorted(self._param_values)) or "none"))
+
+    def parameter_value(self, name):
+        """Numeric value of the parameter ``name`` (float or tuple): given by
+        keyword, else derived for the current flattening
+        (:meth:`derived_parameters`), else the declared default."""
+        if name in self._given:
+            return self._param_values[name]
+        if name in self._derived:
+            return self._derived[name]
+        if name not in self._param_values:
+            self.parameter_declaration(name)        # raises with the list
+        return self._param_values[name]
+
+    def is_given(self, name):
+        """True if the model set the parameter or variable ``name`` of this
+        component by keyword (a parameter value, ``start(...)`` or a number)."""
+        return name in self._given or name in self._overrides
+
+    def start_value(self, name):
+        """Numeric start value of the variable ``name``: the value given with
+        :func:`start` (or a number) when the component was created, else the
+        declaration's default (0.0 when that is not a number)."""
+        ov = self._overrides.get(name)
+        if isinstance(ov, start) and ov.value is not None:
+            value = ov.value
+        elif isinstance(ov, numbers.Real):
+            value = ov
+        else:
+            decl = self._var_decls.get(name)
+            value = decl.start if decl is not None else 0.0
+        try:
+            return float(value)
+        except (TypeError, ValueError, RuntimeError):
+            return 0.0
+
+    def variable_names(self):
+        """Names of the variables this component declares (not its
+        connectors')."""
+        return list(self._var_decls)
+
+    def has_variable(self, name):
+        """True if ``name`` is a variable of this component or, written
+        ``"connector.x"``, of one of its connectors."""
+        if name in self._var_decls:
+            return True
+        conn, _, var = name.partition(".")
+        c = self._connectors.get(conn)
+        return c is not None and var in type(c).potentials + type(c).flows
+
+    def variable(self, name):
+        """This instance's declaration (:class:`Variable`) of ``name``; an
+        element's ``__init__`` may change its defaults (e.g. ``state_select``)
+        before the model's :func:`start` arguments apply."""
+        decl = self._var_decls.get(name)
+        if decl is None:
+            raise ModelDefinitionError("%s has no variable %r" % (type(self).__name__, name))
+        return decl
 
     def __setattr__(self, name, value):
         from .connectors import Connector
@@ -277,31 +441,25 @@ class Component:
                                        % (a.describe(), a.describe()))
         self._connections.append((a, b))
 
-    def before_flatten(self):
-        """Hook called once per flattening for every component, before any
-        symbol exists: the place to compute parameter values or start values
-        from the whole model's numeric data (e.g. a belt layout).  Default:
-        nothing."""
+    # ----------------------------------------------------------- hooks
+    def derived_parameters(self, context):
+        """Hook: numeric values of this component's parameters that follow
+        from the whole model (e.g. the whole turns of a belt's wrap angle
+        from the layout), as ``{name: value}``.  Called once per flattening
+        before any symbol exists; ``context`` is the
+        :class:`~acausal2d.language.context.ModelContext`.  Values the model
+        gave by keyword are never replaced.  Default: none."""
+        return {}
 
-    def on_flatten(self):
-        """Hook called once per flattening, after all symbols of the model
-        exist and before any ``equations()`` is called (e.g. to reset caches
-        built from symbols).  Default: nothing."""
-
-    def set_start(self, name, value):
-        """Set the start value (a guess: number or parameter expression) of
-        the variable ``name`` of this component or of one of its connectors
-        (``"frame_a.x"``), unless the model gave one with :func:`start`.
-        Meant for ``before_flatten()``, ``on_flatten()`` or ``equations()``
-        of elements that compute assembly guesses, such as branch choices
-        from a parameter K."""
-        ov = self._overrides.get(name)
-        if isinstance(ov, start) and ov.value is not None or isinstance(ov, numbers.Real):
-            return
-        info = self._var_infos.get(name) or self._var_decls.get(name)
-        if info is None:
-            raise ModelDefinitionError("%s has no variable %r" % (self.describe(), name))
-        info.start = value
+    def guesses(self, context):
+        """Hook: start guesses for this component's variables, as ``{name:
+        value}`` with names relative to the component (``"phi"``,
+        ``"frame_a.x"``) and values numbers or parameter expressions (e.g.
+        an assembly from the parameters, a branch chosen by a parameter K).
+        Called once per flattening after the symbols exist and before
+        :meth:`equations`; a start value the model gave with :func:`start`
+        wins.  Default: none."""
+        return {}
 
     def equations(self):
         """Return this component's equations: CasADi expressions written as
@@ -311,9 +469,9 @@ class Component:
 
     def shapes(self):
         """How the component is drawn in the animation: a list of shape dicts
-        (kinds in :mod:`acausal2d.tools.animation`) whose signal names are relative
-        to the component, e.g. ``{"type": "joint", "x": "frame_a.x", "y":
-        "frame_a.y"}``.  Default: nothing."""
+        (kinds in :mod:`acausal2d.tools.animation`) whose signal names are
+        relative to the component, e.g. ``{"type": "joint", "x": "frame_a.x",
+        "y": "frame_a.y"}``.  Default: nothing."""
         return []
 
     def topology(self):
@@ -323,12 +481,21 @@ class Component:
         degrees of freedom).  Default: nothing."""
         return []
 
+    # ----------------------------------------------------------- tree
     @property
     def path(self):
         """Dotted instance name inside the model ('' for the model itself)."""
         if self._parent is None:
             return ""
         return _join(self._parent.path, self._name)
+
+    @property
+    def root(self):
+        """The outermost model this component is part of (itself if none)."""
+        comp = self
+        while comp._parent is not None:
+            comp = comp._parent
+        return comp
 
     def describe(self):
         """'ClassName 'path'' for messages."""
@@ -340,33 +507,29 @@ class Component:
         for child in self._children.values():
             yield from child.components()
 
-    def world(self):
-        """The nearest PlanarWorld among this component's ancestors' children,
-        or None."""
-        from acausal2d.library.planar import PlanarWorld
-        node = self._parent
-        while node is not None:
-            for child in node._children.values():
-                if isinstance(child, PlanarWorld):
-                    return child
-            node = node._parent
-        return None
+    def outers(self):
+        """The :class:`Outer` declarations of this component's class."""
+        seen = {}
+        for cls in reversed(type(self).__mro__):
+            for name, attr in vars(cls).items():
+                if isinstance(attr, Outer):
+                    seen[name] = attr
+        return list(seen.values())
 
-    # ----------------------------------------------------------- binding
-    def _bind(self, params_out, vars_out):
-        """Create the symbols of this component (full dotted names)."""
-        path = self.path
-        for name, decl in list(self._var_decls.items()):
+    # ----------------------------------------------------------- flattening
+    def _apply_overrides(self):
+        for name, decl in self._var_decls.items():
             ov = self._overrides.get(name)
-            if ov is not None:
-                if isinstance(ov, start):
-                    ov.apply(decl)
-                elif isinstance(ov, numbers.Real):
-                    decl.start = float(ov)
-                else:
-                    raise ModelDefinitionError(
-                        "%s: variable %r takes start(...) or a number, got %r"
-                        % (self.describe(), name, ov))
+            if ov is None:
+                continue
+            if isinstance(ov, start):
+                ov.apply(decl)
+            elif isinstance(ov, numbers.Real) and not isinstance(ov, bool):
+                decl.start = float(ov)
+            else:
+                raise ModelDefinitionError(
+                    "%s: variable %r takes start(...) or a number, got %r"
+                    % (self.describe(), name, ov))
         unknown = set(self._overrides) - set(self._var_decls)
         if unknown:
             valid = sorted(set(self._param_values) | set(self._var_decls))
@@ -374,22 +537,54 @@ class Component:
                 "%s has no parameter or variable %s; valid names: %s"
                 % (self.describe(), ", ".join(repr(u) for u in sorted(unknown)),
                    ", ".join(valid)))
-        for name, value in self._param_values.items():
-            decl = self._param_decl(name)
-            sym = symbols.new_parameter(_join(path, name), decl.size)
+        for name, decl in self._var_decls.items():
+            where = "%s: variable %s: " % (self.describe(), name)
+            _check_state_select(decl.state_select, where)
+            _check_nominal(decl.nominal, where)
+
+    def _set_derived(self, values):
+        """Store the values of :meth:`derived_parameters` (validated)."""
+        self._derived.clear()
+        for name, value in (values or {}).items():
+            decl = self.parameter_declaration(name)
+            if name not in self._given:
+                self._derived[name] = decl.validated(value, self.describe())
+
+    def _bind(self, table, params_out, vars_out):
+        """Create the symbols of this component (full dotted names)."""
+        self._apply_overrides()
+        path = self.path
+        for name in self._param_values:
+            decl = self.parameter_declaration(name)
+            sym = table.new_parameter(_join(path, name), decl.size)
             self._param_syms[name] = sym if decl.size > 1 else sym[0]
-            vals = np.atleast_1d(np.asarray(value, dtype=float))
+            vals = np.atleast_1d(np.asarray(self.parameter_value(name), dtype=float))
             for i in range(decl.size):
                 pname = _join(path, name) + ("[%d]" % i if decl.size > 1 else "")
                 params_out.append((pname, sym[i], float(vals[i]), decl))
         self._var_infos.clear()
         for name, decl in self._var_decls.items():
-            sym = symbols.new_variable(_join(path, name))
+            sym = table.new_variable(_join(path, name))
             self._var_syms[name] = sym
             self._var_infos[name] = VarInfo(_join(path, name), sym, decl, self)
             vars_out.append(self._var_infos[name])
         for cname, conn in self._connectors.items():
             n0 = len(vars_out)
-            conn._bind(vars_out)
+            conn._bind(table, vars_out)
             for info in vars_out[n0:]:
                 self._var_infos[cname + "." + info.name.rsplit(".", 1)[1]] = info
+
+    def _apply_guesses(self, values):
+        """Start guesses from :meth:`guesses`; the model's own start wins."""
+        for name, value in (values or {}).items():
+            info = self._var_infos.get(name)
+            if info is None:
+                raise ModelDefinitionError("%s: guesses() names %r, which is no variable of it"
+                                           % (self.describe(), name))
+            if not self._has_start_value(name):
+                info.start = value
+
+    def _has_start_value(self, name):
+        ov = self._overrides.get(name)
+        return isinstance(ov, start) and ov.value is not None or \
+            isinstance(ov, numbers.Real) and not isinstance(ov, bool)

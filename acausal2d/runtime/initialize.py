@@ -5,167 +5,110 @@ for all variable nodes at t0, together with the fixed start values.  When
 fewer values are fixed than the system has degrees of freedom, start values
 of further state candidates are held, chosen by priority and by structural
 matching so that the initial system is square and structurally regular.
-Newton's method with sparse LU and a line search; a minimum-norm
-least-squares step where the Jacobian is singular.  On failure the message
-lists the equations whose residuals stay nonzero.
+The relations start with the values the start point gives them and are
+settled by the event iteration (:mod:`~acausal2d.runtime.events`).  The
+dummy-derivative selection made here is handed on to the integration.
 """
-import casadi as ca
+from dataclasses import dataclass
+
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
+from ..compiler.matching import Matching
+from ..errors import Acausal2dError, InitializationError
 from ..language.dsl import STATE_SELECT
-from ..errors import InitializationError
-
-_WATCHDOG = 3   # Newton iterations whose full step is accepted even if the residual grows
-
-
-class InitialSystem:
-    """Residuals of all index-reduced equations as functions of all variable
-    nodes: E(t, z, p, d) and its sparse Jacobian dE/dz."""
-
-    def __init__(self, R, t, p, d):
-        z = ca.vertcat(*R.var_sym)
-        E = ca.vertcat(*R.eq_expr)
-        self.R = R
-        self.E = ca.Function("E", [t, z, p, d], [E])
-        J = ca.jacobian(E, z)
-        self.J = ca.Function("dEdz", [t, z, p, d], [J])
-        sp_ = J.sparsity()
-        self.rows, self.cols = sp_.get_triplet()
-        self.shape = (sp_.size1(), sp_.size2())
-
-    def residual(self, t, z, p, d):
-        return self.E(t, z, p, d).full().ravel()
-
-    def jacobian(self, t, z, p, d):
-        nz = np.asarray(self.J(t, z, p, d).nonzeros(), dtype=float)
-        return sp.csr_matrix((nz, (self.rows, self.cols)), shape=self.shape)
+from .events import EventIteration, values_from
+from .newton import NoConvergence, solve_consistent
+from .selection import SINGULAR_CONDITION, select, worst_level
 
 
-def choose_initial_conditions(R, fixed_nodes, priority, has_start, states=()):
+@dataclass
+class InitialPoint:
+    """Consistent node values ``z``, relation values ``d`` and the dummy
+    selection ``selection`` at t0 (None if it must be made at z)."""
+    z: np.ndarray
+    d: np.ndarray
+    selection: object
+
+
+def choose_initial_conditions(s, fixed_nodes, priority, has_start, states=()):
     """Which node values to hold at t0: the user's ``fixed_nodes`` plus, if
     the system has more freedom, start values of state candidates picked by
     priority, then by having a start value, then by being among ``states``
     (the states a selection at the start guess would integrate), and by
-    structural matching.  Returns the list of held nodes."""
-    n_var, n_eq = R.n_var, R.n_eq
-    need = n_var - n_eq
+    structural matching."""
+    need = s.n_var - s.n_eq
     held = list(dict.fromkeys(fixed_nodes))
     if len(held) >= need:
         return held
-    # matching of the equations + held conditions against the nodes
-    inc = [list(R.eq_inc[i]) for i in range(n_eq)] + [[j] for j in held]
-    match_var = [-1] * n_var
-    match_eq = [-1] * len(inc)
-
-    def augment(e0):
-        seen = set()
-        stack = [(e0, iter(inc[e0]))]
-        path = []
-        while stack:
-            e, it = stack[-1]
-            for j in it:
-                if j in seen:
-                    continue
-                seen.add(j)
-                if match_var[j] < 0:
-                    path.append((e, j))
-                    for ee, jj in path:
-                        match_var[jj] = ee
-                        match_eq[ee] = jj
-                    return True
-                path.append((e, j))
-                stack.append((match_var[j], iter(inc[match_var[j]])))
-                break
-            else:
-                stack.pop()
-                if path:
-                    path.pop()
-        return False
-
-    for e in range(len(inc)):
-        augment(e)
-    cands = [j for j in range(n_var) if R.A[j] >= 0 and j not in set(held)]
-    states = set(states)
+    m = Matching([list(v) for v in s.eq_vars] + [[j] for j in held], s.n_var).match_all()
+    held_set, states = set(held), set(states)
+    cands = [j for j in range(s.n_var) if s.var_to_diff[j] >= 0 and j not in held_set]
     cands.sort(key=lambda j: (-STATE_SELECT.index(priority[j]), 0 if has_start[j] else 1,
-                              0 if j in states else 1, R.var_level[j], str(R.var_sym[j])))
+                              0 if j in states else 1, s.var_level[j], str(s.var_sym[j])))
     for j in cands:
         if len(held) >= need:
             break
-        inc.append([j])
-        match_eq.append(-1)
-        if augment(len(inc) - 1):
+        if m.add_row([j]):
             held.append(j)
-        else:
-            inc.pop()
-            match_eq.pop()
     return held
 
 
-def _failure(z, message):
-    """InitializationError carrying the last Newton iterate (``.last``)."""
-    exc = InitializationError(message)
-    exc.last = z
-    return exc
-
-
-def solve_consistent(system, t, z0, p, d, held, held_values, describe_eq, node_name,
-                     tol=1e-10, max_iter=60):
-    """Newton solve of E(t, z) = 0 with z[held] = held_values, from z0."""
-    z = np.array(z0, dtype=float)
-    held = np.asarray(held, dtype=int)
-    held_values = np.asarray(held_values, dtype=float)
-    z[held] = held_values
-    n = len(z)
-    m = system.shape[0] + len(held)
-    H = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held)), shape=(len(held), n))
-
-    def F(zz):
-        return np.concatenate([system.residual(t, zz, p, d), zz[held] - held_values])
-
-    r = F(z)
-    norm = np.max(np.abs(r)) if r.size else 0.0
-    for it in range(max_iter):
-        if norm < tol:
-            return z
-        J = sp.vstack([system.jacobian(t, z, p, d), H]).tocsc()
-        dz = None
-        if m == n:
-            try:
-                with np.errstate(all="ignore"):
-                    lu = spla.splu(J)
-                    dz = -lu.solve(r)
-                if not np.all(np.isfinite(dz)):
-                    dz = None
-            except RuntimeError:
-                dz = None
-        if dz is None:
-            if n > 4000:
-                break
-            dz = -np.linalg.lstsq(J.toarray(), r, rcond=1e-12)[0]
-        step = 1.0
-        while step > 1e-8:
-            zn = z + step * dz
-            rn = F(zn)
-            nn = np.max(np.abs(rn))
-            if np.isfinite(nn) and (nn < (1 - 1e-4 * step) * norm or nn < tol):
-                break
-            # watchdog: the first full Newton steps may raise the residual for a while
-            # (velocity cross terms from zero start values); allow it, within bounds
-            if step == 1.0 and it < _WATCHDOG and np.isfinite(nn) and nn < 1e6 * max(norm, 1.0):
-                break
-            step *= 0.5
-        else:
-            break
-        z, r, norm = zn, rn, nn
-    if norm < tol * 10:
-        return z
-    res = r[:system.shape[0]]
+def initialization_error(system, held, exc):
+    """The InitializationError for a Newton failure (largest residuals)."""
+    res = exc.residual
     worst = np.argsort(-np.abs(res))[:6]
-    lines = ["  - %s   (residual %.3g)" % (describe_eq(i), res[i]) for i in worst if abs(res[i]) > tol]
-    raise _failure(z,
-                   "No consistent initial values found (the mechanism cannot assemble, or "
-                   "start values are too far from a solution). Largest remaining residuals:\n%s\n"
-                   "Check the geometry (link lengths that cannot close a loop) and the start "
-                   "values of %s." % ("\n".join(lines), ", ".join(node_name(j) for j in held[:8])))
+    lines = ["  - %s   (residual %.3g)" % (system.describe_equation(i), res[i])
+             for i in worst if abs(res[i]) > 1e-10]
+    err = InitializationError(
+        "No consistent initial values found (the mechanism cannot assemble, or start values "
+        "are too far from a solution). Largest remaining residuals:\n%s\nCheck the geometry "
+        "(link lengths that cannot close a loop) and the start values of %s."
+        % ("\n".join(lines), ", ".join(system.node_name(j) for j in list(held)[:8])))
+    err.last = exc.z
+    return err
+
+
+def _guess_selection(system, ev, t0, z, d):
+    """A selection at the start guess (to break ties when choosing which
+    start values to hold), or None where the guess is singular."""
+    try:
+        return select(system, ev, t0, z, d)
+    except Acausal2dError:
+        return None
+
+
+def initial_point(system, ev, t0, p):
+    """Consistent :class:`InitialPoint` at t0 for the parameter vector p."""
+    s = system.structure
+    z = np.zeros(s.n_var)
+    z[system.level0] = system.start_fn(p).full().ravel()
+    d = values_from(system, ev.crossings(t0, z, np.zeros(len(system.relations))))
+    sel = None
+    if len(system.fixed_nodes) < s.n_var - s.n_eq:
+        sel = _guess_selection(system, ev, t0, z, d)
+    states = s.state_nodes(sel) if sel is not None else ()
+    held = choose_initial_conditions(s, system.fixed_nodes, system.priority_names,
+                                     system.has_start, states)
+    z = _first_consistent(system, ev, t0, z, d, held)
+    d = values_from(system, ev.crossings(t0, z, d))
+    z, d = EventIteration(system, ev, lambda t, exc: initialization_error(system, held, exc)) \
+        .settle(t0, z, d, held)
+    if sel is not None:
+        worst = worst_level(system, ev, sel, t0, z, d)
+        if worst is not None and worst[0] < 1e2 * SINGULAR_CONDITION:
+            sel = None          # the guess's choice is poor at the consistent point
+    return InitialPoint(z, d, sel)
+
+
+def _first_consistent(system, ev, t0, z, d, held):
+    """Newton from the start guess; if it fails, the relations may be the
+    wrong ones: retry with those found where Newton ended."""
+    for _ in range(10):
+        try:
+            return solve_consistent(ev, t0, z, d, held, z[held])
+        except NoConvergence as exc:
+            dn = values_from(system, ev.crossings(t0, exc.z, d))
+            if np.array_equal(dn, d):
+                raise initialization_error(system, held, exc) from None
+            d = dn
+    raise initialization_error(system, held, NoConvergence(z, ev.residual(t0, z, d)))

@@ -14,73 +14,23 @@ position.
 import numpy as np
 
 from .buffered import Buffered
-from ..errors import InitializationError, SimulationError
-from .initialize import solve_consistent
+from .newton import NoConvergence, solve_consistent
+from .selection import SINGULAR_CONDITION, singularity, worst_level
 
-MONITOR_THRESHOLD = 0.25     # re-check the state selection when a block's |det| drops 4x
 MAX_SINGULAR_EVENTS = 60     # then stop watching (a mechanism resting at a singular position)
-SINGULAR_CONDITION = 1e-4    # relative smallest singular value of a singular block
 
 
-def reselect(cm, selection, form, hits, t, z, p, d):
-    """After a watched dummy block decayed (``hits``: monitor indices; None:
-    all levels): returns (selection, singularity) - a better-conditioned new
-    selection and None, or the current selection with a singularity record
-    if the mechanism itself is singular there (None if it is only less well
-    conditioned than before)."""
-    worst = None
-    levels = range(len(selection.levels)) if hits is None else \
-        [form.monitor_levels[m] for m in hits]
-    for k in levels:
-        lv = selection.levels[k]
-        cond, u = cm.block_conditioning(t, z, p, d, lv)
-        if worst is None or cond < worst[0]:
-            worst = (cond, lv, u)
-    if worst is None:            # no dummy derivatives: nothing to re-select
-        return selection, None
-    cond, lv, u = worst
-    try:
-        new = cm.select(t, z, p, d)
-    except SimulationError:
-        new = None
-    if new is not None and new.dummies != selection.dummies:
-        better = min(cm.block_conditioning(t, z, p, d, nl)[0] for nl in new.levels)
-        if better > 2.0 * cond:
-            return new, None
-    if cond > SINGULAR_CONDITION:
-        return selection, None      # decayed, but far from singular: keep watching
-    return selection, {"time": t, "elements": cm.singular_elements(lv.eqs, u),
-                       "kind": "singular position", "condition": cond}
-
-
-def consistent_for(cm, selection, t, z, p, d):
-    """Node values made exactly consistent while holding the states of
-    ``selection`` (IDA's interpolated derivatives at an event are only
-    accurate to the tolerance, and a new state choice turns some of them
-    into algebraic unknowns)."""
-    form = cm.formulation(selection)
-    held = list(np.asarray(form.y_nodes)[form.differential])
-    try:
-        return solve_consistent(cm.init_system, t, z, p, d, held, z[held],
-                                cm.describe_equation, cm.node_name)
-    except InitializationError as exc:
-        raise SimulationError("Re-initialization after the state re-selection at t=%.6g "
-                              "failed:\n%s" % (t, exc), time=t) from None
-
-
-def limit_position(cm, selection, p, d, t, z):
+def limit_position(system, ev, selection, t, z, d):
     """Singularity record if the highest dummy block is singular at z."""
-    lv = selection.levels[0] if selection.levels else None
-    if lv is None:
+    if not selection.levels:
         return None
-    cond, u = cm.block_conditioning(t, z, p, d, lv)
-    if cond > SINGULAR_CONDITION:
+    worst = worst_level(system, ev, selection, t, z, d, selection.levels[:1])
+    if worst[0] > SINGULAR_CONDITION:
         return None
-    return {"time": t, "elements": cm.singular_elements(lv.eqs, u), "kind": "limit position",
-            "condition": cond}
+    return singularity(system, t, "limit position", worst)
 
 
-class _DeterminantScan:
+class DeterminantScan:
     """The determinants of a formulation's watched dummy blocks at many
     points: ``det_fn`` mapped over a chunk of points (parameters and
     relation values shared) and evaluated through a :class:`Buffered` on
@@ -113,43 +63,43 @@ class _DeterminantScan:
         return np.vstack(rows)
 
 
-def scan_singular_positions(cm, form, selection, p, d, out_t, out_z, start, found):
-    """Find singular positions passed in the output points of a segment: the
-    determinant of a watched dummy block changes sign, or has a local minimum
-    far below its typical size."""
-    n = len(out_t) - start
+def _passed(row, n, sign_changes):
+    """Indices i where a determinant row has a deep local minimum at i or
+    (with ``sign_changes``) changes sign after i."""
+    scale = np.max(np.abs(row))
+    if scale == 0:
+        return []
+    a, sign = np.abs(row) / scale, np.sign(row)
+    return [i for i in range(1, n - 1)
+            if (sign_changes and sign[i] != sign[i + 1] and sign[i] != 0)
+            or (a[i] < 1e-3 and a[i] <= a[i - 1] and a[i] < a[i + 1])]
+
+
+def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found):
+    """Find singular positions passed between the output points (T, Z) of a
+    segment: the determinant of a watched dummy block changes sign (except
+    the highest level's, whose sign changes IDA locates as roots), or has a
+    local minimum far below its typical size."""
+    n = len(T)
     if form.det_fn is None or n < 3:
         return
-    Z = np.array(out_z[start:])
-    T = np.array(out_t[start:])
-    Y = Z[:, form.y_pos]
-    YP = np.zeros_like(Y)
-    st = form.state_deriv >= 0
-    YP[:, st] = Z[:, form.state_deriv[st]]
-    if form.det_scan is None:
-        form.det_scan = _DeterminantScan(form)
-    dets = form.det_scan(T, Y, YP, p, np.asarray(d, float)).T
+    YP = np.zeros_like(Z)
+    st = form.all_deriv >= 0
+    YP[:, st] = Z[:, form.all_deriv[st]]
+    if getattr(form, "det_scan", None) is None:
+        form.det_scan = DeterminantScan(form)
+    dets = form.det_scan(T, Z, YP, p, np.asarray(d, float)).T
     for row, k in zip(dets, form.scan_levels):
-        scale = np.max(np.abs(row))
-        if scale == 0:
-            continue
-        a = np.abs(row) / scale
-        sign = np.sign(row)
-        for i in range(1, n - 1):
-            crossing = sign[i] != sign[i + 1] and sign[i] != 0
-            minimum = a[i] < 1e-3 and a[i] <= a[i - 1] and a[i] < a[i + 1]
-            if not (crossing or minimum):
-                continue
-            lv = selection.levels[k]
-            cond, u = cm.block_conditioning(T[i], Z[i], p, d, lv)
-            found.append({"time": float(T[i]), "elements": cm.singular_elements(lv.eqs, u),
-                          "kind": "singular position passed", "condition": cond})
+        lv = selection.levels[k]
+        for i in _passed(row, n, k != 0 or not form.n_pass):
+            found.append(singularity(system, float(T[i]), "singular position passed",
+                                     worst_level(system, ev, selection, T[i], Z[i], d, [lv])))
 
 
-def _taylor(cm, z, h):
+def taylor(system, z, h):
     """Node values at time distance h predicted from z by the Taylor series
     along each derivative chain (x + h der(x) + h^2/2 der(der(x)) ...)."""
-    A = np.asarray(cm.R.A)
+    A = np.asarray(system.structure.var_to_diff.to_diff)
     out = np.array(z, dtype=float)
     idx = np.arange(len(z))
     valid = np.ones(len(z), dtype=bool)
@@ -163,17 +113,6 @@ def _taylor(cm, z, h):
         coef *= h / k
         out[valid] += coef * z[idx[valid]]
     return out
-
-
-def _worst_level(cm, selection, t, z, p, d):
-    """(relative smallest singular value, level, left singular vector) of the
-    worst-conditioned dummy block at z, or None without dummy blocks."""
-    worst = None
-    for lv in selection.levels:
-        cond, u = cm.block_conditioning(t, z, p, d, lv)
-        if worst is None or cond < worst[0]:
-            worst = (cond, lv, u)
-    return worst
 
 
 def _hermite(history, t_f, gap):
@@ -204,7 +143,131 @@ def _hermite(history, t_f, gap):
     return at
 
 
-def step_over(cm, selection, p, d, t_f, z_f, history, t_end, output_times):
+def _golden_minimum(f, lo, hi, iterations=45):
+    """Minimum of f on [lo, hi] by golden-section search (one new
+    evaluation per iteration)."""
+    golden = (np.sqrt(5.0) - 1.0) / 2.0
+    a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
+    fa, fb = f(a), f(b)
+    for _ in range(iterations):
+        if fa < fb:
+            hi, b, fb = b, a, fa
+            a = hi - golden * (hi - lo)
+            fa = f(a)
+        else:
+            lo, a, fa = a, b, fb
+            b = lo + golden * (hi - lo)
+            fb = f(b)
+    return 0.5 * (lo + hi)
+
+
+def _singular_time(system, ev, selection, t_f, z_f, d, span):
+    """Time distance h_s from (t_f, z_f) to the minimum of the worst dummy
+    block's conditioning along the Taylor prediction, if it is singular
+    there: (h_s, worst) or None."""
+    worst = worst_level(system, ev, selection, t_f, z_f, d)
+    if worst is None or span <= 0 or worst[0] <= 0:
+        return None
+
+    def cond_at(h):
+        return worst_level(system, ev, selection, t_f + h, taylor(system, z_f, h), d)[0]
+
+    # distance to the singular position: the conditioning falls linearly
+    # (probed closer and closer: the position may be very near)
+    delta = 1e-6 * max(span, 1e-3)
+    slope = (cond_at(delta) - worst[0]) / delta
+    while not slope < 0 and delta > 1e-13 * max(span, 1e-3):
+        delta *= 0.01
+        slope = (cond_at(delta) - worst[0]) / delta
+    if not slope < 0:
+        return None
+    estimate = min(worst[0] / -slope, span)
+    grid = np.linspace(0.0, 2.0 * estimate, 41)[1:]
+    k = int(np.argmin([cond_at(h) for h in grid]))
+    lo, hi = (grid[k - 1] if k > 0 else 0.0), grid[min(k + 1, len(grid) - 1)]
+    h_s = _golden_minimum(cond_at, lo, hi)
+    at_s = worst_level(system, ev, selection, t_f + h_s, taylor(system, z_f, h_s), d)
+    dip = at_s[0] <= max(SINGULAR_CONDITION, 0.01 * worst[0])    # a clear singular point
+    return (h_s, at_s, worst[0]) if dip else None
+
+
+_MULTIPLES = (1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 16.0, 32.0, 64.0)
+WELL_CONDITIONED = 10 * SINGULAR_CONDITION   # a landing IDA can go on from
+
+
+class _Landing:
+    """Predictions and Newton solves beyond a singular position."""
+
+    def __init__(self, system, ev, selection, form, d, t_f, z_f, states):
+        self.system, self.ev, self.selection, self.d = system, ev, selection, d
+        self.t_f, self.z_f, self.states = t_f, z_f, states
+        self.held = list(form.states)
+        s = system.structure
+        A, level = np.asarray(s.var_to_diff.to_diff), np.asarray(s.var_level)
+        self.pos = np.nonzero((level == 0) & (A >= 0))[0]       # positions with a velocity
+        self.vel = A[self.pos]
+
+    def first(self, h_min, distances, t_end, cond_f):
+        """(t, z) at the first of ``distances`` (beyond h_min) where Newton
+        converges on the continuing branch, preferring landings that are
+        well conditioned (:data:`WELL_CONDITIONED`); None if there is none."""
+        found = []
+        for h in distances:
+            h = min(h, t_end - self.t_f)
+            if h <= h_min:
+                break
+            guess = self.predict(h)
+            z_new = self.solve(self.t_f + h, guess)
+            if z_new is None:
+                continue
+            cond = self.continues(h, z_new, guess, cond_f)
+            if cond is not None and cond >= WELL_CONDITIONED:
+                return self.t_f + h, z_new
+            if cond is not None:
+                found.append((self.t_f + h, z_new))
+        return found[0] if found else None
+
+    def fill(self, output_times, t_land):
+        """(time, values) of the output times inside the jump."""
+        filled = []
+        for t_out in output_times[(output_times > self.t_f) & (output_times < t_land)]:
+            g = self.predict(t_out - self.t_f)
+            z_out = self.solve(float(t_out), g)
+            filled.append((float(t_out), z_out if z_out is not None else g))
+        return filled
+
+    def predict(self, h):
+        guess = taylor(self.system, self.z_f, h)
+        if self.states is not None:
+            guess[self.held] = self.states(self.t_f + h)
+        return guess
+
+    def solve(self, t, guess):
+        try:
+            return solve_consistent(self.ev, t, guess, self.d, self.held, guess[self.held],
+                                    max_iter=20)
+        except NoConvergence:
+            return None
+
+    def continues(self, h, z_new, guess, cond_f):
+        """The conditioning at z_new if it is better than where IDA stopped
+        and z_new lies on the branch that continues the predicted motion,
+        else None."""
+        t = self.t_f + h
+        cond = worst_level(self.system, self.ev, self.selection, t, z_new, self.d)[0]
+        if cond < 4.0 * cond_f:
+            return None
+        pos, vel, z_f = self.pos, self.vel, self.z_f
+        moved = guess[pos] - z_f[pos]
+        scale = np.linalg.norm(moved) + 1e-12 * (1.0 + np.linalg.norm(z_f[pos]))
+        if np.linalg.norm(z_new[pos] - guess[pos]) > 0.1 * scale:
+            return None
+        if np.linalg.norm(z_new[vel] - guess[vel]) > 0.1 * np.linalg.norm(guess[vel]) + 1e-9:
+            return None
+        return cond
+
+
+def step_over(system, ev, selection, form, d, t_f, z_f, history, t_end, output_times):
     """Continue the motion through a singular position just ahead of the
     last point (t_f, z_f) that IDA reached.
 
@@ -223,88 +286,53 @@ def step_over(cm, selection, p, d, t_f, z_f, history, t_end, output_times):
     position, or a failure of another kind), else ``(t_land, z_land,
     record, filled)``: the singularity record and the (time, node values)
     of the output times inside the jump."""
-    worst = _worst_level(cm, selection, t_f, z_f, p, d)
+    found = _singular_time(system, ev, selection, t_f, z_f, d, t_end - t_f)
+    if found is None:
+        return None
+    h_s, at_s, cond_f = found
+    states = _hermite(history, t_f, h_s) if len(form.states) else None
+    land = _Landing(system, ev, selection, form, d, t_f, z_f, states)
+    landed = land.first(h_s, [h_s * (1.0 + m) for m in _MULTIPLES], t_end, cond_f)
+    if landed is None:
+        return None
+    t_land, z_new = landed
+    record = singularity(system, t_f + h_s, "singular position passed", at_s)
+    return t_land, z_new, record, land.fill(output_times, t_land)
+
+
+def step_away(system, ev, selection, form, d, t_f, z_f, history, t_end, output_times, since):
+    """Move on from (t_f, z_f), just past a singular position (passed at
+    ``since``), where IDA fails again because the dummy block is still
+    nearly singular: the motion is re-solved further on, at 1, 2, 4, ... 2^12
+    times the distance from the passage, until the block is well enough
+    conditioned.  Returns ``(t_land, z_land, filled)`` or None."""
+    worst = worst_level(system, ev, selection, t_f, z_f, d)
     if worst is None:
         return None
-    cond_f = worst[0]
-    span = t_end - t_f
-    if span <= 0 or cond_f <= 0:
+    h0 = max(t_f - since, 1e-9 * max(1.0, abs(t_f)))
+    states = _hermite(history, t_f, h0) if len(form.states) else None
+    land = _Landing(system, ev, selection, form, d, t_f, z_f, states)
+    landed = land.first(h0, [h0 * 2.0 ** k for k in range(13)], t_end, worst[0])
+    if landed is None:
         return None
-
-    def cond_at(h):
-        return _worst_level(cm, selection, t_f + h, _taylor(cm, z_f, h), p, d)[0]
-
-    # distance to the singular position: the conditioning falls linearly
-    delta = 1e-6 * max(span, 1e-3)
-    slope = (cond_at(delta) - cond_f) / delta
-    if not slope < 0:
-        return None
-    estimate = min(cond_f / -slope, span)
-    grid = np.linspace(0.0, 2.0 * estimate, 41)[1:]
-    values = [cond_at(h) for h in grid]
-    k = int(np.argmin(values))
-    lo = grid[k - 1] if k > 0 else 0.0
-    hi = grid[min(k + 1, len(grid) - 1)]
-    golden = (np.sqrt(5.0) - 1.0) / 2.0
-    for _ in range(40):                  # golden-section search of the minimum
-        a, b = hi - golden * (hi - lo), lo + golden * (hi - lo)
-        if cond_at(a) < cond_at(b):
-            hi = b
-        else:
-            lo = a
-    h_s = 0.5 * (lo + hi)
-    z_s = _taylor(cm, z_f, h_s)
-    cond_s, lv, u = _worst_level(cm, selection, t_f + h_s, z_s, p, d)
-    if cond_s > SINGULAR_CONDITION:
-        return None
-    form = cm.formulation(selection)
-    held = list(np.asarray(form.y_nodes)[form.differential])
-    states = _hermite(history, t_f, h_s) if held else None
-    R = cm.R
-    A = np.asarray(R.A)
-    level = np.asarray(R.var_level)
-    pos = np.nonzero((level == 0) & (A >= 0))[0]       # positions with a velocity
-    vel = A[pos]
-
-    def predict(h):
-        guess = _taylor(cm, z_f, h)
-        if states is not None:
-            guess[held] = states(t_f + h)
-        return guess
-
-    def solve_at(t, guess):
-        try:
-            return solve_consistent(cm.init_system, t, guess, p, d, held, guess[held],
-                                    cm.describe_equation, cm.node_name)
-        except InitializationError:
-            return None
-
+    return landed[0], landed[1], land.fill(output_times, landed[0])
+    h_s, at_s, cond_f = found
+    states = _hermite(history, t_f, h_s) if len(form.states) else None
+    land = _Landing(system, ev, selection, form, d, t_f, z_f, states)
     for m in (1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 16.0, 32.0, 64.0):
-        h = h_s * (1.0 + m)
-        if h > span:
-            h = span
+        h = min(h_s * (1.0 + m), t_end - t_f)
         if h <= h_s:
             break
-        guess = predict(h)
-        z_new = solve_at(t_f + h, guess)
-        if z_new is None:
-            continue
-        if _worst_level(cm, selection, t_f + h, z_new, p, d)[0] < 4.0 * cond_f:
-            continue
-        moved = guess[pos] - z_f[pos]
-        scale = np.linalg.norm(moved) + 1e-12 * (1.0 + np.linalg.norm(z_f[pos]))
-        if np.linalg.norm(z_new[pos] - guess[pos]) > 0.1 * scale:
-            continue
-        v_pred = guess[vel]
-        if np.linalg.norm(z_new[vel] - v_pred) > 0.1 * np.linalg.norm(v_pred) + 1e-9:
+        guess = land.predict(h)
+        z_new = land.solve(t_f + h, guess)
+        if z_new is None or not land.continues(h, z_new, guess, cond_f):
             continue
         t_land = t_f + h
         filled = []
         for t_out in output_times[(output_times > t_f) & (output_times < t_land)]:
-            g = predict(t_out - t_f)
-            z_out = solve_at(float(t_out), g)
+            g = land.predict(t_out - t_f)
+            z_out = land.solve(float(t_out), g)
             filled.append((float(t_out), z_out if z_out is not None else g))
-        record = {"time": t_f + h_s, "elements": cm.singular_elements(lv.eqs, u),
-                  "kind": "singular position passed", "condition": cond_s}
+        record = singularity(system, t_f + h_s, "singular position passed", at_s)
         return t_land, z_new, record, filled
     return None

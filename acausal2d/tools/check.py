@@ -95,40 +95,42 @@ def _planar_topology(model):
     return n, g, F, max(loops, 0)
 
 
-def _index(differentiations, differential):
-    """Differentiation index: 0 for an ODE, 1 for a DAE solvable without
-    differentiation, else one more than the differentiations needed."""
-    if differentiations:
-        return differentiations + 1
-    return 0 if np.all(differential) else 1
+def _index(structure, states):
+    """Differentiation index: 0 for an ODE (every unknown a state or the
+    derivative of one), 1 for a DAE solvable without differentiation, else
+    one more than the differentiations needed."""
+    if structure.structural_index():
+        return structure.structural_index() + 1
+    A = structure.var_to_diff
+    covered = set(states) | {A[j] for j in states}
+    return 0 if len(covered) == structure.n_var else 1
 
 
 def check(model):
     """Compile ``model`` (a Component instance or a CompiledModel) and return a
     :class:`CheckReport`; raises the project's errors for a broken model."""
-    from ..compiler.pipeline import CompiledModel
+    from .compiled import CompiledModel
     cm = model if isinstance(model, CompiledModel) else CompiledModel(model)
-    root = cm.model
-    p = cm.parameter_values()
-    z, d = cm.initial_values(0.0, p)
-    sel = cm.select(0.0, z, p, d)
-    form = cm.formulation(sel)
-    R = cm.R
-    state_nodes = [j for j, diff in zip(form.y_nodes, form.differential) if diff]
-    states = [cm.node_names[j] for j in state_nodes]
+    root, system = cm.model, cm.system
+    s = system.structure
+    point = cm.initial_point()
+    state_nodes = s.state_nodes(point.selection)
+    states = [system.node_names[j] for j in state_nodes]
+    st = set(state_nodes)
+    st |= {d for w, d in s.velocity_of if w in st}     # der(phi) given by the state w
     position_states = [j for j in state_nodes
-                       if R.var_level[j] == 0 and R.A[j] >= 0 and R.A[j] in set(state_nodes)]
+                       if s.var_level[j] == 0 and s.var_to_diff[j] in st]
     topo = _planar_topology(root)
     kinds = Counter(type(c).__name__ for c in root.components() if c is not root)
     return CheckReport(
         name=type(root).__name__,
         n_components=sum(kinds.values()),
         component_kinds=", ".join("%s %d" % kv for kv in sorted(kinds.items())),
-        n_flat_equations=cm.n_flat_equations,
-        n_equations=len(cm.equations), n_reduced_equations=R.n_eq,
-        n_variables=len(cm.all_variables), n_aliases=len(cm.aliases),
-        n_parameters=len(cm.parameters),
-        structural_index=_index(R.structural_index(), form.differential),
+        n_flat_equations=system.n_flat_equations,
+        n_equations=len(system.equations), n_reduced_equations=s.n_eq,
+        n_variables=len(system.all_variables), n_aliases=len(system.aliases),
+        n_parameters=len(system.parameters),
+        structural_index=_index(s, state_nodes),
         states=states, structural_dof=len(position_states),
         loops=topo[3] if topo else 0,
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,

@@ -72,7 +72,7 @@ class _Progress:
 
 def cmd_simulate(args):
     from .compare import safe_filename
-    from ..compiler.pipeline import compile_model
+    from .compiled import compile_model
     from .loader import load_model
     from .scene import trace_signals
     model = load_model(args.model_file, args.model)

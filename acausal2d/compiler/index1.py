@@ -1,0 +1,100 @@
+"""The index-1 system handed to IDA, in semi-explicit form.
+
+For a dummy selection, the unknowns ``y`` are all variable nodes of the
+index-reduced structure: the states ``x`` (nodes whose derivative node is
+not a dummy), the derivative nodes of the states ``v`` and the remaining
+algebraic unknowns.  The residual is
+
+    yp[x] - y[der(x)] = 0            (one link per state)
+    E(t, y, p, d)     = 0            (all equations, every derivative order)
+
+so the derivatives IDA integrates enter linearly with a constant
+coefficient, and every derivative the equations contain is an algebraic
+unknown.  (Handing IDA the fully implicit form, with the derivatives of the
+states inside nonlinear equations, took 40-400 times as many steps near
+singular positions.)  The iteration matrix dF/dy + cj dF/dyp is exact and
+sparse; dense below :data:`SPARSE_FROM` unknowns.
+"""
+import casadi as ca
+import numpy as np
+
+from ..errors import SimulationError
+from ..language.symbols import time
+
+SPARSE_FROM = 100          # unknowns from which IDA uses its sparse linear solver
+_MAX_MONITOR = 40          # largest dummy block whose determinant is watched
+_MAX_DET_NODES = 20000     # ... and the largest symbolic determinant
+
+
+class Formulation:
+    """The semi-explicit index-1 DAE of one dummy selection (see module
+    docstring): CasADi functions of (t, y, yp, p, d) for the residual, the
+    iteration matrix (extra input cj), the event functions (``n_rel``
+    relation crossings, ``n_mon`` determinants of the dummy blocks with a
+    choice, ``n_pass`` = 1 determinant of the highest level whose sign
+    changes mark singular positions passed)."""
+
+    def __init__(self, s, selection, p, d, crossings):
+        n = s.n_var
+        A = s.var_to_diff
+        self.n = n
+        self.states = np.array(s.state_nodes(selection), dtype=int)
+        self.state_deriv = np.array([A[j] for j in self.states], dtype=int)
+        self.differential = np.zeros(n, dtype=bool)
+        self.differential[self.states] = True
+        self.all_deriv = np.array(A.to_diff, dtype=int)
+        self.level = np.array(s.var_level, dtype=int)
+        if n - s.n_eq != len(self.states):
+            raise SimulationError("internal error: index-1 system is not square (%d equations, "
+                                  "%d unknowns)" % (s.n_eq + len(self.states), n))
+        t = time
+        y, yp = ca.vertcat(*s.var_sym), ca.SX.sym("yp", n)
+        links = [yp[j] - y[A[j]] for j in self.states]
+        F = ca.vertcat(*s.eq_expr, *links)
+        cj = ca.SX.sym("cj")
+        Jac = ca.jacobian(F, y) + cj * ca.jacobian(F, yp)
+        self.sparse = n >= SPARSE_FROM
+        self.jac_sparsity = Jac.sparsity()
+        args = [t, y, yp, p, d]
+        self.res_fn = ca.Function("res", args, [F])
+        self.jac_fn = ca.Function("iteration_matrix", args + [cj], [Jac])
+        self._events(s, selection, args, crossings)
+
+    def _events(self, s, selection, args, crossings):
+        """Event functions: relation crossings, then the determinants of the
+        dummy blocks with a choice (monitored) and of the highest level
+        (scanned for singular positions)."""
+        g = [crossings] if crossings is not None and crossings.numel() else []
+        self.n_rel = g[0].numel() if g else 0
+        self.monitor_levels, self.scan_levels, dets = [], [], {}
+        for k, lv in enumerate(selection.levels):
+            if not (k == 0 or lv.dynamic) or len(lv.eqs) > _MAX_MONITOR:
+                continue
+            det = ca.det(ca.jacobian(ca.vertcat(*[s.eq_expr[i] for i in lv.eqs]),
+                                     ca.vertcat(*[s.var_sym[j] for j in lv.chosen])))
+            if ca.n_nodes(det) > _MAX_DET_NODES:
+                continue        # too large to watch cheaply
+            dets[k] = det
+            self.scan_levels.append(k)
+            if lv.dynamic:
+                self.monitor_levels.append(k)
+                g.append(det)
+        self.n_mon = len(self.monitor_levels)
+        # passages: sign changes of the highest level's determinant (not terminal)
+        self.n_pass = 1 if 0 in dets else 0
+        if self.n_pass:
+            g.append(dets[0])
+        self.det_fn = ca.Function("dets", args, [ca.vertcat(*[dets[k] for k in
+                                                              self.scan_levels])]) \
+            if self.scan_levels else None
+        self.event_fn = ca.Function("events", args, [ca.vertcat(*g)]) if g else None
+
+    def y_from(self, z):
+        """IDA's (y, yp) from consistent node values: yp of a node is the
+        value of its derivative node where that exists (exact for states,
+        a good predictor for the algebraic unknowns), else 0."""
+        y = np.array(z, dtype=float)
+        yp = np.zeros_like(y)
+        known = self.all_deriv >= 0
+        yp[known] = y[self.all_deriv[known]]
+        return y, yp

@@ -1,0 +1,209 @@
+"""The product of compilation: a frozen index-reduced system.
+
+:class:`System` holds the structural state after index reduction, the
+alias-free equations (for messages), the relations, the aliases and the
+generated CasADi functions the runtime evaluates: all equations of every
+derivative order as functions of all variable nodes E(t, z, p, d) with their
+sparse Jacobian (consistent initialization, state selection), the start
+values, the crossing functions and, per dummy selection, the semi-explicit
+index-1 formulation (cached: a new parameter value or a second run never
+generates code again).  Parameters stay symbolic inputs of every function.
+"""
+import casadi as ca
+import numpy as np
+
+from ..language.dsl import STATE_SELECT
+from ..language.symbols import time
+from .aliases import substitution
+from .index1 import Formulation
+
+
+def _param_function(exprs, p, name):
+    """Numeric evaluator of a list of numbers / parameter expressions."""
+    e = ca.vertcat(*[ca.SX(x) for x in exprs]) if exprs else ca.SX(0, 1)
+    return ca.Function(name, [p], [e])
+
+
+class System:
+    """A compiled model (see module docstring).
+
+    Attributes used by the runtime and the tools: ``structure``,
+    ``equations`` (alias-free), ``relations``, ``aliases``, ``parameters``
+    (name, symbol, value, declaration), ``node_names``, ``node_info``
+    (VarInfo of each node's variable), ``priority``, ``nominal``,
+    ``residual_fn``/``jacobian_fn`` (E and dE/dz), ``crossing_fn``,
+    ``start_fn``."""
+
+    def __init__(self, model, flat, equations, variables, aliases, relations, structure):
+        self.model = model
+        self.structure = s = structure
+        self.table = s.table
+        self.all_variables = tuple(flat.variables)
+        self.n_flat_equations = len(flat.equations)
+        self.equations = tuple(equations)
+        self.flat_equations = tuple(flat.equations)
+        self.variables = tuple(variables)
+        self.aliases = tuple(aliases)
+        self.parameters = tuple(flat.parameters)
+        self.param_index = {name: k for k, (name, *_) in enumerate(self.parameters)}
+        self.p = ca.vertcat(*[sym for _, sym, _, _ in self.parameters]) \
+            if self.parameters else ca.SX(0, 1)
+        self.relations = tuple(self._crossings_in_nodes(relations))
+        self.d = ca.vertcat(*[r.sym for r in self.relations]) if self.relations else ca.SX(0, 1)
+        self._nodes(variables)
+        self._functions()
+        self._alias_maps()
+        self.outputs = list(getattr(model, "outputs", ()) or ())
+        self._formulations = {}
+
+    # ------------------------------------------------------------ setup
+    def _crossings_in_nodes(self, relations):
+        """Relations whose crossing functions use the remaining unknowns."""
+        if not relations or not self.aliases:
+            return relations
+        src, dst = substitution(self.aliases, self.table)
+        gs = ca.substitute([r.g for r in relations], src, [ca.SX(x) for x in dst])
+        return [r.with_g(g) for r, g in zip(relations, gs)]
+
+    def _nodes(self, variables):
+        s = self.structure
+        info = {v.sym.element_hash(): v for v in variables}
+        self.node_info = tuple(info[s.var_sym[s.var_base[j]].element_hash()]
+                               for j in range(s.n_var))
+        self.node_names = tuple(sym.name() for sym in s.var_sym)
+        self.priority = tuple(STATE_SELECT.index(v.state_select) for v in self.node_info)
+        self.priority_names = tuple(v.state_select for v in self.node_info)
+        self.nominal = np.array([float(v.nominal) for v in self.node_info])
+        self.level0 = np.array([j for j in range(s.n_var) if s.var_level[j] == 0], dtype=int)
+        self.fixed_nodes = tuple(int(j) for j in self.level0 if self.node_info[j].fixed)
+        self.has_start = tuple(s.var_level[j] == 0 and not _is_zero(self.node_info[j].start)
+                               for j in range(s.n_var))
+
+    def _functions(self):
+        s = self.structure
+        z = ca.vertcat(*s.var_sym)
+        E = ca.vertcat(*s.eq_expr)
+        args = [time, z, self.p, self.d]
+        self.residual_fn = ca.Function("E", args, [E])
+        J = ca.jacobian(E, z)
+        self.jacobian_fn = ca.Function("dEdz", args, [J])
+        rows, cols = J.sparsity().get_triplet()
+        self.jacobian_pattern = (np.array(rows, dtype=int), np.array(cols, dtype=int))
+        self.start_fn = _param_function([self.node_info[j].start for j in self.level0], self.p,
+                                        "start")
+        self.crossings = ca.vertcat(*[r.g for r in self.relations]) if self.relations else None
+        self.crossing_fn = ca.Function("g", args, [self.crossings]) \
+            if self.crossings is not None else None
+        self._split_relations()
+
+    def _split_relations(self):
+        """Relations of time alone whose crossing function is affine in time
+        are time events, scheduled exactly (``time_event_fn(t, p)`` gives
+        their g and dg/dt); the others are state events located by IDA."""
+        timed = []
+        for k, r in enumerate(self.relations):
+            if r.time_only and not ca.depends_on(r.g, self.d):
+                rate = ca.jacobian(r.g, time)
+                if not ca.depends_on(rate, time):
+                    timed.append((k, r.g, rate))
+        self.time_relations = tuple(k for k, *_ in timed)
+        self.state_relations = tuple(k for k in range(len(self.relations))
+                                     if k not in set(self.time_relations))
+        self.state_crossings = ca.vertcat(*[self.relations[k].g for k in self.state_relations]) \
+            if self.state_relations else None
+        self.time_event_fn = ca.Function(
+            "time_events", [time, self.p], [ca.vertcat(*[g for _, g, _ in timed]),
+                                            ca.vertcat(*[r for *_, r in timed])]) \
+            if timed else None
+
+    def _alias_maps(self):
+        """Eliminated variables as sign * node + offset(p), and their derivatives."""
+        A = self.structure.var_to_diff
+        index = self.structure.var_index
+        self.alias_names = tuple(a.var.name for a in self.aliases)
+        self.alias_node = np.array([-1 if a.rep is None else index[a.rep.sym.element_hash()]
+                                    for a in self.aliases], dtype=int)
+        self.alias_sign = np.array([float(a.sign) for a in self.aliases])
+        self.alias_offset_fn = _param_function([a.offset for a in self.aliases], self.p,
+                                               "alias_offsets")
+        names, nodes, signs = [], [], []
+        for a, j, sign in zip(self.aliases, self.alias_node, self.alias_sign):
+            name = a.var.name
+            while j >= 0 and A[j] >= 0:
+                j = A[j]
+                name = "der(%s)" % name
+                names.append(name)
+                nodes.append(j)
+                signs.append(sign)
+        self.alias_der_names = tuple(names)
+        self.alias_der_node = np.array(nodes, dtype=int)
+        self.alias_der_sign = np.array(signs)
+
+    # ------------------------------------------------------------ queries
+    @property
+    def names(self):
+        """All time-varying columns of a result (nodes, aliases, derivatives)."""
+        return self.node_names + self.alias_names + self.alias_der_names
+
+    def describe_equation(self, i):
+        """Text of index-reduced equation i with its origin and order."""
+        s = self.structure
+        lvl = s.eq_level[i]
+        text = self.equations[s.eq_origin[i]].describe()
+        return text + ("" if lvl == 0 else "  [differentiated %d times]" % lvl)
+
+    def node_name(self, j):
+        """Name of variable node j (``der(...)`` for derivative nodes)."""
+        return self.node_names[j]
+
+    def owner_of_equation(self, i):
+        """Component that wrote index-reduced equation i (None: connections)."""
+        return self.equations[self.structure.eq_origin[i]].owner
+
+    def owner_of_equation_flat(self, k):
+        """Component that wrote flattened equation k (None: connections)."""
+        return self.flat_equations[k].owner
+
+    def owners_of_node(self, j):
+        """Components (described) whose equations or eliminated aliases
+        contain the variable of node j."""
+        s = self.structure
+        base = s.var_base[j]
+        names = []
+        for i in range(s.n_original):
+            if base in s.eq_vars[i] and self.equations[i].owner is not None:
+                names.append(self.equations[i].owner.describe())
+        rep = self.node_info[j]
+        for a in self.aliases:
+            if a.rep is not None and a.rep.name == rep.name and a.var.owner is not None:
+                names.append(a.var.owner.describe())
+        return list(dict.fromkeys(names))
+
+    def alias_names_of(self, j):
+        """Names of the eliminated variables equal (up to sign/offset) to node j."""
+        rep = self.node_info[j]
+        return [a.var.name for a in self.aliases if a.rep is not None and a.rep.name == rep.name]
+
+    def formulation(self, selection):
+        """The semi-explicit index-1 formulation of a dummy selection (cached)."""
+        f = self._formulations.get(selection.dummies)
+        if f is None:
+            f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
+            self._formulations[selection.dummies] = f
+        return f
+
+    def alias_values(self, Z, p):
+        """Values of the eliminated variables and their derivatives for node
+        values Z (one point per row)."""
+        offsets = self.alias_offset_fn(p).full().ravel()
+        bound = self.alias_node < 0
+        A = Z[:, np.where(bound, 0, self.alias_node)] * self.alias_sign + offsets
+        A[:, bound] = offsets[bound]
+        return np.hstack([A, Z[:, self.alias_der_node] * self.alias_der_sign])
+
+
+def _is_zero(v):
+    try:
+        return float(v) == 0.0
+    except (TypeError, RuntimeError):
+        return False

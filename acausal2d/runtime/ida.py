@@ -1,0 +1,303 @@
+"""IDA (SUNDIALS, through scikit-sundae) on a semi-explicit formulation.
+
+:class:`Problem` holds the callbacks - residual, exact iteration matrix
+(dense, or sparse with the formulation's pattern) and event functions - as
+CasADi functions evaluated through ``Function.buffer()``; relation values
+and parameters are written into the bound arrays, so one IDA object serves
+a formulation across events (it is re-initialized, not rebuilt).
+:func:`advance` runs it over output times up to a stop time and returns a
+typed outcome.  The messages scikit-sundae prints for SUNDIALS errors are
+taken out of ``sys.stdout`` while IDA runs (:class:`SundialsMessages`); no
+file descriptor is redirected.
+"""
+import os
+import sys
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")     # before scikit-sundae is imported
+import sksundae as sun  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
+
+from .buffered import Buffered  # noqa: E402
+from .sundials_ext import ida_memory, suppress_algebraic  # noqa: E402
+
+ALGEBRAIC_ATOL = 1e10    # fallback: an absolute tolerance that leaves an unknown untested
+MAX_STEPS = 500       # IDA steps per output interval before the runtime looks at the run
+MONITOR_THRESHOLD = 0.25    # a watched block whose |det| dropped 4x: re-check the selection
+NEAR_SINGULAR = 1e-3        # the highest block's |det| this small: a singular position ahead
+
+
+class SundialsMessages:
+    """Context manager: while it is active, the lines scikit-sundae prints
+    for SUNDIALS errors (``[IDASolve, Error: -3] ...``) are collected in
+    ``messages`` instead of reaching ``sys.stdout``; other output passes."""
+
+    def __init__(self):
+        self.messages = []
+        self._eat_newline = False
+        self._stream = None
+
+    def __enter__(self):
+        self._stream = sys.stdout
+        sys.stdout = self
+        return self
+
+    def __exit__(self, *exc):
+        sys.stdout = self._stream
+        return False
+
+    def write(self, text):
+        if text.startswith("\n[") and ", Error: " in text:
+            self.messages.append(" ".join(text.split()))
+            self._eat_newline = True
+            return len(text)
+        if self._eat_newline and text == "\n":
+            self._eat_newline = False
+            return 1
+        self._eat_newline = False
+        return self._stream.write(text)
+
+    def flush(self):
+        self._stream.flush()
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+    @property
+    def text(self):
+        return " ".join(self.messages)
+
+
+class Problem:
+    """IDA callbacks of one formulation; ``set_relations``/``set_parameters``
+    change the values bound into them."""
+
+    def __init__(self, form, p, d, progress=None):
+        n = form.n
+        z = np.zeros(n)
+        args = [np.zeros(1), z, z, np.asarray(p, float), np.asarray(d, float)]
+        self.form = form
+        self.steps, self.t_last = 0, None
+        self.res = Buffered(form.res_fn, args)
+        self.jac = Buffered(form.jac_fn, args + [np.zeros(1)])
+        self.ev = Buffered(form.event_fn, args) if form.event_fn is not None else None
+        self.n_rel, self.n_mon, self.n_pass = form.n_rel, form.n_mon, form.n_pass
+        self.hook = None          # the events function given to scikit-sundae
+        self.near_ref, self.near_watch = np.zeros(self.n_pass), True
+        self.mon_ref = np.ones(form.n_mon)
+        self.watch = True
+        self.progress = progress
+        self._pattern(form)
+
+    def _pattern(self, form):
+        sparsity = form.jac_sparsity
+        if form.sparse:
+            self.pattern = sp.csc_matrix((np.ones(sparsity.nnz()), np.array(sparsity.row()),
+                                          np.array(sparsity.colind())), shape=(form.n, form.n))
+        else:
+            r, c = sparsity.get_triplet()
+            self.rows, self.cols = np.array(r, dtype=int), np.array(c, dtype=int)
+
+    def _buffers(self):
+        return [b for b in (self.res, self.jac, self.ev) if b is not None]
+
+    def set_relations(self, d):
+        """Bind the relation values."""
+        for b in self._buffers():
+            b.args[4][:] = d
+
+    def set_parameters(self, p):
+        for b in self._buffers():
+            b.args[3][:] = p
+
+    def resfn(self, t, y, yp, res):
+        if t != self.t_last:          # IDA evaluates each step attempt at a new time
+            self.t_last = t
+            self.steps += 1
+            if self.progress is not None:
+                self.progress(t)
+
+        a = self.res.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        self.res.eval()
+        res[:] = self.res.outs[0]
+
+    def jacfn(self, t, y, yp, res, cj, JJ):
+        a = self.jac.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        a[5][0] = cj
+        self.jac.eval()
+        if self.form.sparse:
+            JJ[:] = self.jac.outs[0]
+        else:
+            JJ.fill(0.0)
+            JJ[self.rows, self.cols] = self.jac.outs[0]
+
+    def event_values(self, t, y, yp):
+        """Relation crossings, then the watched block determinants."""
+        a = self.ev.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        self.ev.eval()
+        return self.ev.outs[0]
+
+    def eventsfn(self, t, y, yp, events):
+        out = self.event_values(t, y, yp)
+        n, m = self.n_rel, self.n_rel + self.n_mon
+        events[:n] = out[:n]
+        if self.n_mon:
+            events[n:m] = np.abs(out[n:m]) / self.mon_ref - MONITOR_THRESHOLD if self.watch \
+                else 1.0
+        p = self.n_pass
+        if p:
+            events[m:m + p] = out[m:]
+            size = np.abs(out[m:])
+            np.maximum(self.near_ref, size, out=self.near_ref)     # its typical size
+            events[m + p:] = size / self.near_ref - NEAR_SINGULAR if self.near_watch else 1.0
+
+    def reset_events(self):
+        """Clear scikit-sundae's record of the events found so far (kept on
+        the events function and never reset by it), so that a reused IDA
+        object stops at the next terminal event again."""
+        hook = self.hook
+        if hook is not None and hasattr(hook, "_i_cnt"):
+            hook._i_cnt[:] = 0
+            for name in ("_i", "_t", "_y", "_yp"):
+                getattr(hook, name).clear()
+
+    def reset_monitors(self, t, y, yp):
+        """Take the current |det| of the watched blocks as their reference."""
+        if self.n_mon or self.n_pass:
+            out = np.abs(self.event_values(t, y, yp)[self.n_rel:])
+            self.mon_ref = np.maximum(out[:self.n_mon], 1e-300)
+            np.maximum(self.near_ref, out[self.n_mon:], out=self.near_ref)
+            self.near_watch = bool(np.all(out[self.n_mon:] > NEAR_SINGULAR * self.near_ref))
+
+
+def make_solver(prob, rtol, atol):
+    """The scikit-sundae IDA object of a problem (see :func:`start_solver`)."""
+    form = prob.form
+    n_ev = prob.n_rel + prob.n_mon + 2 * prob.n_pass
+    tested = form.differential
+    alg = np.nonzero(~tested)[0]
+    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=MAX_STEPS,
+                algebraic_idx=alg if len(alg) else None)
+    if form.sparse:
+        opts.update(linsolver="sparse", sparsity=prob.pattern)
+    if n_ev:
+        def eventsfn(t, y, yp, events):
+            prob.eventsfn(t, y, yp, events)
+        eventsfn.terminal = [True] * (prob.n_rel + prob.n_mon) + [False] * prob.n_pass \
+            + [True] * prob.n_pass
+        eventsfn.direction = [0] * prob.n_rel + [-1] * prob.n_mon + [0, -1] * prob.n_pass
+        opts.update(eventsfn=eventsfn, num_events=n_ev)
+        prob.hook = eventsfn
+    with warnings.catch_warnings():
+        # with a sparsity pattern and our exact jacfn, scikit-sundae notes that its own
+        # sparse approximation is not used - which is what we want
+        warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
+        return sun.ida.IDA(prob.resfn, **opts)
+
+
+def start_solver(solver, prob, t, y0, yp0, rtol, atol):
+    """Initialize ``solver`` at (t, y0, yp0) and leave the algebraic
+    unknowns out of its local error test (IDA's ``suppressalg``): their
+    values follow the states through the equations in every step, and the
+    output rows are solved for them exactly
+    (:mod:`~acausal2d.runtime.projection`).  Testing them as well made IDA
+    take 40-400 times as many steps near singular positions and stall on
+    stiff belts.  Where the setting cannot be reached, the same is done by
+    giving them a huge absolute tolerance (a new IDA object)."""
+    solver.init_step(t, y0, yp0)
+    if suppress_algebraic(ida_memory(solver, t)):
+        return solver
+    loose = np.where(prob.form.differential, atol, ALGEBRAIC_ATOL * np.abs(atol) / rtol)
+    solver = make_solver(prob, rtol, loose)
+    solver.init_step(t, y0, yp0)
+    return solver
+
+
+@dataclass
+class Reached:
+    """IDA reached the stop time."""
+    t: float
+    y: np.ndarray
+    yp: np.ndarray
+    passes: list = None
+
+
+@dataclass
+class RootFound:
+    """A relation crossed (``relations``: state-relation indices) or a
+    watched block decayed (``monitors``: monitor indices) at t."""
+    t: float
+    y: np.ndarray
+    yp: np.ndarray
+    relations: list
+    monitors: list
+    near: bool = False
+    passes: list = None
+
+
+@dataclass
+class Failed:
+    """IDA stopped with an error; (t, y, yp) is the last point it reached."""
+    t: float
+    y: np.ndarray
+    yp: np.ndarray
+    status: int
+    message: str
+    passes: list = None
+
+
+def _passes(sol, prob, hit):
+    """(time, y) of the singular positions passed (non-terminal roots)."""
+    if not prob.n_pass or sol.t_events is None:
+        return []
+    col = prob.n_rel + prob.n_mon
+    idx = np.asarray(sol.i_events)
+    rows = range(len(idx) - (1 if hit else 0))
+    return [(float(sol.t_events[k]), np.array(sol.y_events[k])) for k in rows if idx[k, col]]
+
+
+def advance(solver, prob, t, y0, yp0, outputs, t_stop):
+    """Integrate from (t, y0, yp0) to ``t_stop`` through ``outputs`` (the
+    output times in (t, t_stop]).  Returns (outcome, times and rows of the
+    output points reached, nfev, njev); ``outcome.passes`` lists the
+    singular positions passed."""
+    prob.reset_events()
+    tspan = [t] + list(outputs)
+    if not len(outputs) or outputs[-1] < t_stop:
+        tspan.append(t_stop)
+    if len(tspan) == 2:       # two times would make IDA return its internal steps
+        tspan.insert(1, 0.5 * (t + t_stop))
+    sol = solver.solve(np.array(tspan), y0, yp0)
+    ts, ys, yps = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
+    hit = sol.status == 2
+    n = len(ts) - (1 if hit else 0)
+    keep = np.isin(ts[1:n], outputs)
+    stats = (ts[1:n][keep], ys[1:n][keep], int(sol.nfev or 0), int(sol.njev or 0))
+    passes = _passes(sol, prob, hit)
+    last = len(ts) - 1
+    if hit:
+        idx = np.nonzero(np.asarray(sol.i_events)[-1])[0]
+        y, yp = np.asarray(sol.y_events)[-1], np.asarray(sol.yp_events)[-1]
+        m = prob.n_rel + prob.n_mon
+        outcome = RootFound(float(sol.t_events[-1]), y, yp,
+                            [int(k) for k in idx if k < prob.n_rel],
+                            [int(k) - prob.n_rel for k in idx if prob.n_rel <= k < m],
+                            bool(any(k >= m + prob.n_pass for k in idx)))
+    elif not sol.success:
+        outcome = Failed(float(ts[last]), ys[last], yps[last], sol.status, str(sol.message))
+    else:
+        outcome = Reached(float(ts[last]), ys[last], yps[last])
+    outcome.passes = passes
+    return (outcome, *stats)

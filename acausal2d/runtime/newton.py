@@ -1,0 +1,84 @@
+"""Newton's method for consistent values: all index-reduced equations
+E(t, z) = 0 with some node values held.  Dense or sparse LU with a line
+search; a minimum-norm least-squares step where the Jacobian is singular."""
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+_WATCHDOG = 3   # Newton iterations whose full step is accepted even if the residual grows
+
+
+class NoConvergence(Exception):
+    """Newton did not converge; ``z`` is the last iterate, ``residual`` its
+    residuals of E (without the held conditions)."""
+
+    def __init__(self, z, residual):
+        super().__init__("Newton did not converge")
+        self.z, self.residual = z, residual
+
+
+def _step(J, r, square):
+    """Newton step -J^-1 r (least squares where J is singular or not square)."""
+    if square:
+        with np.errstate(all="ignore"):
+            try:
+                dz = -(np.linalg.solve(J, r) if isinstance(J, np.ndarray)
+                       else spla.splu(J.tocsc()).solve(r))
+            except (np.linalg.LinAlgError, RuntimeError):
+                dz = None
+        if dz is not None and np.all(np.isfinite(dz)):
+            return dz
+    Jd = J if isinstance(J, np.ndarray) else (J.toarray() if J.shape[1] <= 4000 else None)
+    if Jd is None:
+        return None
+    with np.errstate(all="ignore"):
+        return -np.linalg.lstsq(Jd, r, rcond=1e-12)[0]
+
+
+def _line_search(F, z, dz, norm, it, tol):
+    """(z, r, norm) after a damped step, or None if no step reduces the residual."""
+    step = 1.0
+    while step > 1e-8:
+        zn = z + step * dz
+        rn = F(zn)
+        nn = np.max(np.abs(rn)) if rn.size else 0.0
+        if np.isfinite(nn) and (nn < (1 - 1e-4 * step) * norm or nn < tol):
+            return zn, rn, nn
+        # watchdog: the first full steps may raise the residual for a while
+        # (velocity cross terms from zero start values); allow it, within bounds
+        if step == 1.0 and it < _WATCHDOG and np.isfinite(nn) and nn < 1e6 * max(norm, 1.0):
+            return zn, rn, nn
+        step *= 0.5
+    return None
+
+
+def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
+    """Solve E(t, z, p, d) = 0 with z[held] = held_values by Newton from z0
+    (``ev``: an :class:`~acausal2d.runtime.evaluator.Evaluator`); returns z
+    or raises :class:`NoConvergence`."""
+    z = np.array(z0, dtype=float)
+    held = np.asarray(held, dtype=int)
+    held_values = np.asarray(held_values, dtype=float)
+    z[held] = held_values
+    n, m = len(z), ev.n_eq + len(held)
+    H = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held)), shape=(len(held), n))
+    Hd = H.toarray() if not ev.sparse else None
+
+    def F(zz):
+        return np.concatenate([ev.residual(t, zz, d), zz[held] - held_values])
+
+    r = F(z)
+    norm = np.max(np.abs(r)) if r.size else 0.0
+    for it in range(max_iter):
+        if norm < tol:
+            return z
+        J = ev.jacobian(t, z, d)
+        J = np.vstack([J, Hd]) if isinstance(J, np.ndarray) else sp.vstack([J, H])
+        dz = _step(J, r, m == n)
+        found = _line_search(F, z, dz, norm, it, tol) if dz is not None else None
+        if found is None:
+            break
+        z, r, norm = found
+    if norm < tol * 10:
+        return z
+    raise NoConvergence(z, r[:ev.n_eq])

@@ -1,0 +1,93 @@
+"""State selection at run time: the dummy derivatives chosen at a point,
+how regular a chosen block is there, and which components take part in a
+block that has become singular."""
+import numpy as np
+
+from ..compiler.dummy_derivatives import select_dummies
+from ..errors import SimulationError
+
+MONITOR_THRESHOLD = 0.25     # re-check the selection when a block's |det| drops 4x
+SINGULAR_CONDITION = 1e-4    # relative smallest singular value of a singular block
+
+
+def select(system, ev, t, z, d):
+    """Dummy-derivative selection at the point z."""
+    J = ev.jacobian(t, z, d, dense=False).tocsr()
+
+    def jac(eqs, nodes):
+        return J[list(eqs)][:, list(nodes)].toarray()
+    return select_dummies(system.structure, system.priority, system.nominal, jac)
+
+
+def block_conditioning(system, ev, t, z, d, level):
+    """How regular the dummy block of a selection level is at z: the
+    smallest singular value of the nominal-scaled block (its equations
+    against the chosen dummies) relative to the largest singular value of
+    the equations against all candidates; and the left singular vector
+    (weights of the equations in the near-singularity)."""
+    eqs, chosen, cands = list(level.eqs), list(level.chosen), list(level.cands)
+    if ev.sparse:
+        J = ev.jacobian(t, z, d, dense=False).tocsr()[eqs]
+        C = J[:, cands].toarray()
+    else:
+        C = ev.jacobian(t, z, d, dense=True)[np.ix_(eqs, cands)]
+    C = C * system.nominal[cands][None, :]
+    where = {j: k for k, j in enumerate(cands)}
+    u, sv, _ = np.linalg.svd(C[:, [where[j] for j in chosen]])
+    top = np.linalg.norm(C, 2)
+    return float(sv[-1]) / max(float(top), 1e-300), u[:, -1]
+
+
+def worst_level(system, ev, selection, t, z, d, levels=None):
+    """(conditioning, level, weights) of the worst-conditioned dummy block
+    among ``levels`` (default: all) at z, or None without dummy blocks."""
+    worst = None
+    for lv in (selection.levels if levels is None else levels):
+        cond, u = block_conditioning(system, ev, t, z, d, lv)
+        if worst is None or cond < worst[0]:
+            worst = (cond, lv, u)
+    return worst
+
+
+def singular_elements(system, eqs, weights):
+    """Components whose equations take part in a singular block."""
+    w = np.abs(weights)
+    names = []
+    for i in np.argsort(-w):
+        if w[i] < 0.2 * w.max():
+            break
+        owner = system.owner_of_equation(eqs[i])
+        name = owner.describe() if owner is not None else \
+            system.equations[system.structure.eq_origin[eqs[i]]].origin
+        if name not in names:
+            names.append(name)
+    return names
+
+
+def singularity(system, t, kind, worst):
+    """A record of a singular position: time, elements, kind, condition."""
+    cond, lv, u = worst
+    return {"time": t, "elements": singular_elements(system, lv.eqs, u), "kind": kind,
+            "condition": cond}
+
+
+def reselect(system, ev, selection, levels, t, z, d):
+    """After watched dummy blocks decayed (``levels``; None: all): returns
+    (selection, singularity) - a better-conditioned new selection and None,
+    or the current selection with a singularity record if the mechanism
+    itself is singular there (None if it is only less well conditioned
+    than before)."""
+    worst = worst_level(system, ev, selection, t, z, d, levels)
+    if worst is None:            # no dummy derivatives: nothing to re-select
+        return selection, None
+    try:
+        new = select(system, ev, t, z, d)
+    except SimulationError:
+        new = None
+    if new is not None and new.dummies != selection.dummies:
+        better = worst_level(system, ev, new, t, z, d)[0]
+        if better > 2.0 * worst[0]:
+            return new, None
+    if worst[0] > SINGULAR_CONDITION:
+        return selection, None      # decayed, but far from singular: keep watching
+    return selection, singularity(system, t, "singular position", worst)

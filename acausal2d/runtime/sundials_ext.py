@@ -1,0 +1,61 @@
+"""IDA settings that scikit-sundae does not expose, set on its IDA memory
+through the SUNDIALS library it ships.
+
+scikit-sundae keeps the IDA memory pointer in its Cython object; it is read
+at its place in the object (after the Python object header and the Cython
+method table) and accepted only if IDA itself confirms it: the time IDA
+reports through ``IDAGetCurrentTime`` must equal the time of the last
+``init_step``.  Otherwise nothing is set and :func:`suppress_algebraic`
+returns False, and the caller uses its fallback.
+"""
+import ctypes
+import glob
+import os
+
+import sksundae
+
+_lib = None
+
+
+def _library():
+    global _lib
+    if _lib is None:
+        folder = os.path.join(os.path.dirname(sksundae.__file__), "..", "scikit_sundae.libs")
+        found = glob.glob(os.path.join(folder, "libsundials_ida-*.so*"))
+        _lib = ctypes.CDLL(found[0]) if found else False
+        if _lib:
+            _lib.IDAGetCurrentTime.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
+            _lib.IDASetSuppressAlg.argtypes = [ctypes.c_void_p, ctypes.c_int]
+            _lib.IDAGetNumSteps.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_long)]
+    return _lib
+
+
+def ida_memory(solver, t0):
+    """The IDA memory pointer of an initialized scikit-sundae IDA object
+    (after ``init_step(t0, ...)``), or None if it cannot be confirmed."""
+    lib = _library()
+    obj = getattr(solver, "_IDA__IDA", None)
+    if not lib or obj is None:
+        return None
+    mem = ctypes.c_void_p.from_address(id(obj) + 3 * ctypes.sizeof(ctypes.c_void_p)).value
+    if not mem:
+        return None
+    t = ctypes.c_double(float("nan"))
+    if lib.IDAGetCurrentTime(ctypes.c_void_p(mem), ctypes.byref(t)) != 0 or t.value != t0:
+        return None
+    return mem
+
+
+def suppress_algebraic(mem):
+    """Leave the algebraic unknowns out of IDA's local error test
+    (``IDASetSuppressAlg``); True if set."""
+    lib = _library()
+    return bool(lib) and mem is not None and \
+        lib.IDASetSuppressAlg(ctypes.c_void_p(mem), 1) == 0
+
+
+def steps_taken(mem):
+    """IDA's step count since its last (re)initialization."""
+    n = ctypes.c_long(0)
+    _library().IDAGetNumSteps(ctypes.c_void_p(mem), ctypes.byref(n))
+    return int(n.value)

@@ -1,0 +1,170 @@
+"""The user's handle on a compiled model: :func:`compile_model` and
+:class:`CompiledModel`, which simulates many times with other parameter
+values without recompiling and returns :class:`~acausal2d.tools.result.Result`
+objects."""
+import time as _time
+
+import numpy as np
+
+from ..compiler.pipeline import compile_system
+from ..errors import Acausal2dError, ModelDefinitionError
+from ..runtime.evaluator import Evaluator
+from ..runtime.initialize import initial_point
+from ..runtime.selection import select
+from ..runtime.simulation import Simulation
+from .result import Result
+
+
+def compile_model(model):
+    """Compile a model instance into a :class:`CompiledModel`."""
+    return CompiledModel(model)
+
+
+class CompiledModel:
+    """A model ready to simulate; reusable with other parameter values.
+
+    ``system`` is the frozen :class:`~acausal2d.compiler.system.System`."""
+
+    def __init__(self, model):
+        t0 = _time.perf_counter()
+        self.model = model
+        self.system = compile_system(model)
+        self._whole = self._whole_parameters()
+        self.compile_time = _time.perf_counter() - t0
+
+    # ------------------------------------------------------------ parameters
+    @property
+    def parameters(self):
+        """(name, symbol, value, declaration) of every scalar parameter."""
+        return self.system.parameters
+
+    @property
+    def names(self):
+        """Names of all time-varying columns a result of this model holds."""
+        return self.system.names
+
+    @property
+    def outputs(self):
+        return self.system.outputs
+
+    def _whole_parameters(self):
+        """{parameter name (vectors as a whole): (declaration, indices)}."""
+        whole = {}
+        for k, (name, _, _, decl) in enumerate(self.system.parameters):
+            base = name.rsplit("[", 1)[0] if name.endswith("]") else name
+            whole.setdefault(base, (decl, []))[1].append(k)
+        return whole
+
+    def parameter_values(self, params=None):
+        """Numeric parameter vector with overrides ``{dotted name: value}``
+        (vector parameters as a whole, ``"rod.r": (1, 0)``, or by element,
+        ``"rod.r[0]"``); every value is checked against its declaration."""
+        vals = np.array([v for _, _, v, _ in self.system.parameters], dtype=float)
+        if params is None:
+            return vals
+        if not isinstance(params, dict):
+            raise ModelDefinitionError("params must be a dict {'comp.param': value}, got %r"
+                                       % (params,))
+        for name, value in params.items():
+            index = self._indices(name)
+            vals[index] = np.atleast_1d(self._checked(name, value))
+        return vals
+
+    def _indices(self, name):
+        if name in self._whole:
+            return self._whole[name][1]
+        if name in self.system.param_index:
+            return [self.system.param_index[name]]
+        close = [n for n in self._whole if str(name).split(".")[-1] in n][:8]
+        raise ModelDefinitionError("unknown parameter %r%s" % (
+            name, "; parameters with a similar name: " + ", ".join(close) if close else
+            "; parameters: " + ", ".join(list(self._whole)[:20])))
+
+    def _checked(self, name, value):
+        comp = name.rsplit(".", 1)[0] if "." in name else "<model>"
+        if name in self._whole:
+            decl = self._whole[name][0]
+            return decl.validated(value, comp)
+        decl = self.system.parameters[self.system.param_index[name]][3]
+        return _Scalar(decl).validated(value, comp)
+
+    # ------------------------------------------------------------ analysis
+    def initial_point(self, t0=0.0, params=None):
+        """Consistent values at t0: an
+        :class:`~acausal2d.runtime.initialize.InitialPoint` with the
+        selection made there."""
+        p = self.parameter_values(params)
+        ev = Evaluator(self.system, p)
+        point = initial_point(self.system, ev, t0, p)
+        if point.selection is None:
+            point.selection = select(self.system, ev, t0, point.z, point.d)
+        return point
+
+    def describe_equation(self, i):
+        """Text of index-reduced equation i with its origin and order."""
+        return self.system.describe_equation(i)
+
+    # ------------------------------------------------------------ simulate
+    def _settings(self, stop_time, rtol, atol, intervals, start_time, output_times):
+        exp = dict(getattr(self.model, "experiment", {}) or {})
+        stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
+        rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
+        intervals = int(intervals if intervals is not None else exp.get("intervals", 500))
+        if not rtol > 0:
+            raise Acausal2dError("rtol must be positive, got %g" % rtol)
+        if not rtol < 0.1:
+            raise Acausal2dError("rtol must be below 0.1 (a relative tolerance, e.g. 1e-6), "
+                                 "got %g" % rtol)
+        if atol is not None and not atol > 0:
+            raise Acausal2dError("atol must be positive, got %g" % atol)
+        if output_times is None:
+            if not stop > start_time:
+                raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
+                                     % (stop, start_time))
+            if intervals < 1:
+                raise Acausal2dError("intervals must be at least 1, got %d" % intervals)
+            output_times = np.linspace(start_time, stop, intervals + 1)
+        output_times = np.asarray(output_times, dtype=float)
+        if output_times.ndim != 1 or len(output_times) < 2 or \
+                not np.all(np.isfinite(output_times)) or np.any(np.diff(output_times) <= 0):
+            raise Acausal2dError("output_times must be at least two finite, increasing times")
+        return output_times, rtol
+
+    def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
+                 start_time=0.0, output_times=None, progress=None):
+        """Simulate and return a :class:`~acausal2d.tools.result.Result`.
+
+        stop_time: end time (default: the model's ``experiment['stop_time']``
+        or 1 s); params: {dotted parameter name: value}; rtol/atol:
+        integrator tolerances (default 1e-6 and rtol times each variable's
+        nominal); intervals: number of output intervals (default 500)
+        unless ``output_times`` is given; progress: optional callable(t,
+        t_end), called as the run advances.
+        """
+        times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
+        p = self.parameter_values(params)
+        log = Simulation(self.system, p, times, rtol, atol, progress).run()
+        log.stats.compile_time = self.compile_time
+        s = self.system
+        res = Result(log.times, s.node_names, log.nodes,
+                     s.alias_names + s.alias_der_names, s.alias_values(log.nodes, p),
+                     [name for name, *_ in s.parameters], p, log.events,
+                     log.stats.as_dict(), self.outputs, self)
+        res.singularities = log.singularities
+        res.stopped = log.stopped
+        res.states = log.states
+        return res
+
+
+class _Scalar:
+    """The rules of a vector parameter's declaration applied to one element."""
+
+    def __init__(self, decl):
+        self.decl = decl
+
+    def validated(self, value, where):
+        from ..language.dsl import Parameter
+        d = self.decl
+        one = Parameter(0.0, d.unit, d.doc, d.min, d.max, d.positive)
+        one.name = d.name
+        return one.validated(value, where)
