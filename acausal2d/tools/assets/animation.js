@@ -1,0 +1,361 @@
+(function () {
+  "use strict";
+  var errors = [];
+  window.addEventListener("error", function (e) {
+    errors.push(String(e && e.message ? e.message : e));
+  });
+
+  var D = JSON.parse(document.getElementById("acausal2d-data").textContent);
+  var T = D.time, N = T.length, S = D.signals, shapes = D.shapes;
+  var canvas = document.getElementById("view");
+  var ctx = canvas.getContext("2d");
+  var playBtn = document.getElementById("play");
+  var scrub = document.getElementById("scrub");
+  var speedSel = document.getElementById("speed");
+  var timeOut = document.getElementById("time");
+  var loopBox = document.getElementById("loop");
+
+  var COLORS = {
+    background: "#fbfbfc", grid: "#eceef1", axis: "#dde1e6", text: "#2d3436",
+    ground: "#6b6f75", groundFill: "#d5d8dc", link: "#4682b4", linkEdge: "#2b4f6e",
+    joint: "#ffffff", jointEdge: "#1f2933", body: "#2d3436", slider: "#a9c3db",
+    sliderEdge: "#2b4f6e", guide: "#8a9099", pulley: "#e9edf1", pulleyEdge: "#555d66",
+    spoke: "#7b858f", belt: "#e07b00", spring: "#2e9e4f", trace: "rgba(240,128,128,0.8)",
+    tracePoint: "#e74c3c", label: "#1f2933"
+  };
+
+  var frame = 0, playing = false, rafId = null, anchorWall = 0, anchorSim = 0;
+  var view = { s: 1, ox: 0, oy: 0, w: 1, h: 1 };
+
+  // Playback clock: the time vector, or 30 frames/s if it does not advance.
+  var duration = N > 1 ? T[N - 1] - T[0] : 0;
+  var clock = new Array(N);
+  for (var q = 0; q < N; q++) clock[q] = duration > 0 ? T[q] : q / 30;
+
+  function val(x, k) {
+    var y = x;
+    if (typeof x === "string") { var a = S[x]; y = a ? a[k] : null; }
+    return (y === null || y === undefined) ? NaN : +y;
+  }
+  function finite() {
+    for (var i = 0; i < arguments.length; i++) if (!isFinite(arguments[i])) return false;
+    return true;
+  }
+  function P(x, y) { return [view.ox + view.s * x, view.oy - view.s * y]; }
+  function pt(p, k) {
+    var x = val(p[0], k), y = val(p[1], k);
+    return finite(x, y) ? P(x, y) : null;
+  }
+  function pts(list, k) {
+    var out = [];
+    for (var i = 0; i < list.length; i++) { var p = pt(list[i], k); if (!p) return null; out.push(p); }
+    return out;
+  }
+  function polyline(ps) {
+    ctx.beginPath(); ctx.moveTo(ps[0][0], ps[0][1]);
+    for (var i = 1; i < ps.length; i++) ctx.lineTo(ps[i][0], ps[i][1]);
+  }
+  function worldLen(v, k, dflt, minimum) {
+    if (v === undefined || v === null) return dflt;
+    var L = Math.abs(val(v, k)) * view.s;
+    return isFinite(L) ? Math.max(minimum, L) : NaN;
+  }
+  function circle(x, y, r) { ctx.beginPath(); ctx.arc(x, y, r, 0, 2 * Math.PI); }
+
+  // ---- shape drawers: function (shape, frameIndex) ----
+  function drawGround(sh, k) {
+    var x = val(sh.x, k), y = val(sh.y, k), phi = sh.phi === undefined ? 0 : val(sh.phi, k);
+    if (!finite(x, y, phi)) return;
+    var p = P(x, y), c = sh.color || COLORS.ground;
+    ctx.save(); ctx.translate(p[0], p[1]); ctx.rotate(-phi);
+    ctx.beginPath(); ctx.moveTo(0, 0); ctx.lineTo(-9, 13); ctx.lineTo(9, 13); ctx.closePath();
+    ctx.fillStyle = COLORS.groundFill; ctx.fill();
+    ctx.strokeStyle = c; ctx.lineWidth = 1.5; ctx.lineJoin = "round"; ctx.stroke();
+    ctx.beginPath(); ctx.moveTo(-17, 13); ctx.lineTo(17, 13); ctx.lineWidth = 2; ctx.stroke();
+    ctx.beginPath();
+    for (var hx = -13; hx <= 19; hx += 5) { ctx.moveTo(hx, 13); ctx.lineTo(hx - 6, 20); }
+    ctx.lineWidth = 1.2; ctx.stroke();
+    ctx.restore();
+  }
+  function drawJoint(sh, k) {
+    var p = pt([sh.x, sh.y], k); if (!p) return;
+    circle(p[0], p[1], 4.5);
+    ctx.fillStyle = COLORS.joint; ctx.fill();
+    ctx.strokeStyle = sh.color || COLORS.jointEdge; ctx.lineWidth = 1.6; ctx.stroke();
+  }
+  function drawLink(sh, k) {
+    var ps = pts(sh.points, k), w = worldLen(sh.width, k, 7, 1.5);
+    if (!ps || !isFinite(w)) return;
+    ctx.lineCap = "round"; ctx.lineJoin = "round";
+    polyline(ps); ctx.strokeStyle = COLORS.linkEdge; ctx.lineWidth = w + 2.5; ctx.stroke();
+    polyline(ps); ctx.strokeStyle = sh.color || COLORS.link; ctx.lineWidth = w; ctx.stroke();
+  }
+  function drawBody(sh, k) {
+    var p = pt([sh.x, sh.y], k), r = worldLen(sh.r, k, 9, 2);
+    if (!p || !isFinite(r)) return;
+    circle(p[0], p[1], r); ctx.fillStyle = sh.color || COLORS.body; ctx.fill();
+    circle(p[0] - 0.3 * r, p[1] - 0.3 * r, 0.35 * r);
+    ctx.fillStyle = "rgba(255,255,255,0.22)"; ctx.fill();
+  }
+  function drawGuide(sh, k) {
+    if (!sh.guide) return;
+    var ps = pts(sh.guide, k); if (!ps) return;
+    ctx.save(); ctx.setLineDash([7, 5]); ctx.lineCap = "butt";
+    polyline(ps); ctx.strokeStyle = COLORS.guide; ctx.lineWidth = 1.5; ctx.stroke();
+    ctx.restore();
+  }
+  function drawSlider(sh, k) {
+    var x = val(sh.x, k), y = val(sh.y, k), phi = val(sh.phi, k);
+    var L = worldLen(sh.length, k, 38, 4);
+    if (!finite(x, y, phi, L)) return;
+    var H = 0.6 * L, p = P(x, y);
+    ctx.save(); ctx.translate(p[0], p[1]); ctx.rotate(-phi);
+    ctx.beginPath(); ctx.rect(-L / 2, -H / 2, L, H);
+    ctx.fillStyle = sh.color || COLORS.slider; ctx.fill();
+    ctx.strokeStyle = COLORS.sliderEdge; ctx.lineWidth = 1.6; ctx.lineJoin = "round"; ctx.stroke();
+    ctx.restore();
+  }
+  function drawPulley(sh, k) {
+    var x = val(sh.x, k), y = val(sh.y, k), r = val(sh.r, k), phi = val(sh.phi, k);
+    if (!finite(x, y, r, phi)) return;
+    var p = P(x, y), R = Math.max(3, Math.abs(r) * view.s), rin = R;
+    var c = Math.cos(phi), s = Math.sin(phi);
+    ctx.lineJoin = "round";
+    if (sh.contour && sh.contour.length >= 3) {
+      ctx.beginPath();
+      rin = Infinity;
+      for (var i = 0; i < sh.contour.length; i++) {
+        var cx = +sh.contour[i][0], cy = +sh.contour[i][1];
+        rin = Math.min(rin, Math.sqrt(cx * cx + cy * cy) * view.s);
+        var q = P(x + c * cx - s * cy, y + s * cx + c * cy);
+        if (i === 0) ctx.moveTo(q[0], q[1]); else ctx.lineTo(q[0], q[1]);
+      }
+      ctx.closePath();
+      rin = Math.max(3, Math.min(rin, R));
+    } else {
+      circle(p[0], p[1], R);
+    }
+    ctx.fillStyle = COLORS.pulley; ctx.fill();
+    ctx.strokeStyle = sh.color || COLORS.pulleyEdge; ctx.lineWidth = 2; ctx.stroke();
+    if (!(sh.contour && sh.contour.length >= 3)) {
+      circle(p[0], p[1], 0.84 * R); ctx.lineWidth = 1; ctx.strokeStyle = COLORS.spoke; ctx.stroke();
+    }
+    var hub = Math.max(2.5, 0.15 * rin), spoke = 0.84 * rin;
+    for (var j = 0; j < 5; j++) {
+      var a = -phi - j * 2 * Math.PI / 5, ca = Math.cos(a), sa = Math.sin(a);
+      ctx.beginPath();
+      ctx.moveTo(p[0] + hub * ca, p[1] + hub * sa);
+      ctx.lineTo(p[0] + spoke * ca, p[1] + spoke * sa);
+      ctx.lineCap = "round";
+      ctx.strokeStyle = j === 0 ? (sh.color || COLORS.pulleyEdge) : COLORS.spoke;
+      ctx.lineWidth = j === 0 ? 3 : 1.8; ctx.stroke();
+    }
+    circle(p[0], p[1], hub); ctx.fillStyle = sh.color || COLORS.pulleyEdge; ctx.fill();
+  }
+  function drawBelt(sh, k) {
+    var ps = pts(sh.points, k); if (!ps) return;
+    ctx.lineCap = "round"; ctx.lineJoin = "round";
+    polyline(ps); ctx.strokeStyle = sh.color || COLORS.belt; ctx.lineWidth = 3; ctx.stroke();
+  }
+  function drawSpring(sh, k) {
+    var a = pt(sh.a, k), b = pt(sh.b, k); if (!a || !b) return;
+    var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.sqrt(dx * dx + dy * dy);
+    if (L < 1) return;
+    var ux = dx / L, uy = dy / L, nx = -uy, ny = ux, lead = 0.15 * L, m = 12, amp = 6;
+    ctx.beginPath(); ctx.moveTo(a[0], a[1]);
+    for (var j = 0; j <= m; j++) {
+      var d = lead + (L - 2 * lead) * j / m, o = (j === 0 || j === m) ? 0 : (j % 2 ? amp : -amp);
+      ctx.lineTo(a[0] + ux * d + nx * o, a[1] + uy * d + ny * o);
+    }
+    ctx.lineTo(b[0], b[1]);
+    ctx.lineJoin = "round"; ctx.lineCap = "round";
+    ctx.strokeStyle = sh.color || COLORS.spring; ctx.lineWidth = 2; ctx.stroke();
+  }
+  function drawTracePath(sh) {
+    ctx.beginPath();
+    var pen = false;
+    for (var k = 0; k < N; k++) {
+      var p = pt([sh.x, sh.y], k);
+      if (!p) { pen = false; continue; }
+      if (pen) ctx.lineTo(p[0], p[1]); else ctx.moveTo(p[0], p[1]);
+      pen = true;
+    }
+    ctx.lineJoin = "round"; ctx.lineCap = "round";
+    ctx.strokeStyle = sh.color || COLORS.trace; ctx.lineWidth = 1.5;
+    ctx.save(); if (sh.color) ctx.globalAlpha = 0.5; ctx.stroke(); ctx.restore();
+  }
+  function drawTracePoint(sh, k) {
+    var p = pt([sh.x, sh.y], k); if (!p) return;
+    circle(p[0], p[1], 4); ctx.fillStyle = sh.color || COLORS.tracePoint; ctx.fill();
+    ctx.strokeStyle = "#ffffff"; ctx.lineWidth = 1.2; ctx.stroke();
+  }
+  function drawLabel(sh, k) {
+    var p = pt([sh.x, sh.y], k); if (!p) return;
+    ctx.font = "13px system-ui, -apple-system, 'Segoe UI', Roboto, Helvetica, Arial, sans-serif";
+    ctx.textBaseline = "bottom"; ctx.textAlign = "left"; ctx.lineJoin = "round";
+    ctx.strokeStyle = "rgba(251,251,252,0.9)"; ctx.lineWidth = 3;
+    ctx.strokeText(String(sh.text), p[0] + 7, p[1] - 5);
+    ctx.fillStyle = sh.color || COLORS.label; ctx.fillText(String(sh.text), p[0] + 7, p[1] - 5);
+  }
+
+  // Layers, drawn bottom to top; unknown shape types are ignored.
+  var LAYERS = {
+    trace: [[0, drawTracePath], [90, drawTracePoint]], pulley: [[10, drawPulley]],
+    slider: [[15, drawGuide], [60, drawSlider]], ground: [[20, drawGround]],
+    belt: [[30, drawBelt]], spring: [[40, drawSpring]], link: [[50, drawLink]],
+    body: [[70, drawBody]], joint: [[80, drawJoint]], label: [[100, drawLabel]]
+  };
+  var ops = [];
+  shapes.forEach(function (sh, i) {
+    (LAYERS[sh && sh.type] || []).forEach(function (l) { ops.push({ z: l[0], i: i, sh: sh, fn: l[1] }); });
+  });
+  ops.sort(function (a, b) { return a.z - b.z || a.i - b.i; });
+
+  function niceStep(raw) {
+    var p = Math.pow(10, Math.floor(Math.log10(raw))), m = [1, 2, 5, 10];
+    for (var i = 0; i < m.length; i++) if (m[i] * p >= raw) return m[i] * p;
+    return 10 * p;
+  }
+  function fmt(x) { return Math.abs(x) >= 1e4 || (Math.abs(x) < 1e-3 && x !== 0) ? x.toExponential(0) : String(+x.toPrecision(6)); }
+
+  function drawGrid() {
+    var step = niceStep(70 / view.s);
+    var x0 = -view.ox / view.s, x1 = (view.w - view.ox) / view.s;
+    var y0 = (view.oy - view.h) / view.s, y1 = view.oy / view.s;
+    ctx.lineWidth = 1;
+    ctx.beginPath();
+    for (var gx = Math.ceil(x0 / step) * step; gx <= x1; gx += step) {
+      var sx = Math.round(view.ox + view.s * gx) + 0.5; ctx.moveTo(sx, 0); ctx.lineTo(sx, view.h);
+    }
+    for (var gy = Math.ceil(y0 / step) * step; gy <= y1; gy += step) {
+      var sy = Math.round(view.oy - view.s * gy) + 0.5; ctx.moveTo(0, sy); ctx.lineTo(view.w, sy);
+    }
+    ctx.strokeStyle = COLORS.grid; ctx.stroke();
+    ctx.beginPath();
+    if (x0 <= 0 && 0 <= x1) { var ax = Math.round(view.ox) + 0.5; ctx.moveTo(ax, 0); ctx.lineTo(ax, view.h); }
+    if (y0 <= 0 && 0 <= y1) { var ay = Math.round(view.oy) + 0.5; ctx.moveTo(0, ay); ctx.lineTo(view.w, ay); }
+    ctx.strokeStyle = COLORS.axis; ctx.stroke();
+    ctx.font = "11px system-ui, sans-serif"; ctx.fillStyle = "#8a9099";
+    ctx.textAlign = "left"; ctx.textBaseline = "bottom";
+    ctx.fillText("grid " + fmt(step), 10, view.h - 8);
+  }
+
+  function fit() {
+    var dpr = window.devicePixelRatio || 1;
+    var w = Math.max(1, canvas.clientWidth), h = Math.max(1, canvas.clientHeight);
+    canvas.width = Math.round(w * dpr); canvas.height = Math.round(h * dpr);
+    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    var b = D.bbox, pad = 34, top = D.title ? 44 : pad;
+    var bw = b[2] - b[0], bh = b[3] - b[1], size = Math.max(bw, bh) || 1;
+    if (!(bw > 0)) { bw = size * 1e-3; }
+    if (!(bh > 0)) { bh = size * 1e-3; }
+    var aw = Math.max(10, w - 2 * pad), ah = Math.max(10, h - pad - top);
+    var s = Math.min(aw / bw, ah / bh);
+    view = { s: s, w: w, h: h,
+             ox: pad + (aw - s * bw) / 2 - s * b[0],
+             oy: top + (ah - s * bh) / 2 + s * b[3] };
+  }
+
+  function draw() {
+    ctx.fillStyle = COLORS.background; ctx.fillRect(0, 0, view.w, view.h);
+    drawGrid();
+    for (var i = 0; i < ops.length; i++) {
+      ctx.save();
+      try { ops[i].fn(ops[i].sh, frame); } finally { ctx.restore(); }
+    }
+    if (D.title) {
+      ctx.font = "600 15px system-ui, -apple-system, 'Segoe UI', Roboto, Helvetica, Arial, sans-serif";
+      ctx.fillStyle = COLORS.text; ctx.textAlign = "left"; ctx.textBaseline = "top";
+      ctx.fillText(D.title, 12, 12);
+    }
+    timeOut.textContent = "t = " + (N ? T[frame].toFixed(3) : "0") + " s  (" + (frame + 1) + "/" + N + ")";
+    scrub.value = String(frame);
+  }
+
+  function findFrame(simT) {  // last frame with clock <= simT
+    var lo = 0, hi = N - 1;
+    if (simT <= clock[0]) return 0;
+    if (simT >= clock[hi]) return hi;
+    while (hi - lo > 1) { var mid = (lo + hi) >> 1; if (clock[mid] <= simT) lo = mid; else hi = mid; }
+    return lo;
+  }
+  function speed() { var v = parseFloat(speedSel.value); return v > 0 ? v : 1; }
+  function anchor() { anchorWall = performance.now(); anchorSim = clock[frame]; }
+
+  function setFrame(i) {
+    i = Math.round(+i);
+    if (!isFinite(i)) i = 0;
+    frame = Math.max(0, Math.min(N - 1, i));
+    if (playing) anchor();
+    draw();
+    return frame;
+  }
+  function tick(now) {
+    rafId = null;
+    if (!playing) return;
+    var simT = anchorSim + (now - anchorWall) / 1000 * speed();
+    if (simT >= clock[N - 1]) {
+      if (loopBox.checked && N > 1) {
+        frame = 0; anchorWall = now; anchorSim = clock[0];
+      } else {
+        frame = N - 1; draw(); pause(); return;
+      }
+    } else {
+      frame = findFrame(simT);
+    }
+    draw();
+    rafId = window.requestAnimationFrame(tick);
+  }
+  function play() {
+    if (playing || N < 2) return;
+    if (frame >= N - 1) frame = 0;
+    playing = true; playBtn.textContent = "Pause";
+    anchor();
+    rafId = window.requestAnimationFrame(tick);
+  }
+  function pause() {
+    playing = false; playBtn.textContent = "Play";
+    if (rafId !== null) { window.cancelAnimationFrame(rafId); rafId = null; }
+  }
+
+  function frameFromHash() {
+    var m = /(?:^#|&)frame=(-?\d+)/.exec(window.location.hash || "");
+    return m ? parseInt(m[1], 10) : null;
+  }
+
+  playBtn.addEventListener("click", function () { if (playing) pause(); else play(); });
+  scrub.addEventListener("input", function () { setFrame(parseInt(scrub.value, 10)); });
+  speedSel.addEventListener("change", function () {
+    if (playing) { anchorSim = anchorSim + (performance.now() - anchorWall) / 1000 * speed(); anchor(); }
+  });
+  window.addEventListener("resize", function () { fit(); draw(); });
+  window.addEventListener("hashchange", function () {
+    var h = frameFromHash(); if (h !== null) setFrame(h);
+  });
+  document.addEventListener("keydown", function (e) {
+    var tag = e.target && e.target.tagName;
+    if (tag === "INPUT" || tag === "SELECT" || tag === "BUTTON" || tag === "TEXTAREA") return;
+    if (e.key === " ") { e.preventDefault(); if (playing) pause(); else play(); }
+    else if (e.key === "ArrowRight") { setFrame(frame + 1); }
+    else if (e.key === "ArrowLeft") { setFrame(frame - 1); }
+    else if (e.key === "Home") { setFrame(0); }
+    else if (e.key === "End") { setFrame(N - 1); }
+  });
+
+  scrub.max = String(Math.max(0, N - 1));
+  var h0 = frameFromHash();
+  frame = h0 === null ? 0 : Math.max(0, Math.min(N - 1, h0));
+  fit();
+  draw();
+
+  window.acausal2d = {
+    get frame() { return frame; },
+    nframes: N,
+    get playing() { return playing; },
+    setFrame: setFrame,
+    play: play,
+    pause: pause,
+    errors: errors,
+    scene: D
+  };
+})();
