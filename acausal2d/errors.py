@@ -25,11 +25,14 @@ class InitializationError(Acausal2dError):
 
 
 class SimulationError(Acausal2dError):
-    """The integrator failed; the message gives time, status and the variable
-    that is most likely responsible."""
+    """The integrator failed or the motion cannot go on; the message gives
+    the time and names the variable, relation or component responsible.
+    ``result`` holds the motion up to that time (a
+    :class:`~acausal2d.tools.result.Result`) when there is one."""
 
     def __init__(self, message, time=None, status=None, variable=None):
         super().__init__(message)
         self.time = time
         self.status = status
         self.variable = variable
+        self.result = None

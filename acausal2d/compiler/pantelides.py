@@ -81,8 +81,12 @@ class _Work:
         self.B[l] = n
 
 
-def _reduce(w, s, max_differentiations):
-    for k in range(s.n_original):
+def _reduce(w, starts, max_differentiations):
+    """Pantelides' main loop from each equation in ``starts``: match it to a
+    highest derivative, or differentiate the equations and variables of
+    the failed search and go on with its derivative.  Returns the equation
+    that would need too many differentiations, or None."""
+    for k in starts:
         i = k
         while True:
             w.colV.clear()
@@ -103,15 +107,9 @@ def _reduce(w, s, max_differentiations):
     return None
 
 
-def pantelides(s, describe_equation, max_differentiations=None):
-    """Index reduction of the structure ``s`` (before any differentiation);
-    returns the structure with the differentiated equations, their
-    expressions, the derivative maps and the matching.
-    ``describe_equation(origin)`` names an equation in errors."""
-    if max_differentiations is None:
-        max_differentiations = s.n_original + 3
-    w = _Work(s)
-    stuck = _reduce(w, s, max_differentiations)
+def _finish(s, w, describe_equation, stuck, max_differentiations, **fields):
+    """The structure after the reduction held by ``w`` (expressions of the
+    new equations built symbolically)."""
     if stuck is not None:
         raise StructuralError(
             "Index reduction does not terminate: equation '%s' would be differentiated "
@@ -125,7 +123,39 @@ def pantelides(s, describe_equation, max_differentiations=None):
                    eq_to_diff=DiffMap(tuple(w.B)), var_sym=tuple(w.nodes.sym),
                    var_base=tuple(w.nodes.base), var_level=tuple(w.nodes.level),
                    var_to_diff=DiffMap(tuple(w.nodes.to_diff)), matching=tuple(w.assign),
-                   _var_index=dict(w.nodes.index))
+                   _var_index=dict(w.nodes.index), **fields)
+
+
+def pantelides(s, describe_equation, max_differentiations=None):
+    """Index reduction of the structure ``s`` (before any differentiation);
+    returns the structure with the differentiated equations, their
+    expressions, the derivative maps and the matching.
+    ``describe_equation(origin)`` names an equation in errors."""
+    if max_differentiations is None:
+        max_differentiations = s.n_original + 3
+    w = _Work(s)
+    stuck = _reduce(w, range(s.n_original), max_differentiations)
+    return _finish(s, w, describe_equation, stuck, max_differentiations)
+
+
+def differentiate_further(s, equations, describe_equation, **fields):
+    """The reduced structure ``s`` with ``equations`` differentiated once
+    more and the reduction continued until every equation is matched to a
+    highest derivative again (a variable that must become a state may need
+    derivatives Pantelides' minimal reduction did not create).  ``fields``
+    are further structure fields to set."""
+    max_differentiations = s.n_original + 3
+    w = _Work(s)
+    for i in equations:
+        w.differentiate(i)
+    w.grow_assign()
+    for j in range(len(w.assign)):          # matches of variables that are no longer highest
+        if w.A[j] >= 0:
+            w.assign[j] = -1
+    matched = set(w.assign)
+    tops = [c for c in range(len(w.eq_vars)) if w.B[c] < 0 and c not in matched]
+    stuck = _reduce(w, tops, max_differentiations)
+    return _finish(s, w, describe_equation, stuck, max_differentiations, **fields)
 
 
 def _differentiate_symbolically(w, exprs):

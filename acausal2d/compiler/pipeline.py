@@ -32,5 +32,5 @@ def compile_system(model):
     info = {v.sym.element_hash(): v for v in variables}
     priority = [STATE_SELECT.index(info[s.var_sym[s.var_base[j]].element_hash()].state_select)
                 for j in range(s.n_var)]
-    s = differentiate_for_always(s, priority)
+    s = differentiate_for_always(s, priority, lambda i: equations[i].describe())
     return System(model, flat, equations, variables, aliases, relations, s)

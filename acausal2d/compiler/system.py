@@ -71,13 +71,28 @@ class System:
         self.node_info = tuple(info[s.var_sym[s.var_base[j]].element_hash()]
                                for j in range(s.n_var))
         self.node_names = tuple(sym.name() for sym in s.var_sym)
-        self.priority = tuple(STATE_SELECT.index(v.state_select) for v in self.node_info)
+        self.priority = self._priorities()
         self.priority_names = tuple(v.state_select for v in self.node_info)
         self.nominal = np.array([float(v.nominal) for v in self.node_info])
         self.level0 = np.array([j for j in range(s.n_var) if s.var_level[j] == 0], dtype=int)
         self.fixed_nodes = tuple(int(j) for j in self.level0 if self.node_info[j].fixed)
         self.has_start = tuple(s.var_level[j] == 0 and not _is_zero(self.node_info[j].start)
                                for j in range(s.n_var))
+
+    def _priorities(self):
+        """State priority of each node: its variable's ``state_select``; the
+        derivatives of a derivative that a state variable stands for (``w``
+        in ``w == der(phi)``) one class lower, so that der(w) rather than
+        der(der(phi)) stays a state derivative."""
+        s = self.structure
+        prio = [STATE_SELECT.index(v.state_select) for v in self.node_info]
+        prefer = STATE_SELECT.index("prefer")
+        for w, v in s.velocity_of:
+            j = s.var_to_diff[v]
+            while j >= 0:
+                prio[j] = min(prio[j], prefer, prio[w] - 1)
+                j = s.var_to_diff[j]
+        return tuple(prio)
 
     def _functions(self):
         s = self.structure

@@ -153,14 +153,21 @@ class ChatterWatch:
                    ", ".join(relation_text(self.system, k) for k in worst)), time=t)
 
 
-def check_jumps(system, t, z_before, z_after, changed):
-    """Raise if a position with a velocity jumps at an event (an impulse)."""
-    s = system.structure
+def position_nodes(s):
+    """Mask of the variables that are positions of a motion: level 0 with a
+    velocity and an acceleration among the nodes (an angle or a
+    coordinate; its jump would need an infinite velocity)."""
     A = np.asarray(s.var_to_diff.to_diff)
     level = np.asarray(s.var_level)
-    nominal = system.nominal
-    moved = np.abs(z_after - z_before) > JUMP_TOL * (nominal + np.abs(z_before))
-    jumps = np.nonzero(moved & (A >= 0) & (level == 0))[0]
+    vel = np.where(A >= 0, A, 0)
+    return (level == 0) & (A >= 0) & (A[vel] >= 0)
+
+
+def check_jumps(system, t, z_before, z_after, changed):
+    """Raise if a position jumps at an event (it would need an impulse);
+    velocities may jump where a prescribed motion has a kink."""
+    moved = np.abs(z_after - z_before) > JUMP_TOL * (system.nominal + np.abs(z_before))
+    jumps = np.nonzero(moved & position_nodes(system.structure))[0]
     if not len(jumps):
         return
     j = int(jumps[0])

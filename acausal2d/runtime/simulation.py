@@ -97,10 +97,17 @@ class Simulation:
         wall = _time.perf_counter()
         with SundialsMessages() as self.messages:
             self._start()
-            while self.t < self.t_end - self.eps and self._step():
-                pass
+            try:
+                while self.t < self.t_end - self.eps and self._step():
+                    pass
+            except SimulationError as exc:
+                exc.partial = self._log(wall)       # the motion up to where it stopped
+                raise
         if self.progress is not None:
             self.progress(self.out[-1][0], self.t_end)
+        return self._log(wall)
+
+    def _log(self, wall):
         self.stats.wall_time = _time.perf_counter() - wall
         T = np.array([t for t, _ in self.out])
         Z = np.array([z for _, z in self.out])

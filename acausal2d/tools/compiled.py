@@ -7,7 +7,7 @@ import time as _time
 import numpy as np
 
 from ..compiler.pipeline import compile_system
-from ..errors import Acausal2dError, ModelDefinitionError
+from ..errors import Acausal2dError, ModelDefinitionError, SimulationError
 from ..runtime.evaluator import Evaluator
 from ..runtime.initialize import initial_point
 from ..runtime.selection import select
@@ -143,7 +143,16 @@ class CompiledModel:
         """
         times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
         p = self.parameter_values(params)
-        log = Simulation(self.system, p, times, rtol, atol, progress).run()
+        try:
+            log = Simulation(self.system, p, times, rtol, atol, progress).run()
+        except SimulationError as exc:
+            if getattr(exc, "partial", None) is not None:
+                exc.result = self._result(exc.partial, p)
+            raise
+        return self._result(log, p)
+
+    def _result(self, log, p):
+        """The :class:`Result` of a run log."""
         log.stats.compile_time = self.compile_time
         s = self.system
         res = Result(log.times, s.node_names, log.nodes,
