@@ -84,6 +84,91 @@ def _score(info):
     return (prio, 0 if info.fixed else 1, info.name.count("."), len(info.name), info.name)
 
 
+class _AliasSets:
+    """Union-find of ``var = sign * parent + offset`` relations (parent None:
+    ``var = offset``), keyed by symbol hashes."""
+
+    def __init__(self, info):
+        self.info = info
+        self.parent = {}
+
+    def find(self, k):
+        """(representative or None, sign, offset) with var = sign * rep + offset."""
+        p, s, o = self.parent.get(k, (k, 1.0, 0.0))
+        if p is None or p == k:
+            return p, s, o
+        rp, rs, ro = self.find(p)
+        res = (rp, s * rs, s * ro + o) if rp is not None else (None, 0.0, s * ro + o)
+        self.parent[k] = res
+        return res
+
+    def bind(self, v, coef, rest):
+        """coef * v + rest = 0; False if v's set is bound already."""
+        ra, sa, oa = self.find(v.element_hash())
+        if ra is None:
+            return False                     # redundant or conflicting: reported later
+        self.parent[ra] = (None, 0.0, (-rest / coef - oa) * sa)   # sa*ra + oa = -rest/coef
+        return True
+
+    def join(self, vs, cs, rest):
+        """cs[0]*a + cs[1]*b + rest = 0; False if redundant or conflicting."""
+        s, c = -cs[1] / cs[0], -rest / cs[0]              # a = s*b + c
+        ra, sa, oa = self.find(vs[0].element_hash())
+        rb, sb, ob = self.find(vs[1].element_hash())
+        if ra is not None and ra == rb or (ra is None and rb is None):
+            return False
+        if ra is None:                                      # rb = (oa - s*ob - c)/(s*sb)
+            self.parent[rb] = (None, 0.0, (oa - s * ob - c) * (s * sb))
+        elif rb is None:                                    # ra = (s*ob + c - oa)/sa
+            self.parent[ra] = (None, 0.0, (s * ob + c - oa) * sa)
+        else:
+            self._link(ra, rb, s * sb * sa, (s * ob + c - oa) * sa)   # ra = sign*rb + off
+        return True
+
+    def _link(self, ra, rb, sign, off):
+        info = self.info
+        if _score(info[ra]) < _score(info[rb]):
+            self.parent[rb] = (ra, sign, -off * sign)       # rb = sign*ra - sign*off
+            _merge_attrs(info[ra], info[rb], sign, -off * sign)
+        else:
+            self.parent[ra] = (rb, sign, off)
+            _merge_attrs(info[rb], info[ra], sign, off)
+
+    def aliases(self):
+        """The :class:`Alias` of every eliminated variable."""
+        out = []
+        for k in list(self.parent):
+            rep, sign, off = self.find(k)
+            if rep == k:
+                continue
+            var = self.info[k]
+            if rep is None:
+                out.append(Alias(var, None, 0.0, off))
+                continue
+            out.append(Alias(var, self.info[rep], sign, off))
+            if var.fixed and not self.info[rep].fixed:
+                _merge_attrs(self.info[rep], var, sign, off)
+        return out
+
+
+def _substitute(kept, aliases, table):
+    """Equations with the aliases substituted (new Equation objects where
+    something changed) and the ids of those changed."""
+    src, dst = substitution(aliases, table)
+    changed = set()
+    if not src or not kept:
+        return kept, changed
+    touched = ca.jacobian_sparsity(ca.vertcat(*[eq.expr for eq in kept]),
+                                   ca.vertcat(*src)).get_triplet()[0]
+    rows = sorted(set(touched))
+    if rows:
+        exprs = ca.substitute([kept[i].expr for i in rows], src, [ca.SX(x) for x in dst])
+        for i, e in zip(rows, exprs):
+            kept[i] = kept[i].with_expr(e)
+            changed.add(id(kept[i]))
+    return kept, changed
+
+
 def eliminate_aliases(equations, variables, table, examine=None):
     """Run one pass of alias elimination.
 
@@ -94,85 +179,20 @@ def eliminate_aliases(equations, variables, table, examine=None):
     the ids of the equations the substitution touched.
     """
     info = {v.sym.element_hash(): v for v in variables}
-    parent = {}   # key -> (parent key or None, sign, offset)  var = sign*parent + offset
-
-    def find(k):
-        p, s, o = parent.get(k, (k, 1.0, 0.0))
-        if p is None or p == k:
-            return p, s, o
-        rp, rs, ro = find(p)
-        res = (rp, s * rs, s * ro + o) if rp is not None else (None, 0.0, s * ro + o)
-        parent[k] = res
-        return res
-
-    kept = []
+    sets, kept = _AliasSets(info), []
     for eq in equations:
-        if examine is not None and id(eq) not in examine:
-            kept.append(eq)
-            continue
-        form = _alias_form(eq.expr, info, table)
+        form = None if examine is not None and id(eq) not in examine else \
+            _alias_form(eq.expr, info, table)
         if form is None:
             kept.append(eq)
             continue
         vs, cs, rest = form
-        if len(vs) == 1:
-            ka = vs[0].element_hash()
-            ra, sa, oa = find(ka)
-            value = -rest / cs[0]            # a = value
-            if ra is None:
-                kept.append(eq)              # already bound: redundant, reported later
-                continue
-            # sa*ra + oa = value  ->  ra = (value - oa)/sa
-            parent[ra] = (None, 0.0, (value - oa) * sa)
-            continue
-        ka, kb = vs[0].element_hash(), vs[1].element_hash()
-        # cs[0]*a + cs[1]*b + rest = 0  ->  a = s*b + c
-        s = -cs[1] / cs[0]
-        c = -rest / cs[0]
-        ra, sa, oa = find(ka)
-        rb, sb, ob = find(kb)
-        if ra is not None and ra == rb or (ra is None and rb is None):
-            kept.append(eq)                  # redundant or conflicting: reported later
-            continue
-        # sa*ra + oa = s*(sb*rb + ob) + c
-        if ra is None:                        # rb = (oa - s*ob - c) / (s*sb)
-            parent[rb] = (None, 0.0, (oa - s * ob - c) * (s * sb))
-        elif rb is None:                      # ra = (s*ob + c - oa)/sa
-            parent[ra] = (None, 0.0, (s * ob + c - oa) * sa)
-        else:
-            sign = s * sb * sa
-            off = (s * ob + c - oa) * sa     # ra = sign*rb + off
-            if _score(info[ra]) < _score(info[rb]):
-                parent[rb] = (ra, sign, -off * sign)   # rb = sign*ra - sign*off
-                _merge_attrs(info[ra], info[rb], sign, -off * sign)
-            else:
-                parent[ra] = (rb, sign, off)
-                _merge_attrs(info[rb], info[ra], sign, off)
-
-    aliases = []
-    for k in list(parent):
-        rep, sign, off = find(k)
-        if rep == k:
-            continue
-        var = info[k]
-        if rep is None:
-            aliases.append(Alias(var, None, 0.0, off))
-        else:
-            aliases.append(Alias(var, info[rep], sign, off))
-            if var.fixed and not info[rep].fixed:
-                _merge_attrs(info[rep], var, sign, off)
-    src, dst = substitution(aliases, table)
+        used = sets.bind(vs[0], cs[0], rest) if len(vs) == 1 else sets.join(vs, cs, rest)
+        if not used:
+            kept.append(eq)
+    aliases = sets.aliases()
+    kept, changed = _substitute(kept, aliases, table)
     eliminated = {a.var.sym.element_hash() for a in aliases}
-    changed = set()
-    if src and kept:
-        old = ca.vertcat(*[eq.expr for eq in kept])
-        touched = ca.jacobian_sparsity(old, ca.vertcat(*src)).get_triplet()[0]
-        rows = sorted(set(touched))
-        if rows:
-            exprs = ca.substitute([kept[i].expr for i in rows], src, [ca.SX(x) for x in dst])
-            for i, e in zip(rows, exprs):
-                kept[i] = kept[i].with_expr(e)
-                changed.add(id(kept[i]))
     remaining = [v for v in variables if v.sym.element_hash() not in eliminated]
     return kept, remaining, aliases, changed
 

@@ -51,70 +51,75 @@ def check_balance(equations, variables, table):
     _report(equations, variables, rows, m.col_of)
 
 
+def _alternating(starts, adjacent, partner):
+    """Nodes reachable from ``starts`` along alternating paths: from a node
+    to its ``adjacent`` ones on the other side, then back along the
+    matching (``partner``).  Returns (this side, other side)."""
+    here, there = set(starts), set()
+    stack = list(starts)
+    while stack:
+        a = stack.pop()
+        for b in adjacent[a]:
+            if b not in there:
+                there.add(b)
+                back = partner.get(b)
+                if back is not None and back not in here:
+                    here.add(back)
+                    stack.append(back)
+    return here, there
+
+
+def _headline(n_eq, n_var):
+    if n_eq > n_var:
+        return ("The model is over-determined: %d equations for %d unknowns (%d too many)."
+                % (n_eq, n_var, n_eq - n_var))
+    if n_eq < n_var:
+        return ("The model is under-determined: %d equations for %d unknowns (%d missing)."
+                % (n_eq, n_var, n_var - n_eq))
+    return ("The model is structurally singular: %d equations and %d unknowns, but some "
+            "equations constrain the same unknowns while others are left free." % (n_eq, n_var))
+
+
+def _over_text(equations, variables, free_eqs, over_eqs, over_vars):
+    # the unmatched equations first, then the component equations, then connections
+    eqs = sorted(over_eqs, key=lambda i: (i not in free_eqs,
+                                          equations[i].origin.startswith("connect("), i))
+    return ("These %d equations determine only %d unknowns (%s); one of them is too many - "
+            "remove it or add the unknown it should determine:\n%s"
+            % (len(eqs), len(over_vars),
+               ", ".join(variables[j].name for j in sorted(over_vars)[:_LIST]) or "none",
+               _names([equations[i] for i in eqs], lambda e: e.describe())))
+
+
+def _under_text(equations, variables, free_vars, under_vars, under_eqs):
+    parts = ["These unknowns are not determined by any equation (add an equation, connect "
+             "the connector, or fix a value):\n%s"
+             % _names([variables[j] for j in sorted(free_vars)], _var_desc)]
+    vs = sorted(under_vars)
+    if len(vs) > len(free_vars):
+        parts.append("They compete with %s for the equations:\n%s" % (
+            ", ".join(variables[j].name for j in vs if j not in free_vars)[:400],
+            _names([equations[i] for i in sorted(under_eqs)], lambda e: e.describe())))
+    return parts
+
+
 def _report(equations, variables, rows, match_eq):
     """The StructuralError for an imperfect matching (Dulmage-Mendelsohn
     coarse decomposition: over- and under-determined parts)."""
     n_eq, n_var = len(equations), len(variables)
-    matched_vars = set(int(j) for j in match_eq if j >= 0)
-    free_eqs = [i for i in range(n_eq) if match_eq[i] < 0]
-    free_vars = [j for j in range(n_var) if j not in matched_vars]
-    var_of_eq = {i: int(match_eq[i]) for i in range(n_eq) if match_eq[i] >= 0}
+    var_of_eq = {i: int(j) for i, j in enumerate(match_eq) if j >= 0}
     eq_of_var = {j: i for i, j in var_of_eq.items()}
+    free_eqs = [i for i in range(n_eq) if match_eq[i] < 0]
+    free_vars = [j for j in range(n_var) if j not in eq_of_var]
     cols = [[] for _ in range(n_var)]
     for i, r in enumerate(rows):
         for j in r:
             cols[j].append(i)
-    # over-determined part: equations reachable from free equations by alternating paths
-    over_eqs, over_vars = set(free_eqs), set()
-    stack = list(free_eqs)
-    while stack:
-        i = stack.pop()
-        for j in rows[i]:
-            if j not in over_vars:
-                over_vars.add(j)
-                i2 = eq_of_var.get(j)
-                if i2 is not None and i2 not in over_eqs:
-                    over_eqs.add(i2)
-                    stack.append(i2)
-    # under-determined part: variables reachable from free variables
-    under_vars, under_eqs = set(free_vars), set()
-    stack = list(free_vars)
-    while stack:
-        j = stack.pop()
-        for i in cols[j]:
-            if i not in under_eqs:
-                under_eqs.add(i)
-                j2 = var_of_eq.get(i)
-                if j2 is not None and j2 not in under_vars:
-                    under_vars.add(j2)
-                    stack.append(j2)
-    if n_eq > n_var:
-        head = ("The model is over-determined: %d equations for %d unknowns (%d too many)."
-                % (n_eq, n_var, n_eq - n_var))
-    elif n_eq < n_var:
-        head = ("The model is under-determined: %d equations for %d unknowns (%d missing)."
-                % (n_eq, n_var, n_var - n_eq))
-    else:
-        head = ("The model is structurally singular: %d equations and %d unknowns, but "
-                "some equations constrain the same unknowns while others are left free."
-                % (n_eq, n_var))
-    parts = [head]
+    parts = [_headline(n_eq, n_var)]
     if free_eqs:
-        # the unmatched equations first, then the component equations, then connections
-        eqs = sorted(over_eqs, key=lambda i: (i not in free_eqs,
-                                              equations[i].origin.startswith("connect("), i))
-        parts.append("These %d equations determine only %d unknowns (%s); one of them is "
-                     "too many - remove it or add the unknown it should determine:\n%s"
-                     % (len(eqs), len(over_vars),
-                        ", ".join(variables[j].name for j in sorted(over_vars)[:_LIST]) or "none",
-                        _names([equations[i] for i in eqs], lambda e: e.describe())))
+        over_eqs, over_vars = _alternating(free_eqs, rows, eq_of_var)
+        parts.append(_over_text(equations, variables, free_eqs, over_eqs, over_vars))
     if free_vars:
-        vs = sorted(under_vars)
-        parts.append("These unknowns are not determined by any equation (add an equation, "
-                     "connect the connector, or fix a value):\n%s"
-                     % _names([variables[j] for j in sorted(free_vars)], _var_desc))
-        if len(vs) > len(free_vars):
-            parts.append("They compete with %s for the equations:\n%s" % (
-                ", ".join(variables[j].name for j in vs if j not in free_vars)[:400],
-                _names([equations[i] for i in sorted(under_eqs)], lambda e: e.describe())))
+        under_vars, under_eqs = _alternating(free_vars, cols, var_of_eq)
+        parts.extend(_under_text(equations, variables, free_vars, under_vars, under_eqs))
     raise StructuralError("\n".join(parts))

@@ -158,81 +158,92 @@ def _is_descendant(comp, ancestor):
     return False
 
 
-def _connection_equations(model, comps):
-    sets = UnionFind()
-    members = {}
+def _connection_sets(comps):
+    """The connection sets: lists of (connector, side) where side is
+    'inside' (a sub-component's connector) or 'outside' (the connecting
+    component's own connector)."""
+    sets, members = UnionFind(), {}
     for scope in comps:
         for a, b in scope._connections:
             keys = []
             for c in (a, b):
                 if c.owner is None:
-                    raise ModelDefinitionError("connect(): connector %s is not attached to a component"
-                                               % c.describe())
+                    raise ModelDefinitionError("connect(): connector %s is not attached to a "
+                                               "component" % c.describe())
                 if not _is_descendant(c.owner, scope):
                     raise ModelDefinitionError(
                         "%s connects %s, which is not part of it" % (scope.describe(), c.path))
                 side = "outside" if c.owner is scope else "inside"
-                k = (id(c), side)
-                members[k] = (c, side)
-                keys.append(k)
+                members[(id(c), side)] = (c, side)
+                keys.append((id(c), side))
             sets.union(keys[0], keys[1])
     groups = {}
     for k in members:
         groups.setdefault(sets.find(k), []).append(members[k])
+    return [sorted(g, key=lambda e: e[0].path) for g in groups.values()]
 
-    eqs = []
-    connected_inside = set()
-    for elems in groups.values():
-        elems.sort(key=lambda e: e[0].path)
-        conns = [c for c, _ in elems]
-        names = ", ".join(c.path for c in conns)
-        for c, side in elems:
-            if side == "inside":
-                connected_inside.add(id(c))
-        if type(conns[0]).one_to_one and len(elems) > 2:
+
+def _check_set(elems, names):
+    """Band ports one-to-one; signal sets with exactly one source."""
+    kind = type(elems[0][0])
+    if kind.one_to_one and len(elems) > 2:
+        raise ModelDefinitionError(
+            "band connectors may be connected one-to-one only, but %s are joined: "
+            "use a separate band element between them" % names)
+    if kind.signal is not None:
+        sources = [c for c, side in elems if (c.signal == "output") == (side == "inside")]
+        if len(sources) != 1:
             raise ModelDefinitionError(
-                "band connectors may be connected one-to-one only, but %s are joined: "
-                "use a separate band element between them" % names)
-        if type(conns[0]).signal is not None:
-            sources = [c for c, side in elems
-                       if (c.signal == "output") == (side == "inside")]
-            if len(sources) != 1:
-                raise ModelDefinitionError(
-                    "signal connection {%s} must have exactly one source (an output), has %d"
-                    % (names, len(sources)))
-        origin = "connect(%s)" % names
-        first = conns[0]
-        for c in conns[1:]:
-            for pot in type(first).potentials:
-                eqs.append(_conn_eq(getattr(c, pot) - getattr(first, pot), origin,
-                                    "%s.%s == %s.%s" % (c.path, pot, first.path, pot)))
-        for flow in type(first).flows:
-            total = 0
-            terms = []
-            for c, side in elems:
-                f = getattr(c, flow)
-                total = total + (f if side == "inside" else -f)
-                terms.append(("" if side == "inside" else "-") + "%s.%s" % (c.path, flow))
-            eqs.append(_conn_eq(total, origin, " + ".join(terms) + " == 0"))
+                "signal connection {%s} must have exactly one source (an output), has %d"
+                % (names, len(sources)))
 
+
+def _set_equations(elems):
+    """Potentials equal, flows summing to zero (seed eq. 4.1) for one set."""
+    conns = [c for c, _ in elems]
+    names = ", ".join(c.path for c in conns)
+    _check_set(elems, names)
+    origin = "connect(%s)" % names
+    first, eqs = conns[0], []
+    for c in conns[1:]:
+        for pot in type(first).potentials:
+            eqs.append(_conn_eq(getattr(c, pot) - getattr(first, pot), origin,
+                                "%s.%s == %s.%s" % (c.path, pot, first.path, pot)))
+    for flow in type(first).flows:
+        total, terms = 0, []
+        for c, side in elems:
+            f = getattr(c, flow)
+            total = total + (f if side == "inside" else -f)
+            terms.append(("" if side == "inside" else "-") + "%s.%s" % (c.path, flow))
+        eqs.append(_conn_eq(total, origin, " + ".join(terms) + " == 0"))
+    return eqs
+
+
+def _unconnected_equations(comp, conn):
+    """An unconnected connector: fixed to ground (``ground=``), an error
+    (``required=True``), or zero flows."""
+    if conn.ground is not None:
+        ground = conn.ground(comp) if callable(conn.ground) else conn.ground
+        return [_conn_eq(getattr(conn, pot) - value,
+                         "%s (unconnected, fixed to ground)" % conn.path,
+                         "%s.%s == %s" % (conn.path, pot, value)) for pot, value in ground.items()]
+    if conn.required:
+        raise ModelDefinitionError("connector %s must be connected (it is required by %s)"
+                                   % (conn.path, comp.describe()))
+    return [_conn_eq(getattr(conn, flow), "%s (unconnected)" % conn.path,
+                     "%s.%s == 0" % (conn.path, flow)) for flow in type(conn).flows]
+
+
+def _connection_equations(model, comps):
+    """Equations of all connection sets and of the unconnected connectors."""
+    eqs, connected_inside = [], set()
+    for elems in _connection_sets(comps):
+        connected_inside.update(id(c) for c, side in elems if side == "inside")
+        eqs.extend(_set_equations(elems))
     for comp in comps:
         for conn in comp._connectors.values():
-            if id(conn) in connected_inside or comp is model:
-                continue
-            if conn.ground is not None:
-                ground = conn.ground(comp) if callable(conn.ground) else conn.ground
-                for pot, value in ground.items():
-                    eqs.append(_conn_eq(getattr(conn, pot) - value,
-                                        "%s (unconnected, fixed to ground)" % conn.path,
-                                        "%s.%s == %s" % (conn.path, pot, value)))
-            elif conn.required:
-                raise ModelDefinitionError(
-                    "connector %s must be connected (it is required by %s)"
-                    % (conn.path, comp.describe()))
-            else:
-                for flow in type(conn).flows:
-                    eqs.append(_conn_eq(getattr(conn, flow), "%s (unconnected)" % conn.path,
-                                        "%s.%s == 0" % (conn.path, flow)))
+            if id(conn) not in connected_inside and comp is not model:
+                eqs.extend(_unconnected_equations(comp, conn))
     return eqs
 
 

@@ -62,26 +62,16 @@ class Formulation:
 
     def _events(self, s, selection, args, crossings):
         """Event functions: relation crossings, then the determinants of the
-        dummy blocks with a choice (monitored) and of the highest level
-        (scanned for singular positions)."""
+        dummy blocks with a choice (monitored), then the highest level's
+        (passages); ``det_fn`` evaluates the scanned determinants."""
         g = [crossings] if crossings is not None and crossings.numel() else []
         self.n_rel = g[0].numel() if g else 0
-        self.monitor_levels, self.scan_levels, dets = [], [], {}
-        for k, lv in enumerate(selection.levels):
-            if not (k == 0 or lv.dynamic) or len(lv.eqs) > _MAX_MONITOR:
-                continue
-            det = ca.det(ca.jacobian(ca.vertcat(*[s.eq_expr[i] for i in lv.eqs]),
-                                     ca.vertcat(*[s.var_sym[j] for j in lv.chosen])))
-            if ca.n_nodes(det) > _MAX_DET_NODES:
-                continue        # too large to watch cheaply
-            dets[k] = det
-            self.scan_levels.append(k)
-            if lv.dynamic:
-                self.monitor_levels.append(k)
-                g.append(det)
+        dets = _watched_determinants(s, selection)
+        self.scan_levels = sorted(dets)
+        self.monitor_levels = [k for k in self.scan_levels if selection.levels[k].dynamic]
         self.n_mon = len(self.monitor_levels)
-        # passages: sign changes of the highest level's determinant (not terminal)
-        self.n_pass = 1 if 0 in dets else 0
+        g += [dets[k] for k in self.monitor_levels]
+        self.n_pass = 1 if 0 in dets else 0     # passages: sign changes of the highest det
         if self.n_pass:
             g.append(dets[0])
         self.det_fn = ca.Function("dets", args, [ca.vertcat(*[dets[k] for k in
@@ -98,3 +88,17 @@ class Formulation:
         known = self.all_deriv >= 0
         yp[known] = y[self.all_deriv[known]]
         return y, yp
+
+
+def _watched_determinants(s, selection):
+    """{level: det of its dummy block} for the highest level and the levels
+    with a choice, where the block is small enough to watch cheaply."""
+    dets = {}
+    for k, lv in enumerate(selection.levels):
+        if not (k == 0 or lv.dynamic) or len(lv.eqs) > _MAX_MONITOR:
+            continue
+        det = ca.det(ca.jacobian(ca.vertcat(*[s.eq_expr[i] for i in lv.eqs]),
+                                 ca.vertcat(*[s.var_sym[j] for j in lv.chosen])))
+        if ca.n_nodes(det) <= _MAX_DET_NODES:
+            dets[k] = det
+    return dets

@@ -96,7 +96,18 @@ class Parameter:
         parameter) if it has the wrong type or size, is not finite or breaks
         the declared rule."""
         desc = "%s: parameter %s" % (where, self.name)
-        if isinstance(value, (str, bytes)) or value is None or isinstance(value, bool):
+        arr = self._numbers(value, desc)
+        if not np.all(np.isfinite(arr)):
+            raise ModelDefinitionError("%s = %r is not finite; give a finite number" % (desc, value))
+        if not all(self._obeys(x) for x in arr):
+            raise ModelDefinitionError("%s = %s breaks its rule %s (%s%s)" % (
+                desc, _fmt_value(arr), self.rule, self.doc or "value",
+                ", " + self.unit if self.unit else ""))
+        return float(arr[0]) if self.size == 1 else tuple(float(x) for x in arr)
+
+    def _numbers(self, value, desc):
+        """``value`` as a flat float array of the declared size."""
+        if isinstance(value, (str, bytes, bool)) or value is None:
             raise ModelDefinitionError("%s = %r is not a number%s" % (
                 desc, value, " (give %d numbers)" % self.size if self.size > 1 else ""))
         try:
@@ -106,16 +117,11 @@ class Parameter:
         if arr.size != self.size:
             raise ModelDefinitionError("%s takes %d value%s, got %r" % (
                 desc, self.size, "s" if self.size > 1 else "", value))
-        if not np.all(np.isfinite(arr)):
-            raise ModelDefinitionError("%s = %r is not finite; give a finite number" % (desc, value))
-        for x in arr:
-            bad = (self.positive and not x > 0) or (self.min is not None and x < self.min) \
-                or (self.max is not None and x > self.max)
-            if bad:
-                raise ModelDefinitionError("%s = %s breaks its rule %s (%s%s)" % (
-                    desc, _fmt_value(arr), self.rule, self.doc or "value",
-                    ", " + self.unit if self.unit else ""))
-        return float(arr[0]) if self.size == 1 else tuple(float(x) for x in arr)
+        return arr
+
+    def _obeys(self, x):
+        return not ((self.positive and not x > 0) or (self.min is not None and x < self.min)
+                    or (self.max is not None and x > self.max))
 
     def __get__(self, obj, objtype=None):
         if obj is None:

@@ -106,24 +106,15 @@ class CompiledModel:
 
     # ------------------------------------------------------------ simulate
     def _settings(self, stop_time, rtol, atol, intervals, start_time, output_times):
+        """(output times, rtol) from the arguments and the model's
+        ``experiment``, checked."""
         exp = dict(getattr(self.model, "experiment", {}) or {})
-        stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
         rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
-        intervals = int(intervals if intervals is not None else exp.get("intervals", 500))
-        if not rtol > 0:
-            raise Acausal2dError("rtol must be positive, got %g" % rtol)
-        if not rtol < 0.1:
-            raise Acausal2dError("rtol must be below 0.1 (a relative tolerance, e.g. 1e-6), "
-                                 "got %g" % rtol)
-        if atol is not None and not atol > 0:
-            raise Acausal2dError("atol must be positive, got %g" % atol)
+        _check_tolerances(rtol, atol)
         if output_times is None:
-            if not stop > start_time:
-                raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
-                                     % (stop, start_time))
-            if intervals < 1:
-                raise Acausal2dError("intervals must be at least 1, got %d" % intervals)
-            output_times = np.linspace(start_time, stop, intervals + 1)
+            stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
+            intervals = int(intervals if intervals is not None else exp.get("intervals", 500))
+            output_times = _output_grid(start_time, stop, intervals)
         output_times = np.asarray(output_times, dtype=float)
         if output_times.ndim != 1 or len(output_times) < 2 or \
                 not np.all(np.isfinite(output_times)) or np.any(np.diff(output_times) <= 0):
@@ -163,6 +154,25 @@ class CompiledModel:
         res.stopped = log.stopped
         res.states = log.states
         return res
+
+
+def _check_tolerances(rtol, atol):
+    if not rtol > 0:
+        raise Acausal2dError("rtol must be positive, got %g" % rtol)
+    if not rtol < 0.1:
+        raise Acausal2dError("rtol must be below 0.1 (a relative tolerance, e.g. 1e-6), got %g"
+                             % rtol)
+    if atol is not None and not atol > 0:
+        raise Acausal2dError("atol must be positive, got %g" % atol)
+
+
+def _output_grid(start_time, stop, intervals):
+    if not stop > start_time:
+        raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
+                             % (stop, start_time))
+    if intervals < 1:
+        raise Acausal2dError("intervals must be at least 1, got %d" % intervals)
+    return np.linspace(start_time, stop, intervals + 1)
 
 
 class _Scalar:
