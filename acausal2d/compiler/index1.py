@@ -70,14 +70,22 @@ class Formulation:
         self.scan_levels = sorted(dets)
         self.monitor_levels = [k for k in self.scan_levels if selection.levels[k].dynamic]
         self.n_mon = len(self.monitor_levels)
-        g += [dets[k] for k in self.monitor_levels]
         self.n_pass = 1 if 0 in dets else 0     # passages: sign changes of the highest det
-        if self.n_pass:
-            g.append(dets[0])
+        watched = [dets[k] for k in self.monitor_levels] + ([dets[0]] if self.n_pass else [])
         self.det_fn = ca.Function("dets", args, [ca.vertcat(*[dets[k] for k in
                                                               self.scan_levels])]) \
             if self.scan_levels else None
-        self.event_fn = ca.Function("events", args, [ca.vertcat(*g)]) if g else None
+        self.watched_fn = ca.Function("watched", args, [ca.vertcat(*watched)]) \
+            if watched else None
+        # event values: crossings, |det| a + b of the monitored blocks, the highest
+        # det itself (passages), |det| a + b of the highest block (near singular);
+        # a = 1/reference, b = -threshold while watched, a = 0, b = 1 otherwise
+        ab = ca.SX.sym("ab", 2 * (self.n_mon + self.n_pass))
+        k = self.n_mon + self.n_pass
+        scaled = [ca.fabs(w) * ab[i] + ab[k + i] for i, w in enumerate(watched)]
+        events = g + scaled[:self.n_mon] + watched[self.n_mon:] + scaled[self.n_mon:]
+        self.event_fn = ca.Function("events", args + [ab], [ca.vertcat(*events)]) \
+            if events else None
 
     def y_from(self, z):
         """IDA's (y, yp) from consistent node values: yp of a node is the

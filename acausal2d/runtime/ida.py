@@ -73,7 +73,12 @@ class SundialsMessages:
 
 class Problem:
     """IDA callbacks of one formulation; ``set_relations``/``set_parameters``
-    change the values bound into them."""
+    change the values bound into them.  The event functions are, in this
+    order: ``n_rel`` relation crossings, ``n_mon`` watched dummy blocks
+    (|det| fell 4x since the segment began: re-check the selection),
+    ``n_pass`` passages (sign of the highest block's det) and ``n_pass``
+    near-singular watches (its |det| below :data:`NEAR_SINGULAR` of its
+    typical size)."""
 
     def __init__(self, form, p, d, progress=None):
         n = form.n
@@ -83,12 +88,14 @@ class Problem:
         self.steps, self.t_last = 0, None
         self.res = Buffered(form.res_fn, args)
         self.jac = Buffered(form.jac_fn, args + [np.zeros(1)])
-        self.ev = Buffered(form.event_fn, args) if form.event_fn is not None else None
         self.n_rel, self.n_mon, self.n_pass = form.n_rel, form.n_mon, form.n_pass
+        self.n_events = self.n_rel + self.n_mon + 2 * self.n_pass
+        k = self.n_mon + self.n_pass
+        self.ev = Buffered(form.event_fn, args + [np.zeros(2 * k)]) if self.n_events else None
+        self.watched = Buffered(form.watched_fn, args) if k else None
+        self.ab = self.ev.args[5] if self.ev is not None else np.zeros(0)
+        self.near_ref = np.zeros(self.n_pass)
         self.hook = None          # the events function given to scikit-sundae
-        self.near_ref, self.near_watch = np.zeros(self.n_pass), True
-        self.mon_ref = np.ones(form.n_mon)
-        self.watch = True
         self.progress = progress
         self._pattern(form)
 
@@ -102,7 +109,7 @@ class Problem:
             self.rows, self.cols = np.array(r, dtype=int), np.array(c, dtype=int)
 
     def _buffers(self):
-        return [b for b in (self.res, self.jac, self.ev) if b is not None]
+        return [b for b in (self.res, self.jac, self.ev, self.watched) if b is not None]
 
     def set_relations(self, d):
         """Bind the relation values."""
@@ -119,7 +126,6 @@ class Problem:
             self.steps += 1
             if self.progress is not None:
                 self.progress(t)
-
         a = self.res.args
         a[0][0] = t
         a[1][:] = y
@@ -140,52 +146,57 @@ class Problem:
             JJ.fill(0.0)
             JJ[self.rows, self.cols] = self.jac.outs[0]
 
-    def event_values(self, t, y, yp):
-        """Relation crossings, then the watched block determinants."""
+    def __call__(self, t, y, yp, events):
+        """The events function scikit-sundae calls."""
         a = self.ev.args
         a[0][0] = t
         a[1][:] = y
         a[2][:] = yp
         self.ev.eval()
-        return self.ev.outs[0]
+        events[:] = self.ev.outs[0]
 
-    def eventsfn(self, t, y, yp, events):
-        out = self.event_values(t, y, yp)
-        n, m = self.n_rel, self.n_rel + self.n_mon
-        events[:n] = out[:n]
-        if self.n_mon:
-            events[n:m] = np.abs(out[n:m]) / self.mon_ref - MONITOR_THRESHOLD if self.watch \
-                else 1.0
-        p = self.n_pass
-        if p:
-            events[m:m + p] = out[m:]
-            size = np.abs(out[m:])
-            np.maximum(self.near_ref, size, out=self.near_ref)     # its typical size
-            events[m + p:] = size / self.near_ref - NEAR_SINGULAR if self.near_watch else 1.0
+    def watched_values(self, t, y, yp):
+        """|det| of the monitored blocks and of the highest block."""
+        a = self.watched.args
+        a[0][0] = t
+        a[1][:] = y
+        a[2][:] = yp
+        self.watched.eval()
+        return np.abs(self.watched.outs[0])
 
     def reset_events(self):
         """Clear scikit-sundae's record of the events found so far (kept on
         the events function and never reset by it), so that a reused IDA
         object stops at the next terminal event again."""
-        hook = self.hook
-        if hook is not None and hasattr(hook, "_i_cnt"):
-            hook._i_cnt[:] = 0
+        if hasattr(self, "_i_cnt"):
+            self._i_cnt[:] = 0
             for name in ("_i", "_t", "_y", "_yp"):
-                getattr(hook, name).clear()
+                getattr(self, name).clear()
 
-    def reset_monitors(self, t, y, yp):
-        """Take the current |det| of the watched blocks as their reference."""
-        if self.n_mon or self.n_pass:
-            out = np.abs(self.event_values(t, y, yp)[self.n_rel:])
-            self.mon_ref = np.maximum(out[:self.n_mon], 1e-300)
-            np.maximum(self.near_ref, out[self.n_mon:], out=self.near_ref)
-            self.near_watch = bool(np.all(out[self.n_mon:] > NEAR_SINGULAR * self.near_ref))
+    def reset_monitors(self, t, y, yp, watch=True):
+        """Watch the monitored blocks from their current |det| (if
+        ``watch``) and the highest block from its typical size."""
+        if self.watched is None:
+            return
+        k, m = self.n_mon + self.n_pass, self.n_mon
+        size = self.watched_values(t, y, yp)
+        self.note_size(size[m:])
+        refs = np.concatenate([np.maximum(size[:m], 1e-300), np.maximum(self.near_ref, 1e-300)])
+        on = np.concatenate([np.full(m, watch), size[m:] > NEAR_SINGULAR * self.near_ref])
+        self.ab[:k] = np.where(on, 1.0 / refs, 0.0)
+        self.ab[k:] = np.where(on, np.r_[np.full(m, -MONITOR_THRESHOLD),
+                                         np.full(self.n_pass, -NEAR_SINGULAR)], 1.0)
+
+    def note_size(self, size):
+        """Let the typical size of the highest block's |det| grow to ``size``."""
+        if self.n_pass and len(size):
+            np.maximum(self.near_ref, np.max(np.atleast_2d(size), axis=0), out=self.near_ref)
 
 
 def make_solver(prob, rtol, atol):
     """The scikit-sundae IDA object of a problem (see :func:`start_solver`)."""
     form = prob.form
-    n_ev = prob.n_rel + prob.n_mon + 2 * prob.n_pass
+    n_ev = prob.n_events
     tested = form.differential
     alg = np.nonzero(~tested)[0]
     opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=MAX_STEPS,
@@ -193,13 +204,11 @@ def make_solver(prob, rtol, atol):
     if form.sparse:
         opts.update(linsolver="sparse", sparsity=prob.pattern)
     if n_ev:
-        def eventsfn(t, y, yp, events):
-            prob.eventsfn(t, y, yp, events)
-        eventsfn.terminal = [True] * (prob.n_rel + prob.n_mon) + [False] * prob.n_pass \
+        prob.terminal = [True] * (prob.n_rel + prob.n_mon) + [False] * prob.n_pass \
             + [True] * prob.n_pass
-        eventsfn.direction = [0] * prob.n_rel + [-1] * prob.n_mon + [0, -1] * prob.n_pass
-        opts.update(eventsfn=eventsfn, num_events=n_ev)
-        prob.hook = eventsfn
+        prob.direction = [0] * prob.n_rel + [-1] * prob.n_mon + [0] * prob.n_pass \
+            + [-1] * prob.n_pass
+        opts.update(eventsfn=prob, num_events=n_ev)
     with warnings.catch_warnings():
         # with a sparsity pattern and our exact jacfn, scikit-sundae notes that its own
         # sparse approximation is not used - which is what we want

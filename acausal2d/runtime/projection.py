@@ -14,6 +14,7 @@ from .buffered import Buffered
 
 CHUNK = 64
 TOL = 1e-10
+SIMPLIFIED_ITERATIONS = 6
 
 
 def _solve_rows(M, rhs):
@@ -30,6 +31,23 @@ def _solve_rows(M, rhs):
                 except np.linalg.LinAlgError:
                     pass
             return out
+
+
+class _LU:
+    """LU factors of a square matrix, for solving with many right-hand sides."""
+
+    def __init__(self, M):
+        import scipy.linalg as sla
+        if not np.all(np.isfinite(M)):
+            raise np.linalg.LinAlgError("not finite")
+        with np.errstate(all="ignore"):
+            self.factors = sla.lu_factor(M, check_finite=False)
+        if np.min(np.abs(np.diag(self.factors[0]))) == 0.0:
+            raise np.linalg.LinAlgError("singular")
+        self._solve = sla.lu_solve
+
+    def solve(self, B):
+        return self._solve(self.factors, B, check_finite=False)
 
 
 class Projector:
@@ -61,25 +79,51 @@ class Projector:
         b.eval()
         return b.outs[0]
 
-    def _chunk(self, T, Z, d):
+    def _residuals(self, T, Z, d):
         m = len(T)
-        Z = Z.copy()
-        ok = np.ones(m, dtype=bool)
-        for _ in range(3):
-            E = self._eval(self.E, T, Z, d).reshape(CHUNK, self.n_eq)[:m]
+        return self._eval(self.E, T, Z, d).reshape(CHUNK, self.n_eq)[:m].copy()
+
+    def _matrices(self, T, Z, d):
+        """Jacobians of E with respect to the free unknowns, one per row."""
+        m = len(T)
+        nz = self._eval(self.J, T, Z, d).reshape(CHUNK, self.nnz)[:m]
+        M = np.zeros((m, self.n_eq, len(self.free)))
+        M[:, self.jrows, self.jcols] = nz[:, self.jkeep]
+        return M
+
+    def _simplified(self, T, Z, d, E):
+        """Newton with the Jacobian of the chunk's middle row for all rows
+        (the rows lie close together on the motion): (Z, E, converged)."""
+        mid = len(T) // 2
+        M = self._matrices(T[mid:mid + 1], Z[mid:mid + 1], d)[0]
+        try:
+            lu = _LU(M)
+        except np.linalg.LinAlgError:
+            return Z, E, np.zeros(len(T), dtype=bool)
+        for _ in range(SIMPLIFIED_ITERATIONS):
             done = np.max(np.abs(E), axis=1) < TOL
             if done.all():
                 break
-            nz = self._eval(self.J, T, Z, d).reshape(CHUNK, self.nnz)[:m]
-            M = np.zeros((m, self.n_eq, len(self.free)))
-            M[:, self.jrows, self.jcols] = nz[:, self.jkeep]
-            dz = _solve_rows(M, -E)
-            dz[done] = 0.0
-            ok &= np.all(np.isfinite(dz), axis=1)
-            dz[~ok] = 0.0
-            Z[:, self.free] += dz
-        E = self._eval(self.E, T, Z, d).reshape(CHUNK, self.n_eq)[:m]
-        return Z, ok & (np.max(np.abs(E), axis=1) < 1e3 * TOL)
+            Z[:, self.free] -= lu.solve(E.T).T * ~done[:, None]
+            E = self._residuals(T, Z, d)
+        return Z, E, np.max(np.abs(E), axis=1) < TOL
+
+    def _chunk(self, T, Z, d):
+        Z = Z.copy()
+        E = self._residuals(T, Z, d)
+        Z, E, done = self._simplified(T, Z, d, E)
+        if done.all():
+            return Z, done
+        rows = np.nonzero(~done)[0]
+        for _ in range(3):          # full Newton for the rows left
+            dz = _solve_rows(self._matrices(T[rows], Z[rows], d), -E[rows])
+            good = np.all(np.isfinite(dz), axis=1)
+            Z[rows[good][:, None], self.free[None, :]] += dz[good]
+            E[rows] = self._residuals(T[rows], Z[rows], d)
+            rows = rows[np.max(np.abs(E[rows]), axis=1) >= TOL]
+            if not len(rows):
+                break
+        return Z, np.max(np.abs(E), axis=1) < 1e3 * TOL
 
     def project(self, T, Z, d):
         """Rows of Z (at times T, relation values d) solved for the

@@ -155,9 +155,8 @@ class Simulation:
     def _segment(self):
         form, prob, solver, projector = self._solver()
         prob.set_relations(self.d)
-        prob.watch = self.watch
         y0, yp0 = form.y_from(self.z)
-        prob.reset_monitors(self.t, y0, yp0)
+        prob.reset_monitors(self.t, y0, yp0, self.watch)
         t_stop = self._next_time_event()
         outputs = self.times[(self.times > self.t + self.eps) & (self.times <= t_stop)]
         n0 = self.seg_start = len(self.out)
@@ -190,8 +189,10 @@ class Simulation:
         seg = self.out[max(n0 - 1, 0):]
         T = np.array([t for t, _ in seg])
         Z = np.array([z for _, z in seg])
-        sing.scan_singular_positions(self.system, self.ev, form, self.selection, self.p,
-                                     self.d, T, Z, self.singular)
+        sizes = sing.scan_singular_positions(self.system, self.ev, form, self.selection, self.p,
+                                             self.d, T, Z, self.singular)
+        if 0 in sizes:
+            self._solver()[1].note_size([sizes[0]])
 
     def _next_time_event(self):
         """The earliest scheduled time event after t (or the stop time)."""

@@ -79,21 +79,24 @@ def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found):
     """Find singular positions passed between the output points (T, Z) of a
     segment: the determinant of a watched dummy block changes sign (except
     the highest level's, whose sign changes IDA locates as roots), or has a
-    local minimum far below its typical size."""
+    local minimum far below its typical size.  Returns {level: largest
+    |det| seen}."""
     n = len(T)
     if form.det_fn is None or n < 3:
-        return
+        return {}
     YP = np.zeros_like(Z)
     st = form.all_deriv >= 0
     YP[:, st] = Z[:, form.all_deriv[st]]
     if getattr(form, "det_scan", None) is None:
         form.det_scan = DeterminantScan(form)
     dets = form.det_scan(T, Z, YP, p, np.asarray(d, float)).T
+    found_sizes = {k: float(np.max(np.abs(row))) for row, k in zip(dets, form.scan_levels)}
     for row, k in zip(dets, form.scan_levels):
         lv = selection.levels[k]
         for i in _passed(row, n, k != 0 or not form.n_pass):
             found.append(singularity(system, float(T[i]), "singular position passed",
                                      worst_level(system, ev, selection, T[i], Z[i], d, [lv])))
+    return found_sizes
 
 
 def taylor(system, z, h):
