@@ -6,7 +6,8 @@ pendulum links.  Prints a table.
 compile = flatten, aliases, balance, Pantelides (compile_model) plus the
 consistent initialization, state selection and generation of the index-1
 functions; simulate = the IDA run.  Columns: equations after flattening,
-after alias elimination, and of the index-1 system handed to IDA.  Each
+after alias elimination, and unknowns of the semi-explicit index-1 system
+handed to IDA.  Each
 figure is the best of a few runs (one for the large chains).
 """
 import math
@@ -44,9 +45,7 @@ def measure(make, stop_time, rtol, intervals, repeat=3):
     for _ in range(repeat):
         t0 = time.perf_counter()
         cm = acausal2d.compile_model(make())
-        p = cm.parameter_values()
-        z, d = cm.initial_values(0.0, p)
-        cm.formulation(cm.select(0.0, z, p, d))
+        cm.system.formulation(cm.initial_point().selection)
         t1 = time.perf_counter()
         res = cm.simulate(stop_time=stop_time, rtol=rtol, intervals=intervals)
         t2 = time.perf_counter()
@@ -55,17 +54,22 @@ def measure(make, stop_time, rtol, intervals, repeat=3):
     return cm, res, best_c, best_s
 
 
+def _sizes(cm):
+    """Equations after flattening, after alias elimination, unknowns of the
+    semi-explicit index-1 system."""
+    s = cm.system
+    return s.n_flat_equations, len(s.equations), s.structure.n_var
+
+
 def main(sizes):
     from piston_engine import PistonEngine
     rows = []
     cm, res, c, s = measure(PistonEngine, 10.0, 1e-8, 5000)
-    rows.append(("piston engine (10 s, rtol 1e-8, 5000 pts)", cm.n_flat_equations,
-                 len(cm.equations), cm.R.n_eq, c, s))
+    rows.append(("piston engine (10 s, rtol 1e-8, 5000 pts)", *_sizes(cm), c, s))
     for n in sizes:
         cm, res, c, s = measure(lambda: PendulumChain(n), 1.0, 1e-6, 100,
                                 repeat=3 if n <= 20 else 1)
-        rows.append(("chain of %d links (1 s, rtol 1e-6)" % n, cm.n_flat_equations,
-                     len(cm.equations), cm.R.n_eq, c, s))
+        rows.append(("chain of %d links (1 s, rtol 1e-6)" % n, *_sizes(cm), c, s))
     print("%-44s %8s %8s %9s %10s %10s %10s" % ("model", "flat", "aliased", "index-1",
                                                  "compile s", "simulate s", "total s"))
     for name, n_flat, n_eq, n_red, c, s in rows:

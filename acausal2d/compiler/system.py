@@ -109,7 +109,21 @@ class System:
         self.crossings = ca.vertcat(*[r.g for r in self.relations]) if self.relations else None
         self.crossing_fn = ca.Function("g", args, [self.crossings]) \
             if self.crossings is not None else None
+        self.relation_needs_rates = self._relations_on_highest(z)
         self._split_relations()
+
+    def _relations_on_highest(self, z):
+        """For each relation: does its crossing function depend on a node
+        without a derivative node (whose rate takes a linear solve)?"""
+        if self.crossings is None:
+            return np.zeros(0, dtype=bool)
+        rows, cols = ca.jacobian_sparsity(self.crossings, z).get_triplet()
+        A = self.structure.var_to_diff
+        out = np.zeros(len(self.relations), dtype=bool)
+        for r, c in zip(rows, cols):
+            if A[c] < 0:
+                out[r] = True
+        return out
 
     def _split_relations(self):
         """Relations of time alone whose crossing function is affine in time

@@ -24,6 +24,7 @@ MAX_ITERATIONS = 20       # event iterations at one instant
 CHATTER_EVENTS = 50       # this many events ...
 CHATTER_SPAN = 1e-8       # ... within this fraction of the run's time span: chattering
 JUMP_TOL = 1e-4           # relative change of a position with a velocity that is a jump
+NEAR_ZERO = 1e-6          # a crossing function this small may be at its zero
 
 
 class EventError(SimulationError):
@@ -43,17 +44,17 @@ def values_from(system, g):
     return np.array([r.value(x) for r, x in zip(system.relations, g)])
 
 
-def node_rates(ev, t, z, d):
+def node_rates(ev, t, z, d, solve=True):
     """Time derivatives of all node values at a consistent point: der(x) is
     the value of the derivative node where one exists; the others follow
-    from d/dt E(t, z) = 0 (least squares)."""
+    from d/dt E(t, z) = 0 (least squares; left 0 unless ``solve``)."""
     A = ev.system.structure.var_to_diff.to_diff
     A = np.asarray(A)
     zdot = np.zeros_like(z)
     known = A >= 0
     zdot[known] = z[A[known]]
     unknown = np.nonzero(~known)[0]
-    if len(unknown):
+    if len(unknown) and solve:
         h = 1e-7 * max(1.0, abs(t))
         Et = (ev.residual(t + h, z, d) - ev.residual(t, z, d)) / h
         J = ev.jacobian(t, z, d, dense=True)
@@ -64,9 +65,12 @@ def node_rates(ev, t, z, d):
 
 
 def crossing_rates(ev, t, z, d):
-    """(g, dg/dt) of all relations at a consistent point."""
+    """(g, dg/dt) of all relations at a consistent point.  The rates of the
+    nodes without derivative take a least-squares solve, done only when a
+    relation near zero depends on them."""
     g = ev.crossings(t, z, d)
-    zdot = node_rates(ev, t, z, d)
+    near = np.abs(g) <= NEAR_ZERO * (1.0 + np.abs(g))
+    zdot = node_rates(ev, t, z, d, solve=bool(np.any(near & ev.system.relation_needs_rates)))
     h = 1e-7 * max(1.0, abs(t)) / max(1.0, float(np.max(np.abs(zdot))) if zdot.size else 1.0)
     g2 = ev.crossings(t + h, z + h * zdot, d)
     return g, (g2 - g) / h

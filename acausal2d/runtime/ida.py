@@ -10,14 +10,20 @@ typed outcome.  The messages scikit-sundae prints for SUNDIALS errors are
 taken out of ``sys.stdout`` while IDA runs (:class:`SundialsMessages`); no
 file descriptor is redirected.
 """
+import atexit
 import os
 import sys
+import tempfile
 import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")     # before scikit-sundae is imported
+# SUNDIALS' own warnings (its logger writes them to stderr by default) go to a
+# file of this process, read into SundialsMessages, read when a context is made
+WARNINGS_FILE = os.path.join(tempfile.gettempdir(), "acausal2d-sundials-%d.log" % os.getpid())
+os.environ.setdefault("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
 import sksundae as sun  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 
@@ -30,24 +36,54 @@ MONITOR_THRESHOLD = 0.25    # a watched block whose |det| dropped 4x: re-check t
 NEAR_SINGULAR = 1e-3        # the highest block's |det| this small: a singular position ahead
 
 
+def _remove_warnings_file():
+    try:
+        os.remove(WARNINGS_FILE)
+    except OSError:
+        pass
+
+
+atexit.register(_remove_warnings_file)
+
+
+def _warnings_size():
+    try:
+        return os.path.getsize(os.environ.get("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE))
+    except OSError:
+        return 0
+
+
 class SundialsMessages:
     """Context manager: while it is active, the lines scikit-sundae prints
     for SUNDIALS errors (``[IDASolve, Error: -3] ...``) are collected in
-    ``messages`` instead of reaching ``sys.stdout``; other output passes."""
+    ``messages`` instead of reaching ``sys.stdout``; other output passes.
+    SUNDIALS' own warnings, which its logger writes to a file of this
+    process (:data:`WARNINGS_FILE`), are read into ``warnings``."""
 
     def __init__(self):
-        self.messages = []
+        self.messages, self.warnings = [], []
         self._eat_newline = False
         self._stream = None
+        self._start = 0
 
     def __enter__(self):
         self._stream = sys.stdout
+        self._start = _warnings_size()
         sys.stdout = self
         return self
 
     def __exit__(self, *exc):
         sys.stdout = self._stream
+        self.warnings = self._read_warnings()
         return False
+
+    def _read_warnings(self):
+        path = os.environ.get("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
+        if _warnings_size() <= self._start:
+            return []
+        with open(path, "r", errors="replace") as fh:
+            fh.seek(self._start)
+            return [" ".join(line.split("]")[-1].split()) for line in fh if line.strip()]
 
     def write(self, text):
         if text.startswith("\n[") and ", Error: " in text:

@@ -1,129 +1,139 @@
 """Output points made consistent: IDA returns the values at an output time
 by interpolating its last steps; the runtime keeps the interpolated states
 and solves all equations E(t, z) = 0 for the other unknowns (Newton, in
-batches of output points: the residuals and Jacobians of a batch are one
-mapped CasADi call, the linear systems one stacked LAPACK solve).  So every
-output row satisfies every equation - loop closure, force balances - to
-Newton's tolerance, whatever step sizes the error test of the states
-allowed.  A row whose Newton does not converge (at a singular position)
-keeps the interpolated values.
+batches of output points: the residuals of a batch are one mapped CasADi
+call; one LU factorization serves the batch, with a full Newton step per
+row only where that does not converge).  So every output row satisfies
+every equation - loop closure, force balances - to Newton's tolerance,
+whatever step sizes the error test of the states allowed.  A row whose
+Newton does not converge (at a singular position) keeps the interpolated
+values.
 """
 import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
+from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
 
-CHUNK = 64
-TOL = 1e-10
+CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
+RES_TOL = 1e-13                 # residual, relative to the equation's scale
 SIMPLIFIED_ITERATIONS = 6
 
 
-def _solve_rows(M, rhs):
-    """Solutions of the stacked systems M[i] x = rhs[i]; NaN rows where a
-    matrix is singular."""
-    with np.errstate(all="ignore"):
-        try:
-            return np.linalg.solve(M, rhs[:, :, None])[:, :, 0]
-        except np.linalg.LinAlgError:
-            out = np.full(rhs.shape[:1] + M.shape[2:], np.nan)
-            for i in range(len(M)):
-                try:
-                    out[i] = np.linalg.solve(M[i], rhs[i])
-                except np.linalg.LinAlgError:
-                    pass
-            return out
+class _Mapped:
+    """E and dE/dz of a system mapped over K rows, bound to buffers."""
 
+    def __init__(self, system, K, p):
+        args = [np.zeros(K), np.zeros(K * system.structure.n_var), np.asarray(p, float),
+                np.zeros(system.d.numel())]
+        self.K = K
+        self.E = Buffered(system.residual_fn.map("E_rows", "serial", K, [2, 3], []), args)
+        self.J = Buffered(system.jacobian_fn.map("J_rows", "serial", K, [2, 3], []), args)
 
-class _LU:
-    """LU factors of a square matrix, for solving with many right-hand sides."""
-
-    def __init__(self, M):
-        import scipy.linalg as sla
-        if not np.all(np.isfinite(M)):
-            raise np.linalg.LinAlgError("not finite")
-        with np.errstate(all="ignore"):
-            self.factors = sla.lu_factor(M, check_finite=False)
-        if np.min(np.abs(np.diag(self.factors[0]))) == 0.0:
-            raise np.linalg.LinAlgError("singular")
-        self._solve = sla.lu_solve
-
-    def solve(self, B):
-        return self._solve(self.factors, B, check_finite=False)
+    def __call__(self, b, T, Z, d):
+        m = len(T)
+        b.args[0][:m] = T
+        b.args[1].reshape(self.K, -1)[:m] = Z
+        b.args[3][:] = d
+        b.eval()
+        return b.outs[0].reshape(self.K, -1)[:m]
 
 
 class Projector:
     """Projection of output rows of one formulation (see module docstring)."""
 
     def __init__(self, system, form, p):
-        s = system.structure
-        n, K = s.n_var, CHUNK
-        self.n_eq = s.n_eq
+        self.system, self.p = system, p
+        self.n_eq = system.structure.n_eq
         self.free = np.nonzero(~form.differential)[0]
-        self.scale = system.nominal
         r, c = system.jacobian_pattern
         pos = {j: k for k, j in enumerate(self.free)}
-        keep = np.array([cc in pos for cc in c], dtype=bool)
-        self.jrows, self.jcols = np.asarray(r)[keep], np.array([pos[cc] for cc in c[keep]],
-                                                                 dtype=int)
-        self.jkeep = keep
-        args = [np.zeros(K), np.zeros(K * n), np.asarray(p, float),
-                np.zeros(system.d.numel())]
-        self.E = Buffered(system.residual_fn.map("E_rows", "serial", K, [2, 3], []), args)
-        self.J = Buffered(system.jacobian_fn.map("J_rows", "serial", K, [2, 3], []), args)
-        self.nnz = system.jacobian_fn.nnz_out(0)
+        self.jkeep = np.array([cc in pos for cc in c], dtype=bool)
+        self.jrows = np.asarray(r)[self.jkeep]
+        self.jcols = np.array([pos[cc] for cc in np.asarray(c)[self.jkeep]], dtype=int)
+        self.nominal = system.nominal[self.free]
+        self._maps = {}
+        n = len(self.free)         # compressed columns of the free-unknown Jacobian
+        order = np.lexsort((self.jrows, self.jcols))
+        self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
+        self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
 
-    def _eval(self, b, T, Z, d):
-        m = len(T)
-        b.args[0][:m] = T
-        b.args[1].reshape(CHUNK, -1)[:m] = Z
-        b.args[3][:] = d
-        b.eval()
-        return b.outs[0]
+    def _map(self, K):
+        if K not in self._maps:
+            self._maps[K] = _Mapped(self.system, K, self.p)
+        return self._maps[K]
 
-    def _residuals(self, T, Z, d):
-        m = len(T)
-        return self._eval(self.E, T, Z, d).reshape(CHUNK, self.n_eq)[:m].copy()
+    def _converged(self, E, scale):
+        """Rows whose residuals are within RES_TOL of each equation's scale."""
+        return np.all(np.abs(E) <= RES_TOL * scale, axis=-1)
 
-    def _matrices(self, T, Z, d):
-        """Jacobians of E with respect to the free unknowns, one per row."""
-        m = len(T)
-        nz = self._eval(self.J, T, Z, d).reshape(CHUNK, self.nnz)[:m]
-        M = np.zeros((m, self.n_eq, len(self.free)))
-        M[:, self.jrows, self.jcols] = nz[:, self.jkeep]
-        return M
+    def _factor(self, f, T, Z, d):
+        """(solve, scale) at one row: LU factors of the free-unknown Jacobian
+        (dense or sparse) as a function of right-hand sides (columns), and
+        each equation's scale (its Jacobian row times the unknowns' sizes);
+        None where the Jacobian is not finite or singular."""
+        nz = f(f.J, T, Z, d)[0, self.jkeep]
+        if not np.all(np.isfinite(nz)):
+            return None
+        size = self.nominal + np.abs(Z[0, self.free])
+        scale = np.zeros(self.n_eq)
+        np.add.at(scale, self.jrows, np.abs(nz) * size[self.jcols])
+        solve = self._lu(nz)
+        return None if solve is None else (solve, np.maximum(scale, 1e-300))
 
-    def _simplified(self, T, Z, d, E):
-        """Newton with the Jacobian of the chunk's middle row for all rows
-        (the rows lie close together on the motion): (Z, E, converged)."""
-        mid = len(T) // 2
-        M = self._matrices(T[mid:mid + 1], Z[mid:mid + 1], d)[0]
-        try:
-            lu = _LU(M)
-        except np.linalg.LinAlgError:
-            return Z, E, np.zeros(len(T), dtype=bool)
-        for _ in range(SIMPLIFIED_ITERATIONS):
-            done = np.max(np.abs(E), axis=1) < TOL
+    def _lu(self, nz):
+        n = len(self.free)
+        with np.errstate(all="ignore"):
+            try:
+                if n >= SPARSE_FROM:
+                    M = sp.csc_matrix((nz[self.csc_order], self.csc_rows, self.csc_ptr),
+                                      shape=(n, n))
+                    return spla.splu(M).solve
+                M = np.zeros((self.n_eq, n))
+                M[self.jrows, self.jcols] = nz
+                factors = sla.lu_factor(M, check_finite=False)
+            except (RuntimeError, ValueError):
+                return None
+        if not np.all(np.abs(np.diag(factors[0])) > 0):
+            return None
+        return lambda B: sla.lu_solve(factors, B, check_finite=False)
+
+    def _newton(self, f, T, Z, d, factored):
+        """Newton iterations with one factorization for the rows (T, Z):
+        (Z, converged rows)."""
+        solve, scale = factored
+        done = np.zeros(len(T), dtype=bool)
+        for _ in range(SIMPLIFIED_ITERATIONS + 1):
+            E = f(f.E, T, Z, d)
+            done = self._converged(E, scale)
             if done.all():
                 break
-            Z[:, self.free] -= lu.solve(E.T).T * ~done[:, None]
-            E = self._residuals(T, Z, d)
-        return Z, E, np.max(np.abs(E), axis=1) < TOL
+            with np.errstate(all="ignore"):
+                dz = -np.asarray(solve(np.ascontiguousarray(E.T))).T.reshape(E.shape)
+            dz[done | ~np.all(np.isfinite(dz), axis=1)] = 0.0
+            Z[:, self.free] += dz
+        return Z, done
 
-    def _chunk(self, T, Z, d):
+    def _chunk(self, f, T, Z, d):
+        """Newton with the Jacobian of the batch's middle row for all rows
+        (they lie close together on the motion), then with its own for each
+        row left."""
         Z = Z.copy()
-        E = self._residuals(T, Z, d)
-        Z, E, done = self._simplified(T, Z, d, E)
-        if done.all():
-            return Z, done
-        rows = np.nonzero(~done)[0]
-        for _ in range(3):          # full Newton for the rows left
-            dz = _solve_rows(self._matrices(T[rows], Z[rows], d), -E[rows])
-            good = np.all(np.isfinite(dz), axis=1)
-            Z[rows[good][:, None], self.free[None, :]] += dz[good]
-            E[rows] = self._residuals(T[rows], Z[rows], d)
-            rows = rows[np.max(np.abs(E[rows]), axis=1) >= TOL]
-            if not len(rows):
-                break
-        return Z, np.max(np.abs(E), axis=1) < 1e3 * TOL
+        mid = len(T) // 2
+        factored = self._factor(self._map(1), T[mid:mid + 1], Z[mid:mid + 1], d)
+        done = np.zeros(len(T), dtype=bool)
+        if factored is not None:
+            Z, done = self._newton(f, T, Z, d, factored)
+        one = self._map(1)
+        for i in np.nonzero(~done)[0]:
+            row = slice(i, i + 1)
+            factored = self._factor(one, T[row], Z[row], d)
+            if factored is not None:
+                Z[row], ok = self._newton(one, T[row], Z[row].copy(), d, factored)
+                done[i] = ok[0]
+        return Z, done
 
     def project(self, T, Z, d):
         """Rows of Z (at times T, relation values d) solved for the
@@ -131,8 +141,11 @@ class Projector:
         out = np.array(Z, dtype=float)
         if not len(self.free) or not len(T):
             return out
-        for s in range(0, len(T), CHUNK):
-            sl = slice(s, min(s + CHUNK, len(T)))
-            Zc, ok = self._chunk(np.asarray(T[sl]), out[sl], d)
+        s = 0
+        while s < len(T):
+            K = next(k for k in CHUNKS if k <= len(T) - s)
+            sl = slice(s, s + K)
+            Zc, ok = self._chunk(self._map(K), np.asarray(T[sl]), out[sl], d)
             out[sl][ok] = Zc[ok]
+            s += K
         return out

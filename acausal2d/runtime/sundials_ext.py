@@ -59,3 +59,4 @@ def steps_taken(mem):
     n = ctypes.c_long(0)
     _library().IDAGetNumSteps(ctypes.c_void_p(mem), ctypes.byref(n))
     return int(n.value)
+
