@@ -18,7 +18,7 @@ from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
-RES_TOL = 1e-13                 # residual, relative to the equation's scale
+RES_TOL = 1e-12                 # residual, relative to the equation's scale
 SIMPLIFIED_ITERATIONS = 6
 
 
