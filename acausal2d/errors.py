@@ -36,3 +36,28 @@ class SimulationError(Acausal2dError):
         self.status = status
         self.variable = variable
         self.result = None
+
+
+class translated:
+    """Context manager at the boundary between the user and the compiler or
+    runtime: an exception that is not the project's own (CasADi's
+    ``RuntimeError``, a numpy or SUNDIALS failure) becomes ``error`` (an
+    :class:`Acausal2dError` subclass) saying what was being done, without
+    the foreign traceback; the project's errors and interrupts pass."""
+
+    def __init__(self, what, error=None):
+        self.what = what
+        self.error = error or SimulationError
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, exc, tb):
+        if exc is None or isinstance(exc, (Acausal2dError, KeyboardInterrupt, SystemExit,
+                                           MemoryError)):
+            return False
+        first = " ".join(str(exc).split())
+        if ".../casadi/" in first or "casadi" in first.lower():
+            first = first.split("]")[-1].strip() or first
+        raise self.error("%s failed: %s: %s" % (self.what, type(exc).__name__, first[:400])) \
+            from None

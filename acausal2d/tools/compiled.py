@@ -7,7 +7,8 @@ import time as _time
 import numpy as np
 
 from ..compiler.pipeline import compile_system
-from ..errors import Acausal2dError, ModelDefinitionError, SimulationError
+from ..errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
+                      translated)
 from ..runtime.evaluator import Evaluator
 from ..runtime.initialize import initial_point
 from ..runtime.selection import select
@@ -28,7 +29,8 @@ class CompiledModel:
     def __init__(self, model):
         t0 = _time.perf_counter()
         self.model = model
-        self.system = compile_system(model)
+        with translated("compiling %s" % type(model).__name__, StructuralError):
+            self.system = compile_system(model)
         self._whole = self._whole_parameters()
         self.compile_time = _time.perf_counter() - t0
 
@@ -94,10 +96,11 @@ class CompiledModel:
         :class:`~acausal2d.runtime.initialize.InitialPoint` with the
         selection made there."""
         p = self.parameter_values(params)
-        ev = Evaluator(self.system, p)
-        point = initial_point(self.system, ev, t0, p)
-        if point.selection is None:
-            point.selection = select(self.system, ev, t0, point.z, point.d)
+        with translated("initializing %s" % type(self.model).__name__):
+            ev = Evaluator(self.system, p)
+            point = initial_point(self.system, ev, t0, p)
+            if point.selection is None:
+                point.selection = select(self.system, ev, t0, point.z, point.d)
         return point
 
     def describe_equation(self, i):
@@ -135,7 +138,8 @@ class CompiledModel:
         times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
         p = self.parameter_values(params)
         try:
-            log = Simulation(self.system, p, times, rtol, atol, progress).run()
+            with translated("simulating %s" % type(self.model).__name__):
+                log = Simulation(self.system, p, times, rtol, atol, progress).run()
         except SimulationError as exc:
             if getattr(exc, "partial", None) is not None:
                 exc.result = self._result(exc.partial, p)
