@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import SimulationError
 from ..language.symbols import time
+from .structure import column
 
 SPARSE_FROM = 100          # unknowns from which IDA uses its sparse linear solver
 _MAX_MONITOR = 40          # largest dummy block whose determinant is watched
@@ -48,9 +49,9 @@ class Formulation:
             raise SimulationError("internal error: index-1 system is not square (%d equations, "
                                   "%d unknowns)" % (s.n_eq + len(self.states), n))
         t = time
-        y, yp = ca.vertcat(*s.var_sym), ca.SX.sym("yp", n)
+        y, yp = column(s.var_sym), ca.SX.sym("yp", n)
         links = [yp[j] - y[A[j]] for j in self.states]
-        F = ca.vertcat(*s.eq_expr, *links)
+        F = column(list(s.eq_expr) + links)
         cj = ca.SX.sym("cj")
         Jac = ca.jacobian(F, y) + cj * ca.jacobian(F, yp)
         self.sparse = n >= SPARSE_FROM

@@ -6,6 +6,7 @@ Each pass is a function of its inputs that returns new values; the symbols
 of one compilation live in its own
 :class:`~acausal2d.language.symbols.SymbolTable`, owned by the system.
 """
+from ..errors import ModelDefinitionError
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import SymbolTable
 from .aliases import eliminate_all_aliases
@@ -22,6 +23,11 @@ def compile_system(model):
     """Compile a model instance into a :class:`System`."""
     table = SymbolTable()
     flat = flatten(model, table)
+    if not flat.variables and not flat.equations:
+        raise ModelDefinitionError(
+            "%s has no unknowns and no equations: there is nothing to simulate. Give it "
+            "components (e.g. from acausal2d.library) and connect them, or choose another "
+            "model of the file with --model." % model.describe())
     exprs, relations = extract_relations([eq.expr for eq in flat.equations], table)
     equations = [eq.with_expr(e) for eq, e in zip(flat.equations, exprs)]
     check_balance(equations, flat.variables, table)

@@ -11,7 +11,17 @@ dataclasses); a pass returns a new state with :func:`dataclasses.replace`.
 from dataclasses import dataclass, field, replace
 from typing import Optional
 
+import casadi as ca
+
 from .incidence import variable_incidence
+
+
+def column(exprs):
+    """A CasADi SX column of scalar expressions (0 x 1 when there is none:
+    ``vertcat()`` of nothing is a numeric matrix, which CasADi cannot
+    differentiate)."""
+    exprs = list(exprs)
+    return ca.vertcat(*[ca.SX(e) for e in exprs]) if exprs else ca.SX(0, 1)
 
 
 @dataclass(frozen=True)

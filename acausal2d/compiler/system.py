@@ -16,6 +16,7 @@ from ..language.dsl import STATE_SELECT
 from ..language.symbols import time
 from .aliases import substitution
 from .index1 import Formulation
+from .structure import column
 
 
 def _param_function(exprs, p, name):
@@ -96,8 +97,8 @@ class System:
 
     def _functions(self):
         s = self.structure
-        z = ca.vertcat(*s.var_sym)
-        E = ca.vertcat(*s.eq_expr)
+        z = column(s.var_sym)
+        E = column(s.eq_expr)
         args = [time, z, self.p, self.d]
         self.residual_fn = ca.Function("E", args, [E])
         J = ca.jacobian(E, z)
@@ -225,9 +226,9 @@ class System:
         """Values of the eliminated variables and their derivatives for node
         values Z (one point per row)."""
         offsets = self.alias_offset_fn(p).full().ravel()
-        bound = self.alias_node < 0
-        A = Z[:, np.where(bound, 0, self.alias_node)] * self.alias_sign + offsets
-        A[:, bound] = offsets[bound]
+        free = self.alias_node >= 0
+        A = np.tile(offsets, (len(Z), 1))
+        A[:, free] += Z[:, self.alias_node[free]] * self.alias_sign[free]
         return np.hstack([A, Z[:, self.alias_der_node] * self.alias_der_sign])
 
 

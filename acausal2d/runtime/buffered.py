@@ -1,7 +1,14 @@
 """CasADi functions evaluated through ``Function.buffer()`` on numpy arrays
 bound once (about 1 us a call, against 35-50 us for a plain call with
-argument conversion): the IDA callbacks and the determinant scan."""
+argument conversion): the IDA callbacks and the batched evaluations."""
 import numpy as np
+
+
+def _backed(size):
+    """(array of ``size`` elements, its backing store of at least one
+    element: CasADi cannot bind an empty buffer)."""
+    store = np.zeros(max(int(size), 1))
+    return store[:size], store
 
 
 class Buffered:
@@ -17,11 +24,13 @@ class Buffered:
         self.buf, self.eval = fn.buffer()
         self.args = []
         for k, arr in enumerate(inputs):
-            a = np.ascontiguousarray(arr, dtype=float).copy()
+            arr = np.ascontiguousarray(arr, dtype=float).ravel()
+            a, store = _backed(arr.size)
+            a[:] = arr
             self.args.append(a)
-            self.buf.set_arg(k, memoryview(a))
+            self.buf.set_arg(k, memoryview(store))
         self.outs = []
         for k in range(fn.n_out()):
-            o = np.zeros(fn.nnz_out(k))
+            o, store = _backed(fn.nnz_out(k))
             self.outs.append(o)
-            self.buf.set_res(k, memoryview(o))
+            self.buf.set_res(k, memoryview(store))

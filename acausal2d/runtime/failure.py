@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import SimulationError
 from . import singularities as sing
+from .diagnose import non_finite
 from .ida import MAX_STEPS
 from .newton import NoConvergence, solve_consistent
 
@@ -201,8 +202,25 @@ def _worst_variable(sim, form, prob, f):
     return sim.system.node_info[int(np.argmax(np.abs(vt[-1])))].name
 
 
+def _non_finite_ahead(sim, f):
+    """Text naming the equations that become inf or NaN just after IDA's
+    last point (along the Taylor prediction), or None."""
+    z = np.array(f.y)
+    span = max(sim.t_end - float(sim.times[0]), 1e-9)
+    for h in [0.0] + list(span * np.logspace(-12, -2, 11)):
+        zz = sing.taylor(sim.system, z, h) if h else z
+        text = non_finite(sim.system, sim.ev.residual(f.t + h, zz, sim.d), sim.p)
+        if text is not None:
+            return text
+    return None
+
+
 def integration_error(sim, form, prob, f):
     """The SimulationError for a failure the runtime cannot resolve."""
+    text = _non_finite_ahead(sim, f)
+    if text is not None:
+        return SimulationError("At t=%.6g the motion runs into values where %s"
+                               % (f.t, text), time=f.t)
     try:
         var = _worst_variable(sim, form, prob, f)
     except (np.linalg.LinAlgError, ValueError):

@@ -16,6 +16,7 @@ import numpy as np
 from ..compiler.matching import Matching
 from ..errors import Acausal2dError, InitializationError
 from ..language.dsl import STATE_SELECT
+from .diagnose import non_finite
 from .events import EventIteration, values_from
 from .newton import NoConvergence, solve_consistent
 from .selection import SINGULAR_CONDITION, select, worst_level
@@ -53,9 +54,15 @@ def choose_initial_conditions(s, fixed_nodes, priority, has_start, states=()):
     return held
 
 
-def initialization_error(system, held, exc):
-    """The InitializationError for a Newton failure (largest residuals)."""
+def initialization_error(system, held, exc, p=None):
+    """The InitializationError for a Newton failure (largest residuals, or
+    the equations that are not finite)."""
     res = exc.residual
+    text = non_finite(system, res, p if p is not None else np.zeros(len(system.parameters)))
+    if text is not None:
+        err = InitializationError("No consistent initial values: " + text)
+        err.last = exc.z
+        return err
     worst = np.argsort(-np.abs(res))[:6]
     lines = ["  - %s   (residual %.3g)" % (system.describe_equation(i), res[i])
              for i in worst if abs(res[i]) > 1e-10]
@@ -74,7 +81,7 @@ def _guess_selection(system, ev, t0, z, d):
     try:
         return select(system, ev, t0, z, d)
     except Acausal2dError:
-        return None
+        return None      # a singular or not finite guess: decided at the consistent point
 
 
 def initial_point(system, ev, t0, p):
@@ -89,9 +96,10 @@ def initial_point(system, ev, t0, p):
     states = s.state_nodes(sel) if sel is not None else ()
     held = choose_initial_conditions(s, system.fixed_nodes, system.priority_names,
                                      system.has_start, states)
-    z = _first_consistent(system, ev, t0, z, d, held)
+    z = _first_consistent(system, ev, t0, z, d, held, p)
     d = values_from(system, ev.crossings(t0, z, d))
-    z, d = EventIteration(system, ev, lambda t, exc: initialization_error(system, held, exc)) \
+    z, d = EventIteration(system, ev,
+                          lambda t, exc: initialization_error(system, held, exc, p)) \
         .settle(t0, z, d, held)
     if sel is not None:
         worst = worst_level(system, ev, sel, t0, z, d)
@@ -100,7 +108,7 @@ def initial_point(system, ev, t0, p):
     return InitialPoint(z, d, sel)
 
 
-def _first_consistent(system, ev, t0, z, d, held):
+def _first_consistent(system, ev, t0, z, d, held, p):
     """Newton from the start guess; if it fails, the relations may be the
     wrong ones: retry with those found where Newton ended."""
     for _ in range(10):
@@ -109,6 +117,6 @@ def _first_consistent(system, ev, t0, z, d, held):
         except NoConvergence as exc:
             dn = values_from(system, ev.crossings(t0, exc.z, d))
             if np.array_equal(dn, d):
-                raise initialization_error(system, held, exc) from None
+                raise initialization_error(system, held, exc, p) from None
             d = dn
-    raise initialization_error(system, held, NoConvergence(z, ev.residual(t0, z, d)))
+    raise initialization_error(system, held, NoConvergence(z, ev.residual(t0, z, d)), p)

@@ -18,7 +18,11 @@ class NoConvergence(Exception):
 
 
 def _step(J, r, square):
-    """Newton step -J^-1 r (least squares where J is singular or not square)."""
+    """Newton step -J^-1 r (least squares where J is singular or not square);
+    None where J or r is not finite."""
+    values = J if isinstance(J, np.ndarray) else J.data
+    if not (np.all(np.isfinite(values)) and np.all(np.isfinite(r))):
+        return None
     if square:
         with np.errstate(all="ignore"):
             try:

@@ -5,6 +5,7 @@ import numpy as np
 
 from ..compiler.dummy_derivatives import select_dummies
 from ..errors import SimulationError
+from .diagnose import non_finite
 
 MONITOR_THRESHOLD = 0.25     # re-check the selection when a block's |det| drops 4x
 SINGULAR_CONDITION = 1e-4    # relative smallest singular value of a singular block
@@ -13,6 +14,12 @@ SINGULAR_CONDITION = 1e-4    # relative smallest singular value of a singular bl
 def select(system, ev, t, z, d):
     """Dummy-derivative selection at the point z."""
     J = ev.jacobian(t, z, d, dense=False).tocsr()
+    if not np.all(np.isfinite(J.data)):
+        rows = np.unique(J.nonzero()[0][~np.isfinite(J.data)])
+        marks = np.zeros(system.structure.n_eq)
+        marks[rows] = np.nan
+        raise SimulationError("At t=%.6g the derivatives of %s" % (
+            t, non_finite(system, marks, ev.E.args[2])), time=t)
 
     def jac(eqs, nodes):
         return J[list(eqs)][:, list(nodes)].toarray()

@@ -95,6 +95,10 @@ class Simulation:
     def run(self):
         """Integrate to the stop time (or an early stop); returns a :class:`RunLog`."""
         wall = _time.perf_counter()
+        if self.system.structure.n_var == 0:     # everything is determined: evaluate
+            self.selection = None
+            self.out = [(float(t), np.zeros(0)) for t in self.times]
+            return self._log(wall)
         with SundialsMessages() as self.messages:
             self._start()
             try:
@@ -110,9 +114,9 @@ class Simulation:
     def _log(self, wall):
         self.stats.wall_time = _time.perf_counter() - wall
         T = np.array([t for t, _ in self.out])
-        Z = np.array([z for _, z in self.out])
+        Z = np.array([z for _, z in self.out]).reshape(len(T), self.system.structure.n_var)
         states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
-            self.selection)]
+            self.selection)] if self.selection is not None else []
         return RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
 
     def _start(self):

@@ -1,0 +1,127 @@
+"""Numbers that go wrong become the project's errors naming the element,
+equation and values (no numpy/LAPACK/CasADi traceback or chatter), and a
+model with nothing left to integrate is simply evaluated."""
+import math
+
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d import (Component, InitializationError, ModelDefinitionError, Parameter,
+                       SimulationError, Variable, der)
+from acausal2d.library.planar import Body, Fixed, Prismatic
+
+
+class Welded(Component):
+    """A body welded to the ground: every unknown is determined."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed(r=(0.5, 0.25))
+        self.body = Body(m=2.0)
+        self.connect(self.fixed.frame, self.body.frame_a)
+
+
+class Reciprocal(Component):
+    """x = 1/p: determined by the parameter alone."""
+    p = Parameter(4.0, "", "divisor", positive=True)
+    x = Variable()
+
+    def equations(self):
+        return [self.x == 1 / self.p]
+
+
+def test_fully_determined_models_are_evaluated():
+    res = acausal2d.simulate(Welded(), stop_time=1.0, intervals=4)
+    assert len(res.time) == 5 and res.time[-1] == 1.0
+    assert np.all(res["body.x"] == 0.5) and np.all(res["body.y"] == 0.25)
+    # the ground carries the weight
+    assert np.all(res["body.frame_a.fy"] == pytest.approx(2.0 * 9.81))
+    res = acausal2d.simulate(Reciprocal(), stop_time=1.0, params={"p": 8.0})
+    assert np.all(res["x"] == 0.125)
+    res = acausal2d.simulate(_lone_fixed(), stop_time=0.5)
+    assert np.all(res["fixed.frame.phi"] == 0.0)
+
+
+def _lone_fixed():
+    class LoneFixed(Component):
+        def __init__(self, **kw):
+            super().__init__(**kw)
+            self.fixed = Fixed()
+    return LoneFixed()
+
+
+def test_an_empty_model_is_an_error_naming_it():
+    class Nothing(Component):
+        pass
+    with pytest.raises(ModelDefinitionError, match="Nothing '<model>' has no unknowns"):
+        acausal2d.simulate(Nothing())
+    with pytest.raises(ModelDefinitionError, match="nothing to simulate"):
+        acausal2d.compile_model(Component())
+
+
+class ZeroDirection(Component):
+    """A prismatic joint whose direction r is the zero vector."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed()
+        self.slide = Prismatic(r=(0.0, 0.0))
+        self.body = Body()
+        self.connect(self.fixed.frame, self.slide.frame_a)
+        self.connect(self.slide.frame_b, self.body.frame_a)
+
+
+def test_zero_direction_names_the_joint_and_its_parameter(capfd):
+    with pytest.raises(InitializationError) as err:
+        acausal2d.simulate(ZeroDirection(), stop_time=1.0)
+    msg = str(err.value)
+    assert "Prismatic 'slide'" in msg and "inf or NaN" in msg
+    assert "r[0] = 0" in msg and "r[1] = 0" in msg
+    out = capfd.readouterr()
+    assert "DLASCL" not in out.out + out.err and "Traceback" not in out.out + out.err
+
+
+class SqrtAtStart(Component):
+    x = Variable(start=1.0, fixed=True)
+
+    def equations(self):
+        return [der(self.x) == acausal2d.sqrt(self.x - 2.0)]
+
+
+class Overflow(Component):
+    x = Variable(start=1.0, fixed=True)
+
+    def equations(self):
+        return [der(self.x) == acausal2d.exp(1000 * self.x)]
+
+
+@pytest.mark.parametrize("model,text", [(SqrtAtStart, "sqrt((x-2))"),
+                                        (Overflow, "exp((1000*x))")])
+def test_non_finite_at_the_start_names_the_equation(model, text, capfd):
+    with pytest.raises(InitializationError) as err:
+        acausal2d.simulate(model(), stop_time=1.0)
+    assert text in str(err.value) and "inf or NaN" in str(err.value)
+    assert "DLASCL" not in "".join(capfd.readouterr())
+
+
+class IntoSqrt(Component):
+    """y = sqrt(1 - x) with x = t: not finite from t = 1 on."""
+    x = Variable(start=0.0, fixed=True)
+    y = Variable(start=1.0)
+
+    def equations(self):
+        return [der(self.x) == 1.0, self.y == acausal2d.sqrt(1.0 - self.x)]
+
+
+def test_non_finite_during_the_run_names_the_equation_and_time(capfd):
+    with pytest.raises(SimulationError) as err:
+        acausal2d.simulate(IntoSqrt(), stop_time=2.0)
+    assert err.value.time == pytest.approx(1.0, abs=1e-6)
+    assert "y == sqrt((1-x))" in str(err.value)
+    # up to there the result is the closed form
+    res = err.value.result
+    k = res.time < 0.999
+    assert np.max(np.abs(res["y"][k] - np.sqrt(1.0 - res.time[k]))) < 1e-6
+    assert "DLASCL" not in "".join(capfd.readouterr())
+    assert math.isfinite(res["y"][-1])
