@@ -176,8 +176,8 @@ class Belt(_Span):
     ``Belt(eps=start(1e-4, fixed=True))`` or an initial force with
     ``Belt(F=start(250.0, fixed=True), eps=start(1e-4, fixed=False))``.
     """
-    c = Parameter(1e6, "N", "stiffness per unit strain (k_Bc)")
-    d = Parameter(0.0, "N.s", "damping per unit strain (b_Bc)")
+    c = Parameter(1e6, "N", "stiffness per unit strain (k_Bc)", positive=True)
+    d = Parameter(0.0, "N.s", "damping per unit strain (b_Bc)", min=0.0)
     eps = Variable(fixed=True, nominal=1e-5, unit="1", doc="strain (l - l_u)/l_u (eq. 4.56)")
     l_u = Variable(start=1.0, unit="m", state_select="avoid",
                    doc="unstretched material length in the span (l_x)")
@@ -208,9 +208,9 @@ class SpringBelt(_Span):
     The initial spring extension is fixed by ``l_dF=start(value, fixed=True)``
     (default 0: the spring starts unloaded).
     """
-    k = Parameter(1000.0, "N/m", "spring rate")
-    b = Parameter(0.0, "N.s/m", "damping coefficient of the spring")
-    l0 = Parameter(0.1, "m", "unloaded spring length")
+    k = Parameter(1000.0, "N/m", "spring rate", positive=True)
+    b = Parameter(0.0, "N.s/m", "damping coefficient of the spring", min=0.0)
+    l0 = Parameter(0.1, "m", "unloaded spring length", positive=True)
     l_dF = Variable(fixed=True, unit="m", doc="spring extension (eq. 4.82)")
     l_x = Variable(start=1.0, unit="m", state_select="avoid",
                    doc="band material in both band pieces")
@@ -245,8 +245,8 @@ class NozzleBelt(_BandElement):
     and ``gamma2 + pi`` at P2 (leaving directions).  The nozzle carries the
     resultant of both piece forces (4.76, 4.77) and no moment.
     """
-    c = Parameter(1e6, "N", "stiffness per unit strain")
-    d = Parameter(0.0, "N.s", "damping per unit strain")
+    c = Parameter(1e6, "N", "stiffness per unit strain", positive=True)
+    d = Parameter(0.0, "N.s", "damping per unit strain", min=0.0)
     l1 = Variable(start=1.0, unit="m", doc="length P1-P3 (eq. 4.67)")
     l2 = Variable(start=1.0, unit="m", doc="length P3-P2 (eq. 4.68)")
     l = Variable(start=2.0, unit="m", doc="free length l1 + l2 (eq. 4.69)")
@@ -299,12 +299,12 @@ class _Wheel(_BandElement):
     x0 = Parameter(0.0, "m", "x of the axis P1 at t0 (fixed position if ctr2D1 is unconnected)")
     y0 = Parameter(0.0, "m", "y of the axis P1 at t0 (fixed position if ctr2D1 is unconnected)")
     phi0 = Parameter(0.0, "rad", "housing angle if ctr2D1 is unconnected")
-    m = Parameter(0.0, "kg", "mass of the pulley")
-    J = Parameter(0.0, "kg.m2", "rotational inertia about the centre of gravity")
+    m = Parameter(0.0, "kg", "mass of the pulley", min=0.0)
+    J = Parameter(0.0, "kg.m2", "rotational inertia about the centre of gravity", min=0.0)
     cog = Parameter((0.0, 0.0), "m", "centre of gravity in the pulley frame (x_Srel, y_Srel)")
-    mu = Parameter(0.0, "1", "bearing friction coefficient")
-    r_pin = Parameter(0.004, "m", "bearing pin radius")
-    omega_s = Parameter(1e-3, "rad/s", "regularisation speed of the friction sign")
+    mu = Parameter(0.0, "1", "bearing friction coefficient", min=0.0)
+    r_pin = Parameter(0.004, "m", "bearing pin radius", min=0.0)
+    omega_s = Parameter(1e-3, "rad/s", "regularisation speed of the friction sign", positive=True)
 
     phi = Variable(unit="rad", state_select="prefer", doc="pulley angle (world), unwrapped")
     phi_rel = Variable(unit="rad", doc="pulley angle relative to the housing")
@@ -444,7 +444,7 @@ class Pulley(_Wheel):
     ``kappa2``, ``beta``, ``l_con``, ``F_bear`` (bearing force magnitude),
     ``T_f``.
     """
-    r = Parameter(0.05, "m", "radius of the belt contour")
+    r = Parameter(0.05, "m", "radius of the belt contour", positive=True)
     n_beta = Parameter(0.0, "1", "whole turns added to the wrap angle (set by prepare_belts)")
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (world)")
     kappa2 = Variable(unit="rad", state_select="avoid", doc="contact angle of K2 (world)")
@@ -484,7 +484,7 @@ class Drum(_Wheel):
     running off its end).  Contact angle ``kappa1 = gamma1 + w pi/2``,
     ``ctrB1.L = -w r (phi - kappa1)`` and the forces as in :class:`Pulley`.
     """
-    r = Parameter(0.05, "m", "radius of the belt contour")
+    r = Parameter(0.05, "m", "radius of the belt contour", positive=True)
     alpha_fix = Parameter(0.0, "rad", "angle of the fastened rope end in the drum frame")
     n_wound = Parameter(0.0, "1", "whole turns of rope on the drum")
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (world)")

@@ -66,8 +66,8 @@ class Carriage(Component):
     come from index reduction.
     """
     world = Outer(PlanarWorld)
-    m = Parameter(400.0, "kg", "mass of the carriage (with its pulleys)")
-    J = Parameter(80.0, "kg.m2", "rotational inertia about the centre of gravity")
+    m = Parameter(400.0, "kg", "mass of the carriage (with its pulleys)", min=0.0)
+    J = Parameter(80.0, "kg.m2", "rotational inertia about the centre of gravity", min=0.0)
     cog = Parameter((0.0, 0.0), "m", "centre of gravity in the carriage frame")
     x = Variable(unit="m", state_select="prefer", doc="x of the reference point O")
     y = Variable(unit="m", state_select="prefer", doc="y of the reference point O")
@@ -134,7 +134,7 @@ class Hook(Component):
     gravity; the frame does not turn (``phi = 0``), so a rope end fastened
     to it needs no torque.  Outputs ``x``, ``y``."""
     world = Outer(PlanarWorld)
-    m = Parameter(1000.0, "kg", "mass of hook and load")
+    m = Parameter(1000.0, "kg", "mass of hook and load", min=0.0)
     x = Variable(unit="m", state_select="prefer", doc="x of the hook")
     y = Variable(unit="m", state_select="prefer", doc="y of the hook")
 

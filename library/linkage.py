@@ -452,13 +452,13 @@ class DAN(_Linkage):
     fix them with ``DAN(phiL=start(fixed=True), omL=start(fixed=True))`` for
     a force-driven crank).
     """
-    lL = Parameter(1.0, "m", "link (crank) length l_L")
+    lL = Parameter(1.0, "m", "link (crank) length l_L", positive=True)
     phiL0 = Parameter(0.0, "rad", "start angle of the link")
     omL0 = Parameter(0.0, "rad/s", "start angular velocity of the link")
     xSLrel = Parameter(0.5, "m", "centre of gravity of the link in LKS, x (default lL/2)")
     ySLrel = Parameter(0.0, "m", "centre of gravity of the link in LKS, y")
-    mL = Parameter(1.0, "kg", "mass of the link")
-    JL = Parameter(0.1, "kg.m2", "moment of inertia of the link about its centre of gravity")
+    mL = Parameter(1.0, "kg", "mass of the link", min=0.0)
+    JL = Parameter(0.1, "kg.m2", "moment of inertia of the link about its centre of gravity", min=0.0)
 
     phiL = Variable(unit="rad", doc="link angle (absolute)", state_select="prefer")
     omL = Variable(unit="rad/s", doc="link angular velocity", state_select="prefer")
@@ -551,8 +551,8 @@ class SAN(_Linkage):
     xS0 = Parameter(0.0, "m", "start travel of the slider (guess unless driven)")
     xSrel = Parameter(0.0, "m", "centre of gravity of the slider in SKS, x")
     ySrel = Parameter(0.0, "m", "centre of gravity of the slider in SKS, y")
-    mS = Parameter(1.0, "kg", "mass of the slider")
-    JS = Parameter(0.1, "kg.m2", "moment of inertia of the slider about its centre of gravity")
+    mS = Parameter(1.0, "kg", "mass of the slider", min=0.0)
+    JS = Parameter(0.1, "kg.m2", "moment of inertia of the slider about its centre of gravity", min=0.0)
 
     xG = Variable(unit="m", doc="slider travel P1 -> PS", state_select="prefer")
     phiS = Variable(unit="rad", doc="slider angle (= guide angle)")
@@ -648,11 +648,11 @@ class FGP(_Linkage):
     0``, ``mL = 1 kg``, ``JL = 0.1 kg m²`` (set both to 0 for the seed's
     "masselos").
     """
-    lL = Parameter(1.0, "m", "link length l_L (P1 -> P)")
+    lL = Parameter(1.0, "m", "link length l_L (P1 -> P)", positive=True)
     xSLrel = Parameter(0.5, "m", "centre of gravity in LKS, x (default lL/2)")
     ySLrel = Parameter(0.0, "m", "centre of gravity in LKS, y")
-    mL = Parameter(1.0, "kg", "mass of the link")
-    JL = Parameter(0.1, "kg.m2", "moment of inertia about the centre of gravity")
+    mL = Parameter(1.0, "kg", "mass of the link", min=0.0)
+    JL = Parameter(0.1, "kg.m2", "moment of inertia about the centre of gravity", min=0.0)
 
     phiL = Variable(unit="rad", doc="link angle")
     xSL = Variable(unit="m", doc="centre of gravity, x")
@@ -737,17 +737,17 @@ class DDD(_Linkage):
     ``lL1 = lL2 = 1 m``, ``K``, ``xSL1rel = lL1/2``, ``xSL2rel = lL2/2``,
     ``ySL1rel = ySL2rel = 0``, ``mL1 = mL2 = 1 kg``, ``JL1 = JL2 = 0.1 kg m²``.
     """
-    lL1 = Parameter(1.0, "m", "length of link 1 (P1 -> P)")
-    lL2 = Parameter(1.0, "m", "length of link 2 (P2 -> P)")
+    lL1 = Parameter(1.0, "m", "length of link 1 (P1 -> P)", positive=True)
+    lL2 = Parameter(1.0, "m", "length of link 2 (P2 -> P)", positive=True)
     K = Parameter(1.0, "", "assembly parameter: +1 P left of P1->P2, -1 right (start only)")
     xSL1rel = Parameter(0.5, "m", "centre of gravity of link 1 in LKS1, x (default lL1/2)")
     ySL1rel = Parameter(0.0, "m", "centre of gravity of link 1 in LKS1, y")
     xSL2rel = Parameter(0.5, "m", "centre of gravity of link 2 in LKS2, x (default lL2/2)")
     ySL2rel = Parameter(0.0, "m", "centre of gravity of link 2 in LKS2, y")
-    mL1 = Parameter(1.0, "kg", "mass of link 1")
-    JL1 = Parameter(0.1, "kg.m2", "moment of inertia of link 1 about its centre of gravity")
-    mL2 = Parameter(1.0, "kg", "mass of link 2")
-    JL2 = Parameter(0.1, "kg.m2", "moment of inertia of link 2 about its centre of gravity")
+    mL1 = Parameter(1.0, "kg", "mass of link 1", min=0.0)
+    JL1 = Parameter(0.1, "kg.m2", "moment of inertia of link 1 about its centre of gravity", min=0.0)
+    mL2 = Parameter(1.0, "kg", "mass of link 2", min=0.0)
+    JL2 = Parameter(0.1, "kg.m2", "moment of inertia of link 2 about its centre of gravity", min=0.0)
 
     phiL1 = Variable(unit="rad", doc="angle of link 1 (P1 -> P)")
     phiL2 = Variable(unit="rad", doc="angle of link 2 (P2 -> P)")
@@ -890,17 +890,17 @@ class DDS(_Linkage):
     m``, ``K``, ``xSLrel = lL/2``, ``ySLrel = 0``, ``xSSrel = ySSrel = 0``,
     ``mL = mS = 1 kg``, ``JL = JS = 0.1 kg m²``.
     """
-    lL = Parameter(1.0, "m", "link length (P1 - P)")
+    lL = Parameter(1.0, "m", "link length (P1 - P)", positive=True)
     v = Parameter(0.1, "m", "offset of P from the guide line")
     K = Parameter(1.0, "", "assembly parameter (start only), see class doc")
     xSLrel = Parameter(0.5, "m", "centre of gravity of the link in LKS, x (default lL/2)")
     ySLrel = Parameter(0.0, "m", "centre of gravity of the link in LKS, y")
     xSSrel = Parameter(0.0, "m", "centre of gravity of the slider in SKS, x")
     ySSrel = Parameter(0.0, "m", "centre of gravity of the slider in SKS, y")
-    mL = Parameter(1.0, "kg", "mass of the link")
-    JL = Parameter(0.1, "kg.m2", "moment of inertia of the link about its centre of gravity")
-    mS = Parameter(1.0, "kg", "mass of the slider")
-    JS = Parameter(0.1, "kg.m2", "moment of inertia of the slider about its centre of gravity")
+    mL = Parameter(1.0, "kg", "mass of the link", min=0.0)
+    JL = Parameter(0.1, "kg.m2", "moment of inertia of the link about its centre of gravity", min=0.0)
+    mS = Parameter(1.0, "kg", "mass of the slider", min=0.0)
+    JS = Parameter(0.1, "kg.m2", "moment of inertia of the slider about its centre of gravity", min=0.0)
 
     phiL = Variable(unit="rad", doc="link angle (direction P -> P1)")
     xG = Variable(unit="m", doc="slider travel P2 -> PS")
@@ -1052,10 +1052,10 @@ class DSD(_Linkage):
     ySUrel = Parameter(0.0, "m", "centre of gravity of the guide in UKS, y")
     xSSrel = Parameter(0.0, "m", "centre of gravity of the slider in SKS, x")
     ySSrel = Parameter(0.0, "m", "centre of gravity of the slider in SKS, y")
-    mU = Parameter(1.0, "kg", "mass of the guide")
-    JU = Parameter(0.1, "kg.m2", "moment of inertia of the guide about its centre of gravity")
-    mS = Parameter(1.0, "kg", "mass of the slider")
-    JS = Parameter(0.1, "kg.m2", "moment of inertia of the slider about its centre of gravity")
+    mU = Parameter(1.0, "kg", "mass of the guide", min=0.0)
+    JU = Parameter(0.1, "kg.m2", "moment of inertia of the guide about its centre of gravity", min=0.0)
+    mS = Parameter(1.0, "kg", "mass of the slider", min=0.0)
+    JS = Parameter(0.1, "kg.m2", "moment of inertia of the slider about its centre of gravity", min=0.0)
 
     phiU = Variable(unit="rad", doc="guide angle (= slider angle)")
     xG = Variable(unit="m", doc="slider travel P1 -> PS")
@@ -1191,10 +1191,10 @@ class SSD(_Linkage):
     ySS1rel = Parameter(0.0, "m", "centre of gravity of slider 1 in SKS1, y")
     xSS2rel = Parameter(0.0, "m", "centre of gravity of slider 2 in SKS2, x")
     ySS2rel = Parameter(0.0, "m", "centre of gravity of slider 2 in SKS2, y")
-    mS1 = Parameter(1.0, "kg", "mass of slider 1")
-    JS1 = Parameter(0.1, "kg.m2", "moment of inertia of slider 1 about its centre of gravity")
-    mS2 = Parameter(1.0, "kg", "mass of slider 2")
-    JS2 = Parameter(0.1, "kg.m2", "moment of inertia of slider 2 about its centre of gravity")
+    mS1 = Parameter(1.0, "kg", "mass of slider 1", min=0.0)
+    JS1 = Parameter(0.1, "kg.m2", "moment of inertia of slider 1 about its centre of gravity", min=0.0)
+    mS2 = Parameter(1.0, "kg", "mass of slider 2", min=0.0)
+    JS2 = Parameter(0.1, "kg.m2", "moment of inertia of slider 2 about its centre of gravity", min=0.0)
 
     xG1 = Variable(unit="m", doc="travel of slider 1, P1 -> PS1")
     xG2 = Variable(unit="m", doc="travel of slider 2, P -> PS2")
@@ -1345,10 +1345,10 @@ class SDS(_Linkage):
     ySS1rel = Parameter(0.0, "m", "centre of gravity of slider 1 in SKS1, y")
     xSS2rel = Parameter(0.0, "m", "centre of gravity of slider 2 in SKS2, x")
     ySS2rel = Parameter(0.0, "m", "centre of gravity of slider 2 in SKS2, y")
-    mS1 = Parameter(1.0, "kg", "mass of slider 1")
-    JS1 = Parameter(0.1, "kg.m2", "moment of inertia of slider 1 about its centre of gravity")
-    mS2 = Parameter(1.0, "kg", "mass of slider 2")
-    JS2 = Parameter(0.1, "kg.m2", "moment of inertia of slider 2 about its centre of gravity")
+    mS1 = Parameter(1.0, "kg", "mass of slider 1", min=0.0)
+    JS1 = Parameter(0.1, "kg.m2", "moment of inertia of slider 1 about its centre of gravity", min=0.0)
+    mS2 = Parameter(1.0, "kg", "mass of slider 2", min=0.0)
+    JS2 = Parameter(0.1, "kg.m2", "moment of inertia of slider 2 about its centre of gravity", min=0.0)
 
     xG1 = Variable(unit="m", doc="travel of slider 1, P1 -> PS1")
     xG2 = Variable(unit="m", doc="travel of slider 2, P2 -> PS2")

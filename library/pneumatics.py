@@ -65,16 +65,16 @@ class GasCylinder(Component):
     on the piston ``(p - p_amb) A`` (pushing it away from the head), ``P_gas``
     power delivered by the piston to the gas ``-(p - p_amb) der(V)``.
     """
-    A = Parameter(5.026548245743669e-3, "m2", "piston area (default bore 80 mm)")
-    p_amb = Parameter(1.0e5, "Pa", "ambient pressure behind the piston")
-    kappa = Parameter(1.4, "1", "ratio of specific heats (air)")
-    n = Parameter(1.4, "1", "polytropic exponent of compression/expansion (= kappa: adiabatic)")
-    R = Parameter(287.0, "J/(kg.K)", "specific gas constant (air)")
-    p_in = Parameter(1.0e5, "Pa", "intake pressure")
-    T_in = Parameter(293.15, "K", "intake temperature")
-    p_out = Parameter(8.0e5, "Pa", "reservoir (discharge) pressure")
-    G_in = Parameter(1e-6, "kg/(s.Pa)", "intake valve conductance")
-    G_out = Parameter(1e-6, "kg/(s.Pa)", "discharge valve conductance")
+    A = Parameter(5.026548245743669e-3, "m2", "piston area (default bore 80 mm)", positive=True)
+    p_amb = Parameter(1.0e5, "Pa", "ambient pressure behind the piston", positive=True)
+    kappa = Parameter(1.4, "1", "ratio of specific heats (air)", min=1.0)
+    n = Parameter(1.4, "1", "polytropic exponent of compression/expansion (= kappa: adiabatic)", min=1.0)
+    R = Parameter(287.0, "J/(kg.K)", "specific gas constant (air)", positive=True)
+    p_in = Parameter(1.0e5, "Pa", "intake pressure", positive=True)
+    T_in = Parameter(293.15, "K", "intake temperature", positive=True)
+    p_out = Parameter(8.0e5, "Pa", "reservoir (discharge) pressure", positive=True)
+    G_in = Parameter(1e-6, "kg/(s.Pa)", "intake valve conductance", min=0.0)
+    G_out = Parameter(1e-6, "kg/(s.Pa)", "discharge valve conductance", min=0.0)
 
     V = Variable(start=1e-4, unit="m3", nominal=1e-4, state_select="avoid",
                  doc="chamber volume")
