@@ -18,6 +18,7 @@ from .ida import MAX_STEPS
 from .newton import NoConvergence, solve_consistent
 
 _STALLED = 20         # steps 1e6 times shorter than the longest, in a row: IDA stalls
+TOO_MUCH_WORK = -1    # IDA's status when it used up its steps for one output interval
 
 
 def _take_steps(solver, form, start, t_next, keep, max_steps):
@@ -63,11 +64,14 @@ class Approach:
         """Continue the run (True), end it at a limit position (False) or
         raise the integration error."""
         sim, f = self.sim, self.failed
-        if self._near_singular(f):       # IDA crawls towards a singular position
+        near = self._near_singular(f)
+        if near:       # IDA crawls towards a singular position
             jump = sing.step_over(sim.system, sim.ev, sim.selection, self.form, sim.d, f.t,
                                   np.array(f.y), self._history([], []), sim.t_end, sim.times)
             if jump is not None:
                 return self._passed(*jump)
+        elif f.status == TOO_MUCH_WORK and f.t > sim.t:
+            return self._go_on((f.t, np.array(f.y)), False)   # only the step budget
         later = sim.times[sim.times > f.t + sim.eps]
         t_next = float(later[0]) if len(later) else sim.t_end
         last, how, times, kept = _take_steps(self.solver, self.form, f, t_next, self.keep,

@@ -29,6 +29,8 @@ from .newton import NoConvergence, solve_consistent
 from .selection import reselect, select, singularity, worst_level
 
 
+CALL_WALL = 0.5            # wall seconds of output points per IDA call, once measured
+FIRST_CALL_OUTPUTS = 256   # output points of the first IDA call
 STATE_TOL_FACTOR = 0.03
 """IDA's local error test covers the states only (the algebraic unknowns are
 solved exactly at every output point, see :mod:`~acausal2d.runtime.ida`);
@@ -75,8 +77,11 @@ class Simulation:
     """One run of ``system`` with parameter vector ``p`` over ``times``
     (the first is the start time); see module docstring."""
 
-    def __init__(self, system, p, times, rtol, atol=None, progress=None):
+    def __init__(self, system, p, times, rtol, atol=None, progress=None, max_steps=None,
+                 max_wall_time=None):
         self.system, self.p = system, np.asarray(p, dtype=float)
+        self.max_steps, self.max_wall_time = max_steps, max_wall_time
+        self.per_output = None        # wall seconds per output point of the last IDA call
         self.times = np.asarray(times, dtype=float)
         self.t_end = float(self.times[-1])
         self.rtol = rtol * STATE_TOL_FACTOR
@@ -103,7 +108,9 @@ class Simulation:
             self._start()
             try:
                 while self.t < self.t_end - self.eps and self._step():
-                    pass
+                    if self._over_budget(wall):
+                        self._keep_last_point()
+                        break
             except SimulationError as exc:
                 exc.partial = self._log(wall)       # the motion up to where it stopped
                 raise
@@ -118,6 +125,25 @@ class Simulation:
         states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
             self.selection)] if self.selection is not None else []
         return RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
+
+    def _over_budget(self, wall):
+        """True (and the reason in ``stopped``) when the step or wall-clock
+        budget of the run is used up."""
+        if self.max_steps is not None and self.stats.steps >= self.max_steps:
+            self.stopped = ("stopped at t=%.6g: the step budget of %d steps is used up (raise "
+                            "it with max_steps / --max-steps, or simulate a shorter time)"
+                            % (self.t, self.max_steps))
+        elif self.max_wall_time is not None and \
+                _time.perf_counter() - wall >= self.max_wall_time:
+            self.stopped = ("stopped at t=%.6g: the wall-clock budget of %g s is used up (raise "
+                            "it with max_wall_time / --max-wall-time)"
+                            % (self.t, self.max_wall_time))
+        return self.stopped is not None
+
+    def _keep_last_point(self):
+        """A run stopped early ends with the point it reached."""
+        if self.out and self.t > self.out[-1][0]:
+            self.out.append((self.t, np.array(self.z)))
 
     def _start(self):
         t0 = float(self.times[0])
@@ -161,15 +187,16 @@ class Simulation:
         prob.set_relations(self.d)
         y0, yp0 = form.y_from(self.z)
         prob.reset_monitors(self.t, y0, yp0, self.watch)
-        t_stop = self._next_time_event()
-        outputs = self.times[(self.times > self.t + self.eps) & (self.times <= t_stop)]
+        t_stop, outputs = self._stop_and_outputs()
         n0 = self.seg_start = len(self.out)
-        steps0 = prob.steps
+        steps0, wall = prob.steps, _time.perf_counter()
         try:
             outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop)
         except Exception as exc:       # scikit-sundae raises on bad input at the start
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
+        if len(T):
+            self.per_output = (_time.perf_counter() - wall) / len(T)
         self.out.extend(zip(T.tolist(), projector.project(T, Y, self.d)))
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
@@ -178,6 +205,20 @@ class Simulation:
         self._record_passes(outcome.passes)
         self._scan(form, n0)
         return outcome
+
+    def _stop_and_outputs(self):
+        """(stop time, output times) of the next IDA call: up to the next
+        time event, and no more output points than take about
+        :data:`CALL_WALL` seconds (so that budgets and progress are looked at
+        during long runs; a call re-initializes IDA)."""
+        self.time_event = self._next_time_event()
+        outputs = self.times[(self.times > self.t + self.eps) & (self.times <= self.time_event)]
+        n = FIRST_CALL_OUTPUTS if self.per_output is None else \
+            max(FIRST_CALL_OUTPUTS, int(CALL_WALL / max(self.per_output, 1e-9)))
+        if len(outputs) > n:
+            outputs = outputs[:n]
+            return float(outputs[-1]), outputs
+        return self.time_event, outputs
 
     def _record_passes(self, passes):
         """Singular positions IDA passed (roots of the highest block's det)."""
@@ -217,7 +258,10 @@ class Simulation:
         self.t, self.z = outcome.t, np.array(outcome.y)
         if self.t >= self.t_end - self.eps:
             return False
-        self._time_event()
+        if self.t >= self.time_event - self.eps:
+            self._time_event()
+        elif len(self.out) and self.out[-1][0] == self.t:
+            self.z = self.out[-1][1].copy()         # the consistent output row
         return True
 
     def _time_event(self):

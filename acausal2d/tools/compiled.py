@@ -16,6 +16,10 @@ from ..runtime.simulation import Simulation
 from .result import Result
 
 
+MAX_STEPS = 1000000
+"""Default step budget of a run."""
+
+
 def compile_model(model):
     """Compile a model instance into a :class:`CompiledModel`."""
     return CompiledModel(model)
@@ -125,7 +129,8 @@ class CompiledModel:
         return output_times, rtol
 
     def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
-                 start_time=0.0, output_times=None, progress=None):
+                 start_time=0.0, output_times=None, progress=None, max_steps=MAX_STEPS,
+                 max_wall_time=None):
         """Simulate and return a :class:`~acausal2d.tools.result.Result`.
 
         stop_time: end time (default: the model's ``experiment['stop_time']``
@@ -133,13 +138,18 @@ class CompiledModel:
         integrator tolerances (default 1e-6 and rtol times each variable's
         nominal); intervals: number of output intervals (default 500)
         unless ``output_times`` is given; progress: optional callable(t,
-        t_end), called as the run advances.
+        t_end), called as the run advances; max_steps, max_wall_time:
+        budgets of integrator steps and wall-clock seconds, after which the
+        run stops early with the data so far (``result.stopped`` says why;
+        default: 1,000,000 steps, no time limit).
         """
         times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
         p = self.parameter_values(params)
         try:
             with translated("simulating %s" % type(self.model).__name__):
-                log = Simulation(self.system, p, times, rtol, atol, progress).run()
+                log = Simulation(self.system, p, times, rtol, atol, progress,
+                                 _budget(max_steps, "max_steps"),
+                                 _budget(max_wall_time, "max_wall_time")).run()
         except SimulationError as exc:
             if getattr(exc, "partial", None) is not None:
                 exc.result = self._result(exc.partial, p)
@@ -158,6 +168,15 @@ class CompiledModel:
         res.stopped = log.stopped
         res.states = log.states
         return res
+
+
+def _budget(value, name):
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 \
+            or value != value:
+        raise Acausal2dError("%s must be a positive number, got %r" % (name, value))
+    return value
 
 
 def _check_tolerances(rtol, atol):
