@@ -32,6 +32,7 @@ import numpy as np
 __all__ = ["PositionCorrection", "Correction"]
 
 TWO_PI = 2 * math.pi
+_EPS = float(np.finfo(float).eps)
 
 
 class Correction:
@@ -64,11 +65,12 @@ class _Node:
         return 0.0 if self.base else 1.0 / (self.m + self.dym)
 
 
-def _weights(*nodes):
-    """Shares m_c/m_k of eq. 13 (cstr.js mc_m1, mc_m2 and of n3)."""
-    ims = [n.im for n in nodes]
-    total = sum(ims)
-    return [im / total if total else im for im in ims]
+def _weights(n1, n2):
+    """Shares m_c/m_1, m_c/m_2 of eq. 13 (cstr.js mc_m1, mc_m2)."""
+    im1 = 0.0 if n1.base else 1.0 / (n1.m + n1.dym)
+    im2 = 0.0 if n2.base else 1.0 / (n2.m + n2.dym)
+    total = im1 + im2
+    return (im1 / total, im2 / total) if total else (im1, im2)
 
 
 class PositionCorrection:
@@ -86,7 +88,10 @@ class PositionCorrection:
         self.lentol = float(lentol if lentol is not None else system.get("lentol", 0.1))
         self.itrmax = int(itrmax if itrmax is not None else system.get("itrmax", 256))
         self.t = 0.0
+        self._now = {}                       # drive values at self.t
         for c in self.cstrs:
+            c["_nodes"] = [self.nodes[c[k]] for k in ("n1", "n2", "n3") if k in c]
+            c["_moving"] = [n for n in c["_nodes"] if not n.base]
             if c["type"] == "n2":
                 c["wu"] = math.atan2(*reversed(self.vector(c)))
 
@@ -129,12 +134,11 @@ class PositionCorrection:
         if k == "free":
             return None
         if k == "value":
-            z = spec["value"]
-        elif k == "drive":
-            at = spec.get("at")
-            if at is None:
+            return spec["value"]
+        if k == "drive":
+            z = self._drive_value(c["id"], kind, spec)
+            if z is None:
                 return None                  # released (dragging)
-            z = at(self.t)
         elif k == "range":
             z = self.value(c["id"], kind)
         else:
@@ -146,30 +150,39 @@ class PositionCorrection:
             z = lo
         return z
 
+    def _drive_value(self, cid, kind, spec):
+        key = (cid, kind)
+        if key not in self._now:
+            at = spec.get("at")
+            self._now[key] = None if at is None else at(self.t)
+        return self._now[key]
+
     def _coupled(self, c, spec):
         k = spec["kind"]
+        plus = spec["plus"](self.t) if spec.get("plus") is not None else 0.0
         if k == "ref":
-            return spec["ratio"] * self.value(spec["ref"], spec["of"]) + spec["offset"]
+            return spec["ratio"] * self.value(spec["ref"], spec["of"]) + spec["offset"] + plus
         if k == "delta":
             w1, w2 = self.angle(spec["from"]), self.angle(spec["to"])
             return w1 + spec["scl"] * (w2 - w1) + spec.get("offset", 0.0)
         if k == "ang_from_len":
             r = self.length(c["id"]) or 1.0
-            return spec["base"] + spec["ratio"] * (self.length(spec["ref"]) - spec["ref0"]) / r
+            return spec["base"] + spec["ratio"] * (self.length(spec["ref"]) - spec["ref0"]) / r \
+                + plus
         if k == "len_from_ang":
             return spec["base"] + spec["ratio"] * self.length(spec["ref"]) * \
-                (self.angle(spec["ref"]) - spec["ref0"])
+                (self.angle(spec["ref"]) - spec["ref0"]) + plus
         raise ValueError("unknown constraint value kind %r in %s" % (k, c["id"]))
 
     # ------------------------------------------------------------ corrections
     def _correct_len(self, c, r):
-        n1, n2 = self.nodes[c["n1"]], self.nodes[c["n2"]]
+        n1, n2 = c["_nodes"]
         x12, y12 = n2.x - n1.x, n2.y - n1.y
         cur = math.hypot(x12, y12)
         dr = r - cur
         if abs(dr) <= self.lentol:
             return 0.0
-        ex, ey = (x12 / cur, y12 / cur) if cur > np.finfo(float).eps else (1.0, 0.0)
+        ex, ey = (x12 / cur, y12 / cur) if cur > _EPS else (1.0, 0.0)
         w1, w2 = _weights(n1, n2)
         n1.x -= w1 * dr * ex
         n1.y -= w1 * dr * ey
@@ -180,7 +193,7 @@ class PositionCorrection:
         return abs(dr)
 
     def _correct_ang(self, c, w):
-        n1, n2 = self.nodes[c["n1"]], self.nodes[c["n2"]]
+        n1, n2 = c["_nodes"]
         x12, y12 = n2.x - n1.x, n2.y - n1.y
         ca, sa = math.cos(w), math.sin(w)
         de = -x12 * sa + y12 * ca                            # eq. 15: d = (p2 - p1) . e~
@@ -199,17 +212,17 @@ class PositionCorrection:
         return max(abs(dx), abs(dy))
 
     def _correct_n3(self, c):
-        n1, n2, n3 = (self.nodes[c[k]] for k in ("n1", "n2", "n3"))
+        n1, n2, n3 = c["_nodes"]
         x12, y12 = n2.x - n1.x, n2.y - n1.y
         r12 = math.hypot(x12, y12)
-        if r12 <= math.sqrt(np.finfo(float).eps):
+        if r12 <= math.sqrt(_EPS):
             return 0.0
         c12, s12 = x12 / r12, y12 / r12
         ca, sa = math.cos(c["value"]), math.sin(c["value"])
         c12a, s12a = c12 * ca - s12 * sa, s12 * ca + c12 * sa
         o13 = -(n3.x - n1.x) * s12a + (n3.y - n1.y) * c12a   # orthogonal projection
         dx, dy = -o13 * s12a, o13 * c12a
-        share = _weights(n1, n3)[1]
+        share = _weights(n1, n3)[1]             # cstr.js: im3 / (im1 + im3)
         n3.x -= share * dx
         n3.y -= share * dy
         n3.dym += 1
@@ -228,15 +241,11 @@ class PositionCorrection:
             move = max(move, self._correct_len(c, r))
         return move
 
-    def _nodes_of(self, c):
-        return [self.nodes[c[k]] for k in ("n1", "n2", "n3") if k in c]
-
     def _sweep(self):
         """One sweep over all constraints; (largest move, its constraint)."""
         for c in self.cstrs:
-            for n in self._nodes_of(c):
-                if not n.base:
-                    n.dym = 0.0
+            for n in c["_moving"]:
+                n.dym = 0.0
         largest, worst = 0.0, None
         for c in self.cstrs:
             move = self._correct_one(c)
@@ -248,8 +257,8 @@ class PositionCorrection:
         """Correct the positions at time ``t`` (drive values; default: the
         current time) by sweeps of eq. 14/16; returns a :class:`Correction`.
         On failure after ``itrmax`` sweeps the last sweep is undone."""
-        if t is not None:
-            self.t = float(t)
+        if t is not None and float(t) != self.t:
+            self.t, self._now = float(t), {}
         largest, worst = 0.0, None
         for itr in range(1, self.itrmax + 1):
             saved = {k: (n.x, n.y) for k, n in self.nodes.items()}

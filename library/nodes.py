@@ -374,13 +374,19 @@ class Coupling(Component):
     [own, ref1, ...].  ``aux`` (mec2 cross types) names one further flange
     whose potential the source uses as its last argument.  The range of
     cstr.js with a source clamps it into [lo, hi]; outside, the coupling
-    holds the limit and passes no force to the references."""
+    holds the limit and passes no force to the references.  ``drive`` (a
+    law ``z(t, get)`` of the parameters z0, Dz, t0, Dt) is added to the
+    source (mec2's drive with ``ref``)."""
     ratio = Parameter(1.0, "", "coupling ratio")
     offset = Parameter(0.0, "", "constant term (rad or m)")
     base = Parameter(0.0, "", "value of the own quantity the coupling starts from (mec2)")
     ref0 = Parameter(0.0, "", "start value of the reference (mec2)")
     lo = Parameter(0.0, "", "lower limit (range)")
     hi = Parameter(0.0, "", "upper limit (range)")
+    z0 = Parameter(0.0, "", "start value of an added drive (0: mec2's drive with ref)")
+    Dz = Parameter(0.0, "", "range of an added drive (mec2 Dw, Dr)")
+    t0 = Parameter(0.0, "s", "start time of an added drive")
+    Dt = Parameter(1.0, "s", "duration of an added drive", positive=True)
     lam = Variable(doc="coupling force or torque (Lagrange multiplier)")
 
     def __init__(self, kinds, source, passive=False, clamp=(False, False), drive=None, **kw):
@@ -392,6 +398,15 @@ class Coupling(Component):
 
     def _ports(self):
         return [getattr(self, "q%d" % k) for k in range(len(self.kinds))]
+
+    def numeric_drive(self):
+        """The added drive z(t) as a Python function of time (parameter
+        values as they are now), or None."""
+        if self.drive is None:
+            return None
+        t = ca.SX.sym("t")
+        f = ca.Function("z", [t], [ca.SX(self.drive(t, self.parameter_value))])
+        return lambda tt: float(f(tt))
 
     @staticmethod
     def _pot(port):

@@ -133,7 +133,7 @@ class _Ref(_Spec):
         self.passive, self.relative, self.drive = passive, relative, drive
 
 
-def ref(cid, ratio=1.0, offset=0.0, of=None, passive=False, relative=False):
+def ref(cid, ratio=1.0, offset=0.0, of=None, passive=False, relative=False, drive=None):
     """Coupled to the value ``of`` ('ang' or 'len'; default: the same kind)
     of constraint ``cid``: ``q = ratio q_ref + offset`` (cstr.js
     ``ang.from(id, offset)``, ``len.from(id, scl)``); with
@@ -141,8 +141,14 @@ def ref(cid, ratio=1.0, offset=0.0, of=None, passive=False, relative=False):
     the values q0, q_ref0 the coordinates give (a length coupled to an
     angle: ``r = r0 + ratio r_ref (w_ref - w_ref0)``; an angle coupled to a
     length: ``w = w0 + ratio (r_ref - r_ref0) / r``).  ``passive=True``
-    (mec2): no force back into the referenced value."""
-    return _Ref(cid, float(ratio), float(offset), of, bool(passive), bool(relative))
+    (mec2): no force back into the referenced value.  ``drive`` (a
+    :func:`mec2_drive`, started from 0) adds a prescribed motion to the
+    coupled value (mec2's drive with ``ref``: ``w = w0 + (w_ref - w_ref0) +
+    z(t)``)."""
+    if drive is not None and not isinstance(drive, _Drive):
+        raise ModelDefinitionError("ref(..., drive=) takes a drive such as mec2_drive(), "
+                                   "not %r" % (drive,))
+    return _Ref(cid, float(ratio), float(offset), of, bool(passive), bool(relative), drive)
 
 
 class _Delta(_Spec):
@@ -337,30 +343,35 @@ class NodeModel(Component):
         self._ranges.append((rec, kind, lo, hi, spec.stops))
         return {"kind": "range", "lo": lo, "hi": hi}
 
+    def _law(self, rec, kind, spec):
+        """(law, parameters) of a drive spec in SI units (see
+        :class:`~acausal2d.library.nodes.AngleDrive`)."""
+        from acausal2d.library.node_drives import BASE_FUNCTIONS, is_full_turn, seq_law
+        scale = self.length_unit if kind == "len" else 1.0
+        params = {k: float(v) for k, v in spec.params.items() if v is not None}
+        if "om" in params:
+            params["om"] *= scale
+        if spec.label == "function":
+            return (_scaled(spec.law, scale) if kind == "len" else spec.law), params
+        if spec.label != "mec2":
+            return spec.law, params
+        where = "%s.%s" % (rec["id"], kind)
+        name = spec.extra["func"]
+        func = seq_law(spec.extra.get("args"), where + ".args") if name == "seq" else \
+            BASE_FUNCTIONS.get(name)
+        if func is None:
+            raise ModelDefinitionError("%s: unknown drive function %r (known: %s)" % (
+                where, name, ", ".join(sorted(list(BASE_FUNCTIONS) + ["seq"]))))
+        params["Dz"] = params.get("Dz", 2 * math.pi if kind == "ang" else 100.0) * scale
+        repeat, bounce = spec.extra["repeat"], bool(spec.extra["bounce"])
+        join = kind == "ang" and repeat is not None and is_full_turn(func, params["Dz"])
+        return _mec2_law(func, repeat, bounce, join), params
+
     def _drive(self, rec, kind, spec, start, clamp):
-        from acausal2d.library.node_drives import BASE_FUNCTIONS, is_full_turn, mec2_law, seq_law
         from acausal2d.library.nodes import AngleDrive, LengthDrive
         scale = self.length_unit if kind == "len" else 1.0
-        params = {k: v for k, v in spec.params.items() if v is not None}
+        law, params = self._law(rec, kind, spec)
         z0 = start if spec.extra.get("start") is None else float(spec.extra["start"]) * scale
-        if "om" in params:
-            params["om"] = float(params["om"]) * scale
-        law = spec.law
-        if spec.label == "mec2":
-            where = "%s.%s" % (rec["id"], kind)
-            name = spec.extra["func"]
-            func = seq_law(spec.extra.get("args"), where + ".args") if name == "seq" else \
-                BASE_FUNCTIONS.get(name)
-            if func is None:
-                raise ModelDefinitionError("%s: unknown drive function %r (known: %s)" % (
-                    where, name, ", ".join(sorted(list(BASE_FUNCTIONS) + ["seq"]))))
-            params["Dz"] = float(params.get("Dz", 2 * math.pi if kind == "ang" else 100.0)) \
-                * scale
-            repeat, bounce = spec.extra["repeat"], bool(spec.extra["bounce"])
-            join = kind == "ang" and repeat is not None and is_full_turn(func, params["Dz"])
-            law = _mec2_law(func, repeat, bounce, join)
-        if spec.label == "function" and kind == "len":
-            law = _scaled(spec.law, scale)
         params.update(z0=z0, **{k: v for k, v in zip(("lo", "hi"), clamp) if v is not None})
         elem = (LengthDrive if kind == "len" else AngleDrive)(
             law, clamp=(clamp[0] is not None, clamp[1] is not None), **params)
@@ -390,8 +401,13 @@ class NodeModel(Component):
         else:
             kinds, ports, source, params, out = self._ref_parts(rec, kind, spec)
         params.update({k: v for k, v in zip(("lo", "hi"), clamp) if v is not None})
+        law = None
+        if getattr(spec, "drive", None) is not None:
+            law, extra = self._law(rec, kind, spec.drive)
+            params.update(extra)
+            out["drive"] = True
         elem = Coupling(kinds, source, passive=getattr(spec, "passive", False),
-                        clamp=(clamp[0] is not None, clamp[1] is not None), **params)
+                        clamp=(clamp[0] is not None, clamp[1] is not None), drive=law, **params)
         setattr(link, kind + "_ref", elem)
         self.connect(getattr(link, kind), elem.q0)
         for k, port in enumerate(ports, start=1):
@@ -647,6 +663,10 @@ def _spec_dict(value, drives):
                "scl": float(elem.parameter_value("ratio"))}
     else:
         out = _ref_dict(value, elem)
+        if value.get("drive") and drives:
+            out["plus"] = elem.numeric_drive()
+        elif value.get("drive"):
+            out = {"kind": "drive"}
     for bound in ("lo", "hi"):
         if value.get(bound) is not None:
             out[bound] = float(value[bound])

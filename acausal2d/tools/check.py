@@ -161,6 +161,6 @@ def check(model):
         n_parameters=len(system.parameters),
         structural_index=_index(s, state_nodes),
         states=states, structural_dof=len(position_states),
-        loops=topo[3] if topo else (nodes["m"] if nodes else 0), nodes=nodes,
+        loops=topo[3] if topo else (max(nodes["m"], 0) if nodes else 0), nodes=nodes,
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
         joints=topo[1] if topo else 0)

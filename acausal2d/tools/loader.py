@@ -13,7 +13,14 @@ def load_model(path, name=None, **kwargs):
 
     The model is the class ``name`` if given; otherwise the one Component
     subclass defined in the file (a file defining several must be given a
-    name).  ``kwargs`` go to the model's constructor."""
+    name).  ``kwargs`` go to the model's constructor.  A ``.json`` file is a
+    mec2 model (:func:`acausal2d.tools.mec2.load_mec2`)."""
+    if str(path).lower().endswith(".json"):
+        from .mec2 import load_mec2
+        if name is not None or kwargs:
+            raise ModelDefinitionError("%s is a mec2 model (one model, no arguments); drop "
+                                       "--model and the keyword arguments" % path)
+        return load_mec2(path)
     if not os.path.isfile(path):
         raise ModelDefinitionError("model file %s does not exist" % path)
     path = os.path.abspath(path)
