@@ -59,10 +59,27 @@ def _lazy_frame(comp):
 def _assembly_guesses(comp, context):
     """Start guesses of ``comp`` from the node assembly of the node model
     it belongs to (nothing outside a node model)."""
+    owner = _owner(comp)
+    return owner.node_guesses(context, comp) if owner is not None else {}
+
+
+def _owner(comp):
     owner = comp._parent
     while owner is not None and not hasattr(owner, "node_guesses"):
         owner = owner._parent
-    return owner.node_guesses(context, comp) if owner is not None else {}
+    return owner
+
+
+def _frame_seed(comp, values):
+    """Start pose of the component's frame for the VDI pre-assembly of
+    linkage elements riding on it (``_linkage_seed`` protocol of
+    library/linkage.py)."""
+    frame = comp._connectors.get("frame")
+    owner = _owner(comp)
+    if frame is None or owner is None:
+        return []
+    start = owner.assembly_values().get(id(comp), {})
+    return [(frame, values(start))] if start else []
 
 
 def _force_terms(comp):
@@ -106,6 +123,13 @@ class Node(Component):
     def frame(self):
         """Frame at the node for library elements (see class doc)."""
         return _lazy_frame(self)
+
+    def _linkage_seed(self):
+        """The frame's start pose for VDI elements on it (a moving node's
+        angle comes from the element itself)."""
+        base = self.base
+        return _frame_seed(self, lambda v: dict(
+            {"x": v["x"], "y": v["y"]}, **({"phi": 0.0} if base else {})))
 
     def guesses(self, context):
         """Start values from the node assembly (talk eq. 3-16)."""
@@ -155,9 +179,14 @@ class Link(Component):
     (TranslationalFlange, s = r), ``ang`` (RotationalFlange, phi = w),
     ``frame`` (created on first use): the constraint's plane at p1, angle w.
     ``draw``: 'bar' (a rigid link), 'slider' (a guide along w with a block
-    at node 2) or None."""
-    r = Variable(unit="m", doc="length |p2 - p1| (signed where only the angle is held)")
-    w = Variable(unit="rad", doc="angle of p2 - p1 against the x axis (unwrapped)")
+    at node 2) or None.  r and w are preferred states (the natural
+    coordinates of a node mechanism that moves under forces: a crank angle,
+    a slider travel), so a free-moving model starts exactly at its given
+    angles."""
+    r = Variable(unit="m", doc="length |p2 - p1| (signed where only the angle is held)",
+                 state_select="prefer")
+    w = Variable(unit="rad", doc="angle of p2 - p1 against the x axis (unwrapped)",
+                 state_select="prefer")
 
     def __init__(self, draw="bar", **kw):
         super().__init__(**kw)
@@ -171,6 +200,10 @@ class Link(Component):
     def frame(self):
         """The constraint's plane at node 1, angle w (see class doc)."""
         return _lazy_frame(self)
+
+    def _linkage_seed(self):
+        """The frame's start pose (node 1, angle w) for VDI elements on it."""
+        return _frame_seed(self, lambda v: {"x": v["x1"], "y": v["y1"], "phi": v["w"]})
 
     def guesses(self, context):
         """Start values from the node assembly (talk eq. 3-16)."""

@@ -211,7 +211,7 @@ class NodeModel(Component):
     def __init__(self, **kw):
         from acausal2d.library.planar import PlanarWorld
         super().__init__(**kw)
-        self.__dict__.update(_nodes={}, _cstrs={}, _lines=[], _ranges=[])
+        self.__dict__.update(_nodes={}, _cstrs={}, _lines=[], _ranges=[], _ports={})
         self.world = PlanarWorld(g=tuple(float(g) for g in self.gravity))
 
     # ------------------------------------------------------------ building
@@ -267,6 +267,7 @@ class NodeModel(Component):
         setattr(self, cid, link)
         self.connect(a.port, link.a)
         self.connect(b.port, link.b)
+        self._ports.update({cid + ".a": id1, cid + ".b": id2})
         rec = {"id": cid, "type": "n2", "link": link, "n1": id1, "n2": id2, "dir": int(dir)}
         self._cstrs[cid] = rec
         rec["len"] = self._value(rec, "len", len)
@@ -295,6 +296,7 @@ class NodeModel(Component):
         setattr(self, cid, elem)
         for port, nid in zip((elem.a, elem.b, elem.c), ids):
             self.connect(self._nodes[nid].port, port)
+            self._ports[cid + "." + port._name] = nid
         self._cstrs[cid] = {"id": cid, "type": "n3", "link": elem, "n1": ids[0], "n2": ids[1],
                             "n3": ids[2]}
         return elem
@@ -454,6 +456,7 @@ class NodeModel(Component):
         elem = NodeForce(value=value, w0=w0, relative=wref is not None)
         setattr(self, lid, elem)
         self.connect(n.port, elem.port)
+        self._ports[lid + ".port"] = nid
         if wref is not None:
             self.connect(elem.ang, self._ref_record({"link": elem}, wref)["link"].ang)
         return elem
@@ -470,6 +473,7 @@ class NodeModel(Component):
         setattr(self, lid, elem)
         self.connect(a.port, elem.a)
         self.connect(b.port, elem.b)
+        self._ports.update({lid + ".a": id1, lid + ".b": id2})
         return elem
 
     def line(self, n1, n2):
@@ -484,7 +488,9 @@ class NodeModel(Component):
     # ------------------------------------------------------------ ranges
     def derived_parameters(self, context):
         """Attach the ranges without source to the drives they stop (see
-        the module doc); nothing is derived."""
+        the module doc); nothing is derived.  Clears the assembly of the
+        previous flattening."""
+        self.__dict__["_assembled"] = None
         drives = {}
         for rec in self._cstrs.values():
             for kind in ("len", "ang"):
@@ -573,21 +579,54 @@ class NodeModel(Component):
         return {"nodes": nodes, "constraints": cstrs, "itrmax": int(self.itrmax),
                 "lentol": float(self.lentol) * self.length_unit}
 
+    def drag_system(self):
+        """What the animation page needs to drag this model's nodes:
+        :meth:`node_system` without drives (the user drives by dragging)
+        and ``signals``, the result signals that are node coordinates,
+        constraint lengths or angles ({name: [node, 'x'|'y'] or ['length'|
+        'angle', node1, node2]}), qualified with the model's path."""
+        out = self.node_system(drives=False)
+        pre = self.path + "." if self.path else ""
+        sig = {}
+        for nid in self._nodes:
+            sig.update({pre + nid + ".x": [nid, "x"], pre + nid + ".y": [nid, "y"]})
+        for port, nid in self._ports.items():
+            sig.update({pre + port + ".x": [nid, "x"], pre + port + ".y": [nid, "y"]})
+        for cid, rec in self._cstrs.items():
+            if rec["type"] == "n2":
+                sig[pre + cid + ".r"] = ["length", rec["n1"], rec["n2"]]
+                sig[pre + cid + ".w"] = ["angle", rec["n1"], rec["n2"]]
+        out["signals"] = sig
+        return out
+
     # ------------------------------------------------------------ assembly
     def node_guesses(self, context, comp):
         """Start guesses of a node, link or included angle of this model
         from the node assembly (computed once per flattening)."""
-        values = context.shared(("node assembly", id(self)), self._assembly)
-        return values.get(id(comp), {})
+        return {k: v for k, v in self.assembly_values().get(id(comp), {}).items()
+                if comp.has_variable(k)}
+
+    def assembly_values(self):
+        """Start values of the nodes, links and included angles ({id(comp):
+        {variable: value}}) from the node assembly; computed once per
+        flattening (the cache is cleared by :meth:`derived_parameters`)."""
+        if self.__dict__.get("_assembled") is None:
+            self.__dict__["_assembled"] = self._assembly()
+        return self._assembled
 
     def assemble(self):
         """The position correction of the given coordinates at t = 0 (talk
-        eq. 3-16): a :class:`~acausal2d.library.node_correction.
-        PositionCorrection` after :meth:`correct` and its
+        eq. 3-16) with the model's lentol, but at most 1e-4 of the extent of
+        the node coordinates (a start close enough for the DAE's Newton):
+        a :class:`~acausal2d.library.node_correction.PositionCorrection`
+        after ``correct()`` and its
         :class:`~acausal2d.library.node_correction.Correction`; raises
         :class:`NodeAssemblyError` if the mechanism cannot close."""
         from acausal2d.library.node_correction import PositionCorrection
-        solver = PositionCorrection(self.node_system())
+        system = self.node_system()
+        xs = [n[k] for n in system["nodes"] for k in ("x", "y")]
+        span = max(xs) - min(xs) if xs else 1.0
+        solver = PositionCorrection(system, lentol=min(system["lentol"], 1e-4 * span or 1.0))
         report = solver.correct(0.0)
         if not report.converged:
             raise NodeAssemblyError(
@@ -702,4 +741,5 @@ def _link_start(solver, rec):
     if w is None:
         w = solver.angle(rec["id"])
     dx, dy = solver.vector(c)
-    return {"w": w, "r": dx * math.cos(w) + dy * math.sin(w)}
+    x1, y1 = solver.positions()[rec["n1"]]
+    return {"w": w, "r": dx * math.cos(w) + dy * math.sin(w), "x1": x1, "y1": y1}

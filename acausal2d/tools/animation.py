@@ -69,6 +69,23 @@ current frame index), ``nframes``, ``playing``, ``setFrame(i)``, ``play()``,
 ``pause()``, ``errors`` (messages of uncaught errors on the page) and
 ``scene`` (the embedded data).
 
+Drag mode (node models)
+-----------------------
+A scene may carry ``"nodes"``: the description of a node/constraint model
+(:meth:`acausal2d.language.nodes.NodeModel.drag_system`: ``nodes`` with
+x, y, m, base; ``constraints`` with their length/angle values; ``lentol``,
+``itrmax``; ``signals``, the result signals that are node coordinates or
+constraint lengths/angles).  The page then offers a "drag" check box
+(``id="drag"``): while it is on, playback pauses, the nodes start where the
+current frame has them, and grabbing a moving node with the mouse moves
+it; after every move the page corrects the positions by the talk's eq.
+3-16 (the position correction of cstr.js, written out in the page's own
+script, ``tools/assets/animation_drag.js``), driven values being left to
+the hand.  Shapes follow the dragged nodes.  ``window.acausal2d.drag``
+exposes ``active``, ``enable()``, ``disable()``, ``positions()`` (world
+coordinates), ``screenOf(id)`` (canvas pixels), ``lengths()`` (constraint
+lengths) and ``last`` (the last correction: iterations, converged).
+
 Long results are subsampled to at most ``max_frames`` frames (default 2000),
 evenly in time, always keeping the first and the last sample; numbers are
 rounded to 6 significant digits, and only signals used by shapes are embedded.
@@ -112,6 +129,7 @@ SHAPE_TYPES = {
 """The shape types a scene may contain and their fields."""
 
 _SCENE_KEYS = ("title", "time", "signals", "shapes")
+_NODE_KEYS = ("nodes", "constraints", "signals", "lentol", "itrmax")
 
 
 # --------------------------------------------------------------------------
@@ -251,7 +269,31 @@ def _validated(scene):
         raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
     for i, shape in enumerate(shapes):
         _check_shape(i, shape, signals)
+    if scene.get("nodes") is not None:
+        _check_nodes(scene["nodes"])
     return time, signals
+
+
+def _check_nodes(nodes):
+    """The optional node description of a scene (drag mode)."""
+    if not isinstance(nodes, dict) or any(k not in nodes for k in _NODE_KEYS):
+        raise Acausal2dError(f"scene['nodes'] must be a dict with the keys "
+                             f"{', '.join(_NODE_KEYS)} (NodeModel.drag_system())")
+    ids = set()
+    for i, n in enumerate(nodes["nodes"]):
+        if not isinstance(n, dict) or not isinstance(n.get("id"), str) or \
+                not all(_is_number(n.get(k)) for k in ("x", "y")):
+            raise Acausal2dError(f"scene['nodes']['nodes'][{i}] needs an id and numbers x, y")
+        ids.add(n["id"])
+    for i, c in enumerate(nodes["constraints"]):
+        ends = [c.get(k) for k in ("n1", "n2", "n3") if k in c] if isinstance(c, dict) else []
+        if len(ends) < 2 or any(e not in ids for e in ends):
+            raise Acausal2dError(f"scene['nodes']['constraints'][{i}] must join nodes of "
+                                 f"scene['nodes']['nodes']")
+    try:
+        json.dumps(nodes, allow_nan=False)
+    except (TypeError, ValueError) as exc:
+        raise Acausal2dError(f"scene['nodes'] must be plain JSON data: {exc}") from None
 
 
 # --------------------------------------------------------------------------
@@ -402,6 +444,7 @@ def _scene_data(scene, max_frames):
         "bbox": [_round(v) for v in bbox],
         "nframes": int(idx.size),
         "source_samples": int(time.size),
+        "nodes": scene.get("nodes"),
     }
 
 
@@ -425,6 +468,7 @@ def render_html(scene, *, max_frames=MAX_FRAMES):
     data = _scene_data(scene, max_frames)
     title = html.escape(data["title"] or "acausal2d animation")
     template, css, js = (_asset("animation." + ext) for ext in ("html", "css", "js"))
+    js += "\n" + _asset("animation_drag.js")
     return (template
             .replace("%%TITLE%%", title)
             .replace("%%SCRUB_MAX%%", str(data["nframes"] - 1))

@@ -93,8 +93,13 @@ def build_scene(result, traces=(), title=None):
         for name in _signal_names(shape):
             if name not in signals:
                 signals[name] = [float(v) for v in result[name]]
-    return {"title": title or (type(model).__name__ if model is not None else "acausal2d"),
-            "time": [float(t) for t in result.time], "signals": signals, "shapes": shapes}
+    scene = {"title": title or (type(model).__name__ if model is not None else "acausal2d"),
+             "time": [float(t) for t in result.time], "signals": signals, "shapes": shapes}
+    draggable = [c for c in model.components() if hasattr(c, "drag_system")] \
+        if model is not None else []
+    if draggable:
+        scene["nodes"] = draggable[0].drag_system()
+    return scene
 
 
 def animate(result, path, traces=(), title=None):
