@@ -343,8 +343,10 @@ class DeepDrawingPress(_Talk):
     the coordinates) instead of 'const', so that the nodes may start from
     rough coordinates (``rough=``: a dict {id: (x, y)} replacing the
     moving nodes' coordinates) which the node assembly (talk eq. 3-16)
-    turns into the closed position."""
+    turns into the closed position; a dict {constraint id: length in mm}
+    gives those lengths and the computed ones elsewhere."""
     outputs = ["H0H.r", "K0K.r"]
+    lentol, itrmax = 0.02, 1024            # the file's cstr.lentol, cstr.itrmax
 
     def __init__(self, lengths="const", rough=None, **kw):
         super().__init__(**kw)
@@ -368,6 +370,8 @@ class DeepDrawingPress(_Talk):
     def _length(exact, a, b, lengths):
         if lengths == "const":
             return "const"
+        if isinstance(lengths, dict) and a + b in lengths:
+            return lengths[a + b]
         (xa, ya), (xb, yb) = exact[a], exact[b]
         return math.hypot(xb - xa, yb - ya)
 
