@@ -546,7 +546,7 @@ class NodeModel(Component):
                 continue
             held = 0
             for kind in ("len", "ang"):
-                k = rec[kind]["kind"]
+                k = "drive" if rec[kind].get("drive") else rec[kind]["kind"]
                 if k == "drive":
                     out["driven"].append("%s.%s" % (rec["id"], kind))
                 held += k not in ("free", "drive")
