@@ -155,9 +155,10 @@ class Node(Component):
                       self.m * der(der(self.y)) == p.fy + ffy + self.m * g[1]]
 
     def shapes(self):
+        label = {"type": "label", "x": "x", "y": "y", "text": self._name or ""}
         if self.base:
-            return [{"type": "ground", "x": "x", "y": "y"}]
-        return [{"type": "joint", "x": "x", "y": "y"}]
+            return [{"type": "ground", "x": "x", "y": "y"}, label]
+        return [{"type": "joint", "x": "x", "y": "y"}, label]
 
 
 class Link(Component):
