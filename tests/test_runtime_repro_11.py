@@ -38,3 +38,36 @@ def test_state_event_in_a_model_without_states_falls_on_its_crossing():
     assert len(times) == 2
     assert times[0] == pytest.approx(1 / 12, abs=1e-8)
     assert times[1] == pytest.approx(5 / 12, abs=1e-8)
+
+
+def _slider_stop_model():
+    from acausal2d.language.nodes import NodeModel, at_most, speed
+
+    class SliderStopModel(NodeModel):
+        """Slider-crank (crank 30 mm, rod 100 mm, slider on the x axis) whose
+        slider travel |A0B| is limited to 120 mm by a range without source:
+        at the limit the crank drive stops."""
+        length_unit = 1e-3
+
+        def __init__(self, **kw):
+            super().__init__(**kw)
+            self.node("A0", 0, 0, base=True)
+            self.node("A", -30, 0)
+            self.node("B", 70, 0)
+            self.n2("A0A", "A0", "A", len="const", ang=speed(2 * math.pi))
+            self.n2("AB", "A", "B", len="const")
+            self.n2("A0B", "A0", "B", ang="const", len=at_most(120))
+    return SliderStopModel()
+
+
+@pytest.mark.xfail(strict=True, reason="runtime: the state event of the stateless kinematic "
+                   "model is located off its crossing, the re-initialization then jumps")
+def test_range_without_source_stops_the_drive_at_the_limit():
+    res = acausal2d.simulate(_slider_stop_model(), stop_time=1.0, rtol=1e-10, intervals=100)
+    # |A0B| = 120 mm where cos(phi) = (120^2 + 30^2 - 100^2) / (2 30 120)
+    phi = 2 * math.pi - math.acos(5300.0 / 7200.0)
+    t_stop = (phi - math.pi) / (2 * math.pi)
+    assert res.events[0][0] == pytest.approx(t_stop, abs=1e-8)
+    late = res.time > t_stop + 1e-6
+    assert abs(res["A0B.r"][late] - 0.12).max() < 1e-12
+    assert abs(res["A0A.w"][late] - phi).max() < 1e-9

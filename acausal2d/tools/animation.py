@@ -231,6 +231,7 @@ def validate_scene(scene):
     coordinate naming a signal that does not exist (with the shape index).
     """
     _validated(scene)
+    _check_nodes(scene.get("nodes"))
 
 
 def _validated(scene):
@@ -269,13 +270,13 @@ def _validated(scene):
         raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
     for i, shape in enumerate(shapes):
         _check_shape(i, shape, signals)
-    if scene.get("nodes") is not None:
-        _check_nodes(scene["nodes"])
     return time, signals
 
 
 def _check_nodes(nodes):
     """The optional node description of a scene (drag mode)."""
+    if nodes is None:
+        return
     if not isinstance(nodes, dict) or any(k not in nodes for k in _NODE_KEYS):
         raise Acausal2dError(f"scene['nodes'] must be a dict with the keys "
                              f"{', '.join(_NODE_KEYS)} (NodeModel.drag_system())")
@@ -285,6 +286,10 @@ def _check_nodes(nodes):
                 not all(_is_number(n.get(k)) for k in ("x", "y")):
             raise Acausal2dError(f"scene['nodes']['nodes'][{i}] needs an id and numbers x, y")
         ids.add(n["id"])
+    _check_node_constraints(nodes, ids)
+
+
+def _check_node_constraints(nodes, ids):
     for i, c in enumerate(nodes["constraints"]):
         ends = [c.get(k) for k in ("n1", "n2", "n3") if k in c] if isinstance(c, dict) else []
         if len(ends) < 2 or any(e not in ids for e in ends):
@@ -429,6 +434,7 @@ def _bbox(shapes, signals, n):
 
 def _scene_data(scene, max_frames):
     time, signals = _validated(scene)
+    _check_nodes(scene.get("nodes"))
     idx = _frame_indices(time, int(max_frames))
     shapes = [_clean_shape(s) for s in scene["shapes"]]
     used = set()

@@ -75,6 +75,14 @@ def _node_counts(model):
     return out
 
 
+def _loops(topo, nodes):
+    """Closed loops: from the planar topology (eq. 2.1), else the node
+    models' eq. 2 (not below 0), else 0."""
+    if topo:
+        return topo[3]
+    return max(nodes["m"], 0) if nodes else 0
+
+
 def _planar_topology(model):
     """Links, joints and loops from the components' topology() declarations."""
     conn_sets, _ = connector_sets(model)
@@ -161,6 +169,6 @@ def check(model):
         n_parameters=len(system.parameters),
         structural_index=_index(s, state_nodes),
         states=states, structural_dof=len(position_states),
-        loops=topo[3] if topo else (max(nodes["m"], 0) if nodes else 0), nodes=nodes,
+        loops=_loops(topo, nodes), nodes=nodes,
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
         joints=topo[1] if topo else 0)

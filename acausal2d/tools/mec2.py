@@ -157,6 +157,12 @@ def validate_mec2(data):
         _check_load(load, path, node_ids, cstr_ids)
     _ids([(p, x) for p, x in nodes + cstrs + [(p, l) for p, l in _items(data, "loads")]
           if "id" in x], "element")
+    _check_cosmetics(data)
+    return data
+
+
+def _check_cosmetics(data):
+    """Shapes and views: known kinds and fields."""
     for path, shape in _items(data, "shapes"):
         _fields(shape, _SHAPE_FIELDS, path, ("type",))
         if shape["type"] not in _SHAPES:
@@ -168,7 +174,6 @@ def validate_mec2(data):
         if kind not in _VIEW_KINDS:
             raise _error(path + ".as", "unknown view kind %r (known: %s)"
                          % (kind, ", ".join(_VIEW_KINDS)))
-    return data
 
 
 def _check_constraint(c, path, node_ids):

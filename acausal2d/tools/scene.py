@@ -95,11 +95,20 @@ def build_scene(result, traces=(), title=None):
                 signals[name] = [float(v) for v in result[name]]
     scene = {"title": title or (type(model).__name__ if model is not None else "acausal2d"),
              "time": [float(t) for t in result.time], "signals": signals, "shapes": shapes}
-    draggable = [c for c in model.components() if hasattr(c, "drag_system")] \
-        if model is not None else []
-    if draggable:
-        scene["nodes"] = draggable[0].drag_system()
+    nodes = _drag_system(model)
+    if nodes is not None:
+        scene["nodes"] = nodes
     return scene
+
+
+def _drag_system(model):
+    """The node description for the page's drag mode (the first node model
+    in ``model``, see :meth:`acausal2d.language.nodes.NodeModel.drag_system`),
+    or None."""
+    for comp in model.components() if model is not None else ():
+        if hasattr(comp, "drag_system"):
+            return comp.drag_system()
+    return None
 
 
 def animate(result, path, traces=(), title=None):
