@@ -4,11 +4,13 @@ DevTools pipe; without it the test fails).  A node of the talk's four-bar
 is grabbed and moved with simulated mouse events; the page corrects the
 positions by eq. 3-16 in its own script."""
 import math
+import os
 
 import numpy as np
 import pytest
 
 import acausal2d
+from acausal2d.library.node_correction import PositionCorrection
 from conftest import load_model_class
 from test_animation import (ARTIFACTS, DevTools, assert_canvas_drawn, assert_differ,
                             console_errors, read_png, require_chromium)
@@ -103,5 +105,69 @@ def test_dragging_a_node_keeps_the_link_lengths(four_bar_page, tmp_path):
         assert np.count_nonzero(np.max(np.abs(again[:540] - before[:540]), axis=2) > 0.15) == 0
         assert js("acausal2d.errors") == []
         assert console_errors(cdp.events) == []
+    finally:
+        cdp.close()
+
+
+def _kinds_model():
+    from test_nodes import Kinds
+    return Kinds()
+
+
+PAGES = {   # model, node moved, displacement (m)
+    "bobillier": (lambda: load_model_class("talk_mechanisms.py", "Bobillier")(), "A",
+                  (-0.004, -0.001)),
+    "rack_and_pinion": (lambda: acausal2d.load_model(
+        os.path.join(os.path.dirname(os.path.dirname(__file__)), "models", "mec2",
+                     "rack_and_pinion.json")), "R", (0.02, 0.005)),
+    "kinds": (_kinds_model, "P", (-0.1, 0.2)),
+}
+
+
+def test_the_page_corrects_exactly_as_the_python_solver(tmp_path):
+    """The page's eq. 3-16 and library/node_correction.py are one algorithm:
+    for models with three-node angles, references of free constraints,
+    mec2's cross-type references, delta and ratio couplings, one drag step
+    in the page gives the Python solver's sweep count and positions."""
+    require_chromium()
+    cdp = DevTools(tmp_path / "profile", ARTIFACTS / "chromium_drag2_cdp.log")
+    try:
+        target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
+        session = cdp.call("Target.attachToTarget", {"targetId": target,
+                                                     "flatten": True})["sessionId"]
+        for domain in ("Page", "Runtime"):
+            cdp.call(f"{domain}.enable", session=session)
+
+        def js(expr):
+            res = cdp.call("Runtime.evaluate", {"expression": expr, "returnByValue": True,
+                                                "awaitPromise": True}, session=session)
+            assert "exceptionDetails" not in res, res
+            return res["result"].get("value")
+
+        for name, (build, node, (dx, dy)) in PAGES.items():
+            model = build()
+            page = acausal2d.simulate(model, intervals=20).animate(
+                ARTIFACTS / ("drag_%s.html" % name))
+            cdp.call("Page.navigate", {"url": page.resolve().as_uri()}, session=session)
+            cdp.wait_event("Page.loadEventFired")
+            js("acausal2d.drag.enable()")
+            start = js("acausal2d.drag.positions()")
+            solver = PositionCorrection(model.node_system(drives=False))
+            for nid, (x, y) in start.items():
+                solver.set_position(nid, x, y)
+            for c in solver.cstrs:
+                if c["type"] == "n2":
+                    c["wu"] = math.atan2(*reversed(solver.vector(c)))
+            x, y = start[node][0] + dx, start[node][1] + dy
+            report = js("acausal2d.drag.move(%r, %r, %r)" % (node, x, y))
+            solver.set_position(node, x, y)
+            expected = solver.correct()
+            assert report["converged"] and expected.converged, name
+            assert report["iterations"] == expected.iterations > 1, name
+            pos = js("acausal2d.drag.positions()")
+            for nid, (px, py) in solver.positions().items():
+                assert abs(pos[nid][0] - px) < 1e-12 and abs(pos[nid][1] - py) < 1e-12, \
+                    (name, nid)
+            assert js("acausal2d.errors") == []
     finally:
         cdp.close()

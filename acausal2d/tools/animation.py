@@ -84,7 +84,8 @@ script, ``tools/assets/animation_drag.js``), driven values being left to
 the hand.  Shapes follow the dragged nodes.  ``window.acausal2d.drag``
 exposes ``active``, ``enable()``, ``disable()``, ``positions()`` (world
 coordinates), ``screenOf(id)`` (canvas pixels), ``lengths()`` (constraint
-lengths) and ``last`` (the last correction: iterations, converged).
+lengths), ``move(id, x, y)`` (one drag step: place the node and correct)
+and ``last`` (the last correction: iterations, converged).
 
 Long results are subsampled to at most ``max_frames`` frames (default 2000),
 evenly in time, always keeping the first and the last sample; numbers are

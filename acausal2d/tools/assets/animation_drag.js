@@ -201,6 +201,10 @@
     enable: enable,
     disable: disable,
     correct: function () { var r = correct(); A.redraw(); return r; },
+    move: function (id, x, y) {  // what a drag step does: place the node, correct
+      nodes[id].x = +x; nodes[id].y = +y;
+      var r = correct(); A.redraw(); return r;
+    },
     positions: function () {
       var out = {};
       for (var id in nodes) out[id] = [nodes[id].x, nodes[id].y];
