@@ -60,10 +60,6 @@ class _Node:
         self.base = bool(d.get("base", False))
         self.dym = 0.0
 
-    @property
-    def im(self):
-        return 0.0 if self.base else 1.0 / (self.m + self.dym)
-
 
 def _weights(n1, n2):
     """Shares m_c/m_1, m_c/m_2 of eq. 13 (cstr.js mc_m1, mc_m2)."""
@@ -290,8 +286,10 @@ class PositionCorrection:
         return out, reports
 
     def residuals(self):
-        """{constraint id: largest deviation from its target (m for lengths,
-        rad for angles)} at the current positions and time."""
+        """{constraint id: largest deviation from its targets} at the current
+        positions and time, in length units: the length error, the distance
+        of node 2 from the line of the target angle (two-node constraints)
+        and sin of the angle error (three-node constraints)."""
         out = {}
         for c in self.cstrs:
             if c["type"] == "n3":

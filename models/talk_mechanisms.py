@@ -270,6 +270,7 @@ class OnePartCouplerCurve(_CouplerPair):
     crank_pin, coupler_pin, beta = (-17.64, 76.47), (118.3, 61.76), 51.0
 
     def crank(self):
+        """The crank drive: 103 deg cos(2 pi t), inside the limit positions."""
         w0 = math.atan2(76.47, -17.64)
         return drive(lambda t: w0 * _cos(TURN * t))
 

@@ -66,6 +66,7 @@ class _VDI(Component):
         self.world = PlanarWorld(g=(0.0, 0.0))
 
     def crank(self, name, pivot, pin):
+        """DAN from ``pivot`` to ``pin``, turned at 1 turn/s by a preset."""
         P0, P = self.pts[pivot], self.pts[pin]
         dan = DAN(x10=P0[0] * MM, y10=P0[1] * MM, lL=_dist(P0, P), phiL0=_angle(P0, P))
         setattr(self, name, dan)
@@ -74,6 +75,8 @@ class _VDI(Component):
         return dan
 
     def dyad(self, name, p1, p2, p, port1=None, port2=None):
+        """DDD with its housings at p1 (on ``port1``) and p2 (on ``port2``,
+        or fixed there) and its joint at p (K from the side of p)."""
         P1, P2, P = self.pts[p1], self.pts[p2], self.pts[p]
         kw = {}
         if port2 is None:
@@ -95,6 +98,8 @@ class _VDI(Component):
         return fgp
 
     def slider(self, name, port1, p1, guide, p, phi):
+        """DDS from p1 (on ``port1``) to the slider p on the guide through
+        ``guide`` with direction phi."""
         P1, P2, P = self.pts[p1], self.pts[guide], self.pts[p]
         dds = DDS(lL=_dist(P1, P), v=0.0, x20=P2[0] * MM, y20=P2[1] * MM, phi20=phi,
                   K=_along(P1, P2, phi, P))
