@@ -287,9 +287,9 @@ class PositionCorrection:
 
     def residuals(self):
         """{constraint id: largest deviation from its targets} at the current
-        positions and time, in length units: the length error, the distance
-        of node 2 from the line of the target angle (two-node constraints)
-        and sin of the angle error (three-node constraints)."""
+        positions and time: the length error and the distance of node 2
+        from the line of the target angle (two-node constraints, length
+        units), the sine of the angle error (three-node constraints)."""
         out = {}
         for c in self.cstrs:
             if c["type"] == "n3":

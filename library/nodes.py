@@ -18,7 +18,8 @@ holds what a node model compiles into:
   translational flange ``len`` and the angle that of the rotational flange
   ``ang``.  An unconnected flange carries no force: the value is free.
   Holding, driving or coupling a value is done by the element connected to
-  its flange (:class:`Hold`, :class:`AngleDrive`/:class:`LengthDrive`,
+  its flange (:class:`AngleHold`/:class:`LengthHold`,
+  :class:`AngleDrive`/:class:`LengthDrive`,
   :class:`Coupling`), whose flange force is the constraint force (the
   Lagrange multiplier of eq. 5).  :attr:`Link.frame` is the plane of the
   constraint at p1 (angle w) for library elements riding on it.
@@ -35,7 +36,7 @@ from acausal2d import (Component, Connector, der, Frame, Outer, Parameter, Rotat
                        time, TranslationalFlange, Variable)
 from acausal2d.library.planar import PlanarWorld
 
-__all__ = ["NodePort", "Node", "Link", "IncludedAngle", "Hold", "AngleHold", "LengthHold",
+__all__ = ["NodePort", "Node", "Link", "IncludedAngle", "AngleHold", "LengthHold",
            "AngleDrive", "LengthDrive", "Coupling", "NodeForce", "NodeSpring"]
 
 
@@ -300,9 +301,6 @@ class LengthHold(Component):
     def equations(self):
         return [self.flange.s == self.value]
 
-
-Hold = (AngleHold, LengthHold)
-"""The two hold elements (angle, length)."""
 
 
 class _Drive(Component):

@@ -345,3 +345,48 @@ def test_a_library_frame_drives_a_node():
     # eq. 1/2 count the node part only: 3 nodes (1 base), C1 = 2
     c = VDICrankNodeRest().node_counts()
     assert (c["N"], c["N_base"], c["C1"], c["F"]) == (3, 1, 2, 2)
+
+
+class PulleysOnNodes(NodeModel):
+    """tests/test_belt.py's two pulleys with an open belt, carried by a node
+    model: the driving pulley on the plane of the bracket Z -> O (length and
+    angle held, so rigid with the ground; the plane sits at Z), the driven
+    one on the frame of the base node C."""
+
+    def __init__(self, **kw):
+        from acausal2d import start
+        from acausal2d.library import rotational, signals
+        from acausal2d.library.belt import Belt, Pulley, connect_band
+        from test_belt import C2, R1, R2, smooth_angle
+        super().__init__(**kw)
+        self.node("O", -0.2, 0.0, base=True)
+        self.node("Z", 0.0, 0.0)
+        self.node("C", *C2, base=True)
+        self.n2("ZO", "Z", "O", len="const", ang="const")
+        self.p1 = Pulley(r=R1, x0=0.0, y0=0.0, w=1)          # x0, y0: the belt layout's
+        self.p2 = Pulley(r=R2, x0=C2[0], y0=C2[1], w=1, J=1e-4)   # start positions
+        self.connect(self.ZO.frame, self.p1.ctr2D1)
+        self.connect(self.C.frame, self.p2.ctr2D1)
+        self.span_a = Belt(c=1e8, d=1e4, eps=start(1e-6, fixed=True))
+        self.span_b = Belt(c=1e8, d=1e4, eps=start(1e-6, fixed=True))
+        connect_band(self, self.span_a, 1, self.p1, 2)
+        connect_band(self, self.span_a, 2, self.p2, 1)
+        connect_band(self, self.span_b, 1, self.p2, 2)
+        connect_band(self, self.span_b, 2, self.p1, 1)
+        self.drive = rotational.Position()
+        self.sig = signals.TimeFunction(smooth_angle)
+        self.connect(self.sig.y, self.drive.phi_in)
+        self.connect(self.drive.flange, self.p1.ctrR)
+
+
+def test_a_node_model_carries_pulleys():
+    from test_belt import TwoPulleys
+    times = np.linspace(0.0, 2.0, 101)
+    a = acausal2d.simulate(PulleysOnNodes(), rtol=1e-9, output_times=times)
+    b = acausal2d.simulate(TwoPulleys(), rtol=1e-9, output_times=times)
+    for k in ("p1.phi_rel", "p2.phi", "p1.beta", "p2.beta", "span_a.F", "span_b.F"):
+        assert np.max(np.abs(a[k] - b[k])) < 1e-8 * max(1.0, np.max(np.abs(b[k]))), k
+    assert np.ptp(b["p2.phi"]) > 1.0
+    # (the bracket points at pi: the first pulley's absolute angle is pi + phi_rel);
+    # the bracket carries the first pulley's bearing force through its held length
+    assert np.max(np.abs(a["ZO.len.f"])) > 1.0
