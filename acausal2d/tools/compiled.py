@@ -115,13 +115,16 @@ class CompiledModel:
     def _settings(self, stop_time, rtol, atol, intervals, start_time, output_times):
         """(output times, rtol) from the arguments and the model's
         ``experiment``, checked."""
-        exp = dict(getattr(self.model, "experiment", {}) or {})
+        exp = _experiment(self.model)
         rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
         _check_tolerances(rtol, atol)
         if output_times is None:
-            stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
-            intervals = int(intervals if intervals is not None else exp.get("intervals", 500))
-            output_times = _output_grid(start_time, stop, intervals)
+            stop = _number("stop_time", stop_time if stop_time is not None
+                           else exp.get("stop_time", 1.0))
+            intervals = _number("intervals", intervals if intervals is not None
+                                else exp.get("intervals", 500))
+            output_times = _output_grid(_number("start_time", start_time), stop, intervals,
+                                        len(self.names))
         output_times = np.asarray(output_times, dtype=float)
         if output_times.ndim != 1 or len(output_times) < 2 or \
                 not np.all(np.isfinite(output_times)) or np.any(np.diff(output_times) <= 0):
@@ -189,13 +192,50 @@ def _check_tolerances(rtol, atol):
         raise Acausal2dError("atol must be positive, got %g" % atol)
 
 
-def _output_grid(start_time, stop, intervals):
+MAX_RESULT_BYTES = 4e9
+"""Largest result (output points times columns, 8 bytes each) a run makes."""
+
+_EXPERIMENT_KEYS = ("stop_time", "rtol", "intervals")
+
+
+def _number(name, value):
+    """A finite number, or the project's error naming the setting."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise Acausal2dError("%s must be a number, got %r" % (name, value))
+    if not np.isfinite(value):
+        raise Acausal2dError("%s must be finite, got %r" % (name, value))
+    return value
+
+
+def _experiment(model):
+    """The model's ``experiment`` settings, checked."""
+    exp = getattr(model, "experiment", None) or {}
+    if not isinstance(exp, dict):
+        raise ModelDefinitionError("%s: experiment must be a dict like {'stop_time': 2.0}, got %r"
+                                   % (type(model).__name__, exp))
+    unknown = sorted(set(exp) - set(_EXPERIMENT_KEYS))
+    if unknown:
+        raise ModelDefinitionError("%s: experiment has unknown settings %s; known: %s"
+                                   % (type(model).__name__, ", ".join(map(repr, unknown)),
+                                      ", ".join(_EXPERIMENT_KEYS)))
+    for key, value in exp.items():
+        _number("%s: experiment['%s']" % (type(model).__name__, key), value)
+    return dict(exp)
+
+
+def _output_grid(start_time, stop, intervals, columns):
     if not stop > start_time:
         raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
                              % (stop, start_time))
-    if intervals < 1:
-        raise Acausal2dError("intervals must be at least 1, got %d" % intervals)
-    return np.linspace(start_time, stop, intervals + 1)
+    if int(intervals) != intervals or intervals < 1:
+        raise Acausal2dError("intervals must be a whole number of at least 1, got %r"
+                             % (intervals,))
+    size = 8.0 * (intervals + 1) * (columns + 1)
+    if size > MAX_RESULT_BYTES:
+        raise Acausal2dError("%d output intervals of %d signals would take %.3g GB of memory "
+                             "(at most %.3g GB); ask for fewer intervals"
+                             % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
+    return np.linspace(start_time, stop, int(intervals) + 1)
 
 
 class _Scalar:
