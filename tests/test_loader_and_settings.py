@@ -81,7 +81,8 @@ def test_experiment_settings_are_checked(experiment, message):
     (dict(stop_time=float("inf")), "stop_time must be finite"),
     (dict(stop_time=-1.0), "must be larger than start_time"),
     (dict(intervals=2e9), "would take 1.06e\\+03 GB of memory"),
-    (dict(intervals=0), "intervals must be a whole number of at least 1"),
+    (dict(intervals=0), "intervals must be at least 1, got 0"),
+    (dict(intervals=2.5), "intervals must be a whole number, got 2.5"),
     (dict(rtol=10.0), "rtol must be below 0.1"),
     (dict(output_times=[0.0, float("nan")]), "output_times must be at least two finite"),
 ])

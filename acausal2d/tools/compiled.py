@@ -227,9 +227,10 @@ def _output_grid(start_time, stop, intervals, columns):
     if not stop > start_time:
         raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
                              % (stop, start_time))
-    if int(intervals) != intervals or intervals < 1:
-        raise Acausal2dError("intervals must be a whole number of at least 1, got %r"
-                             % (intervals,))
+    if intervals < 1:
+        raise Acausal2dError("intervals must be at least 1, got %r" % (intervals,))
+    if int(intervals) != intervals:
+        raise Acausal2dError("intervals must be a whole number, got %r" % (intervals,))
     size = 8.0 * (intervals + 1) * (columns + 1)
     if size > MAX_RESULT_BYTES:
         raise Acausal2dError("%d output intervals of %d signals would take %.3g GB of memory "
