@@ -132,7 +132,7 @@ class Damper(Component):
     frames."""
     d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
     s_small = Parameter(1e-10, "m", "length below which the force fades out", positive=True)
-    length = Variable(unit="m", doc="distance of the frame origins")
+    length = Variable(unit="m", doc="distance of the frame origins, |r|^2/sqrt(|r|^2 + s_small^2)")
     v = Variable(unit="m/s", doc="rate of change of the distance")
     f = Variable(unit="N", doc="damping force d v (pulls the frames together when > 0)")
     loss_power = Variable(unit="W", doc="power dissipated")
@@ -147,7 +147,7 @@ class Damper(Component):
         rx, ry = b.x - a.x, b.y - a.y
         norm = ca.sqrt(rx ** 2 + ry ** 2 + self.s_small ** 2)
         ex, ey = rx / norm, ry / norm
-        return [self.length == ca.sqrt(rx ** 2 + ry ** 2),
+        return [self.length == (rx ** 2 + ry ** 2) / norm,
                 self.v == ex * der(rx) + ey * der(ry),
                 self.f == self.d * self.v,
                 b.fx == self.f * ex, b.fy == self.f * ey,
