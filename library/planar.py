@@ -404,6 +404,9 @@ class IdealRolling(Component):
         for name in ("x", "phi", "w"):
             self.variable(name).state_select = state_select
         self.frame_a = Frame()
+        # the ground side of the rolling contact, for topology() only (not a
+        # connector of the model: no variables, no equations)
+        self.__dict__["_ground_side"] = Frame()
 
     def equations(self):
         a = self.frame_a
@@ -411,6 +414,11 @@ class IdealRolling(Component):
                 self.x + self.R * self.phi == self.x0,
                 self.vx == der(self.x), self.w == der(self.phi),
                 a.t == self.R * a.fx]
+
+    def topology(self):
+        """A joint of one degree of freedom between the ground and the
+        wheel (seed eq. 2.1: rolling without slip removes two)."""
+        return [("ground", [self._ground_side]), ("joint", self._ground_side, self.frame_a, 1)]
 
     def shapes(self):
         """The wheel (spokes turn with phi) and the ground under it."""

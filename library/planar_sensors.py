@@ -177,6 +177,10 @@ class _PassThrough(_Sensor):
     def shapes(self):
         return _mark("frame_a")
 
+    def topology(self):
+        """frame_a and frame_b are one point of one link (seed eq. 2.1)."""
+        return [("rigid", [self.frame_a, self.frame_b])]
+
 
 class CutForce(_PassThrough):
     """Cut force (PlanarMechanics Sensors.CutForce): an ideal pass-through

@@ -240,3 +240,15 @@ def test_ideal_rolling_wheel_on_slope():
     friction = -res["rolling.frame_a.fx"]
     assert np.max(np.abs(friction - (m * acc - m * G * math.sin(alpha)))) < 1e-6
     assert np.max(np.abs(res["rolling.frame_a.t"] - radius * res["rolling.frame_a.fx"])) < 1e-12
+
+
+@pytest.mark.parametrize("model,dof", [("wheel", 1), ("PendulumExcited", 1), ("MeasureDemo", 2),
+                                       ("SpringDemo", 1), ("SpringDamperDemo", 3)])
+def test_degree_of_freedom_counts(model, dof):
+    """``check`` counts the seed's eq. 2.1 like the structure: the rolling
+    contact is a joint of one DOF against the ground, the cut sensors join
+    rod and body into one link, force elements and kinematic sensors add no
+    link."""
+    instance = WheelOnSlope() if model == "wheel" else _model(model)()
+    report = acausal2d.check(instance)
+    assert report.grubler == dof and report.structural_dof == dof
