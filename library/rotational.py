@@ -89,7 +89,7 @@ class SpringDamper(_Compliant):
 class AngleSensor(Component):
     """Absolute angle of the flange as the signal ``phi``
     (Modelica.Mechanics.Rotational.Sensors.AngleSensor); takes no torque,
-    so a joint it measures stays free."""
+    so a joint it measures stays free.  Seed eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)

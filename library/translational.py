@@ -89,7 +89,7 @@ class Force(Component):
     """Force from the signal f_in acting on the flange
     (Modelica.Mechanics.Translational.Sources.Force without support: the
     reaction goes to ground); a positive signal pushes the flange in its
-    positive direction."""
+    positive direction.  Seed eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -103,7 +103,7 @@ class Force(Component):
 class PositionSensor(Component):
     """Absolute position of the flange as the signal ``s``
     (Modelica.Mechanics.Translational.Sensors.PositionSensor); takes no
-    force."""
+    force.  Seed eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)

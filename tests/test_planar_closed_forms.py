@@ -87,7 +87,8 @@ def test_spring_damper_demo_energy_balance():
     res = acausal2d.simulate(_audited_spring_damper_demo(), stop_time=5.0, rtol=1e-8,
                              output_times=np.linspace(0.0, 5.0, 2001))
     m, inertia = 0.5, 0.1
-    kinetic = 0.5 * m * (res["body.vx"] ** 2 + res["body.vy"] ** 2) + 0.5 * inertia * res["body.w"] ** 2
+    kinetic = (0.5 * m * (res["body.vx"] ** 2 + res["body.vy"] ** 2)
+               + 0.5 * inertia * res["body.w"] ** 2)
     potential = m * G * res["body.y"]
     total = res["springDamper.energy"] + kinetic + potential + res["dissipated"]
     stored0 = 0.5 * 5.0 * (2.0 ** 2 + 1.0 ** 2)

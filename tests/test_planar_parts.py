@@ -104,6 +104,48 @@ def test_body_shape_shape_option_checked():
         BodyShape(shape="sphere")
 
 
+class DrivenJoints(Component):
+    """No gravity: a body on a revolute joint (I about the pivot 0.5) driven
+    by a 1D torque source on its flange, and a body on a prismatic joint
+    (m 2, axis (3, 4)) pushed by a 1D force source on its flange."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.world = planar.PlanarWorld(g=(0.0, 0.0))
+        self.fixed = Fixed(phi=0.3)
+        self.revolute = Revolute(use_flange=True, phi=start(0.0, fixed=True),
+                                 w=start(0.0, fixed=True))
+        self.wheel = Body(m=1.0, I=0.5)
+        self.torque = rotational.Torque()
+        self.tau = signals.Constant(k=1.5)
+        self.prismatic = Prismatic(use_flange=True, r=(3.0, 4.0), s=start(0.0, fixed=True),
+                                   v=start(0.0, fixed=True))
+        self.slider = Body(m=2.0, I=0.1)
+        self.force = translational.Force()
+        self.f = signals.Constant(k=4.0)
+        for joint, body in ((self.revolute, self.wheel), (self.prismatic, self.slider)):
+            self.connect(self.fixed.frame, joint.frame_a)
+            self.connect(joint.frame_b, body.frame_a)
+        self.connect(self.tau.y, self.torque.tau_in)
+        self.connect(self.torque.flange, self.revolute.flange_a)
+        self.connect(self.f.y, self.force.f_in)
+        self.connect(self.force.flange, self.prismatic.flange_a)
+
+
+def test_joint_flanges_drive_the_joint_coordinates():
+    """A 1D source pushing a joint's flange positively drives phi (s)
+    positively: phi'' = 1.5/0.5, s'' = 4/2 along the axis turned by the
+    fixed frame's 0.3 rad; the supports are grounded inside the joints."""
+    times = np.linspace(0.0, 1.0, 11)
+    res = acausal2d.simulate(DrivenJoints(), output_times=times, rtol=1e-10)
+    assert np.max(np.abs(res["revolute.phi"] - 1.5 * times ** 2)) < 1e-8
+    assert np.max(np.abs(res["prismatic.s"] - 1.0 * times ** 2)) < 1e-8
+    axis = np.exp(0.3j) * (0.6 + 0.8j)
+    assert np.max(np.abs(res["slider.x"] - axis.real * times ** 2)) < 1e-8
+    assert np.max(np.abs(res["slider.y"] - axis.imag * times ** 2)) < 1e-8
+    assert np.max(np.abs(res["wheel.phi"] - 0.3 - 1.5 * times ** 2)) < 1e-8
+
+
 # --------------------------------------------------------------------------
 # the 2D Spring and Damper
 
