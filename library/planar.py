@@ -151,8 +151,12 @@ class Revolute(Component):
     """Revolute joint: frame_b turns against frame_a by phi about their common
     origin; w = der(phi).  With ``use_flange=True`` a 1D rotational flange
     (angle phi, driving torque tau) and a support flange (fixed at 0, carried
-    by frame_a) are added.  ``state_select`` applies to phi and w (default
-    'prefer', as in PlanarMechanics)."""
+    by frame_a) are added: the frame_b part receives +tau and the frame_a
+    part -tau, so a 1D element that pushes the flange positively drives phi
+    positively; the support is grounded inside the joint (PlanarMechanics
+    Joints.Revolute).  ``state_select`` applies to phi and w (default
+    'prefer'; PlanarMechanics' default is 'default').  Seed eq. 2.1 (a joint
+    of one degree of freedom), eq. 4.1 at the frames."""
     phi = Variable(unit="rad", doc="relative angle")
     w = Variable(unit="rad/s", doc="relative angular velocity")
 
@@ -196,7 +200,11 @@ class Prismatic(Component):
     """Prismatic joint: frame_b moves by s along the unit vector of r
     (resolved in frame_a); same angle; v = der(s).  With ``use_flange=True`` a
     1D translational flange (position s, driving force f) and a support flange
-    (fixed at 0) are added.  ``state_select`` applies to s and v.
+    (fixed at 0) are added: the joint pushes the frame_b part with +f e0 and
+    the frame_a part with -f e0 (e0 the axis in world), the support is
+    grounded inside the joint (PlanarMechanics Joints.Prismatic).
+    ``state_select`` applies to s and v.  Seed eq. 2.1, eq. 4.1 at the
+    frames.
 
     ``guide=(s_min, s_max)`` (drawing only) is the range of s that the
     animation draws as the guide when one frame is fixed in the world; see
