@@ -3,7 +3,8 @@ flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
 import casadi as ca
 
-from acausal2d import Component, der, Parameter, RealInput, RotationalFlange, Variable
+from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
+                       Variable)
 
 
 class Fixed(Component):
@@ -64,6 +65,39 @@ class Damper(_Compliant):
 
     def equations(self):
         return self._common() + [self.tau == self.d * der(self.phi_rel)]
+
+
+class SpringDamper(_Compliant):
+    """Linear torsion spring and damper in parallel
+    (Modelica.Mechanics.Rotational.Components.SpringDamper):
+    ``tau = c (phi_rel - phi_rel0) + d w_rel``, ``w_rel = der(phi_rel)``;
+    ``tau`` acts on flange_b (``-tau`` on flange_a, seed eq. 4.1 at the
+    flanges).  ``loss_power = d w_rel^2`` is the power dissipated."""
+    c = Parameter(1.0, "N.m/rad", "spring constant", min=0.0)
+    d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
+    phi_rel0 = Parameter(0.0, "rad", "unstretched relative angle")
+    w_rel = Variable(unit="rad/s", doc="relative angular velocity")
+    loss_power = Variable(unit="W", doc="power dissipated by the damper")
+
+    def equations(self):
+        return self._common() + [
+            self.w_rel == der(self.phi_rel),
+            self.tau == self.c * (self.phi_rel - self.phi_rel0) + self.d * self.w_rel,
+            self.loss_power == self.d * self.w_rel ** 2]
+
+
+class AngleSensor(Component):
+    """Absolute angle of the flange as the signal ``phi``
+    (Modelica.Mechanics.Rotational.Sensors.AngleSensor); takes no torque,
+    so a joint it measures stays free.  Seed eq. 4.1 at the flange."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+        self.phi = RealOutput()
+
+    def equations(self):
+        return [self.phi.u == self.flange.phi, self.flange.tau == 0]
 
 
 class Torque(Component):

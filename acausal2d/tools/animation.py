@@ -49,6 +49,27 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
     current point.
 ``{"type": "label", "x": X, "y": Y, "text": "..."}``
     a text label next to a point.
+``{"type": "damper", "a": [X, Y], "b": [X, Y], "offset": O}``
+    viscous damper between two points: a pot (open cylinder) from ``a``
+    and a piston rod from ``b`` (``offset`` optional, pixels: shifts the
+    damper sideways, e.g. beside a spring between the same points).
+``{"type": "box", "a": [X, Y], "b": [X, Y], "width": W}``
+    a rectangular link from ``a`` to ``b`` with square ends (``width``
+    optional, world units; default 12 pixels).
+``{"type": "sensor", "points": [[X, Y], ...]}``
+    a sensor: a small square mark at each point, a dotted line between
+    them (one point: an absolute sensor, two: a relative one).
+``{"type": "arrow", "x": X, "y": Y, "fx": FX, "fy": FY, "phi": P, "angle": A, "scale": S}``
+    a force arrow whose head touches the point (x, y) where it pushes; the
+    vector is (fx, fy) turned by ``phi + angle`` (both optional, default
+    0: world components).  Its length is ``scale`` world units per unit of
+    force, or, without ``scale``, 60 pixels for the largest force of the
+    run.  A zero force draws nothing.
+``{"type": "torque", "x": X, "y": Y, "t": T, "scale": S}``
+    a torque as a curved arrow around the point, counter-clockwise for
+    t > 0; its sweep grows with |t| up to 300 degrees at the largest
+    torque of the run (or at |t| = 1/``scale``).  A zero torque draws
+    nothing.
 
 Any shape may also have a ``"color"`` (a CSS colour string) that replaces its
 main colour.  Other keys are ignored.  A signal value that is NaN (written
@@ -108,6 +129,14 @@ SHAPE_TYPES = {
     "spring": (("a", "point", True), ("b", "point", True)),
     "trace": (("x", "value", True), ("y", "value", True)),
     "label": (("x", "value", True), ("y", "value", True), ("text", "text", True)),
+    "damper": (("a", "point", True), ("b", "point", True), ("offset", "value", False)),
+    "box": (("a", "point", True), ("b", "point", True), ("width", "value", False)),
+    "sensor": (("points", "points:1", True),),
+    "arrow": (("x", "value", True), ("y", "value", True), ("fx", "value", True),
+              ("fy", "value", True), ("phi", "value", False), ("angle", "value", False),
+              ("scale", "value", False)),
+    "torque": (("x", "value", True), ("y", "value", True), ("t", "value", True),
+               ("scale", "value", False)),
 }
 """The shape types a scene may contain and their fields."""
 
@@ -353,18 +382,15 @@ def _bbox(shapes, signals, n):
 
     for sh in shapes:
         kind = sh["type"]
-        if kind in ("ground", "joint", "trace", "label"):
+        if kind in ("ground", "joint", "trace", "label", "arrow", "torque"):
             add(sh["x"], sh["y"])
         elif kind == "body":
             add(sh["x"], sh["y"], sh.get("r", 0.0))
-        elif kind in ("link", "belt"):
+        elif kind in ("link", "belt", "sensor", "spring", "damper", "box"):
             width = sh.get("width")
             half = 0.0 if width is None else val(width) / 2
-            for p in sh["points"]:
+            for p in sh.get("points") or (sh["a"], sh["b"]):
                 add(p[0], p[1], half)
-        elif kind == "spring":
-            add(sh["a"][0], sh["a"][1])
-            add(sh["b"][0], sh["b"][1])
         elif kind == "slider":
             length = sh.get("length")
             if length is None:

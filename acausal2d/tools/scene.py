@@ -8,7 +8,8 @@ them with the component's path and collects the signals from the result.
 """
 from .animation import write_html
 
-_SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width")
+_SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width", "fx", "fy", "t", "angle", "scale",
+                "offset")
 _POINT_KEYS = ("a", "b")
 _POINTS_KEYS = ("points", "guide")
 
