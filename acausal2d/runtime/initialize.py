@@ -82,12 +82,28 @@ def initialization_error(system, held, exc, p=None, ev=None):
     closure) with the start guesses that would reduce them most, or the
     largest residuals of the derivative levels."""
     res = exc.residual
-    text = non_finite(system, res, p if p is not None else np.zeros(len(system.parameters)))
+    p = p if p is not None else np.zeros(len(system.parameters))
+    text = non_finite(system, res, p)
+    if text is None and ev is not None:
+        text = _non_finite_derivatives(system, ev, exc, p)
     if text is None:
         text = _residual_report(system, held, exc, ev)
     err = InitializationError("No consistent initial values: " + text)
     err.last = exc.z
     return err
+
+
+def _non_finite_derivatives(system, ev, exc, p):
+    """Text naming the equations whose derivatives are inf or NaN at the
+    last Newton iterate (Newton cannot step there), or None."""
+    J = ev.jacobian(exc.t, exc.z, exc.d, dense=False).tocsr()
+    bad = ~np.isfinite(J.data)
+    if not bad.any():
+        return None
+    marks = np.zeros(system.structure.n_eq)
+    marks[np.unique(J.nonzero()[0][bad])] = np.nan
+    return "the derivatives of " + non_finite(system, marks, p) + \
+        " (a square root or norm of zero has no derivative there: give start values away from it)"
 
 
 def _residual_report(system, held, exc, ev):
@@ -98,7 +114,7 @@ def _residual_report(system, held, exc, ev):
     rows = level0 or [i for i in np.argsort(-np.abs(res)) if abs(res[i]) > 1e-10]
     lines = ["  - %s   (residual %.3g)" % (system.describe_equation(i), res[i]) for i in rows[:6]]
     what = ("the position equations do not close (loop closure or fixed positions)" if level0
-            else "the velocity or acceleration equations are not met")
+            else "the equations are not met")
     hints = _guess_hints(system, ev, held, exc, level0) if level0 else []
     kept = ", ".join(system.node_name(j) for j in list(held)[:8]) or "none"
     return ("%s; the largest residuals:\n%s\n%sHeld at their start values: %s.  Check the "

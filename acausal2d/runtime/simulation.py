@@ -289,7 +289,8 @@ class Simulation:
         """Relations ``flipped`` switch at t: record both limits, settle."""
         wall = _time.perf_counter()
         form = self._solver()[0]
-        self.out.append((self.t, z_left.copy()))
+        if not (self.out and self.out[-1][0] == self.t):     # an output row may be there
+            self.out.append((self.t, z_left.copy()))
         d = self.d.copy()
         d[flipped] = 1.0 - d[flipped]
         held = list(form.states)
