@@ -209,7 +209,7 @@ class Prismatic(Component):
     ``guide=(s_min, s_max)`` (drawing only) is the range of s that the
     animation draws as the guide when one frame is fixed in the world; see
     :meth:`shapes`."""
-    r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a")
+    r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a", nonzero=True)
     s = Variable(unit="m", doc="relative position")
     v = Variable(unit="m/s", doc="relative velocity")
 

@@ -19,7 +19,7 @@ class Fixed(Component):
 
 class Mass(Component):
     """Sliding mass m between two rigidly coupled flanges; v = der(s)."""
-    m = Parameter(1.0, "kg", "mass")
+    m = Parameter(1.0, "kg", "mass", min=0.0)
     s = Variable(unit="m", doc="position")
     v = Variable(unit="m/s", doc="velocity")
 
@@ -50,7 +50,7 @@ class _Compliant(Component):
 
 class Spring(_Compliant):
     """Linear spring f = c (s_rel - s_rel0)."""
-    c = Parameter(1.0, "N/m", "spring constant")
+    c = Parameter(1.0, "N/m", "spring constant", positive=True)
     s_rel0 = Parameter(0.0, "m", "unstretched length")
 
     def equations(self):
@@ -59,7 +59,7 @@ class Spring(_Compliant):
 
 class Damper(_Compliant):
     """Linear damper f = d v_rel with v_rel = der(s_rel)."""
-    d = Parameter(1.0, "N.s/m", "damping constant")
+    d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
     v_rel = Variable(unit="m/s", doc="relative velocity")
 
     def equations(self):

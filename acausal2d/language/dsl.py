@@ -52,17 +52,20 @@ class Parameter:
 
     ``default`` is a number or a tuple of numbers (a vector parameter);
     ``unit`` is the SI unit and ``doc`` a one-line description.  The value
-    rules ``min``/``max`` (inclusive bounds) and ``positive`` (> 0) are
+    rules ``min``/``max`` (inclusive bounds), ``positive`` (> 0) and
+    ``nonzero`` (a vector of nonzero length, a scalar other than 0) are
     checked wherever a value is set.  Inside ``equations()`` the attribute
     is a CasADi symbol; elsewhere (e.g. in ``__init__``) it is the numeric
     value.
     """
 
-    def __init__(self, default, unit="", doc="", min=None, max=None, positive=False):
+    def __init__(self, default, unit="", doc="", min=None, max=None, positive=False,
+                 nonzero=False):
         self.default = default
         self.unit = unit
         self.doc = doc
         self.min, self.max, self.positive = min, max, bool(positive)
+        self.nonzero = bool(nonzero)
         self.name = None
 
     def __set_name__(self, owner, name):
@@ -88,6 +91,8 @@ class Parameter:
             parts.append(">= %g" % self.min)
         if self.max is not None:
             parts.append("<= %g" % self.max)
+        if self.nonzero:
+            parts.append("nonzero length" if self.size > 1 else "!= 0")
         return " and ".join(parts)
 
     def validated(self, value, where):
@@ -99,7 +104,7 @@ class Parameter:
         arr = self._numbers(value, desc)
         if not np.all(np.isfinite(arr)):
             raise ModelDefinitionError("%s = %r is not finite; give a finite number" % (desc, value))
-        if not all(self._obeys(x) for x in arr):
+        if not all(self._obeys(x) for x in arr) or (self.nonzero and not np.any(arr != 0)):
             raise ModelDefinitionError("%s = %s breaks its rule %s (%s%s)" % (
                 desc, _fmt_value(arr), self.rule, self.doc or "value",
                 ", " + self.unit if self.unit else ""))

@@ -148,6 +148,7 @@ class CompiledModel:
         """
         times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
         p = self.parameter_values(params)
+        self.system.check_fixed_values(p)
         try:
             with translated("simulating %s" % type(self.model).__name__):
                 log = Simulation(self.system, p, times, rtol, atol, progress,
