@@ -5,6 +5,9 @@ and :meth:`CompiledModel.simulate` them, or call :func:`simulate` directly.
 """
 import os as _os
 
+__version__ = "0.1.0"
+"""The package version (``acausal2d --version``; pyproject.toml reads it from here)."""
+
 _os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is imported
 
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401

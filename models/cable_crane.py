@@ -384,6 +384,18 @@ class CableCrane(Component):
                         self.connect(self.hook.frame, getattr(span, "ctr2D%d" % end))
 
 
+    def shapes(self):
+        """The masts (the pulleys at their tops draw the housings) standing on
+        the sloped terrain, with a ground symbol at each foot."""
+        terrain = [[ANCHOR[0] - 5.0, 0.0], [0.0, 0.0], [SPAN, Y_RIGHT],
+                   [SPAN + 5.0, Y_RIGHT + 5.0 * math.tan(SLOPE)]]
+        feet = ((0.0, 0.0), (SPAN, Y_RIGHT))
+        return ([{"type": "link", "points": terrain, "width": 0.15, "color": "#a0522d"}]
+                + [{"type": "link", "points": [list(f), [f[0], f[1] + H_MAST]], "width": 0.35,
+                    "color": "#5d6d7e"} for f in feet]
+                + [{"type": "ground", "x": f[0], "y": f[1]} for f in feet])
+
+
 SECTIONS = {"load": ["load%d" % k for k in range(1, 7)],
             "haul": ["haul1", "haul2"],
             "sky": ["sky%d" % k for k in range(1, 5)]}

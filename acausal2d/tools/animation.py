@@ -49,6 +49,12 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
     current point.
 ``{"type": "label", "x": X, "y": Y, "text": "..."}``
     a text label next to a point.
+``{"type": "force", "x": X, "y": Y, "fx": FX, "fy": FY, "label": "..."}``
+    force arrow starting at the point; all force arrows of a scene share one
+    scale, the largest force over the run drawn 70 pixels long.
+``{"type": "torque", "x": X, "y": Y, "t": T, "label": "..."}``
+    torque arrow, an arc around the point whose sweep is proportional to the
+    torque (counter-clockwise positive; the largest over the run: 270 deg).
 
 Any shape may also have a ``"color"`` (a CSS colour string) that replaces its
 main colour.  Other keys are ignored.  A signal value that is NaN (written
@@ -63,7 +69,12 @@ Below it are a play/pause button (``id="play"``), a scrubbing slider
 (``id="speed"``, 0.25x to 4x real time), a loop check box and a time readout
 (``id="time"``).  Space toggles playback, the arrow keys step.  The page
 starts paused at frame 0, or at frame ``N`` when the URL ends in
-``#frame=N`` (it also follows later changes of the fragment).
+``#frame=N`` (it also follows later changes of the fragment); it starts
+playing if the scene says ``"autoplay": true`` or the URL has ``?autoplay``
+(or ``#autoplay``).  The grid spacing is shown with the scene's length
+``"unit"`` (default ``m``).  A scene with ``"plot": {"signal": name,
+"label": text}`` shows that signal in a strip under the mechanism
+(``id="plot"``) with a cursor at the current time.
 For scripting and tests it exposes ``window.acausal2d`` with ``frame`` (the
 current frame index), ``nframes``, ``playing``, ``setFrame(i)``, ``play()``,
 ``pause()``, ``errors`` (messages of uncaught errors on the page) and
@@ -84,6 +95,7 @@ import pathlib
 import numpy as np
 
 from ..errors import Acausal2dError
+from .files import write_text
 
 __all__ = ["validate_scene", "render_html", "write_html", "SHAPE_TYPES", "MAX_FRAMES"]
 
@@ -108,6 +120,10 @@ SHAPE_TYPES = {
     "spring": (("a", "point", True), ("b", "point", True)),
     "trace": (("x", "value", True), ("y", "value", True)),
     "label": (("x", "value", True), ("y", "value", True), ("text", "text", True)),
+    "force": (("x", "value", True), ("y", "value", True), ("fx", "value", True),
+              ("fy", "value", True), ("label", "text", False)),
+    "torque": (("x", "value", True), ("y", "value", True), ("t", "value", True),
+               ("label", "text", False)),
 }
 """The shape types a scene may contain and their fields."""
 
@@ -251,7 +267,21 @@ def _validated(scene):
         raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
     for i, shape in enumerate(shapes):
         _check_shape(i, shape, signals)
+    _check_options(scene, signals)
     return time, signals
+
+
+def _check_options(scene, signals):
+    """The optional scene keys: unit, autoplay, plot."""
+    if not isinstance(scene.get("unit", "m"), str):
+        raise Acausal2dError("scene['unit'] must be a string such as 'm'")
+    if not isinstance(scene.get("autoplay", False), bool):
+        raise Acausal2dError("scene['autoplay'] must be true or false")
+    plot = scene.get("plot")
+    if plot is not None:
+        if not isinstance(plot, dict) or not isinstance(plot.get("signal"), str):
+            raise Acausal2dError("scene['plot'] must be a dict {'signal': name, 'label': text}")
+        _check_value(plot["signal"], "scene['plot']['signal']", signals)
 
 
 # --------------------------------------------------------------------------
@@ -353,7 +383,7 @@ def _bbox(shapes, signals, n):
 
     for sh in shapes:
         kind = sh["type"]
-        if kind in ("ground", "joint", "trace", "label"):
+        if kind in ("ground", "joint", "trace", "label", "force", "torque"):
             add(sh["x"], sh["y"])
         elif kind == "body":
             add(sh["x"], sh["y"], sh.get("r", 0.0))
@@ -392,6 +422,10 @@ def _scene_data(scene, max_frames):
     used = set()
     for s in scene["shapes"]:
         used |= _used_signals(s)
+    plot = scene.get("plot")
+    if plot is not None:
+        used.add(plot["signal"])
+        plot = {"signal": plot["signal"], "label": str(plot.get("label", plot["signal"]))}
     sub = {name: signals[name][idx] for name in sorted(used)}
     bbox = _bbox(shapes, sub, idx.size)
     return {
@@ -402,6 +436,9 @@ def _scene_data(scene, max_frames):
         "bbox": [_round(v) for v in bbox],
         "nframes": int(idx.size),
         "source_samples": int(time.size),
+        "unit": scene.get("unit", "m"),
+        "autoplay": bool(scene.get("autoplay", False)),
+        "plot": plot,
     }
 
 
@@ -442,7 +479,5 @@ def write_html(scene, path, **options):
     """Write :func:`render_html` of ``scene`` to ``path`` (UTF-8, parent
     directories created) and return the path as a :class:`pathlib.Path`."""
     path = pathlib.Path(os.fspath(path))
-    text = render_html(scene, **options)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
+    write_text(path, render_html(scene, **options))
     return path

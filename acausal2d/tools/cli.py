@@ -70,33 +70,45 @@ class _Progress:
             self.stream.flush()
 
 
-def cmd_simulate(args):
-    from .compare import safe_filename
-    from .compiled import compile_model
-    from .loader import load_model
-    from .scene import trace_signals
-    model = load_model(args.model_file, args.model)
-    out = args.out
-    os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
-    cm = compile_model(model)
-    traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
-    trace_signals(traces, cm.names)        # names checked before the run
-    progress = _Progress()
-    try:
-        res = cm.simulate(stop_time=args.stop_time, params=_parse_set(args.set), rtol=args.rtol,
-                          intervals=args.intervals, progress=progress)
-    finally:
-        progress.close()
-    res.to_csv(os.path.join(out, "result.csv"))
-    names = [n.strip() for n in args.plot.split(",")] if args.plot else list(res.outputs)
-    pngs = []
+def _plot_specs(args, cm):
+    """The figures ``simulate`` writes: --plot groups, else the model's
+    declared ``figures``, else one figure per declared output; --x applies
+    to all of them.  Every signal name is checked before the run."""
+    from .plotting import declared_figures, parse_groups
+    if args.plot:
+        specs = [{"groups": [g], "x": None, "title": None, "name": None}
+                 for g in parse_groups(args.plot)]
+    else:
+        specs = declared_figures(cm.model) or \
+            [{"groups": [[n]], "x": None, "title": None, "name": None} for n in cm.outputs]
+    for spec in specs:
+        spec["x"] = args.x or spec["x"]
+        option = "--plot" if args.plot else "%s.figures" % type(cm.model).__name__
+        _check_names([n for g in spec["groups"] for n in g], cm, option)
+        _check_names([spec["x"]] if spec["x"] else [], cm, "--x" if args.x else option)
+    return specs
+
+
+def _check_names(names, cm, option):
+    """Signal names given on the command line exist (checked before the run)."""
+    known = set(cm.names) | {"time"}
     for name in names:
-        path = os.path.join(out, safe_filename(name) + ".png")
-        pngs.append(res.plot([name], path, title=name))
-    if not names:
-        print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
-    res.animate(os.path.join(out, "animation.html"),
-                traces=traces)
+        if name not in known:
+            close = [n for n in cm.names if name.split(".")[-1] in n][:8]
+            raise Acausal2dError("%s: no signal %r in the model%s" % (
+                option, name, "; similar: " + ", ".join(close) if close else ""))
+
+
+def _animation_options(args, cm):
+    from .scene import arrow_signals
+    arrows = [a.strip() for a in args.arrows.split(",") if a.strip()] if args.arrows else []
+    arrow_signals(arrows, cm.names, cm.model)      # names checked before the run
+    if args.signal:
+        _check_names([args.signal], cm, "--signal")
+    return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay}
+
+
+def _print_summary(model, res, out, pngs):
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -108,6 +120,46 @@ def cmd_simulate(args):
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
               st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s"))
+    states = getattr(res, "states", None) or []
+    print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
+
+
+def cmd_simulate(args):
+    from .compiled import compile_model
+    from .loader import load_model
+    from .plotting import write_figures
+    from .scene import trace_signals
+    model = load_model(args.model_file, args.model)
+    out = args.out
+    os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
+    cm = compile_model(model)
+    traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
+    trace_signals(traces, cm.names)        # names checked before the run
+    specs = _plot_specs(args, cm)
+    animation = _animation_options(args, cm)
+    params = _parse_set(args.set)
+    progress = _Progress()
+    try:
+        res = cm.simulate(stop_time=args.stop_time, params=params, rtol=args.rtol,
+                          intervals=args.intervals, progress=progress)
+    finally:
+        progress.close()
+    res.to_csv(os.path.join(out, "result.csv"))
+    pngs = write_figures(res, out, specs)
+    if not specs:
+        print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
+    res.animate(os.path.join(out, "animation.html"), traces=traces, **animation)
+    _print_summary(model, res, out, pngs)
+    return 0
+
+
+def cmd_params(args):
+    from .compiled import compile_model
+    from .loader import load_model
+    model = load_model(args.model_file, args.model)
+    print("%s parameters (set with --set NAME=VALUE or params={NAME: value}):"
+          % type(model).__name__)
+    print(compile_model(model).parameters_table())
     return 0
 
 
@@ -128,12 +180,37 @@ def cmd_compare(args):
         mapping[a.strip()] = b.strip()
     signals = [s.strip() for s in args.signals.split(",")] if args.signals else None
     return run_compare_cli(args.result, args.reference, signals=signals, mapping=mapping or None,
-                           abs_tol=args.abs_tol, rel_tol=args.rel_tol, out_dir=args.out)
+                           abs_tol=args.abs_tol, rel_tol=args.rel_tol, out_dir=args.out,
+                           time_tol=args.time_tol, until=args.until)
+
+
+def _nonnegative(text):
+    """argparse type: a finite number >= 0 (else exit code 2 with a message)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("%r is not a number" % text) from None
+    if not (value >= 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError("must be a finite number >= 0, got %r" % text)
+    return value
+
+
+def _positive_int(text):
+    """argparse type: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("%r is not a whole number" % text) from None
+    if value < 1:
+        raise argparse.ArgumentTypeError("must be at least 1, got %d" % value)
+    return value
 
 
 def build_parser():
     """The argparse parser of the ``acausal2d`` command."""
+    from .. import __version__
     p = argparse.ArgumentParser(prog="acausal2d", description=__doc__.split("\n")[0])
+    p.add_argument("--version", action="version", version="acausal2d " + __version__)
     sub = p.add_subparsers(dest="command", required=True)
     s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
     s.add_argument("model_file")
@@ -143,7 +220,16 @@ def build_parser():
                    help="parameter value (vectors as 1,0); repeatable")
     s.add_argument("--rtol", type=float)
     s.add_argument("--intervals", type=int, help="number of output intervals")
-    s.add_argument("--plot", help="comma-separated signals to plot (default: model outputs)")
+    s.add_argument("--plot", help="signals to plot: a,b overlays a and b in one figure (one axes "
+                   "per unit), a,b;c writes two figures (default: the model's figures or "
+                   "outputs)")
+    s.add_argument("--x", metavar="SIGNAL", help="x axis of the plots (default time); angles "
+                   "in rad are unwrapped and shown in degrees")
+    s.add_argument("--autoplay", action="store_true", help="the animation starts playing")
+    s.add_argument("--arrows", metavar="NAMES", help="comma-separated frames (force and torque "
+                   "arrows) or rotational flanges (torque arrows) drawn in the animation")
+    s.add_argument("--signal", metavar="SIGNAL", help="a signal plotted under the animation "
+                   "with a cursor that follows the time slider")
     s.add_argument("--trace", help="comma-separated points whose path the animation draws "
                    "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
                    "(dyad.xP:dyad.yP)")
@@ -161,8 +247,18 @@ def build_parser():
                    help="reference column = our column; repeatable")
     m.add_argument("--abs-tol", type=float)
     m.add_argument("--rel-tol", type=float)
+    m.add_argument("--time-tol", type=_nonnegative, metavar="SECONDS",
+                   help="time tolerance: compare in the csv-compare tube of the reference "
+                   "widened by this in time (steps may be shifted by up to this much)")
+    m.add_argument("--until", type=float, metavar="T",
+                   help="compare reference points up to time T only")
     m.add_argument("--out", help="directory for the comparison plots")
     m.set_defaults(func=cmd_compare)
+    r = sub.add_parser("params", help="list a model's parameters with value, unit, rule and "
+                       "description")
+    r.add_argument("model_file")
+    r.add_argument("--model")
+    r.set_defaults(func=cmd_params)
     return p
 
 
