@@ -163,6 +163,65 @@ def cmd_params(args):
     return 0
 
 
+def _sweep_settings(args, cm):
+    """Points, fixed values and outputs of ``acausal2d sweep``, checked
+    against the compiled model before anything runs."""
+    from .sweep import expand_params, grid_points, parse_vary
+    vary = parse_vary(args.vary)
+    fixed = _parse_set(args.set)
+    known = set(cm.parameter_names)
+    for name in list(expand_params({c: 0 for c in vary})) + list(fixed):
+        if name not in known:
+            close = [n for n in cm.parameter_names if name.split(".")[-1] in n][:8]
+            raise Acausal2dError("--vary/--set: unknown parameter %r%s" % (
+                name, "; similar: " + ", ".join(close) if close else ""))
+    cm.parameter_values(fixed)                  # fixed values checked against their rules
+    outputs = [n.strip() for n in args.outputs.split(",") if n.strip()] if args.outputs \
+        else list(cm.outputs)
+    _check_names(outputs, cm, "--outputs")
+    if args.x is not None and args.x not in vary:
+        raise Acausal2dError("--x %r is not a varied parameter; varied: %s"
+                             % (args.x, ", ".join(vary)))
+    return grid_points(vary), fixed, outputs
+
+
+def cmd_sweep(args):
+    from .sweep import ModelSpec, compiled_model, sweep
+    cm = compiled_model(ModelSpec(args.model_file, args.model))   # errors here exit with 2
+    points, fixed, outputs = _sweep_settings(args, cm)
+    name = type(cm.model).__name__
+    os.makedirs(args.out, exist_ok=True)
+    result = sweep(args.model_file, points=points, params=fixed, outputs=outputs, at=args.at,
+                   stop_time=args.stop_time, rtol=args.rtol, intervals=args.intervals,
+                   scheduler=args.scheduler, workers=args.workers, model_name=args.model)
+    csv_path = result.to_csv(os.path.join(args.out, "sweep.csv"))
+    files = [csv_path]
+    if outputs and len(result.failed) < len(result.rows):
+        files.append(result.plot(os.path.join(args.out, "sweep.png"), x=args.x))
+    for row in result.failed:
+        print("  point %d failed: %s" % (row["point"], row["error"]))
+    print("%s: %s -> %s" % (name, result.summary(), ", ".join(files)))
+    return 0
+
+
+def cmd_study(args):
+    from .loader import load_model
+    from .study import declared_studies, run_studies
+    model = load_model(args.model_file, args.model)
+    if args.list:
+        studies = declared_studies(type(model))
+        for name, st in studies.items():
+            print("%-16s %s" % (name, st.doc))
+        if not studies:
+            print("%s declares no studies" % type(model).__name__)
+        return 0
+    files = run_studies(args.model_file, model, args.names, args.out,
+                        {"scheduler": args.scheduler, "workers": args.workers})
+    print("%s: %d file%s -> %s" % (type(model).__name__, len(files),
+                                   "" if len(files) == 1 else "s", ", ".join(files)))
+    return 0
+
+
 def cmd_check(args):
     from .check import check
     from .loader import load_model
@@ -204,6 +263,33 @@ def _positive_int(text):
     if value < 1:
         raise argparse.ArgumentTypeError("must be at least 1, got %d" % value)
     return value
+
+
+def _add_sweep_parser(sub):
+    w = sub.add_parser("sweep", help="parameter study on Dask: simulate every combination of "
+                       "the --vary values; write sweep.csv and sweep.png")
+    w.add_argument("model_file")
+    w.add_argument("--model")
+    w.add_argument("--vary", action="append", required=True, metavar="PARAM=START:STOP:COUNT",
+                   help="values of a parameter: START:STOP:COUNT or v1,v2,...; tie parameters "
+                   "to one value with a.p,b.p=...; repeatable (all combinations)")
+    w.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="a parameter value held for every point; repeatable")
+    w.add_argument("--outputs", help="comma-separated signals recorded per point (default: "
+                   "the model's outputs)")
+    w.add_argument("--at", type=_nonnegative, metavar="T",
+                   help="record the outputs at time T (default: at the end of the run)")
+    w.add_argument("--stop-time", type=float)
+    w.add_argument("--rtol", type=float)
+    w.add_argument("--intervals", type=_positive_int)
+    w.add_argument("--scheduler", help="address of a running Dask scheduler (tcp://host:8786);"
+                   " default: a local cluster; 'serial': run in this process")
+    w.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                   "cluster (default: one per core)")
+    w.add_argument("--x", metavar="PARAM", help="varied parameter on the plot's x axis "
+                   "(default: the first --vary)")
+    w.add_argument("--out", default="out", help="output directory (default: out)")
+    w.set_defaults(func=cmd_sweep)
 
 
 def build_parser():
@@ -259,7 +345,33 @@ def build_parser():
     r.add_argument("model_file")
     r.add_argument("--model")
     r.set_defaults(func=cmd_params)
+    _add_sweep_parser(sub)
+    t = sub.add_parser("study", help="run the studies the model declares (sweeps, plots over "
+                       "an angle, ...) and write their figures and tables")
+    t.add_argument("model_file")
+    t.add_argument("names", nargs="*", help="studies to run (default: all)")
+    t.add_argument("--model")
+    t.add_argument("--list", action="store_true", help="list the model's studies")
+    t.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps "
+                   "(default: a local cluster; 'serial': this process)")
+    t.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                   "cluster (default: one per core)")
+    t.add_argument("--out", default="out", help="output directory (default: out)")
+    t.set_defaults(func=cmd_study)
     return p
+
+
+def run_model_file(path, model=None, out="out"):
+    """What running a model file does (its ``__main__`` block): simulate it
+    (figures, CSV, animation) and run its declared studies, into ``out``.
+    Returns the exit code."""
+    from .loader import load_model
+    from .study import declared_studies
+    extra = ["--model", model] if model else []
+    code = main(["simulate", path, "--out", out] + extra)
+    if code == 0 and declared_studies(type(load_model(path, model))):
+        code = main(["study", path, "--out", out] + extra)
+    return code
 
 
 def main(argv=None):

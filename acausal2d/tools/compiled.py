@@ -49,6 +49,11 @@ class CompiledModel:
         return self.system.outputs
 
     @property
+    def parameter_names(self):
+        """Names of all parameters: vectors as a whole and by element."""
+        return list(self._whole) + [n for n, *_ in self.system.parameters if n not in self._whole]
+
+    @property
     def units(self):
         """{column or parameter name: unit} from the declarations; the
         k-th derivative of ``x`` gets x's unit divided by s^k."""

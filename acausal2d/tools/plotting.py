@@ -167,3 +167,44 @@ def write_figures(result, out_dir, specs):
         fig = make_figure(result, spec["groups"], x=spec.get("x"), title=spec.get("title"))
         paths.append(save_figure(fig, os.path.join(out_dir, safe_filename(stem) + ".png")))
     return paths
+
+
+def sweep_figure(study, x, outputs):
+    """Figure of a :class:`~acausal2d.tools.sweep.SweepResult`: the
+    ``outputs`` over the varied column ``x``, one axes per unit, one line
+    per output and combination of the other varied columns (failed points
+    left out)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    if not outputs:
+        raise Acausal2dError("the sweep has no outputs to plot; give outputs=[...] or metrics")
+    others = [c for c in study.parameters if c != x]
+    ok = np.array([r.get("status") != "failed" for r in study.rows])
+    xv = study.column(x)
+    keys = [tuple(r.get(c) for c in others) for r in study.rows]
+    by_unit = {}
+    for name in outputs:
+        by_unit.setdefault(study.units.get(name, ""), []).append(name)
+    fig = Figure(figsize=(7.5, 2.6 * len(by_unit) + 1.0))
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(len(by_unit), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, (unit, names) in zip(axes, by_unit.items()):
+        for name in names:
+            yv = study.column(name)
+            for key in dict.fromkeys(keys):
+                sel = ok & np.array([k == key for k in keys])
+                if not sel.any():
+                    continue
+                tag = ", ".join("%s=%.4g" % (c, v) for c, v in zip(others, key))
+                ax.plot(xv[sel], yv[sel], "o-", ms=3, lw=1.2,
+                        label=name + (" (%s)" % tag if tag else ""))
+        ax.set_ylabel(_ylabel(unit, names), fontsize=9)
+        ax.grid(True, alpha=0.3)
+        if len(names) > 1 or others:
+            ax.legend(fontsize=8, loc="best")
+    axes[-1].set_xlabel(axis_label(x, study.units.get(x, "")))
+    failed = len(study.failed)
+    fig.suptitle("%s: sweep of %d points%s" % (study.model_name or "model", len(study.rows),
+                                               ", %d failed" % failed if failed else ""))
+    fig.tight_layout()
+    return fig
