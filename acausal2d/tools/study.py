@@ -28,12 +28,12 @@ from ..errors import Acausal2dError
 
 class Study:
     """A declared study (made by :func:`study`): ``name``, ``doc`` (first
-    line of the function's docstring) and the function itself."""
+    paragraph of the function's docstring, one line) and the function."""
 
     def __init__(self, fn):
         self.fn = fn
         self.name = fn.__name__
-        self.doc = (inspect.getdoc(fn) or "").split("\n")[0]
+        self.doc = " ".join((inspect.getdoc(fn) or "").split("\n\n")[0].split())
 
     def __set_name__(self, owner, name):
         self.name = name
