@@ -15,7 +15,10 @@ SHARED_REF = os.path.join(ROOT, "tests", "data", "references", "PistonEngine.csv
 
 
 def run(*args):
-    exe = shutil.which("acausal2d")
+    # the entry point installed with this interpreter (a virtualenv's bin/),
+    # not another installation that happens to come first on PATH
+    exe = os.path.join(os.path.dirname(sys.executable), "acausal2d")
+    exe = exe if os.path.exists(exe) else shutil.which("acausal2d")
     cmd = [exe] if exe else [sys.executable, "-m", "acausal2d"]
     return subprocess.run(cmd + list(args), capture_output=True, text=True, timeout=300)
 

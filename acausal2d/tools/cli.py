@@ -145,7 +145,7 @@ def cmd_simulate(args):
     finally:
         progress.close()
     res.to_csv(os.path.join(out, "result.csv"))
-    pngs = write_figures(res, out, specs)
+    pngs = write_figures(res, out, specs, args.format)
     if not specs:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
     res.animate(os.path.join(out, "animation.html"), traces=traces, **animation)
@@ -311,6 +311,8 @@ def build_parser():
                    "outputs)")
     s.add_argument("--x", metavar="SIGNAL", help="x axis of the plots (default time); angles "
                    "in rad are unwrapped and shown in degrees")
+    s.add_argument("--format", choices=("png", "svg", "pdf"), default="png",
+                   help="file format of the plots (default: png)")
     s.add_argument("--autoplay", action="store_true", help="the animation starts playing")
     s.add_argument("--arrows", metavar="NAMES", help="comma-separated frames (force and torque "
                    "arrows) or rotational flanges (torque arrows) drawn in the animation")

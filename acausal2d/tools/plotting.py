@@ -156,16 +156,16 @@ def declared_figures(model):
     return out
 
 
-def write_figures(result, out_dir, specs):
-    """Write one PNG per figure spec (dicts as from :func:`declared_figures`)
-    into ``out_dir``; the file is named by the spec's ``name`` or by its
-    signals.  Returns the paths."""
+def write_figures(result, out_dir, specs, fmt="png"):
+    """Write one figure file (``fmt``: png, svg or pdf) per figure spec
+    (dicts as from :func:`declared_figures`) into ``out_dir``; the file is
+    named by the spec's ``name`` or by its signals.  Returns the paths."""
     from .compare import safe_filename
     paths = []
     for spec in specs:
         stem = spec.get("name") or "+".join(n for g in spec["groups"] for n in g)
         fig = make_figure(result, spec["groups"], x=spec.get("x"), title=spec.get("title"))
-        paths.append(save_figure(fig, os.path.join(out_dir, safe_filename(stem) + ".png")))
+        paths.append(save_figure(fig, os.path.join(out_dir, safe_filename(stem) + "." + fmt)))
     return paths
 
 

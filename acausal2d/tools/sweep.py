@@ -61,6 +61,9 @@ _COMPILED = {}
 """Worker-side cache: model key -> CompiledModel (or the exception its
 compilation raised)."""
 
+COMPILATIONS = {"count": 0}
+"""How many models this process has compiled for sweeps (statistics)."""
+
 
 # ---------------------------------------------------------------------------
 # the model as it travels to the workers
@@ -120,6 +123,7 @@ def compiled_model(spec):
     if cm is None:
         from .compiled import compile_model
         from .loader import load_model
+        COMPILATIONS["count"] += 1
         try:
             cm = compile_model(load_model(spec.local_path(), spec.name, **spec.kwargs))
         except Exception as exc:                # noqa: BLE001 - recorded per point

@@ -1,6 +1,6 @@
 """Regenerate the subsampled reference files of this folder from the full
 Dymola results (``python tests/data/references/subsample.py
-../shared/references``): every 10th data row is kept verbatim, and every row
+../shared/references``): every 7th data row is kept verbatim, and every row
 whose time repeats (event and end rows), so the files keep Dymola's format.
 The tests and the README read only the files here, never the full set."""
 import os
@@ -8,7 +8,7 @@ import sys
 
 FILES = ("Pendulum.csv", "DoublePendulum.csv", "CraneCrab.csv", "PistonEngine.csv",
          "PistonEngine_DynamicStateSelection.csv")
-EVERY = 10
+EVERY = 7
 
 
 def subsample(lines, every=EVERY):
