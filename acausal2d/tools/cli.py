@@ -125,6 +125,7 @@ def _print_summary(model, res, out, pngs):
 
 
 def cmd_simulate(args):
+    """``acausal2d simulate``: run a model file; write the CSV, plots and animation."""
     from .compiled import compile_model
     from .loader import load_model
     from .plotting import write_figures
@@ -154,6 +155,7 @@ def cmd_simulate(args):
 
 
 def cmd_params(args):
+    """``acausal2d params``: print the model's parameter table."""
     from .compiled import compile_model
     from .loader import load_model
     model = load_model(args.model_file, args.model)
@@ -186,6 +188,7 @@ def _sweep_settings(args, cm):
 
 
 def cmd_sweep(args):
+    """``acausal2d sweep``: a parameter study on Dask; write sweep.csv and sweep.png."""
     from .sweep import ModelSpec, compiled_model, sweep
     cm = compiled_model(ModelSpec(args.model_file, args.model))   # errors here exit with 2
     points, fixed, outputs = _sweep_settings(args, cm)
@@ -205,6 +208,7 @@ def cmd_sweep(args):
 
 
 def cmd_study(args):
+    """``acausal2d study``: run (or list) the model's declared studies."""
     from .loader import load_model
     from .study import declared_studies, run_studies
     model = load_model(args.model_file, args.model)
@@ -223,6 +227,7 @@ def cmd_study(args):
 
 
 def cmd_check(args):
+    """``acausal2d check``: print the structure report of a model."""
     from .check import check
     from .loader import load_model
     print(check(load_model(args.model_file, args.model)))
@@ -230,6 +235,7 @@ def cmd_check(args):
 
 
 def cmd_compare(args):
+    """``acausal2d compare``: compare a result CSV with a reference CSV."""
     from .compare import run_compare_cli
     mapping = {}
     for item in args.map or ():
@@ -265,6 +271,52 @@ def _positive_int(text):
     return value
 
 
+def _add_simulate_parser(sub):
+    s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
+    s.add_argument("model_file")
+    s.add_argument("--model", help="model class in the file (if it defines several)")
+    s.add_argument("--stop-time", type=float)
+    s.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="parameter value (vectors as 1,0); repeatable")
+    s.add_argument("--rtol", type=float)
+    s.add_argument("--intervals", type=int, help="number of output intervals")
+    s.add_argument("--plot", help="signals to plot: a,b overlays a and b in one figure (one axes "
+                   "per unit), a,b;c writes two figures (default: the model's figures or "
+                   "outputs)")
+    s.add_argument("--x", metavar="SIGNAL", help="x axis of the plots (default time); angles "
+                   "in rad are unwrapped and shown in degrees")
+    s.add_argument("--format", choices=("png", "svg", "pdf"), default="png",
+                   help="file format of the plots (default: png)")
+    s.add_argument("--autoplay", action="store_true", help="the animation starts playing")
+    s.add_argument("--arrows", metavar="NAMES", help="comma-separated frames (force and torque "
+                   "arrows) or rotational flanges (torque arrows) drawn in the animation")
+    s.add_argument("--signal", metavar="SIGNAL", help="a signal plotted under the animation "
+                   "with a cursor that follows the time slider")
+    s.add_argument("--trace", help="comma-separated points whose path the animation draws "
+                   "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
+                   "(dyad.xP:dyad.yP)")
+    s.add_argument("--out", default="out", help="output directory (default: out)")
+    s.set_defaults(func=cmd_simulate)
+
+
+def _add_compare_parser(sub):
+    m = sub.add_parser("compare", help="compare a result CSV with a reference CSV")
+    m.add_argument("result")
+    m.add_argument("reference")
+    m.add_argument("--signals", help="comma-separated reference columns to check")
+    m.add_argument("--map", action="append", metavar="REF=OURS",
+                   help="reference column = our column; repeatable")
+    m.add_argument("--abs-tol", type=float)
+    m.add_argument("--rel-tol", type=float)
+    m.add_argument("--time-tol", type=_nonnegative, metavar="SECONDS",
+                   help="time tolerance: compare in the csv-compare tube of the reference "
+                   "widened by this in time (steps may be shifted by up to this much)")
+    m.add_argument("--until", type=float, metavar="T",
+                   help="compare reference points up to time T only")
+    m.add_argument("--out", help="directory for the comparison plots")
+    m.set_defaults(func=cmd_compare)
+
+
 def _add_sweep_parser(sub):
     w = sub.add_parser("sweep", help="parameter study on Dask: simulate every combination of "
                        "the --vary values; write sweep.csv and sweep.png")
@@ -298,50 +350,12 @@ def build_parser():
     p = argparse.ArgumentParser(prog="acausal2d", description=__doc__.split("\n")[0])
     p.add_argument("--version", action="version", version="acausal2d " + __version__)
     sub = p.add_subparsers(dest="command", required=True)
-    s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
-    s.add_argument("model_file")
-    s.add_argument("--model", help="model class in the file (if it defines several)")
-    s.add_argument("--stop-time", type=float)
-    s.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
-                   help="parameter value (vectors as 1,0); repeatable")
-    s.add_argument("--rtol", type=float)
-    s.add_argument("--intervals", type=int, help="number of output intervals")
-    s.add_argument("--plot", help="signals to plot: a,b overlays a and b in one figure (one axes "
-                   "per unit), a,b;c writes two figures (default: the model's figures or "
-                   "outputs)")
-    s.add_argument("--x", metavar="SIGNAL", help="x axis of the plots (default time); angles "
-                   "in rad are unwrapped and shown in degrees")
-    s.add_argument("--format", choices=("png", "svg", "pdf"), default="png",
-                   help="file format of the plots (default: png)")
-    s.add_argument("--autoplay", action="store_true", help="the animation starts playing")
-    s.add_argument("--arrows", metavar="NAMES", help="comma-separated frames (force and torque "
-                   "arrows) or rotational flanges (torque arrows) drawn in the animation")
-    s.add_argument("--signal", metavar="SIGNAL", help="a signal plotted under the animation "
-                   "with a cursor that follows the time slider")
-    s.add_argument("--trace", help="comma-separated points whose path the animation draws "
-                   "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
-                   "(dyad.xP:dyad.yP)")
-    s.add_argument("--out", default="out", help="output directory (default: out)")
-    s.set_defaults(func=cmd_simulate)
+    _add_simulate_parser(sub)
     c = sub.add_parser("check", help="print the structure of a model")
     c.add_argument("model_file")
     c.add_argument("--model")
     c.set_defaults(func=cmd_check)
-    m = sub.add_parser("compare", help="compare a result CSV with a reference CSV")
-    m.add_argument("result")
-    m.add_argument("reference")
-    m.add_argument("--signals", help="comma-separated reference columns to check")
-    m.add_argument("--map", action="append", metavar="REF=OURS",
-                   help="reference column = our column; repeatable")
-    m.add_argument("--abs-tol", type=float)
-    m.add_argument("--rel-tol", type=float)
-    m.add_argument("--time-tol", type=_nonnegative, metavar="SECONDS",
-                   help="time tolerance: compare in the csv-compare tube of the reference "
-                   "widened by this in time (steps may be shifted by up to this much)")
-    m.add_argument("--until", type=float, metavar="T",
-                   help="compare reference points up to time T only")
-    m.add_argument("--out", help="directory for the comparison plots")
-    m.set_defaults(func=cmd_compare)
+    _add_compare_parser(sub)
     r = sub.add_parser("params", help="list a model's parameters with value, unit, rule and "
                        "description")
     r.add_argument("model_file")

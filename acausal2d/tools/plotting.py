@@ -169,6 +169,22 @@ def write_figures(result, out_dir, specs, fmt="png"):
     return paths
 
 
+def _sweep_lines(ax, study, x, names, others):
+    """One line per output of ``names`` and combination of the ``others``
+    columns' values, over the column ``x`` (failed points left out)."""
+    ok = np.array([r.get("status") != "failed" for r in study.rows])
+    keys = [tuple(r.get(c) for c in others) for r in study.rows]
+    xv = study.column(x)
+    for name in names:
+        yv = study.column(name)
+        for key in dict.fromkeys(keys):
+            sel = ok & np.array([k == key for k in keys])
+            if sel.any():
+                tag = ", ".join("%s=%.4g" % (c, v) for c, v in zip(others, key))
+                ax.plot(xv[sel], yv[sel], "o-", ms=3, lw=1.2,
+                        label=name + (" (%s)" % tag if tag else ""))
+
+
 def sweep_figure(study, x, outputs):
     """Figure of a :class:`~acausal2d.tools.sweep.SweepResult`: the
     ``outputs`` over the varied column ``x``, one axes per unit, one line
@@ -179,9 +195,6 @@ def sweep_figure(study, x, outputs):
     if not outputs:
         raise Acausal2dError("the sweep has no outputs to plot; give outputs=[...] or metrics")
     others = [c for c in study.parameters if c != x]
-    ok = np.array([r.get("status") != "failed" for r in study.rows])
-    xv = study.column(x)
-    keys = [tuple(r.get(c) for c in others) for r in study.rows]
     by_unit = {}
     for name in outputs:
         by_unit.setdefault(study.units.get(name, ""), []).append(name)
@@ -189,15 +202,7 @@ def sweep_figure(study, x, outputs):
     FigureCanvasAgg(fig)
     axes = fig.subplots(len(by_unit), 1, sharex=True, squeeze=False)[:, 0]
     for ax, (unit, names) in zip(axes, by_unit.items()):
-        for name in names:
-            yv = study.column(name)
-            for key in dict.fromkeys(keys):
-                sel = ok & np.array([k == key for k in keys])
-                if not sel.any():
-                    continue
-                tag = ", ".join("%s=%.4g" % (c, v) for c, v in zip(others, key))
-                ax.plot(xv[sel], yv[sel], "o-", ms=3, lw=1.2,
-                        label=name + (" (%s)" % tag if tag else ""))
+        _sweep_lines(ax, study, x, names, others)
         ax.set_ylabel(_ylabel(unit, names), fontsize=9)
         ax.grid(True, alpha=0.3)
         if len(names) > 1 or others:

@@ -132,6 +132,15 @@ def arrow_signals(arrows, names, model=None):
     return shapes
 
 
+def model_shapes(model):
+    """The shapes of all components of ``model``, signal names qualified."""
+    shapes = []
+    for comp in model.components():
+        prefix = comp.path + "." if comp.path else ""
+        shapes += [qualify_shape(shape, prefix) for shape in comp.shapes()]
+    return shapes
+
+
 def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=False):
     """Scene dict for :func:`acausal2d.tools.animation.render_html` from a result
     of a compiled model; ``traces`` are points whose path is drawn (coupler
@@ -141,12 +150,7 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
     under the mechanism with a cursor synced to the time slider;
     ``autoplay`` starts the page playing."""
     model = result.model.model if result.model is not None else None
-    shapes = []
-    if model is not None:
-        for comp in model.components():
-            prefix = comp.path + "." if comp.path else ""
-            for shape in comp.shapes():
-                shapes.append(qualify_shape(shape, prefix))
+    shapes = model_shapes(model) if model is not None else []
     for x, y in trace_signals(traces, result.names):
         shapes.append({"type": "trace", "x": x, "y": y})
     shapes += arrow_signals(arrows, result.names)
