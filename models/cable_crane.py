@@ -403,15 +403,19 @@ class CableCrane(Component):
 
 
     def shapes(self):
-        """The masts (the pulleys at their tops draw the housings) standing on
-        the sloped terrain, with a ground symbol at each foot."""
-        terrain = [[ANCHOR[0] - 5.0, 0.0], [0.0, 0.0], [SPAN, Y_RIGHT],
+        """The masts standing on the sloped terrain, a ground symbol at each
+        foot: from the foot to the skyline pulley S on the left, to the
+        skyline fastening T on the right (the pulley housings on the masts
+        are drawn by the pulleys).  The terrain runs from the skyline's
+        ground anchor G."""
+        terrain = [["anchor.frame.x", "anchor.frame.y"], [0.0, 0.0], [SPAN, Y_RIGHT],
                    [SPAN + 5.0, Y_RIGHT + 5.0 * math.tan(SLOPE)]]
-        feet = ((0.0, 0.0), (SPAN, Y_RIGHT))
+        masts = ((("S.ctr2D1.x", "S.ctr2D1.y"), (0.0, 0.0)),
+                 (("top.frame.x", "top.frame.y"), (SPAN, Y_RIGHT)))
         return ([{"type": "link", "points": terrain, "width": 0.15, "color": "#a0522d"}]
-                + [{"type": "link", "points": [list(f), [f[0], f[1] + H_MAST]], "width": 0.35,
-                    "color": "#5d6d7e"} for f in feet]
-                + [{"type": "ground", "x": f[0], "y": f[1]} for f in feet])
+                + [{"type": "link", "points": [list(top), list(foot)], "width": 0.35,
+                    "color": "#5d6d7e"} for top, foot in masts]
+                + [{"type": "ground", "x": foot[0], "y": foot[1]} for _, foot in masts])
 
 
 SECTIONS = {"load": ["load%d" % k for k in range(1, 7)],

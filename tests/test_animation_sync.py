@@ -143,19 +143,23 @@ def test_autoplay_option_is_embedded(tmp_path):
 
 
 def test_cable_crane_masts_are_drawn():
-    """Both masts stand on the terrain with a ground symbol at the foot
-    (the pulley housings at their tops are drawn by the pulleys)."""
+    """Both masts stand on the terrain with a ground symbol at the foot and
+    reach the skyline pulley S (left) and the fastening T (right)."""
     import acausal2d
     from acausal2d.tools.scene import build_scene
     from conftest import load_model_class
-    h_mast, span = (load_model_class("cable_crane.py", n) for n in ("H_MAST", "SPAN"))
-    y_right = load_model_class("cable_crane.py", "Y_RIGHT")
+    h_mast, span, y_right = (load_model_class("cable_crane.py", n)
+                             for n in ("H_MAST", "SPAN", "Y_RIGHT"))
     cm = acausal2d.compile_model(load_model_class("cable_crane.py", "CableCrane")())
     res = cm.simulate(stop_time=0.2, intervals=4)
-    shapes = build_scene(res)["shapes"]
-    links = [s["points"] for s in shapes if s["type"] == "link" and len(s["points"]) == 2
-             and all(isinstance(v, float) for p in s["points"] for v in p)]
-    assert [[0.0, 0.0], [0.0, h_mast]] in links
-    assert [[span, y_right], [span, y_right + h_mast]] in links
-    grounds = [(s["x"], s["y"]) for s in shapes if s["type"] == "ground"]
+    scene = build_scene(res)
+
+    def point(p):
+        return tuple(float(scene["signals"][v][-1]) if isinstance(v, str) else v for v in p)
+
+    links = [[point(p) for p in s["points"]] for s in scene["shapes"]
+             if s["type"] == "link" and s.get("color") == "#5d6d7e"]
+    assert sorted(links) == [[(0.0, h_mast), (0.0, 0.0)],
+                             [(span, y_right + h_mast), (span, y_right)]]
+    grounds = [(s["x"], s["y"]) for s in scene["shapes"] if s["type"] == "ground"]
     assert (0.0, 0.0) in grounds and (span, y_right) in grounds
