@@ -108,7 +108,11 @@ def test_cli_sweep_on_an_existing_scheduler(client, tmp_path):
     (["--vary", "body.m=1,2", "--workers", "0"], "must be at least 1"),
     (["--vary", "body.m=1,2", "--x", "body.I"], "--x 'body.I' is not a varied parameter"),
     (["--vary", "body.m=1,2", "--set", "body.I=-3"], "breaks its rule"),
-], ids=["bad-range", "unknown-param", "unknown-output", "no-workers", "bad-x", "bad-set"])
+    (["--vary", "body.m=1,2", "--stop-time", "-1"], "--stop-time must be larger than 0"),
+    (["--vary", "body.m=1,2", "--stop-time", "1", "--at", "2"], "--at 2 lies after the end"),
+    (["--vary", "body.m=1,2", "--scheduler", "tcp://127.0.0.1:1"], "cannot reach the Dask"),
+], ids=["bad-range", "unknown-param", "unknown-output", "no-workers", "bad-x", "bad-set",
+        "bad-stop", "bad-at", "no-scheduler"])
 def test_cli_sweep_bad_options_exit_2(tmp_path, args, message):
     proc = run("sweep", PENDULUM, "--out", str(tmp_path), *args)
     assert proc.returncode == 2, proc.stdout + proc.stderr

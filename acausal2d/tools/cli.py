@@ -181,10 +181,24 @@ def _sweep_settings(args, cm):
     outputs = [n.strip() for n in args.outputs.split(",") if n.strip()] if args.outputs \
         else list(cm.outputs)
     _check_names(outputs, cm, "--outputs")
+    _check_run_settings(args, cm)
     if args.x is not None and args.x not in vary:
         raise Acausal2dError("--x %r is not a varied parameter; varied: %s"
                              % (args.x, ", ".join(vary)))
     return grid_points(vary), fixed, outputs
+
+
+def _check_run_settings(args, cm):
+    """--stop-time, --rtol and --at of a sweep, checked once before the
+    points run (each point would fail alike)."""
+    stop = args.stop_time if args.stop_time is not None else \
+        float((getattr(cm.model, "experiment", None) or {}).get("stop_time", 1.0))
+    if not stop > 0:
+        raise Acausal2dError("--stop-time must be larger than 0, got %g" % stop)
+    if args.rtol is not None and not 0 < args.rtol < 0.1:
+        raise Acausal2dError("--rtol must be between 0 and 0.1 (e.g. 1e-6), got %g" % args.rtol)
+    if args.at is not None and args.at > stop:
+        raise Acausal2dError("--at %g lies after the end of the run (%g s)" % (args.at, stop))
 
 
 def cmd_sweep(args):
