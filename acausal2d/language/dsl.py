@@ -32,6 +32,7 @@ from the whole model), :meth:`~Component.guesses` (start guesses),
 :meth:`~Component.equations`.  After a simulation, :meth:`~Component.shapes`
 and :meth:`~Component.topology` describe drawing and structure.
 """
+import inspect
 import math
 import numbers
 
@@ -234,6 +235,9 @@ class Outer:
     def __set_name__(self, owner, name):
         self.name = name
 
+    def __repr__(self):
+        return "Outer(%s)" % self.cls.__name__
+
     def find(self, comp):
         """The instance ``comp`` uses, or None if the model holds none."""
         node = comp._parent
@@ -277,6 +281,45 @@ class VarInfo:
         return "VarInfo(%s)" % self.name
 
 
+def _declarations(cls, kind):
+    """{name: declaration} of the ``kind`` attributes of ``cls`` and its
+    bases (the most derived declaration of a name wins), in declaration
+    order, base classes first."""
+    found = {}
+    for klass in reversed(cls.__mro__):
+        for name, attr in vars(klass).items():
+            if isinstance(attr, kind):
+                found[name] = attr
+    return found
+
+
+def _doc_table(rows, indent="    "):
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]) - 1)]
+    return "\n".join((indent + "  ".join(c.ljust(w) for c, w in zip(r, widths))
+                      + "  " + r[-1]).rstrip() for r in rows)
+
+
+def declaration_doc(cls):
+    """The docstring of component class ``cls`` (as written, or its base
+    class's) followed by tables of its parameters (name, default, unit,
+    rule, description) and class-level variables (name, unit, description),
+    inherited ones included; set as ``cls.__doc__`` for every subclass so
+    that ``help(Body)`` shows them."""
+    own = vars(cls).get("__doc__")
+    text = inspect.cleandoc(own) if own else ""
+    marker = "\n\nParameters (default, unit, rule, description):\n"
+    params = _declarations(cls, Parameter)
+    if params:
+        rows = [(n, _fmt_value(p.default), p.unit or "-", p.rule or "-", p.doc)
+                for n, p in params.items()]
+        text += marker + _doc_table(rows)
+    variables = _declarations(cls, Variable)
+    if variables:
+        rows = [(n, v.unit or "-", v.doc) for n, v in variables.items()]
+        text += "\n\nVariables (unit, description):\n" + _doc_table(rows)
+    return text.lstrip("\n") or None
+
+
 def _join(path, name):
     return name if not path else path + "." + name
 
@@ -291,6 +334,10 @@ class Component:
     parameter values or, with :func:`start` (or a number), variable
     attributes.
     """
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        cls.__doc__ = declaration_doc(cls)
 
     def __init__(self, **kwargs):
         d = self.__dict__

@@ -59,17 +59,18 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
 ``{"type": "sensor", "points": [[X, Y], ...]}``
     a sensor: a small square mark at each point, a dotted line between
     them (one point: an absolute sensor, two: a relative one).
-``{"type": "arrow", "x": X, "y": Y, "fx": FX, "fy": FY, "phi": P, "angle": A, "scale": S}``
+``{"type": "arrow", "x": X, "y": Y, "fx": FX, "fy": FY, "phi": P, "angle": A, "scale": S, "label": "..."}``
     a force arrow whose head touches the point (x, y) where it pushes; the
     vector is (fx, fy) turned by ``phi + angle`` (both optional, default
     0: world components).  Its length is ``scale`` world units per unit of
     force, or, without ``scale``, 60 pixels for the largest force of the
-    run.  A zero force draws nothing.
-``{"type": "torque", "x": X, "y": Y, "t": T, "scale": S}``
+    run.  A zero force draws nothing.  With ``label`` the arrow shows the
+    label and the force's magnitude in N.
+``{"type": "torque", "x": X, "y": Y, "t": T, "scale": S, "label": "..."}``
     a torque as a curved arrow around the point, counter-clockwise for
     t > 0; its sweep grows with |t| up to 300 degrees at the largest
     torque of the run (or at |t| = 1/``scale``).  A zero torque draws
-    nothing.
+    nothing; ``label`` adds the label and the torque's magnitude in N.m.
 
 Any shape may also have a ``"color"`` (a CSS colour string) that replaces its
 main colour.  Other keys are ignored.  A signal value that is NaN (written
@@ -84,7 +85,12 @@ Below it are a play/pause button (``id="play"``), a scrubbing slider
 (``id="speed"``, 0.25x to 4x real time), a loop check box and a time readout
 (``id="time"``).  Space toggles playback, the arrow keys step.  The page
 starts paused at frame 0, or at frame ``N`` when the URL ends in
-``#frame=N`` (it also follows later changes of the fragment).
+``#frame=N`` (it also follows later changes of the fragment); it starts
+playing if the scene says ``"autoplay": true`` or the URL has ``?autoplay``
+(or ``#autoplay``).  The grid spacing is shown with the scene's length
+``"unit"`` (default ``m``).  A scene with ``"plot": {"signal": name,
+"label": text}`` shows that signal in a strip under the mechanism
+(``id="plot"``) with a cursor at the current time.
 For scripting and tests it exposes ``window.acausal2d`` with ``frame`` (the
 current frame index), ``nframes``, ``playing``, ``setFrame(i)``, ``play()``,
 ``pause()``, ``errors`` (messages of uncaught errors on the page) and
@@ -105,6 +111,7 @@ import pathlib
 import numpy as np
 
 from ..errors import Acausal2dError
+from .files import write_text
 
 __all__ = ["validate_scene", "render_html", "write_html", "SHAPE_TYPES", "MAX_FRAMES"]
 
@@ -134,9 +141,9 @@ SHAPE_TYPES = {
     "sensor": (("points", "points:1", True),),
     "arrow": (("x", "value", True), ("y", "value", True), ("fx", "value", True),
               ("fy", "value", True), ("phi", "value", False), ("angle", "value", False),
-              ("scale", "value", False)),
+              ("scale", "value", False), ("label", "text", False)),
     "torque": (("x", "value", True), ("y", "value", True), ("t", "value", True),
-               ("scale", "value", False)),
+               ("scale", "value", False), ("label", "text", False)),
 }
 """The shape types a scene may contain and their fields."""
 
@@ -280,7 +287,21 @@ def _validated(scene):
         raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
     for i, shape in enumerate(shapes):
         _check_shape(i, shape, signals)
+    _check_options(scene, signals)
     return time, signals
+
+
+def _check_options(scene, signals):
+    """The optional scene keys: unit, autoplay, plot."""
+    if not isinstance(scene.get("unit", "m"), str):
+        raise Acausal2dError("scene['unit'] must be a string such as 'm'")
+    if not isinstance(scene.get("autoplay", False), bool):
+        raise Acausal2dError("scene['autoplay'] must be true or false")
+    plot = scene.get("plot")
+    if plot is not None:
+        if not isinstance(plot, dict) or not isinstance(plot.get("signal"), str):
+            raise Acausal2dError("scene['plot'] must be a dict {'signal': name, 'label': text}")
+        _check_value(plot["signal"], "scene['plot']['signal']", signals)
 
 
 # --------------------------------------------------------------------------
@@ -418,6 +439,10 @@ def _scene_data(scene, max_frames):
     used = set()
     for s in scene["shapes"]:
         used |= _used_signals(s)
+    plot = scene.get("plot")
+    if plot is not None:
+        used.add(plot["signal"])
+        plot = {"signal": plot["signal"], "label": str(plot.get("label", plot["signal"]))}
     sub = {name: signals[name][idx] for name in sorted(used)}
     bbox = _bbox(shapes, sub, idx.size)
     return {
@@ -428,6 +453,9 @@ def _scene_data(scene, max_frames):
         "bbox": [_round(v) for v in bbox],
         "nframes": int(idx.size),
         "source_samples": int(time.size),
+        "unit": scene.get("unit", "m"),
+        "autoplay": bool(scene.get("autoplay", False)),
+        "plot": plot,
     }
 
 
@@ -468,7 +496,5 @@ def write_html(scene, path, **options):
     """Write :func:`render_html` of ``scene`` to ``path`` (UTF-8, parent
     directories created) and return the path as a :class:`pathlib.Path`."""
     path = pathlib.Path(os.fspath(path))
-    text = render_html(scene, **options)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
+    write_text(path, render_html(scene, **options))
     return path

@@ -51,7 +51,51 @@ class CompiledModel:
 
     @property
     def outputs(self):
+        """The signals the model declares as its outputs."""
         return self.system.outputs
+
+    @property
+    def parameter_names(self):
+        """Names of all parameters: vectors as a whole and by element."""
+        return list(self._whole) + [n for n, *_ in self.system.parameters if n not in self._whole]
+
+    @property
+    def units(self):
+        """{column or parameter name: unit} from the declarations; the
+        k-th derivative of ``x`` gets x's unit divided by s^k."""
+        if getattr(self, "_units", None) is None:
+            s = self.system
+            units = {}
+            for j, name in enumerate(s.node_names):
+                units[name] = derivative_unit(s.node_info[j].unit, s.structure.var_level[j])
+            for a in s.aliases:
+                units[a.var.name] = a.var.unit
+            for name in s.alias_der_names:
+                base = name
+                order = 0
+                while base.startswith("der("):
+                    base, order = base[4:-1], order + 1
+                units[name] = derivative_unit(units.get(base, ""), order)
+            for name, (decl, _) in self._whole.items():
+                units[name] = decl.unit
+            for name, _, _, decl in s.parameters:
+                units.setdefault(name, decl.unit)
+            self._units = units
+        return self._units
+
+    def parameters_table(self):
+        """Every parameter (vectors as a whole) with its value, unit, rule
+        and description, as a fixed-width text table (``acausal2d params``)."""
+        vals = self.parameter_values()
+        rows = [("parameter", "value", "unit", "rule", "description")]
+        for name, (decl, idx) in self._whole.items():
+            v = vals[idx]
+            text = "%.6g" % v[0] if len(v) == 1 else "(%s)" % ", ".join("%.6g" % x for x in v)
+            rows.append((name, text, decl.unit or "-", decl.rule or "-", decl.doc))
+        widths = [max(len(r[i]) for r in rows) for i in range(4)]
+        lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)) + "  " + r[4] for r in rows]
+        lines.insert(1, "  ".join("-" * w for w in widths) + "  " + "-" * 11)
+        return "\n".join(line.rstrip() for line in lines)
 
     def _whole_parameters(self):
         """{parameter name (vectors as a whole): (declaration, indices)}."""
@@ -238,6 +282,28 @@ def _output_grid(start_time, stop, intervals, columns):
                              "(at most %.3g GB); ask for fewer intervals"
                              % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
     return np.linspace(start_time, stop, int(intervals) + 1)
+
+def derivative_unit(unit, order=1):
+    """Unit of the ``order``-th time derivative of a quantity of ``unit``:
+    ``m`` -> ``m/s`` -> ``m/s2``, ``rad/s`` -> ``rad/s2``, ``""`` -> ``1/s``,
+    ``N/m`` -> ``N/(m.s)``."""
+    for _ in range(order):
+        if not unit:
+            unit = "1/s"
+        elif "/" not in unit:
+            unit += "/s"
+        else:
+            num, den = unit.split("/", 1)
+            if den == "s":
+                den = "s2"
+            elif den[:1] == "s" and den[1:].isdigit():
+                den = "s%d" % (int(den[1:]) + 1)
+            elif den.startswith("(") and den.endswith(".s)"):
+                den = den[:-3] + ".s2)"
+            else:
+                den = "(%s.s)" % den
+            unit = num + "/" + den
+    return unit
 
 
 class _Scalar:

@@ -21,7 +21,8 @@
     joint: "#ffffff", jointEdge: "#1f2933", body: "#2d3436", slider: "#a9c3db",
     sliderEdge: "#2b4f6e", guide: "#8a9099", pulley: "#e9edf1", pulleyEdge: "#555d66",
     spoke: "#7b858f", belt: "#e07b00", spring: "#2e9e4f", trace: "rgba(240,128,128,0.8)",
-    tracePoint: "#e74c3c", label: "#1f2933"
+    tracePoint: "#e74c3c", label: "#1f2933", force: "#c0392b", torque: "#8e44ad",
+    plotLine: "#4682b4", cursor: "#e74c3c"
   };
 
   var frame = 0, playing = false, rafId = null, anchorWall = 0, anchorSim = 0;
@@ -189,6 +190,26 @@
     circle(p[0], p[1], 4); ctx.fillStyle = sh.color || COLORS.tracePoint; ctx.fill();
     ctx.strokeStyle = "#ffffff"; ctx.lineWidth = 1.2; ctx.stroke();
   }
+  // ---- force and torque arrows: one scale per kind over the whole run ----
+  function maxOver(kind, fn) {
+    var m = 0;
+    shapes.forEach(function (sh) {
+      if (!sh || sh.type !== kind) return;
+      for (var k = 0; k < N; k++) { var v = fn(sh, k); if (isFinite(v) && v > m) m = v; }
+    });
+    return m;
+  }
+  function arrowHead(x, y, ang, size) {
+    ctx.beginPath(); ctx.moveTo(x, y);
+    ctx.lineTo(x - size * Math.cos(ang - 0.4), y - size * Math.sin(ang - 0.4));
+    ctx.lineTo(x - size * Math.cos(ang + 0.4), y - size * Math.sin(ang + 0.4));
+    ctx.closePath(); ctx.fill();
+  }
+  function arrowText(text, x, y) {
+    ctx.font = "11px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "middle";
+    ctx.lineWidth = 3; ctx.strokeStyle = "rgba(251,251,252,0.9)"; ctx.strokeText(text, x, y);
+    ctx.fillText(text, x, y);
+  }
   function drawLabel(sh, k) {
     var p = pt([sh.x, sh.y], k); if (!p) return;
     ctx.font = "13px system-ui, -apple-system, 'Segoe UI', Roboto, Helvetica, Arial, sans-serif";
@@ -274,6 +295,8 @@
     ctx.lineTo(base[0] + uy * 0.45 * head, base[1] - ux * 0.45 * head);
     ctx.lineTo(base[0] - uy * 0.45 * head, base[1] + ux * 0.45 * head);
     ctx.closePath(); ctx.fillStyle = c; ctx.fill();
+    if (sh.label !== undefined) arrowText(sh.label + " " + (+mag.toPrecision(3)) + " N",
+                                          tail[0] + 6, tail[1]);
   }
   function drawTorque(sh, k) {
     var p = pt([sh.x, sh.y], k), t = val(sh.t, k); if (!p || !isFinite(t) || t === 0) return;
@@ -290,6 +313,8 @@
     ctx.beginPath(); ctx.moveTo(ex + tx * 7, ey + ty * 7);
     ctx.lineTo(ex - ty * 4, ey + tx * 4); ctx.lineTo(ex + ty * 4, ey - tx * 4);
     ctx.closePath(); ctx.fillStyle = c; ctx.fill();
+    if (sh.label !== undefined) arrowText(sh.label + " " + (+Math.abs(t).toPrecision(3)) +
+                                          " N\u00b7m", p[0] + R + 6, p[1] - R);
   }
 
   // Layers, drawn bottom to top; unknown shape types are ignored.
@@ -333,7 +358,54 @@
     ctx.strokeStyle = COLORS.axis; ctx.stroke();
     ctx.font = "11px system-ui, sans-serif"; ctx.fillStyle = "#8a9099";
     ctx.textAlign = "left"; ctx.textBaseline = "bottom";
-    ctx.fillText("grid " + fmt(step), 10, view.h - 8);
+    gridLabel = "grid " + fmt(step) + " " + (D.unit || "m");
+    ctx.fillText(gridLabel, 10, view.h - 8);
+  }
+
+  // ---- the signal strip under the mechanism, its cursor synced to the frame ----
+  var plotCanvas = document.getElementById("plot"), plotCtx = null, plotView = null;
+  var gridLabel = "";
+  function fitPlot() {
+    if (!D.plot || !plotCanvas) return;
+    plotCanvas.hidden = false;
+    plotCtx = plotCtx || plotCanvas.getContext("2d");
+    var dpr = window.devicePixelRatio || 1;
+    var w = Math.max(1, plotCanvas.clientWidth), h = Math.max(1, plotCanvas.clientHeight);
+    plotCanvas.width = Math.round(w * dpr); plotCanvas.height = Math.round(h * dpr);
+    plotCtx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    var y = S[D.plot.signal], lo = Infinity, hi = -Infinity;
+    for (var k = 0; k < N; k++) if (y[k] !== null) { lo = Math.min(lo, y[k]); hi = Math.max(hi, y[k]); }
+    if (!(hi > lo)) { lo = (isFinite(lo) ? lo : 0) - 1; hi = lo + 2; }
+    var t0 = T[0], t1 = N > 1 && T[N - 1] > T[0] ? T[N - 1] : T[0] + 1;
+    plotView = { w: w, h: h, left: 64, right: w - 14, top: 18, bottom: h - 18, lo: lo, hi: hi, t0: t0, t1: t1 };
+  }
+  function plotX(t) { var v = plotView; return v.left + (v.right - v.left) * (t - v.t0) / (v.t1 - v.t0); }
+  function plotY(y) { var v = plotView; return v.bottom - (v.bottom - v.top) * (y - v.lo) / (v.hi - v.lo); }
+  function drawPlot() {
+    if (!plotView) return;
+    var c = plotCtx, v = plotView, y = S[D.plot.signal];
+    c.fillStyle = "#ffffff"; c.fillRect(0, 0, v.w, v.h);
+    c.strokeStyle = COLORS.axis; c.lineWidth = 1; c.strokeRect(v.left, v.top, v.right - v.left, v.bottom - v.top);
+    c.beginPath();
+    var pen = false;
+    for (var k = 0; k < N; k++) {
+      if (y[k] === null) { pen = false; continue; }
+      if (pen) c.lineTo(plotX(T[k]), plotY(y[k])); else c.moveTo(plotX(T[k]), plotY(y[k]));
+      pen = true;
+    }
+    c.strokeStyle = COLORS.plotLine; c.lineWidth = 1.5; c.stroke();
+    var cx = Math.round(plotX(T[frame])) + 0.5;
+    c.beginPath(); c.moveTo(cx, v.top); c.lineTo(cx, v.bottom);
+    c.strokeStyle = COLORS.cursor; c.lineWidth = 2; c.stroke();
+    c.font = "11px system-ui, sans-serif"; c.fillStyle = COLORS.text;
+    c.textAlign = "left"; c.textBaseline = "top";
+    var cur = y[frame] === null ? "" : " = " + fmt(y[frame]);
+    c.fillText(D.plot.label + cur, v.left + 4, 3);
+    c.textAlign = "right"; c.textBaseline = "middle";
+    c.fillText(fmt(v.hi), v.left - 4, v.top); c.fillText(fmt(v.lo), v.left - 4, v.bottom);
+  }
+  function plotCursor() {
+    return plotView ? { x: plotX(T[frame]), t: T[frame] } : null;
   }
 
   function fit() {
@@ -366,6 +438,7 @@
     }
     timeOut.textContent = "t = " + (N ? T[frame].toFixed(3) : "0") + " s  (" + (frame + 1) + "/" + N + ")";
     scrub.value = String(frame);
+    drawPlot();
   }
 
   function findFrame(simT) {  // last frame with clock <= simT
@@ -424,7 +497,7 @@
   speedSel.addEventListener("change", function () {
     if (playing) { anchorSim = anchorSim + (performance.now() - anchorWall) / 1000 * speed(); anchor(); }
   });
-  window.addEventListener("resize", function () { fit(); draw(); });
+  window.addEventListener("resize", function () { fitPlot(); fit(); draw(); });
   window.addEventListener("hashchange", function () {
     var h = frameFromHash(); if (h !== null) setFrame(h);
   });
@@ -441,8 +514,10 @@
   scrub.max = String(Math.max(0, N - 1));
   var h0 = frameFromHash();
   frame = h0 === null ? 0 : Math.max(0, Math.min(N - 1, h0));
+  fitPlot();
   fit();
   draw();
+  if (D.autoplay || /(?:^[?#]|[?&#])autoplay(?:[=&#]|$)/.test(window.location.search + window.location.hash)) play();
 
   window.acausal2d = {
     get frame() { return frame; },
@@ -452,6 +527,8 @@
     play: play,
     pause: pause,
     errors: errors,
-    scene: D
+    scene: D,
+    get gridLabel() { return gridLabel; },
+    plotCursor: plotCursor
   };
 })();

@@ -1,0 +1,41 @@
+"""Writing result files atomically: the data goes to a temporary file in the
+target's folder, which then replaces the target in one rename, so a reader
+never sees a half-written file and an interrupted run leaves the old one."""
+import contextlib
+import os
+import tempfile
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """Context manager yielding a temporary path next to ``path`` (folders
+    created); on success the temporary file is renamed to ``path``, on an
+    error it is removed.  ``with atomic_path(p) as tmp: fig.savefig(tmp)``."""
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    stem, ext = os.path.splitext(os.path.basename(path))
+    fd, tmp = tempfile.mkstemp(prefix="." + stem + ".", suffix=".tmp" + ext, dir=folder)
+    os.close(fd)
+    os.chmod(tmp, 0o666 & ~_umask())         # mkstemp's 0600 -> what open() would give
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.remove(tmp)
+        raise
+
+
+def _umask():
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def write_text(path, text):
+    """Write ``text`` (UTF-8) to ``path`` atomically; returns ``path``."""
+    with atomic_path(path) as tmp:
+        with open(tmp, "w", encoding="utf-8", newline="") as fh:
+            fh.write(text)
+    return path
