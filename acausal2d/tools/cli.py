@@ -1,7 +1,13 @@
-"""The ``acausal2d`` command line: simulate, check, compare.
+"""The ``acausal2d`` command line: simulate, check, compare, params, study,
+sweep.
 
-Exit codes: 0 success, 1 comparison failed, 2 error in the model or the
-input (the message names what to change; no traceback).
+Exit codes: 0 success; 1 comparison failed (outside the tube); 2 error in
+the model or the input, or a run that cannot go on (the message names what
+to change; no traceback); 3 run stopped early (a limit position, a step or
+wall-clock budget): its results up to there are written; 130 interrupted
+(Ctrl-C).  ``simulate`` lists the files it writes in the output folder's
+``acausal2d-run.json`` and removes those of the previous run there first,
+so a failed run never leaves earlier results that look like its own.
 """
 import argparse
 import os
@@ -31,20 +37,14 @@ PROGRESS_INTERVAL = 0.1   # s of wall time between two updates
 
 
 class _Progress:
-    """A progress bar over simulated time, shown after ``PROGRESS_DELAY``
-    and updated at most every ``PROGRESS_INTERVAL`` seconds.  It writes to a
-    duplicate of the standard error descriptor taken when it is created,
-    so it stays visible while the integrator captures descriptor 2 for the
-    SUNDIALS messages."""
+    """A progress bar over simulated time on ``stream`` (default: the
+    current ``sys.stderr``), shown after ``PROGRESS_DELAY`` and updated at
+    most every ``PROGRESS_INTERVAL`` seconds."""
 
     def __init__(self, stream=None):
         self.start = time.perf_counter()
         self.last = None
-        self.own = stream is None
-        if self.own:
-            sys.stderr.flush()
-            stream = os.fdopen(os.dup(sys.stderr.fileno()), "w")
-        self.stream = stream
+        self.stream = stream if stream is not None else sys.stderr
         self.shown = False
 
     def __call__(self, t, t_end):
@@ -60,14 +60,10 @@ class _Progress:
         self.stream.flush()
 
     def close(self):
-        """End the bar's line (if it was shown); close the duplicated
-        descriptor (a stream passed in stays open)."""
+        """End the bar's line (if it was shown)."""
         if self.shown:
             self.stream.write("\n")
-        if self.own:
-            self.stream.close()
-        else:
-            self.stream.flush()
+        self.stream.flush()
 
 
 def _plot_specs(args, cm):
@@ -127,31 +123,52 @@ def _print_summary(model, res, out, pngs):
 def cmd_simulate(args):
     """``acausal2d simulate``: run a model file; write the CSV, plots and animation."""
     from .compiled import compile_model
+    from .files import clear_previous_run
     from .loader import load_model
-    from .plotting import write_figures
-    from .scene import trace_signals
     model = load_model(args.model_file, args.model)
     out = args.out
     os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
+    clear_previous_run(out)
     cm = compile_model(model)
-    traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
-    trace_signals(traces, cm.names)        # names checked before the run
-    specs = _plot_specs(args, cm)
-    animation = _animation_options(args, cm)
-    params = _parse_set(args.set)
+    settings = _simulate_settings(args, cm)
     progress = _Progress()
     try:
-        res = cm.simulate(stop_time=args.stop_time, params=params, rtol=args.rtol,
-                          intervals=args.intervals, progress=progress)
+        res = cm.simulate(stop_time=args.stop_time, params=settings["params"], rtol=args.rtol,
+                          intervals=args.intervals, progress=progress,
+                          max_steps=args.max_steps, max_wall_time=args.max_wall_time)
     finally:
         progress.close()
-    res.to_csv(os.path.join(out, "result.csv"))
-    pngs = write_figures(res, out, specs, args.format)
-    if not specs:
-        print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
-    res.animate(os.path.join(out, "animation.html"), traces=traces, **animation)
+    pngs = _write_outputs(res, out, settings, args)
     _print_summary(model, res, out, pngs)
+    if res.stopped:
+        print("stopped early: %s" % res.stopped, file=sys.stderr)
+        return 3
     return 0
+
+
+def _simulate_settings(args, cm):
+    """Plots, animation, traces and parameters, all checked before the run."""
+    from .scene import trace_signals
+    traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
+    trace_signals(traces, cm.names)
+    return {"traces": traces, "specs": _plot_specs(args, cm),
+            "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
+
+
+def _write_outputs(res, out, settings, args):
+    """CSV, figures, animation and the run's manifest; returns the figures."""
+    from .files import write_manifest
+    from .plotting import write_figures
+    files = [res.to_csv(os.path.join(out, "result.csv"))]
+    pngs = write_figures(res, out, settings["specs"], args.format)
+    if not settings["specs"]:
+        print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
+    files += pngs
+    files.append(res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
+                             **settings["animation"]))
+    write_manifest(out, files, model=type(res.model.model).__name__ if res.model else None,
+                   stopped=res.stopped)
+    return pngs
 
 
 def cmd_params(args):
@@ -274,6 +291,16 @@ def _nonnegative(text):
     return value
 
 
+def _positive_float(text):
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError("%r is not a number" % text) from None
+    if not (value > 0 and value < float("inf")):
+        raise argparse.ArgumentTypeError("must be a positive number, got %r" % text)
+    return value
+
+
 def _positive_int(text):
     """argparse type: an integer >= 1."""
     try:
@@ -309,6 +336,10 @@ def _add_simulate_parser(sub):
     s.add_argument("--trace", help="comma-separated points whose path the animation draws "
                    "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
                    "(dyad.xP:dyad.yP)")
+    s.add_argument("--max-steps", type=_positive_int, default=1000000,
+                   help="step budget of the run (default 1000000); exit 3 when used up")
+    s.add_argument("--max-wall-time", type=_positive_float, metavar="SECONDS",
+                   help="wall-clock budget of the run; exit 3 when used up")
     s.add_argument("--out", default="out", help="output directory (default: out)")
     s.set_defaults(func=cmd_simulate)
 
@@ -405,8 +436,12 @@ def run_model_file(path, model=None, out="out"):
 
 
 def main(argv=None):
-    """Entry point of the ``acausal2d`` command."""
-    args = build_parser().parse_args(argv)
+    """Entry point of the ``acausal2d`` command; returns the exit code (see
+    the module docstring)."""
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:        # argparse: --help, --version, or a usage error (2)
+        return exc.code if isinstance(exc.code, int) else 2
     try:
         return args.func(args)
     except Acausal2dError as exc:

@@ -73,6 +73,9 @@ import numpy as np
 
 from ..errors import Acausal2dError
 
+CELL_LIMIT = 1 << 26
+"""Largest cell (e.g. a header name) read from a CSV file, in characters."""
+
 DEFAULT_ABS_TOL = 2e-3
 """Absolute tolerance used when neither ``abs_tol`` nor ``rel_tol`` is given."""
 
@@ -153,6 +156,16 @@ def read_csv(path):
     first = next((ln for ln in text.splitlines() if ln.strip()), None)
     if first is None:
         raise Acausal2dError("CSV file %s is empty" % fname)
+    try:
+        return _parse_rows(fname, text, first)
+    except csv.Error as exc:
+        raise Acausal2dError("%s is not a readable CSV file: %s" % (fname, exc)) from None
+
+
+def _parse_rows(fname, text, first):
+    """(time, columns) of the text of a CSV file (see :func:`read_csv`)."""
+    if csv.field_size_limit() < CELL_LIMIT:
+        csv.field_size_limit(CELL_LIMIT)
     reader = csv.reader(io.StringIO(text), delimiter=_detect_delimiter(first))
 
     header = None
@@ -508,7 +521,8 @@ def _select_signals(ref_cols, our_cols, signals, mapping):
         if not pairs:
             raise Acausal2dError(
                 "the result and the reference have no signal in common; the reference has: "
-                "%s; the result has: %s (use mapping= to pair differently named signals)"
+                "%s; the result has: %s (pair differently named signals with --map REF=OURS, or "
+                "mapping= in Python)"
                 % (_few(ref_cols), _few(our_cols)))
         return pairs
 

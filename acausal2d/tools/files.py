@@ -39,3 +39,34 @@ def write_text(path, text):
         with open(tmp, "w", encoding="utf-8", newline="") as fh:
             fh.write(text)
     return path
+
+
+MANIFEST = "acausal2d-run.json"
+"""File in an output folder listing what the last run wrote there."""
+
+
+def clear_previous_run(folder):
+    """Remove the files the previous run listed in ``folder``'s manifest
+    (and the manifest): a new run, successful or not, never leaves earlier
+    results that look like its own.  Files not listed are not touched."""
+    import json
+    path = os.path.join(folder, MANIFEST)
+    try:
+        with open(path, encoding="utf-8") as fh:
+            listed = json.load(fh).get("files", [])
+    except (OSError, ValueError, AttributeError):
+        listed = []
+    for name in listed if isinstance(listed, list) else []:
+        if isinstance(name, str) and os.path.basename(name) == name:
+            with contextlib.suppress(OSError):
+                os.remove(os.path.join(folder, name))
+    with contextlib.suppress(OSError):
+        os.remove(path)
+
+
+def write_manifest(folder, files, **info):
+    """List ``files`` (paths in ``folder``) and ``info`` as the run's manifest."""
+    import json
+    names = sorted({os.path.basename(os.fspath(f)) for f in files})
+    write_text(os.path.join(folder, MANIFEST),
+               json.dumps(dict(info, files=names), indent=1, sort_keys=True) + "\n")
