@@ -56,7 +56,7 @@ class System:
         self._nodes(variables)
         self._functions()
         self._alias_maps()
-        self.outputs = list(getattr(model, "outputs", ()) or ())
+        self.outputs = declared_outputs(model)
         self._formulations = {}
 
     # ------------------------------------------------------------ setup
@@ -257,3 +257,17 @@ def _is_zero(v):
         return float(v) == 0.0
     except (TypeError, RuntimeError):
         return False
+
+
+def declared_outputs(model):
+    """The model's ``outputs`` (signal names to plot), checked: a list or
+    tuple of strings; None or missing means none."""
+    outputs = getattr(model, "outputs", None)
+    if outputs is None:
+        return []
+    if isinstance(outputs, str) or not isinstance(outputs, (list, tuple)) \
+            or not all(isinstance(o, str) for o in outputs):
+        raise ModelDefinitionError("%s: outputs must be a list of signal names like "
+                                   "['body.phi', 'revolute.w'], got %r"
+                                   % (type(model).__name__, outputs))
+    return list(outputs)

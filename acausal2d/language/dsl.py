@@ -34,6 +34,8 @@ and :meth:`~Component.topology` describe drawing and structure.
 """
 import inspect
 import math
+import os
+import sys
 import numbers
 
 import numpy as np
@@ -136,6 +138,19 @@ class Parameter:
         if sym is not None:
             return sym
         return obj.parameter_value(self.name)
+
+
+def _creation_site():
+    """``file:line`` of the user code creating a component: the first
+    caller outside the package and its library (the name of the component
+    is not known while it is being constructed)."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        module = frame.f_globals.get("__name__", "")
+        if module != "acausal2d" and not module.startswith("acausal2d."):
+            return "%s:%d" % (os.path.basename(frame.f_code.co_filename), frame.f_lineno)
+        frame = frame.f_back
+    return "?"
 
 
 def _check_state_select(value, where):
@@ -353,7 +368,8 @@ class Component:
         for name, value in kwargs.items():
             if name in d["_param_values"]:
                 decl = self.parameter_declaration(name)
-                d["_param_values"][name] = decl.validated(value, type(self).__name__)
+                where = "%s created at %s" % (type(self).__name__, _creation_site())
+                d["_param_values"][name] = decl.validated(value, where)
                 d["_given"].add(name)
             else:
                 d["_overrides"][name] = value

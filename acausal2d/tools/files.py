@@ -3,6 +3,7 @@ target's folder, which then replaces the target in one rename, so a reader
 never sees a half-written file and an interrupted run leaves the old one."""
 import contextlib
 import os
+import re
 import tempfile
 
 
@@ -47,8 +48,9 @@ MANIFEST = "acausal2d-run.json"
 
 def clear_previous_run(folder):
     """Remove the files the previous run listed in ``folder``'s manifest
-    (and the manifest): a new run, successful or not, never leaves earlier
-    results that look like its own.  Files not listed are not touched."""
+    (and the manifest) and temporary files a killed run left: a new run,
+    successful or not, never leaves earlier results that look like its own.
+    Other files are not touched."""
     import json
     path = os.path.join(folder, MANIFEST)
     try:
@@ -62,6 +64,16 @@ def clear_previous_run(folder):
                 os.remove(os.path.join(folder, name))
     with contextlib.suppress(OSError):
         os.remove(path)
+    with contextlib.suppress(OSError):
+        for name in os.listdir(folder):
+            if _TEMPORARY.match(name):          # left by a killed run (SIGKILL)
+                with contextlib.suppress(OSError):
+                    os.remove(os.path.join(folder, name))
+
+
+_TEMPORARY = re.compile(r"^\.[^/]+\.[a-z0-9_]{8}\.tmp(\.\w+)?$")
+"""Names :func:`atomic_path` gives its temporary files (mkstemp's 8 random
+characters between the stem and ``.tmp``)."""
 
 
 def write_manifest(folder, files, **info):

@@ -45,7 +45,7 @@ def _choose(path, module, modname, name):
                and not obj.__name__.startswith("_")]
     if name is not None:
         cls = getattr(module, name, None)
-        if not (inspect.isclass(cls) and issubclass(cls, Component)):
+        if cls is Component or not (inspect.isclass(cls) and issubclass(cls, Component)):
             raise ModelDefinitionError("%s defines no model %r; models in the file: %s"
                                        % (path, name, ", ".join(c.__name__ for c in classes)
                                           or "none"))
@@ -53,9 +53,7 @@ def _choose(path, module, modname, name):
     if not classes:
         raise ModelDefinitionError("%s defines no model (a subclass of acausal2d.Component)"
                                    % path)
-    models = [c for c in classes if getattr(c, "experiment", None) is not None]
-    if not models:   # no experiments: classes no other class of the file builds on
-        models = [c for c in classes if not any(c is not o and issubclass(o, c) for o in classes)]
+    models = [c for c in classes if getattr(c, "experiment", None) is not None] or classes
     if len(models) > 1:
         raise ModelDefinitionError("%s defines several models (%s); choose one with --model NAME "
                                    "(load_model(path, name))"
@@ -68,9 +66,10 @@ def load_model(path, name=None, **kwargs):
     instantiate its model.
 
     The model is the class ``name`` if given; otherwise the one model the
-    file defines: the one class with an ``experiment``, or the one class no
-    other class of the file derives from.  A file with several models must
-    be given a name.  ``kwargs`` go to the model's constructor."""
+    file defines: the one class with an ``experiment`` (declared or
+    inherited), or the file's only component class.  A file with several
+    models (a base model and its subclass count as two) must be given a
+    name; the error lists them.  ``Component`` itself is not a model.  ``kwargs`` go to the model's constructor."""
     if not isinstance(path, (str, os.PathLike)) or not os.path.isfile(path):
         raise ModelDefinitionError("model file %s does not exist" % (path,))
     path = os.path.abspath(os.fspath(path))
