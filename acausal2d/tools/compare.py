@@ -167,26 +167,29 @@ def _parse_rows(fname, text, first):
     if csv.field_size_limit() < CELL_LIMIT:
         csv.field_size_limit(CELL_LIMIT)
     reader = csv.reader(io.StringIO(text), delimiter=_detect_delimiter(first))
+    header, rows, lines = _split_rows(fname, reader)
+    itime = _find_time_column(header)
+    if itime is None:
+        raise Acausal2dError("%s has no time column (expected a column named 'time' or "
+                             "'Time'); the header has: %s" % (fname, _few(header)))
+    if not rows:
+        raise Acausal2dError("%s has a header but no data rows" % fname)
+    data = _numbers(fname, header, rows, lines)
+    t = data[:, itime].copy()
+    _check_time(t, "%s" % fname, lines)
+    columns = {name: data[:, i].copy() for i, name in enumerate(header) if i != itime}
+    return t, columns
 
-    header = None
-    rows, lines = [], []
+
+def _split_rows(fname, reader):
+    """(header, data rows, their line numbers); blank rows skipped, trailing
+    empty cells dropped, the cell count of every row checked."""
+    header, rows, lines = None, [], []
     for row in reader:
         if not any(c.strip() for c in row):
             continue
         if header is None:
-            header = [c.strip() for c in row]
-            while header and header[-1] == "":      # trailing delimiter
-                header.pop()
-            for i, name in enumerate(header):
-                if name == "":
-                    raise Acausal2dError("%s, line %d: column %d of the header has no name"
-                                         % (fname, reader.line_num, i + 1))
-            seen = set()
-            for name in header:
-                if name in seen:
-                    raise Acausal2dError("%s, line %d: column %r appears twice in the header"
-                                         % (fname, reader.line_num, name))
-                seen.add(name)
+            header = _header(fname, row, reader.line_num)
             continue
         ncol = len(header)
         if len(row) > ncol and not any(c.strip() for c in row[ncol:]):
@@ -196,31 +199,41 @@ def _parse_rows(fname, text, first):
                                  % (fname, reader.line_num, len(row), ncol))
         rows.append(row)
         lines.append(reader.line_num)
+    return header or [], rows, lines
 
-    itime = _find_time_column(header)
-    if itime is None:
-        raise Acausal2dError("%s has no time column (expected a column named 'time' or "
-                             "'Time'); the header has: %s" % (fname, _few(header)))
-    if not rows:
-        raise Acausal2dError("%s has a header but no data rows" % fname)
 
+def _header(fname, row, line):
+    """Column names of a header row: each named, none twice."""
+    header = [c.strip() for c in row]
+    while header and header[-1] == "":      # trailing delimiter
+        header.pop()
+    seen = set()
+    for i, name in enumerate(header):
+        if name == "":
+            raise Acausal2dError("%s, line %d: column %d of the header has no name"
+                                 % (fname, line, i + 1))
+        if name in seen:
+            raise Acausal2dError("%s, line %d: column %r appears twice in the header"
+                                 % (fname, line, name))
+        seen.add(name)
+    return header
+
+
+def _numbers(fname, header, rows, lines):
+    """The data rows as a float array; the first cell that is not a number
+    is named by line and column."""
     try:
-        data = np.array(rows, dtype=float)
+        return np.array(rows, dtype=float)
     except ValueError:
-        data = np.empty((len(rows), len(header)))
-        for r, (row, line) in enumerate(zip(rows, lines)):
-            for c, cell in enumerate(row):
-                try:
-                    data[r, c] = float(cell)
-                except ValueError:
-                    raise Acausal2dError(
-                        "%s, line %d, column %r: cannot read %r as a number"
-                        % (fname, line, header[c], cell)) from None
-
-    t = data[:, itime].copy()
-    _check_time(t, "%s" % fname, lines)
-    columns = {name: data[:, i].copy() for i, name in enumerate(header) if i != itime}
-    return t, columns
+        pass
+    for row, line in zip(rows, lines):
+        for c, cell in enumerate(row):
+            try:
+                float(cell)
+            except ValueError:
+                raise Acausal2dError("%s, line %d, column %r: cannot read %r as a number"
+                                     % (fname, line, header[c], cell)) from None
+    raise Acausal2dError("%s: the data rows cannot be read as numbers" % fname)
 
 
 def _check_time(t, what, lines=None):
@@ -502,48 +515,46 @@ class Comparison:
 
 
 def _select_signals(ref_cols, our_cols, signals, mapping):
+    """(reference name, our name) pairs to compare: ``signals`` (default:
+    every reference column with a counterpart), renamed by ``mapping``."""
     mapping = dict(mapping or {})
     if signals is None:
-        missing_ref = [k for k in mapping if k not in ref_cols]
-        if missing_ref:
-            raise Acausal2dError(
-                "mapped signal%s not in the reference: %s; the reference has: %s"
-                % ("s" if len(missing_ref) > 1 else "", ", ".join(missing_ref),
-                   _few(ref_cols, missing_ref[0])))
+        _require(list(mapping), ref_cols, "mapped signal", "reference")
         pairs = [(n, mapping.get(n, n)) for n in ref_cols if mapping.get(n, n) in our_cols]
-        missing_ours = [(k, v) for k, v in mapping.items() if v not in our_cols]
-        if missing_ours:
-            raise Acausal2dError(
-                "mapped signal%s not in the result: %s; the result has: %s"
-                % ("s" if len(missing_ours) > 1 else "",
-                   ", ".join("%s -> %s" % kv for kv in missing_ours),
-                   _few(our_cols, missing_ours[0][1])))
+        missing = [(k, v) for k, v in mapping.items() if v not in our_cols]
+        _require_ours(missing, our_cols, "mapped signal", "%s -> %s")
         if not pairs:
             raise Acausal2dError(
                 "the result and the reference have no signal in common; the reference has: "
                 "%s; the result has: %s (pair differently named signals with --map REF=OURS, or "
-                "mapping= in Python)"
-                % (_few(ref_cols), _few(our_cols)))
+                "mapping= in Python)" % (_few(ref_cols), _few(our_cols)))
         return pairs
-
-    if isinstance(signals, str):
-        signals = [signals]
-    signals = list(signals)
-    missing_ref = [s for s in signals if s not in ref_cols]
-    if missing_ref:
-        raise Acausal2dError(
-            "signal%s not in the reference: %s; the reference has: %s"
-            % ("s" if len(missing_ref) > 1 else "", ", ".join(missing_ref),
-               _few(ref_cols, missing_ref[0])))
+    signals = [signals] if isinstance(signals, str) else list(signals)
+    _require(signals, ref_cols, "signal", "reference")
     pairs = [(s, mapping.get(s, s)) for s in signals]
-    missing_ours = [(s, o) for s, o in pairs if o not in our_cols]
-    if missing_ours:
-        raise Acausal2dError(
-            "signal%s not in the result: %s; the result has: %s"
-            % ("s" if len(missing_ours) > 1 else "",
-               ", ".join(o if o == s else "%s (mapped from %s)" % (o, s) for s, o in missing_ours),
-               _few(our_cols, missing_ours[0][1])))
+    missing = [(s, o) for s, o in pairs if o not in our_cols]
+    _require_ours(missing, our_cols, "signal",
+                  lambda s, o: o if o == s else "%s (mapped from %s)" % (o, s))
     return pairs
+
+
+def _require(names, columns, what, role):
+    """Refuse ``names`` missing from ``columns`` (of the ``role`` file)."""
+    missing = [n for n in names if n not in columns]
+    if missing:
+        raise Acausal2dError("%s%s not in the %s: %s; the %s has: %s" % (
+            what, "s" if len(missing) > 1 else "", role, ", ".join(missing), role,
+            _few(columns, missing[0])))
+
+
+def _require_ours(missing, our_cols, what, show):
+    """Refuse (reference, our name) pairs whose name is not in the result;
+    ``show`` formats a pair (a %-format or a function)."""
+    if missing:
+        fmt = show if callable(show) else (lambda s, o: show % (s, o))
+        raise Acausal2dError("%s%s not in the result: %s; the result has: %s" % (
+            what, "s" if len(missing) > 1 else "", ", ".join(fmt(s, o) for s, o in missing),
+            _few(our_cols, missing[0][1])))
 
 
 def _tolerance(y_ref, abs_tol, rel_tol):
