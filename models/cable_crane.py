@@ -378,28 +378,35 @@ class CableCrane(Component):
         self.connect(self.drive1.flange, self.D1.ctrR)
         self.connect(self.drive2.flange, self.D2.ctrR)
         for rope, nodes in ROPES.items():
-            F = forces[rope]
-            c = STIFFNESS[rope]
-            spans, _ = rope_geometry(rope, pose, st0["hook"])
-            for k in range(len(nodes) - 1):
-                kw_start = {"eps": start(F / c, fixed=True)}
-                if nodes[k + 1][0] in ("mount", "hook"):
-                    # ends prepare_belts does not know: give the branch here
-                    g, l = spans[k]["gamma"], spans[k]["l"]
-                    kw_start.update(gamma=start(g), l=start(l), l_u=start(l), l_u0=start(l))
-                span = Belt(c=c, d=T_RELAX * c, **kw_start)
-                setattr(self, "%s%d" % (rope, k + 1), span)
-                for node, end in ((nodes[k], 1), (nodes[k + 1], 2)):
-                    if node[0] in ("pulley", "drum"):
-                        contact = 1 if (node[0] == "drum" or end == 2) else 2
-                        connect_band(self, span, end, getattr(self, node[1]), contact)
-                    elif node[0] == "fixed":
-                        fixed = self.anchor if node[1] == ANCHOR else self.top
-                        self.connect(fixed.frame, getattr(span, "ctr2D%d" % end))
-                    elif node[0] == "mount":
-                        self.connect(self.carriage.Hc, getattr(span, "ctr2D%d" % end))
-                    else:
-                        self.connect(self.hook.frame, getattr(span, "ctr2D%d" % end))
+            self._rope(rope, nodes, forces[rope], pose, st0["hook"])
+
+    def _rope(self, rope, nodes, F, pose, hook):
+        """The spans of one rope along its ``nodes``, pretensioned to F."""
+        c = STIFFNESS[rope]
+        spans, _ = rope_geometry(rope, pose, hook)
+        for k in range(len(nodes) - 1):
+            kw_start = {"eps": start(F / c, fixed=True)}
+            if nodes[k + 1][0] in ("mount", "hook"):
+                # ends prepare_belts does not know: give the branch here
+                g, l = spans[k]["gamma"], spans[k]["l"]
+                kw_start.update(gamma=start(g), l=start(l), l_u=start(l), l_u0=start(l))
+            span = Belt(c=c, d=T_RELAX * c, **kw_start)
+            setattr(self, "%s%d" % (rope, k + 1), span)
+            for node, end in ((nodes[k], 1), (nodes[k + 1], 2)):
+                self._attach(span, end, node)
+
+    def _attach(self, span, end, node):
+        """Connect end ``end`` of ``span`` to the rope node ``node``."""
+        port = getattr(span, "ctr2D%d" % end)
+        if node[0] in ("pulley", "drum"):
+            contact = 1 if (node[0] == "drum" or end == 2) else 2
+            connect_band(self, span, end, getattr(self, node[1]), contact)
+        elif node[0] == "fixed":
+            self.connect((self.anchor if node[1] == ANCHOR else self.top).frame, port)
+        elif node[0] == "mount":
+            self.connect(self.carriage.Hc, port)
+        else:
+            self.connect(self.hook.frame, port)
 
 
     def shapes(self):

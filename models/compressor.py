@@ -224,7 +224,12 @@ class Compressor(Component):
     def __init__(self, **kw):
         super().__init__(**kw)
         T, B, C = tensioner_geometry()
-        l0_spring, _ = tensioner_preload()
+        self._motor_and_belt(T)
+        self._tensioner(C)
+        self._crank_drive()
+
+    def _motor_and_belt(self, T):
+        """Motor, clutch and the three-pulley belt drive (tensioner at T)."""
         # --- motor and clutch
         self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2,
                                            phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
@@ -247,7 +252,10 @@ class Compressor(Component):
         connect_band(self, self.span2, 2, self.tens, 1)
         connect_band(self, self.span3, 1, self.tens, 2)
         connect_band(self, self.span3, 2, self.driven, 1)
-        # --- tensioner: bell-crank lever with spring-damper
+
+    def _tensioner(self, C):
+        """Bell-crank lever with the spring-damper anchored at C."""
+        l0_spring, _ = tensioner_preload()
         self.pivot = Fixed(r=PIVOT)
         self.lever = Revolute(phi=start(LEVER0, fixed=True), w=start(0.0, fixed=True))
         self.arm1 = FixedTranslation(r=(ARM1, 0.0))
@@ -260,7 +268,9 @@ class Compressor(Component):
         self.connect(self.arm1.frame_b, self.tens.ctr2D1)
         self.connect(self.arm2.frame_b, self.spring.frame_a)
         self.connect(self.spring.frame_b, self.anchor.frame)
-        # --- crank drive on the driven pulley's shaft, cylinder above it
+
+    def _crank_drive(self):
+        """Crank drive on the driven pulley's shaft, cylinder above it."""
         self.shaft = Fixed(r=P2)
         self.crank = Revolute(use_flange=True, state_select="always",
                               phi=start(-math.pi / 2, fixed=True), w=start(0.0, fixed=True))

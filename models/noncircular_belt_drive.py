@@ -127,6 +127,65 @@ class Design:
         self.__dict__.update(kw)
 
 
+def _unpack(z, K):
+    """(p1c, p2m, p2c, nu0, nuc, mu0, muc) of the unknown vector ``z``."""
+    n = 2 * K
+    return (z[:n], z[n], z[n + 1:2 * n + 1], z[2 * n + 1], z[2 * n + 2:3 * n + 2],
+            z[3 * n + 2], z[3 * n + 3:4 * n + 3])
+
+
+class _Fit:
+    """Residuals (contact conditions at M angles) of the pulley-pair fit
+    with K harmonics, and their Jacobian."""
+
+    def __init__(self, phi, xP, f, r1_mean, a):
+        self.phi, self.xP, self.f, self.r1_mean, self.a = phi, xP, f, r1_mean, a
+
+    def __call__(self, z, K, jac):
+        n, M = 2 * K, self.phi.size
+        p1c, p2m, p2c, nu0, nuc, mu0, muc = _unpack(z, K)
+        Bphi, _ = _basis(self.phi, K, 1)
+        Bn = np.hstack([np.ones((M, 1)), Bphi])            # d(nu)/d(nu0, nuc)
+        res, rows = [], []
+        for ang, col in ((nu0 + Bphi @ nuc, 2 * n + 1), (mu0 + Bphi @ muc, 3 * n + 2)):
+            # small pulley: p1(ang - phi) = x_P cos(ang)
+            B1, dB1 = _basis(ang - self.phi, K, 1)
+            res.append(self.r1_mean + B1 @ p1c - self.xP * np.cos(ang))
+            if jac:
+                J = np.zeros((M, len(z)))
+                J[:, :n] = B1
+                J[:, col:col + n + 1] = (dB1 @ p1c + self.xP * np.sin(ang))[:, None] * Bn
+                rows.append(J)
+            # large pulley: p2(ang - f) = (x_P - a) cos(ang)
+            B2, dB2 = _basis(ang - self.f, K, 2)
+            res.append(p2m + B2 @ p2c - (self.xP - self.a) * np.cos(ang))
+            if jac:
+                J = np.zeros((M, len(z)))
+                J[:, n] = 1.0
+                J[:, n + 1:2 * n + 1] = B2
+                J[:, col:col + n + 1] = (dB2 @ p2c + (self.xP - self.a) * np.sin(ang))[:, None] \
+                    * Bn
+                rows.append(J)
+        return np.vstack(rows) if jac else np.concatenate(res)
+
+
+def _start(Kc, prev, r1_mean, xP):
+    """Start vector with Kc harmonics: circles, or the previous solution
+    ``prev`` (fewer harmonics) padded with zeros."""
+    n = 2 * Kc
+    z = np.zeros(4 * n + 3)
+    nu_c = math.pi - np.arccos(r1_mean / np.abs(xP))
+    z[n], z[2 * n + 1], z[3 * n + 2] = 2 * r1_mean, nu_c.mean(), -nu_c.mean()
+    if prev is not None:
+        Kp = len(prev[0]) // 2
+        for off, c in ((0, prev[0]), (n + 1, prev[2]), (2 * n + 2, prev[4]),
+                       (3 * n + 3, prev[6])):
+            z[off:off + Kp] = c[:Kp]
+            z[off + Kc:off + Kc + Kp] = c[Kp:]
+        z[n], z[2 * n + 1], z[3 * n + 2] = prev[1], prev[3], prev[5]
+    return z
+
+
 @functools.lru_cache(maxsize=4)
 def design(a=A_DIST, r1_mean=R1_MEAN, lam=LAM, bet=BET, K=24, M=256):
     """Synthesise the pulley pair (module docstring).  Returns a
@@ -134,72 +193,25 @@ def design(a=A_DIST, r1_mean=R1_MEAN, lam=LAM, bet=BET, K=24, M=256):
     from scipy.optimize import least_squares
     phi = np.linspace(0.0, 2 * math.pi, M, endpoint=False)
     g = g_ratio(phi, lam, bet)
-    f = f_motion(phi, lam, bet)
     xP = -a * g / (1 - g)
-
-    def unpack(z, K):
-        n = 2 * K
-        return (z[:n], z[n], z[n + 1:2 * n + 1], z[2 * n + 1], z[2 * n + 2:3 * n + 2],
-                z[3 * n + 2], z[3 * n + 3:4 * n + 3])
-
-    def evaluate(z, K, jac):
-        n = 2 * K
-        p1c, p2m, p2c, nu0, nuc, mu0, muc = unpack(z, K)
-        Bphi, _ = _basis(phi, K, 1)
-        nu = nu0 + Bphi @ nuc
-        mu = mu0 + Bphi @ muc
-        res, rows = [], []
-        Bn = np.hstack([np.ones((M, 1)), Bphi])            # d(nu)/d(nu0, nuc)
-        for ang, col in ((nu, 2 * n + 1), (mu, 3 * n + 2)):
-            # small pulley: p1(ang - phi) = x_P cos(ang)
-            B1, dB1 = _basis(ang - phi, K, 1)
-            res.append(r1_mean + B1 @ p1c - xP * np.cos(ang))
-            if jac:
-                J = np.zeros((M, len(z)))
-                J[:, :n] = B1
-                J[:, col:col + n + 1] = (dB1 @ p1c + xP * np.sin(ang))[:, None] * Bn
-                rows.append(J)
-        for ang, col in ((nu, 2 * n + 1), (mu, 3 * n + 2)):
-            # large pulley: p2(ang - f) = (x_P - a) cos(ang)
-            B2, dB2 = _basis(ang - f, K, 2)
-            res.append(p2m + B2 @ p2c - (xP - a) * np.cos(ang))
-            if jac:
-                J = np.zeros((M, len(z)))
-                J[:, n] = 1.0
-                J[:, n + 1:2 * n + 1] = B2
-                J[:, col:col + n + 1] = (dB2 @ p2c + (xP - a) * np.sin(ang))[:, None] * Bn
-                rows.append(J)
-        return np.vstack(rows) if jac else np.concatenate(res)
-
+    fit = _Fit(phi, xP, f_motion(phi, lam, bet), r1_mean, a)
     prev = None
     for Kc in (8, K):
-        n = 2 * Kc
-        z = np.zeros(4 * n + 3)
-        nu_c = math.pi - np.arccos(r1_mean / np.abs(xP))
-        z[n], z[2 * n + 1], z[3 * n + 2] = 2 * r1_mean, nu_c.mean(), -nu_c.mean()
-        if prev is not None:
-            Kp = len(prev[0]) // 2
-            for off, c in ((0, prev[0]), (n + 1, prev[2]), (2 * n + 2, prev[4]),
-                           (3 * n + 3, prev[6])):
-                z[off:off + Kp] = c[:Kp]
-                z[off + Kc:off + Kc + Kp] = c[Kp:]
-            z[n], z[2 * n + 1], z[3 * n + 2] = prev[1], prev[3], prev[5]
-        sol = least_squares(lambda z: evaluate(z, Kc, False), z,
-                            jac=lambda z: evaluate(z, Kc, True), method="lm",
+        sol = least_squares(lambda z: fit(z, Kc, False), _start(Kc, prev, r1_mean, xP),
+                            jac=lambda z: fit(z, Kc, True), method="lm",
                             xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        prev = unpack(sol.x, Kc)
+        prev = _unpack(sol.x, Kc)
     p1c, p2m, p2c, nu0, nuc, mu0, muc = prev
-    res = float(np.max(np.abs(evaluate(sol.x, K, False))))
+    res = float(np.max(np.abs(fit(sol.x, K, False))))
     # coefficients below 1e-14 m (the sine terms vanish by the symmetry of
     # the design about the centre line) are dropped from the contours
     p1c = np.where(np.abs(p1c) < 1e-14, 0.0, p1c)
     p2c = np.where(np.abs(p2c) < 1e-14, 0.0, p2c)
     sup1 = (r1_mean, p1c[:K], p1c[K:], 1)
     sup2 = (float(p2m), p2c[:K], p2c[K:], 2)
-    c1 = SupportContour(*sup1)
-    c2 = SupportContour(*sup2)
     return Design(a=a, lam=lam, bet=bet, K=K, M=M, residual=res, support1=sup1,
-                  support2=sup2, contour1=c1, contour2=c2)
+                  support2=sup2, contour1=SupportContour(*sup1),
+                  contour2=SupportContour(*sup2))
 
 
 def belt_length(des, phi1, phi2=None):

@@ -209,6 +209,22 @@ def _check_points(pts, where, signals, minimum, exact=False):
         _check_point(p, f"{where}[{j}]", signals)
 
 
+def _check_text(v, where, signals):
+    if not isinstance(v, str):
+        raise Acausal2dError(f"{where} must be a string, not {type(v).__name__}")
+
+
+_FIELD_CHECKS = {
+    "value": _check_value,
+    "point": _check_point,
+    "guide": lambda v, where, signals: _check_points(v, where, signals, 2, exact=True),
+    # no signals in a contour: constants in the pulley frame
+    "contour": lambda v, where, signals: _check_points(v, where, {}, 3),
+    "text": _check_text,
+}
+"""Checks of a shape field by its kind (``points:n`` is handled apart)."""
+
+
 def _check_shape(i, shape, signals):
     if not isinstance(shape, dict):
         raise Acausal2dError(f"shape {i} must be a dict with a 'type', not {type(shape).__name__}")
@@ -217,25 +233,15 @@ def _check_shape(i, shape, signals):
         raise Acausal2dError(
             f"shape {i} has unknown type {kind!r}; known types: {', '.join(SHAPE_TYPES)}")
     for field, fkind, required in SHAPE_TYPES[kind]:
-        where = f"shape {i} ({kind}) field {field!r}"
         if field not in shape or shape[field] is None:
             if required:
                 raise Acausal2dError(f"shape {i} ({kind}) is missing the required field {field!r}")
             continue
-        v = shape[field]
-        if fkind == "value":
-            _check_value(v, where, signals)
-        elif fkind == "point":
-            _check_point(v, where, signals)
-        elif fkind.startswith("points:"):
-            _check_points(v, where, signals, int(fkind.split(":")[1]))
-        elif fkind == "guide":
-            _check_points(v, where, signals, 2, exact=True)
-        elif fkind == "contour":
-            _check_points(v, where, {}, 3)  # no signals allowed: constants in the pulley frame
-        elif fkind == "text":
-            if not isinstance(v, str):
-                raise Acausal2dError(f"{where} must be a string, not {type(v).__name__}")
+        where = f"shape {i} ({kind}) field {field!r}"
+        if fkind.startswith("points:"):
+            _check_points(shape[field], where, signals, int(fkind.split(":")[1]))
+        else:
+            _FIELD_CHECKS[fkind](shape[field], where, signals)
     if "color" in shape and not isinstance(shape["color"], str):
         raise Acausal2dError(f"shape {i} ({kind}) field 'color' must be a CSS colour string")
 
@@ -262,7 +268,20 @@ def _validated(scene):
                              f"(a scene needs {', '.join(map(repr, _SCENE_KEYS))})")
     if not isinstance(scene["title"], str):
         raise Acausal2dError("scene['title'] must be a string")
-    time = _numeric_array(scene["time"], "scene['time']")
+    time = _scene_time(scene["time"])
+    signals = _scene_signals(scene["signals"], time.size)
+    shapes = scene["shapes"]
+    if isinstance(shapes, (str, bytes, dict)) or not hasattr(shapes, "__iter__"):
+        raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
+    for i, shape in enumerate(shapes):
+        _check_shape(i, shape, signals)
+    _check_options(scene, signals)
+    return time, signals
+
+
+def _scene_time(values):
+    """scene['time'] as a finite, non-decreasing float array."""
+    time = _numeric_array(values, "scene['time']")
     if time.size == 0:
         raise Acausal2dError("scene['time'] is empty; a scene needs at least one sample")
     if not np.all(np.isfinite(time)):
@@ -271,24 +290,23 @@ def _validated(scene):
         k = int(np.argmax(np.diff(time) < 0))
         raise Acausal2dError(f"scene['time'] must be non-decreasing, but time[{k + 1}] = "
                              f"{time[k + 1]} < time[{k}] = {time[k]}")
-    if not isinstance(scene["signals"], dict):
+    return time
+
+
+def _scene_signals(values, n):
+    """scene['signals'] as {name: float array of ``n`` values}."""
+    if not isinstance(values, dict):
         raise Acausal2dError("scene['signals'] must be a dict {name: list of values}")
     signals = {}
-    for name, values in scene["signals"].items():
+    for name, column in values.items():
         if not isinstance(name, str):
             raise Acausal2dError(f"signal names must be strings, got {name!r}")
-        arr = _numeric_array(values, f"signal {name!r}")
-        if arr.size != time.size:
+        arr = _numeric_array(column, f"signal {name!r}")
+        if arr.size != n:
             raise Acausal2dError(f"signal {name!r} has {arr.size} values but scene['time'] "
-                                 f"has {time.size}; every signal needs one value per time")
+                                 f"has {n}; every signal needs one value per time")
         signals[name] = arr
-    shapes = scene["shapes"]
-    if isinstance(shapes, (str, bytes, dict)) or not hasattr(shapes, "__iter__"):
-        raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
-    for i, shape in enumerate(shapes):
-        _check_shape(i, shape, signals)
-    _check_options(scene, signals)
-    return time, signals
+    return signals
 
 
 def _check_options(scene, signals):
@@ -375,61 +393,82 @@ def _clean_shape(shape):
     return out
 
 
+class _Extent:
+    """Running world bounding box of shapes over all frames: points given
+    as numbers, signal names or arrays, each with a world-sized radius."""
+
+    def __init__(self, signals, n):
+        self.signals, self.n = signals, n
+        self.lo, self.hi = [math.inf, math.inf], [-math.inf, -math.inf]
+
+    def val(self, v):
+        if isinstance(v, str):
+            return self.signals[v]
+        if isinstance(v, np.ndarray):
+            return v
+        return np.full(self.n, np.nan if v is None else float(v))
+
+    def add(self, x, y, rad=0.0):
+        rad = np.abs(self.val(rad)) if rad is not None else 0.0
+        with np.errstate(invalid="ignore"):
+            for d, c in ((0, self.val(x)), (1, self.val(y))):
+                a, b = c - rad, c + rad
+                if np.any(np.isfinite(a)):
+                    self.lo[d] = min(self.lo[d], float(np.nanmin(a)))
+                if np.any(np.isfinite(b)):
+                    self.hi[d] = max(self.hi[d], float(np.nanmax(b)))
+
+    def box(self):
+        if not all(map(math.isfinite, self.lo + self.hi)):
+            return [-1.0, -1.0, 1.0, 1.0]
+        return [self.lo[0], self.lo[1], self.hi[0], self.hi[1]]
+
+
+def _extent_of_strip(ext, sh):
+    """Links, belts, springs, ...: their points widened by half the width."""
+    width = sh.get("width")
+    half = 0.0 if width is None else ext.val(width) / 2
+    for p in sh.get("points") or (sh["a"], sh["b"]):
+        ext.add(p[0], p[1], half)
+
+
+def _extent_of_slider(ext, sh):
+    length = sh.get("length")
+    if length is None:
+        ext.add(sh["x"], sh["y"])
+    else:
+        length = ext.val(length)
+        ext.add(sh["x"], sh["y"], np.hypot(length / 2, 0.3 * length))
+    for p in sh.get("guide") or ():
+        ext.add(p[0], p[1])
+
+
+def _extent_of_pulley(ext, sh):
+    rad = np.abs(ext.val(sh["r"]))
+    if sh.get("contour"):
+        cmax = max(math.hypot(float(c[0]), float(c[1])) for c in sh["contour"])
+        rad = np.fmax(rad, cmax)
+    ext.add(sh["x"], sh["y"], rad)
+
+
+_EXTENTS = dict(
+    {k: lambda ext, sh: ext.add(sh["x"], sh["y"])
+     for k in ("ground", "joint", "trace", "label", "arrow", "torque")},
+    body=lambda ext, sh: ext.add(sh["x"], sh["y"], sh.get("r", 0.0)),
+    slider=_extent_of_slider, pulley=_extent_of_pulley,
+    **{k: _extent_of_strip for k in ("link", "belt", "sensor", "spring", "damper", "box")})
+"""How each shape type extends the bounding box."""
+
+
 def _bbox(shapes, signals, n):
     """World bounding box ``[xmin, ymin, xmax, ymax]`` of all shapes over all
     frames (point extents plus world-sized radii)."""
-    lo = [math.inf, math.inf]
-    hi = [-math.inf, -math.inf]
-
-    def val(v):
-        if isinstance(v, str):
-            return signals[v]
-        if isinstance(v, np.ndarray):
-            return v
-        return np.full(n, np.nan if v is None else float(v))
-
-    def add(x, y, rad=0.0):
-        x = val(x)
-        y = val(y)
-        rad = np.abs(val(rad)) if rad is not None else 0.0
-        with np.errstate(invalid="ignore"):
-            for d, c in ((0, x), (1, y)):
-                a = c - rad
-                b = c + rad
-                if np.any(np.isfinite(a)):
-                    lo[d] = min(lo[d], float(np.nanmin(a)))
-                if np.any(np.isfinite(b)):
-                    hi[d] = max(hi[d], float(np.nanmax(b)))
-
+    ext = _Extent(signals, n)
     for sh in shapes:
-        kind = sh["type"]
-        if kind in ("ground", "joint", "trace", "label", "arrow", "torque"):
-            add(sh["x"], sh["y"])
-        elif kind == "body":
-            add(sh["x"], sh["y"], sh.get("r", 0.0))
-        elif kind in ("link", "belt", "sensor", "spring", "damper", "box"):
-            width = sh.get("width")
-            half = 0.0 if width is None else val(width) / 2
-            for p in sh.get("points") or (sh["a"], sh["b"]):
-                add(p[0], p[1], half)
-        elif kind == "slider":
-            length = sh.get("length")
-            if length is None:
-                add(sh["x"], sh["y"])
-            else:
-                length = val(length)
-                add(sh["x"], sh["y"], np.hypot(length / 2, 0.3 * length))
-            for p in sh.get("guide") or ():
-                add(p[0], p[1])
-        elif kind == "pulley":
-            rad = np.abs(val(sh["r"]))
-            if sh.get("contour"):
-                cmax = max(math.hypot(float(c[0]), float(c[1])) for c in sh["contour"])
-                rad = np.fmax(rad, cmax)
-            add(sh["x"], sh["y"], rad)
-    if not all(map(math.isfinite, lo + hi)):
-        return [-1.0, -1.0, 1.0, 1.0]
-    return [lo[0], lo[1], hi[0], hi[1]]
+        extend = _EXTENTS.get(sh["type"])
+        if extend is not None:
+            extend(ext, sh)
+    return ext.box()
 
 
 def _scene_data(scene, max_frames):

@@ -44,12 +44,7 @@ def _choose(path, module, modname, name):
                if issubclass(obj, Component) and obj.__module__ == modname
                and not obj.__name__.startswith("_")]
     if name is not None:
-        cls = getattr(module, name, None)
-        if cls is Component or not (inspect.isclass(cls) and issubclass(cls, Component)):
-            raise ModelDefinitionError("%s defines no model %r; models in the file: %s"
-                                       % (path, name, ", ".join(c.__name__ for c in classes)
-                                          or "none"))
-        return cls
+        return _named(path, module, name, classes)
     if not classes:
         raise ModelDefinitionError("%s defines no model (a subclass of acausal2d.Component)"
                                    % path)
@@ -59,6 +54,17 @@ def _choose(path, module, modname, name):
                                    "(load_model(path, name))"
                                    % (path, ", ".join(c.__name__ for c in models)))
     return models[0]
+
+
+def _named(path, module, name, classes):
+    """The class ``name`` of the file; the framework's ``Component`` is not
+    a model."""
+    cls = getattr(module, name, None)
+    if cls is Component or not (inspect.isclass(cls) and issubclass(cls, Component)):
+        raise ModelDefinitionError("%s defines no model %r; models in the file: %s"
+                                   % (path, name, ", ".join(c.__name__ for c in classes)
+                                      or "none"))
+    return cls
 
 
 def load_model(path, name=None, **kwargs):
