@@ -109,48 +109,34 @@ def test_seen_prismatic_with_zero_direction(capfd):
     assert "Prismatic created at" in text and "parameter r = (0, 0) breaks its rule nonzero" in text
 
 
-def _ssd(phiv):
+def _on_crank(make_dyad, port):
+    """A speed-driven crank (0.1 m) whose pin carries the dyad's ``port``."""
     class M(Component):
         def __init__(self, **kw):
             super().__init__(**kw)
             self.crank = DAN(lL=0.1)
             self.preset = Preset(kind="speed", om=1.0)
-            self.dyad = SSD(phiv=phiv)
+            self.dyad = make_dyad()
             self.connect(self.preset.flange, self.crank.ctrR2)
-            self.connect(self.crank.ctr2D2, self.dyad.ctr2D2)
+            self.connect(self.crank.ctr2D2, getattr(self.dyad, port))
     return M
 
 
 def test_seen_ssd_with_parallel_guides(capfd):
-    text = error_of(_ssd(0.0), capfd)
+    text = error_of(_on_crank(lambda: SSD(phiv=0.0), "ctr2D2"), capfd)
     assert "SSD 'dyad' cannot assemble at the start: guides 1 and 2 not parallel" in text
     assert "phiv" in text
 
 
 def test_seen_sds_with_parallel_guides(capfd):
-    class M(Component):
-        def __init__(self, **kw):
-            super().__init__(**kw)
-            self.crank = DAN(lL=0.1)
-            self.preset = Preset(kind="speed", om=1.0)
-            # guide 1 on the crank (angle 0 at the start), guide 2 fixed at angle 0
-            self.dyad = SDS(phi10=0.0, x20=0.1, y20=0.5, phi20=0.0)
-            self.connect(self.preset.flange, self.crank.ctrR2)
-            self.connect(self.crank.ctr2D2, self.dyad.ctr2D1)
-    text = error_of(M, capfd)
+    # guide 1 on the crank (angle 0 at the start), guide 2 fixed at angle 0
+    text = error_of(_on_crank(lambda: SDS(phi10=0.0, x20=0.1, y20=0.5, phi20=0.0), "ctr2D1"),
+                    capfd)
     assert "SDS 'dyad' cannot assemble at the start: guides 1 and 2 not parallel" in text
 
 
 def test_seen_dsd_pivot_on_the_crank_pin(capfd):
-    class M(Component):
-        def __init__(self, **kw):
-            super().__init__(**kw)
-            self.crank = DAN(lL=0.1)
-            self.preset = Preset(kind="speed", om=1.0)
-            self.dyad = DSD(v=0.0, x10=0.1, y10=0.0)
-            self.connect(self.preset.flange, self.crank.ctrR2)
-            self.connect(self.crank.ctr2D2, self.dyad.ctr2D2)
-    text = error_of(M, capfd)
+    text = error_of(_on_crank(lambda: DSD(v=0.0, x10=0.1, y10=0.0), "ctr2D2"), capfd)
     assert "DSD 'dyad' cannot assemble at the start: P1 != P2" in text
 
 
