@@ -25,6 +25,7 @@ from .ida import (Problem, Reached, RootFound, SundialsMessages, advance, make_s
                   start_solver)
 from .projection import Projector
 from .initialize import initial_point, initialization_error
+from .locate import exact_point, exact_rows, locate_on_solution
 from .newton import NoConvergence, solve_consistent
 from .selection import reselect, select, singularity, worst_level
 
@@ -187,6 +188,7 @@ class Simulation:
         prob.reset_monitors(self.t, y0, yp0, self.watch)
         t_stop, outputs = self._stop_and_outputs()
         n0 = self.seg_start = len(self.out)
+        self.seg_left = (self.t, np.array(self.z))
         steps0 = prob.steps
         try:
             outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop)
@@ -271,13 +273,35 @@ class Simulation:
         self.t = outcome.t
         if outcome.relations:
             rels = [self.system.state_relations[k] for k in outcome.relations]
-            self._event(np.array(outcome.y), rels)
+            self._state_event(outcome, rels)
             return True
         if outcome.near:
             return Approach(self, outcome).near()
         self.z = np.array(outcome.y)
         self._monitor(outcome.monitors)
         return True
+
+    def _state_event(self, outcome, rels):
+        """The relations ``rels`` crossed on IDA's interpolant: the event on
+        the exact solution (:mod:`~acausal2d.runtime.locate`).  With states,
+        at IDA's root with the other unknowns re-solved; without, at the
+        root of the exact solution - none if it has no root there."""
+        states = list(self._solver()[0].states)
+        if states:
+            self._event(exact_point(self.ev, self.t, outcome.y, self.d, states), rels)
+            return
+        rows = [row for row in self.out[self.seg_start:] if row[0] < outcome.t]
+        points = [self.seg_left] + rows + [(outcome.t, np.array(outcome.y))]
+        t, z, flipped = locate_on_solution(self.system, self.ev, self.d, points, rels,
+                                           self.time_event)
+        self.out[self.seg_start:] = [row for row in self.out[self.seg_start:] if row[0] <= t]
+        late = self.times[(self.times > outcome.t) & (self.times < t)]
+        self.out += exact_rows(self.ev, self.d, points[-2], (t, z), late)
+        self.t = t
+        if flipped:
+            self._event(z, flipped)
+        else:
+            self.z = z
 
     def _event(self, z_left, flipped):
         """Relations ``flipped`` switch at t: record both limits, settle."""

@@ -96,6 +96,24 @@ current frame index), ``nframes``, ``playing``, ``setFrame(i)``, ``play()``,
 ``pause()``, ``errors`` (messages of uncaught errors on the page) and
 ``scene`` (the embedded data).
 
+Drag mode (node models)
+-----------------------
+A scene may carry ``"nodes"``: the description of a node/constraint model
+(:meth:`acausal2d.language.nodes.NodeModel.drag_system`: ``nodes`` with
+x, y, m, base; ``constraints`` with their length/angle values; ``lentol``,
+``itrmax``; ``signals``, the result signals that are node coordinates or
+constraint lengths/angles).  The page then offers a "drag" check box
+(``id="drag"``): while it is on, playback pauses, the nodes start where the
+current frame has them, and grabbing a moving node with the mouse moves
+it; after every move the page corrects the positions by the talk's eq.
+3-16 (the position correction of cstr.js, written out in the page's own
+script, ``tools/assets/animation_drag.js``), driven values being left to
+the hand.  Shapes follow the dragged nodes.  ``window.acausal2d.drag``
+exposes ``active``, ``enable()``, ``disable()``, ``positions()`` (world
+coordinates), ``screenOf(id)`` (canvas pixels), ``lengths()`` (constraint
+lengths), ``move(id, x, y)`` (one drag step: place the node and correct)
+and ``last`` (the last correction: iterations, converged).
+
 Long results are subsampled to at most ``max_frames`` frames (default 2000),
 evenly in time, always keeping the first and the last sample; numbers are
 rounded to 6 significant digits, and only signals used by shapes are embedded.
@@ -148,6 +166,7 @@ SHAPE_TYPES = {
 """The shape types a scene may contain and their fields."""
 
 _SCENE_KEYS = ("title", "time", "signals", "shapes")
+_NODE_KEYS = ("nodes", "constraints", "signals", "lentol", "itrmax")
 
 
 # --------------------------------------------------------------------------
@@ -276,6 +295,7 @@ def _validated(scene):
     for i, shape in enumerate(shapes):
         _check_shape(i, shape, signals)
     _check_options(scene, signals)
+    _check_nodes(scene.get("nodes"))
     return time, signals
 
 
@@ -320,6 +340,34 @@ def _check_options(scene, signals):
         if not isinstance(plot, dict) or not isinstance(plot.get("signal"), str):
             raise Acausal2dError("scene['plot'] must be a dict {'signal': name, 'label': text}")
         _check_value(plot["signal"], "scene['plot']['signal']", signals)
+
+
+def _check_nodes(nodes):
+    """The optional node description of a scene (drag mode)."""
+    if nodes is None:
+        return
+    if not isinstance(nodes, dict) or any(k not in nodes for k in _NODE_KEYS):
+        raise Acausal2dError(f"scene['nodes'] must be a dict with the keys "
+                             f"{', '.join(_NODE_KEYS)} (NodeModel.drag_system())")
+    ids = set()
+    for i, n in enumerate(nodes["nodes"]):
+        if not isinstance(n, dict) or not isinstance(n.get("id"), str) or \
+                not all(_is_number(n.get(k)) for k in ("x", "y")):
+            raise Acausal2dError(f"scene['nodes']['nodes'][{i}] needs an id and numbers x, y")
+        ids.add(n["id"])
+    _check_node_constraints(nodes, ids)
+
+
+def _check_node_constraints(nodes, ids):
+    for i, c in enumerate(nodes["constraints"]):
+        ends = [c.get(k) for k in ("n1", "n2", "n3") if k in c] if isinstance(c, dict) else []
+        if len(ends) < 2 or any(e not in ids for e in ends):
+            raise Acausal2dError(f"scene['nodes']['constraints'][{i}] must join nodes of "
+                                 f"scene['nodes']['nodes']")
+    try:
+        json.dumps(nodes, allow_nan=False)
+    except (TypeError, ValueError) as exc:
+        raise Acausal2dError(f"scene['nodes'] must be plain JSON data: {exc}") from None
 
 
 # --------------------------------------------------------------------------
@@ -495,6 +543,7 @@ def _scene_data(scene, max_frames):
         "unit": scene.get("unit", "m"),
         "autoplay": bool(scene.get("autoplay", False)),
         "plot": plot,
+        "nodes": scene.get("nodes"),
     }
 
 
@@ -518,6 +567,7 @@ def render_html(scene, *, max_frames=MAX_FRAMES):
     data = _scene_data(scene, max_frames)
     title = html.escape(data["title"] or "acausal2d animation")
     template, css, js = (_asset("animation." + ext) for ext in ("html", "css", "js"))
+    js += "\n" + _asset("animation_drag.js")
     return (template
             .replace("%%TITLE%%", title)
             .replace("%%SCRUB_MAX%%", str(data["nframes"] - 1))

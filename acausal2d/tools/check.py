@@ -29,6 +29,8 @@ class CheckReport:
                                                  if self.structural_index > 1 else ""),
                  "  states:            %s" % (", ".join(self.states) or "none"),
                  "  closed loops:      %d" % self.loops]
+        if self.nodes is not None:
+            lines += _node_lines(self.nodes)
         if self.grubler is not None:
             lines.append("  degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, "
                          "g = %d joints), %d structural (position states)"
@@ -45,6 +47,40 @@ class CheckReport:
             lines.append("  degree of freedom: %d structural (position states); no planar "
                          "joints declared for eq. 2.1" % self.structural_dof)
         return "\n".join(lines)
+
+
+def _node_lines(c):
+    """The talk's eq. 1/2 counts of the node models (see
+    :meth:`acausal2d.language.nodes.NodeModel.node_counts`)."""
+    lines = ["  nodes (talk):      N = %d, N_base = %d, C1 = %d, C2 = %d: F = %d (eq. 1), "
+             "m = %d loops (eq. 2)" % (c["N"], c["N_base"], c["C1"], c["C2"], c["F"], c["m"])]
+    if c["driven"]:
+        lines.append("                     driven (inputs, not counted): %s"
+                     % ", ".join(c["driven"]))
+    if c["not_counted"]:
+        lines.append("                     not counted: %s" % ", ".join(c["not_counted"]))
+    return lines
+
+
+def _node_counts(model):
+    """Sum of the eq. 1/2 counts of all node models in ``model``, or None."""
+    found = [c.node_counts() for c in model.components() if hasattr(c, "node_counts")]
+    if not found:
+        return None
+    out = {k: sum(f[k] for f in found) for k in ("N", "N_base", "C1", "C2")}
+    out["F"] = 2 * (out["N"] - out["N_base"]) - out["C1"] - 2 * out["C2"]
+    out["m"] = out["C1"] + out["C2"] - out["N"] + out["N_base"]
+    out["driven"] = [d for f in found for d in f["driven"]]
+    out["not_counted"] = [d for f in found for d in f["not_counted"]]
+    return out
+
+
+def _loops(topo, nodes):
+    """Closed loops: from the planar topology (eq. 2.1), else the node
+    models' eq. 2 (not below 0), else 0."""
+    if topo:
+        return topo[3]
+    return max(nodes["m"], 0) if nodes else 0
 
 
 def _planar_topology(model):
@@ -121,6 +157,7 @@ def check(model):
     position_states = [j for j in state_nodes
                        if s.var_level[j] == 0 and s.var_to_diff[j] in st]
     topo = _planar_topology(root)
+    nodes = _node_counts(root)
     kinds = Counter(type(c).__name__ for c in root.components() if c is not root)
     return CheckReport(
         name=type(root).__name__,
@@ -132,6 +169,6 @@ def check(model):
         n_parameters=len(system.parameters),
         structural_index=_index(s, state_nodes),
         states=states, structural_dof=len(position_states),
-        loops=topo[3] if topo else 0,
+        loops=_loops(topo, nodes), nodes=nodes,
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
         joints=topo[1] if topo else 0)

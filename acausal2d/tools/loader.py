@@ -75,7 +75,11 @@ def load_model(path, name=None, **kwargs):
     file defines: the one class with an ``experiment`` (declared or
     inherited), or the file's only component class.  A file with several
     models (a base model and its subclass count as two) must be given a
-    name; the error lists them.  ``Component`` itself is not a model.  ``kwargs`` go to the model's constructor."""
+    name; the error lists them.  ``Component`` itself is not a model.
+    ``kwargs`` go to the model's constructor.  A ``.json`` file is a mec2
+    model (:func:`acausal2d.tools.mec2.load_mec2`)."""
+    if isinstance(path, (str, os.PathLike)) and os.fspath(path).lower().endswith(".json"):
+        return _load_json(path, name, kwargs)
     if not isinstance(path, (str, os.PathLike)) or not os.path.isfile(path):
         raise ModelDefinitionError("model file %s does not exist" % (path,))
     path = os.path.abspath(os.fspath(path))
@@ -91,3 +95,12 @@ def load_model(path, name=None, **kwargs):
     except Exception as exc:
         raise ModelDefinitionError("building %s failed: %s: %s"
                                    % (cls.__name__, type(exc).__name__, exc)) from None
+
+
+def _load_json(path, name, kwargs):
+    """A mec2 model file: one model, no constructor arguments."""
+    from .mec2 import load_mec2
+    if name is not None or kwargs:
+        raise ModelDefinitionError("%s is a mec2 model (one model, no arguments); drop "
+                                   "--model and the keyword arguments" % (path,))
+    return load_mec2(os.fspath(path))

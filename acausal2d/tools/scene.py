@@ -167,7 +167,20 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
         from .plotting import axis_label, unit_of
         signals[signal] = [float(v) for v in result[signal]]
         scene["plot"] = {"signal": signal, "label": axis_label(signal, unit_of(result, signal))}
+    nodes = _drag_system(model)
+    if nodes is not None:
+        scene["nodes"] = nodes
     return scene
+
+
+def _drag_system(model):
+    """The node description for the page's drag mode (the first node model
+    in ``model``, see :meth:`acausal2d.language.nodes.NodeModel.drag_system`),
+    or None."""
+    for comp in model.components() if model is not None else ():
+        if hasattr(comp, "drag_system"):
+            return comp.drag_system()
+    return None
 
 
 def animate(result, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):

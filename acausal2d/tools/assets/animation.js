@@ -26,6 +26,7 @@
   };
 
   var frame = 0, playing = false, rafId = null, anchorWall = 0, anchorSim = 0;
+  var override = null;  // function (signal name) -> value or undefined (drag mode)
   var view = { s: 1, ox: 0, oy: 0, w: 1, h: 1 };
 
   // Playback clock: the time vector, or 30 frames/s if it does not advance.
@@ -34,6 +35,10 @@
   for (var q = 0; q < N; q++) clock[q] = duration > 0 ? T[q] : q / 30;
 
   function val(x, k) {
+    if (override !== null && typeof x === "string") {
+      var o = override(x);
+      if (o !== undefined) return o;
+    }
     var y = x;
     if (typeof x === "string") { var a = S[x]; y = a ? a[k] : null; }
     return (y === null || y === undefined) ? NaN : +y;
@@ -529,6 +534,12 @@
     errors: errors,
     scene: D,
     get gridLabel() { return gridLabel; },
-    plotCursor: plotCursor
+    plotCursor: plotCursor,
+    canvas: canvas,
+    setOverride: function (f) { override = f || null; draw(); },
+    redraw: function () { draw(); },
+    toWorld: function (px, py) { return [(px - view.ox) / view.s, (view.oy - py) / view.s]; },
+    toScreen: function (x, y) { return P(x, y); },
+    signal: function (name, k) { var a = S[name]; return a ? a[k] : undefined; }
   };
 })();
