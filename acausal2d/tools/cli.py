@@ -97,6 +97,7 @@ def cmd_simulate(args):
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
     res.animate(os.path.join(out, "animation.html"),
                 traces=traces)
+    files = _model_files(model, res, out)
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -104,11 +105,23 @@ def cmd_simulate(args):
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d steps, %d output points, "
           "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
-          "%d plot%s, animation.html)" % (
+          "%d plot%s, animation.html%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
-              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s"))
+              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
+              ", " + ", ".join(files) if files else ""))
     return 0
+
+
+def _model_files(model, res, out):
+    """Files the model writes itself after a run: its optional method
+    ``write_outputs(result, folder)`` returns their paths (e.g. the contour
+    plots and cam contour files of the band synthesis models); listed by
+    name."""
+    write = getattr(model, "write_outputs", None)
+    if not callable(write):
+        return []
+    return [os.path.basename(p) for p in write(res, out) or ()]
 
 
 def cmd_check(args):
