@@ -67,20 +67,50 @@ def sign_changes(v, x):
     return [0.5 * (x[idx[j]] + x[idx[j + 1]]) for j in k]
 
 
-def jumps(x, v, dv, rel=1e-3):
-    """Intervals of the grid ``x`` over which ``v`` jumps: the difference
-    ``v(b) - v(a)`` departs from the trapezoid of the exact derivative ``dv``
-    by more than ``rel * (b - a) * max|dv|`` (plus 1e-9 of max|v|); for a
-    smooth v the departure is the trapezoid error (b - a)^3 |v'''|/12, far
-    below.  Returns the interval midpoints."""
+def _mismatch(a, b, va, vb, da, db):
+    return abs(vb - va - 0.5 * (b - a) * (da + db))
+
+
+def jumps(x, v, dv, rel=1e-3, refine=None):
+    """Intervals of the grid ``x`` over which ``v`` jumps.  Candidates: the
+    difference ``v(b) - v(a)`` departs from the trapezoid of the exact
+    derivative ``dv`` by more than ``rel * (b - a) * max|dv|`` (plus 1e-9 of
+    max|v|).  With ``refine`` (a function giving ``(v, dv)`` at given
+    points) each candidate is bisected 30 times towards its larger
+    departure: a jump keeps its departure, a kink of v' (a jump of a higher
+    derivative) loses it quadratically with the interval; without it the
+    candidates are returned.  Returns the interval midpoints."""
     x, v, dv = (np.asarray(a, dtype=float) for a in (x, v, dv))
     ok = np.isfinite(v) & np.isfinite(dv)
     hstep = np.diff(x)
     mis = np.abs(np.diff(v) - 0.5 * hstep * (dv[1:] + dv[:-1]))
     scale = np.max(np.abs(dv[ok])) if np.any(ok) else 0.0
     vmax = np.max(np.abs(v[ok])) if np.any(ok) else 0.0
-    bad = (mis > rel * hstep * scale + 1e-9 * vmax) | ~(ok[1:] & ok[:-1])
-    return list(0.5 * (x[1:] + x[:-1])[bad])
+    bad = np.nonzero((mis > rel * np.abs(hstep) * scale + 1e-9 * vmax) | ~(ok[1:] & ok[:-1]))[0]
+    if refine is None:
+        return [0.5 * (x[j] + x[j + 1]) for j in bad]
+    return [0.5 * (x[j] + x[j + 1]) for j in bad
+            if not np.isfinite(mis[j]) or _persists(x[j], x[j + 1], mis[j], refine)]
+
+
+def _persists(a, b, m0, refine):
+    """True if the departure m0 over [a, b] survives 30 bisections."""
+    for _ in range(30):
+        m = 0.5 * (a + b)
+        val, der = refine(np.array([a, m, b]))
+        left = _mismatch(a, m, val[0], val[1], der[0], der[1])
+        right = _mismatch(m, b, val[1], val[2], der[1], der[2])
+        a, b = (a, m) if left >= right else (m, b)
+        if not np.isfinite(max(left, right)):
+            return True
+    val, der = refine(np.array([a, b]))
+    return _mismatch(a, b, val[0], val[1], der[0], der[1]) > 0.25 * m0
+
+
+def _column_pair(fd, k):
+    """(f_k, f_(k+1) * dcam) from refine's (f array, dcam)."""
+    f, dcam = fd
+    return f[:, k], f[:, k + 1] * dcam
 
 
 def _intervals(points):
@@ -89,16 +119,20 @@ def _intervals(points):
     return ", ".join(pts) + (" ..." if len(points) > 6 else "")
 
 
-def precheck_transfer(phi, f):
+def precheck_transfer(phi, f, refine=None, dcam=1.0):
     """Pre-check of the transfer function (seed ch. 5.3): ``f`` is an (n, 4)
     array of its values and first three derivatives with respect to the cam
-    angle over the grid ``phi``.  Findings for a jump of f, f' or f'' (not C2)
-    and for a dwell (f' = 0 over an interval)."""
+    angle over the grid ``phi`` of the drive parameter; ``dcam`` the
+    derivative of the cam angle with respect to it (array or number);
+    ``refine`` (optional) gives (f array, dcam) at other parameter values (to
+    confirm jumps, see :func:`jumps`).  Findings for a jump of f, f' or f''
+    (not C2) and for a dwell (f' = 0 over an interval)."""
     f = np.asarray(f, dtype=float)
     out = []
     for k, name in enumerate(("the transfer function", "its first derivative",
                               "its second derivative")):
-        at = jumps(phi, f[:, k], f[:, k + 1])
+        ref = None if refine is None else (lambda q, k=k: _column_pair(refine(q), k))
+        at = jumps(phi, f[:, k], f[:, k + 1] * dcam, refine=ref)
         if at:
             out.append(Finding("transfer function not C2", "ch. 5.3",
                                "%s jumps near phi = %s" % (name, _intervals(at)), at))
@@ -107,8 +141,9 @@ def precheck_transfer(phi, f):
     run = np.nonzero(still[1:] & still[:-1])[0]
     if len(run):
         at = list(phi[run])
-        out.append(Finding("dwell", "ch. 5.3", "the transfer function rests (f' = 0) near "
-                           "phi = %s: a dwell cannot be built with a band" % _intervals(at), at))
+        out.append(Finding("dwell", "ch. 5.3", "the transfer function rests (f' = 0) over phi = "
+                           "%.4g .. %.4g: a dwell cannot be built with a band"
+                           % (phi[run[0]], phi[run[-1] + 1]), at))
     return out
 
 
@@ -149,7 +184,7 @@ class Assessment:
                 ("transfer function not C2", "dwell"))
         row("GF1 = Z (5.7) keeps its sign (%s)" % v["GF1 sign"], ("GF1",))
         row("GF2 (5.9) keeps its sign (%s)" % v["GF2 sign"], ("GF2",))
-        row("S_Bf = sign(dl_Bf/dphi) (5.11) constant (%s)" % v["S_Bf"],
+        row("S_Bf = sign(dl_Bf/dphi) (5.11) constant (%s), l_Bf without jumps" % v["S_Bf"],
             ("S_Bf", "free band length jumps"))
         lines.append("  free band length l_Bf (5.3):     %.4g .. %.4g m" % v["l_Bf range"])
         amax = self.limits.get("a_max")
@@ -261,6 +296,16 @@ def _stresses(syn, band, torque, force, series):
     series["utilisation"] = (series["sigma_z"] + series["sigma_b"]) / band.sigma_allow  # 5.18
 
 
+def _transfer_at(syn, q):
+    v = syn.evaluate(q)
+    return np.column_stack([v["f%d" % k] for k in range(4)]), v["dcam"]
+
+
+def _lbf_at(syn, q):
+    v = syn.evaluate(q)
+    return v["l_Bf"], v["dl_Bf"] * v["dcam"]
+
+
 def _existence(syn, s):
     """Findings of the physical existence (GF1, GF2, S_Bf, jumps)."""
     phi, out = syn.phi, []
@@ -278,7 +323,7 @@ def _existence(syn, s):
                            "(min l_Bf = %.3g m): the band curve cannot be built; if l_Bf -> 0 "
                            "the material point reaches the contour (check x0)"
                            % (_intervals(at), np.min(s["l_Bf"])), at))
-    at = jumps(phi, s["l_Bf"], s["dl_Bf"])
+    at = jumps(phi, s["l_Bf"], s["dl_Bf"] * syn.dcam, refine=lambda q: _lbf_at(syn, q))
     if at:
         out.append(Finding("free band length jumps", "eq. 5.3, 5.11", "l_Bf jumps near phi = "
                            "%s: the contour breaks apart (C0)" % _intervals(at), at))
@@ -303,7 +348,8 @@ def assess(synthesis, a_max=None, band=None, torque=None, force=None, rho_min=No
     phi = syn.phi
     findings = []
     if syn.transfer is not None:
-        findings += precheck_transfer(phi, syn.transfer)
+        findings += precheck_transfer(phi, syn.transfer, refine=lambda q: _transfer_at(syn, q),
+                                      dcam=syn.dcam)
     findings += _existence(syn, s)
     limits = {"a_max": a_max}
     if a_max is not None and np.max(s["a"]) > a_max:

@@ -138,7 +138,8 @@ class BandStructure:
 class BandSynthesis:
     """Result of :func:`synthesize` on the grid ``phi`` (drive parameter):
 
-    - ``cam`` cam angle, ``x_P3, y_P3`` the material point (world);
+    - ``cam`` cam angle, ``dcam`` its derivative with respect to the drive
+      parameter, ``x_P3, y_P3`` the material point (world);
     - ``x_e, y_e`` involute (cam frame BKS, eq. 4.50/4.51), ``d1, d2, d3``
       its derivatives with respect to the cam angle as (n, 2) arrays;
     - ``x_u, y_u`` evolute = cam contour (BKS, eq. 3.7/3.8);
@@ -156,8 +157,9 @@ class BandSynthesis:
         self.structure = structure
         self.phi = np.asarray(phi, dtype=float)
         self._fn, self._deriv_fn = fn, deriv_fn
+        self._maps = {}
         vals = self.evaluate(self.phi)
-        for name in ("cam", "x_P3", "y_P3", "x_e", "y_e", "x_u", "y_u"):
+        for name in ("cam", "dcam", "x_P3", "y_P3", "x_e", "y_e", "x_u", "y_u"):
             setattr(self, name, vals[name])
         self.d1, self.d2, self.d3 = (np.column_stack([vals["xe%d" % k], vals["ye%d" % k]])
                                      for k in (1, 2, 3))
@@ -168,7 +170,7 @@ class BandSynthesis:
     def evaluate(self, phi):
         """All quantities at the parameter values ``phi`` (dict of arrays)."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
-        out = self._fn.map(len(phi))(phi.reshape(1, -1))
+        out = self._mapped(self._fn, len(phi))(phi.reshape(1, -1))
         names = self._fn.name_out()
         return {n: np.asarray(v).ravel() for n, v in zip(names, out)}
 
@@ -176,9 +178,15 @@ class BandSynthesis:
         """(x_u, y_u) and their derivatives with respect to the cam angle up
         to ``order`` (<= 2) at ``phi``: array (len(phi), order + 1, 2)."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
-        out = self._deriv_fn.map(len(phi))(phi.reshape(1, -1))
+        out = self._mapped(self._deriv_fn, len(phi))(phi.reshape(1, -1))
         arr = np.stack([np.asarray(v).ravel() for v in out], axis=1)
         return arr.reshape(len(phi), 3, 2)[:, :order + 1, :]
+
+    def _mapped(self, fn, n):
+        key = (fn.name(), n)
+        if key not in self._maps:
+            self._maps[key] = fn.map(n)
+        return self._maps[key]
 
     def assess(self, **kw):
         """Assessment of the band curve after seed ch. 5 (see
@@ -200,7 +208,7 @@ def _expressions(structure, p):
     Z = xe1 * ye2 - ye1 * xe2
     E2 = xe1 * xe1 + ye1 * ye1
     xu, yu = xe - ye1 * E2 / Z, ye + xe1 * E2 / Z                   # 3.7, 3.8
-    named = {"cam": cam, "x_P3": xP, "y_P3": yP, "x_e": xe, "y_e": ye, "x_u": xu, "y_u": yu,
+    named = {"cam": cam, "dcam": ca.jacobian(cam, p), "x_P3": xP, "y_P3": yP, "x_e": xe, "y_e": ye, "x_u": xu, "y_u": yu,
              "xe1": xe1, "ye1": ye1, "xe2": xe2, "ye2": ye2, "xe3": xe3, "ye3": ye3}
     named.update(band_criteria(xe, ye, xe1, ye1, xe2, ye2, xe3, ye3, xu, yu))
     if structure.transfer is not None:

@@ -38,7 +38,7 @@ import numpy as np
 from acausal2d.errors import ModelDefinitionError
 
 __all__ = ["CamOutline", "cam_outline", "analysis_contour", "write_csv", "write_svg",
-           "write_dxf", "export_contour", "write_atomic"]
+           "write_dxf", "export_contour", "write_atomic", "write_text"]
 
 
 def write_atomic(path, writer):
@@ -55,6 +55,14 @@ def write_atomic(path, writer):
         if os.path.exists(tmp):
             os.remove(tmp)
     return path
+
+
+def write_text(path, text):
+    """Write ``text`` to ``path`` atomically; returns ``path``."""
+    def writer(tmp):
+        with open(tmp, "w") as fh:
+            fh.write(text)
+    return write_atomic(path, writer)
 
 
 # --------------------------------------------------------------------------
@@ -301,10 +309,7 @@ def write_svg(path, outline, margin_mm=5.0):
         'stroke-width="0.3"/>' % (-c, c, -c, c),
         '</g>', '</svg>', ""])
 
-    def writer(tmp):
-        with open(tmp, "w") as fh:
-            fh.write(text)
-    return write_atomic(path, writer)
+    return write_text(path, text)
 
 
 def write_dxf(path, outline):
