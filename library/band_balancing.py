@@ -166,8 +166,9 @@ class SpringBandFit:
     Functions of the angle: :meth:`x_at`, :meth:`h_at` (numpy) and
     :meth:`x_expr`, :meth:`h_expr` (CasADi, exact derivatives)."""
 
-    def __init__(self, phi, T, c_S, basis, coef, status):
+    def __init__(self, phi, T, c_S, basis, coef, status, torque=None):
         self.phi, self.T, self.c_S = phi, T, float(c_S)
+        self._torque = torque if callable(torque) else CubicSpline(phi, T)
         self._basis, self._coef = basis, np.asarray(coef, dtype=float)
         self.ansatz = (basis.kind, basis.n)
         self.coefficients = basis.seed_coefficients(self._coef)
@@ -196,10 +197,17 @@ class SpringBandFit:
         q = ca.SX.sym("q")
         return ca.substitute(ca.jacobian(self.x_expr(q), q), q, ca.SX(p))
 
+    def residual_at(self, phi):
+        """Torque residual T - c_S x_A x_A' (6.6) between the samples too (T
+        as given, or the cubic spline through its samples -- as the exact
+        solution integrates it)."""
+        phi = np.asarray(phi, dtype=float)
+        return self._torque(phi) - self.c_S * self.x_at(phi) * self.h_at(phi)
+
     def deviation_bound(self):
         """Bound on |x_A - x_exact| on the grid from the torque residual
         (module docstring): (2/c_S) int |r| / (x_A + x_exact)."""
-        W = torque_integral(self.phi, np.abs(self.residual))
+        W = torque_integral(self.phi, lambda p: abs(float(self.residual_at([p])[0])))
         return 2.0 * W / self.c_S / (self.x + self.x_exact)
 
 
@@ -282,4 +290,4 @@ def spring_band_transfer(phi, T, c_S=None, ansatz=("poly", 3), x_start=None, h_m
     eq = None if x_start is None else (basis.matrices([phi[0]])[0][0], float(x_start))
     a0 = _start_coefficients(B, D, x_ref, eq)
     coef, status = _solve(B, D, Tv, c_S, a0, eq, (h_min, h_max))
-    return SpringBandFit(phi, Tv, c_S, basis, coef, status)
+    return SpringBandFit(phi, Tv, c_S, basis, coef, status, T)

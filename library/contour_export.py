@@ -9,12 +9,14 @@ synthesised arc is the evolute (x_u, y_u) in the cam frame BKS (origin at
 the cam pivot, axes parallel to the world's at cam angle 0).  The band runs
 only on that arc; the rest of the disc is free, and two closures are used:
 
-- :func:`cam_outline` (manufacturing): the convex hull of the arc and a hub
-  circle about the pivot, i.e. the arc, the two tangents from its ends to
-  the hub circle and the hub arc between them (or the chord between the arc
-  ends where that already encloses the hub).  A hub radius below the
-  smallest lever arm keeps the whole plate inside every band line of the
-  range, so the band touches the cam nowhere else.  The arc is sampled
+- :func:`cam_outline` (manufacturing): the arc, the two tangents from its
+  ends to a hub circle about the pivot and the hub arc between them (or the
+  chord between the arc ends where that passes outside the hub); for an arc
+  that turns by less than a half turn this is the convex hull of arc and
+  hub.  A hub radius below the smallest lever arm keeps the hub inside
+  every band line of the range; the closure is checked not to cross the
+  arc nor any free band of the range (contact point -> material point), so
+  the band touches the plate only on the arc.  The arc is sampled
   adaptively from the exact expressions so that no chord departs from the
   contour by more than ``tol`` (default 1 micrometre).
 - :func:`analysis_contour` (simulation): the arc in polar form r(kappa)
@@ -150,9 +152,10 @@ def _closure(A, B, r, n=90):
 
 def cam_outline(syn, hub_radius=None, tol=1e-6):
     """Closed manufacturing outline of the synthesised cam (module
-    docstring): the arc sampled to ``tol`` [m] plus the convex closure over
-    a hub circle of radius ``hub_radius`` (default: half the smallest lever
-    arm of the range).  Returns a :class:`CamOutline`."""
+    docstring): the arc sampled to ``tol`` [m] plus the closure over a hub
+    circle of radius ``hub_radius`` (default: half the smallest lever arm of
+    the range).  Returns a :class:`CamOutline`; raises if the closure would
+    cross the arc or a free band."""
     sense = _ccw(syn)
     h_min = float(np.min(syn.criteria["h"]))
     r = 0.5 * h_min if hub_radius is None else float(hub_radius)
@@ -168,7 +171,32 @@ def cam_outline(syn, hub_radius=None, tol=1e-6):
     ys = np.concatenate([y, [c[1] for c in close]])
     part = ["arc"] * len(x) + ["closure"] * len(close)
     phi = np.concatenate([p, np.full(len(close), np.nan)])
+    _check_closure(np.column_stack([xs, ys]), len(x),
+                   np.column_stack([v["x_u"], v["y_u"]]), np.column_stack([v["x_e"], v["y_e"]]))
     return CamOutline(xs, ys, part, phi, r, tol, syn.structure.name)
+
+
+def _crossing(P, Q, R, S):
+    """True if any segment P[i]Q[i] properly crosses any segment R[j]S[j]."""
+    def orient(a, b, c):
+        return ((b[..., 0] - a[..., 0]) * (c[..., 1] - a[..., 1])
+                - (b[..., 1] - a[..., 1]) * (c[..., 0] - a[..., 0]))
+    P, Q = P[:, None, :], Q[:, None, :]
+    R, S = R[None, :, :], S[None, :, :]
+    d1, d2 = orient(R, S, P), orient(R, S, Q)
+    d3, d4 = orient(P, Q, R), orient(P, Q, S)
+    return bool(np.any((d1 * d2 < 0) & (d3 * d4 < 0)))
+
+
+def _check_closure(poly, n_arc, contact, material):
+    """The closure segments of the outline ``poly`` (after the first
+    ``n_arc`` arc vertices) must not cross the arc nor a free band."""
+    closed = np.vstack([poly, poly[:1]])
+    C0, C1 = closed[n_arc - 1:-1], closed[n_arc:]
+    if _crossing(C0, C1, poly[:n_arc - 1], poly[1:n_arc]) or \
+            _crossing(C0, C1, contact, material):
+        raise ModelDefinitionError("the closure of the cam plate crosses the contour or a free "
+                                   "band of the range; choose another hub_radius")
 
 
 # --------------------------------------------------------------------------
