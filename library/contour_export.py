@@ -50,8 +50,11 @@ def write_atomic(path, writer):
     os.makedirs(folder, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=os.path.splitext(path)[1])
     os.close(fd)
+    mask = os.umask(0)
+    os.umask(mask)
     try:
         writer(tmp)
+        os.chmod(tmp, 0o666 & ~mask)        # mkstemp's 0600 -> the usual file mode
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

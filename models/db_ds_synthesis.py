@@ -39,7 +39,7 @@ from acausal2d import Component
 from acausal2d.library import rotational, signals, translational
 from acausal2d.library.band_functional import BandStructure, synthesize
 from acausal2d.library.band_synthesis import Bandkurve
-from acausal2d.library.contour_export import export_contour, write_atomic, write_text
+from acausal2d.library.contour_export import cam_outline, export_contour, write_atomic, write_text
 from acausal2d.library.linkage import SAN
 from acausal2d.library.planar import Fixed, Revolute
 
@@ -109,8 +109,38 @@ class DBDSSynthesis(Component):
         a = syn.assess(a_max=0.12)
         report = write_text(os.path.join(folder, "db_ds_assessment.txt"), a.report() + "\n")
         return ([_plot(res, os.path.join(folder, "db_ds_involute_evolute.png")),
+                 plot_cam(syn, os.path.join(folder, "db_ds_cam.png")),
                  a.plot(os.path.join(folder, "db_ds_criteria.png")), report]
                 + export_contour(syn, folder, "db_ds_cam"))
+
+
+def plot_cam(syn, path):
+    """The cam plate (manufacturing outline) in the cam frame with the
+    involute of the slider pivot and free bands at every 0.5 rad (the
+    picture of the README)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    out = cam_outline(syn)
+    fig, ax = plt.subplots(figsize=(6.5, 6))
+    ax.fill(out.x, out.y, color="#dde6f0", ec="#1f4e79", lw=1.5, label="cam plate")
+    ax.plot(syn.x_u, syn.y_u, color="#1f4e79", lw=3, label="synthesised contour (evolute)")
+    ax.plot(syn.x_e, syn.y_e, color="darkorange", lw=1.2, label="involute of the slider pivot")
+    for p in np.arange(0.0, PSI_END + 1e-9, 0.5):
+        v = syn.evaluate([p])
+        ax.plot([v["x_u"][0], v["x_e"][0]], [v["y_u"][0], v["y_e"][0]], "-", color="gray", lw=0.8)
+        ax.plot(v["x_u"], v["y_u"], "o", color="#1f4e79", ms=3)
+    ax.plot([0.0], [0.0], "+", color="#c00000", ms=14, mew=2, label="cam pivot")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m] (cam frame)")
+    ax.set_ylabel("y [m]")
+    ax.set_title("DB~DS cam (seed ch. 7.2.2) with free bands every 0.5 rad")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
+    plt.close(fig)
+    return path
 
 
 def _plot(res, path):

@@ -170,7 +170,7 @@ def test_db_ds_synthesis():
 
 @pytest.mark.parametrize("model, files", [
     ("db_ds_synthesis.py", ["db_ds_cam.dxf", "db_ds_cam.svg", "db_ds_cam.csv",
-                            "db_ds_involute_evolute.png", "db_ds_criteria.png",
+                            "db_ds_involute_evolute.png", "db_ds_criteria.png", "db_ds_cam.png",
                             "db_ds_assessment.txt"]),
     ("hain_spring_lever.py", ["hain_torques.png"])])
 def test_models_run_from_the_cli(model, files, tmp_path):
