@@ -5,6 +5,9 @@ and :meth:`CompiledModel.simulate` them, or call :func:`simulate` directly.
 """
 import os as _os
 
+__version__ = "0.1.0"
+"""The package version (``acausal2d --version``; pyproject.toml reads it from here)."""
+
 _os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is imported
 
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
@@ -20,6 +23,7 @@ from .language.symbols import der, time, time_derivative  # noqa: E402,F401
 # names later does not replace them in the package namespace
 from .tools.check import check  # noqa: E402,F401
 from .tools.compare import compare  # noqa: E402,F401
+from .tools.study import study  # noqa: E402,F401
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
@@ -40,6 +44,14 @@ def simulate(model, stop_time=None, **options):
     from .tools.compiled import CompiledModel
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
+
+
+def sweep(model, vary=None, points=None, **options):
+    """Parameter study on Dask: simulate ``model`` (a model file) for every
+    combination of the ``vary`` values (or every dict of ``points``) and
+    return the table (see :func:`acausal2d.tools.sweep.sweep`)."""
+    from .tools.sweep import sweep as _sweep
+    return _sweep(model, vary=vary, points=points, **options)
 
 
 def load_model(path, name=None, **kwargs):

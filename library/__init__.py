@@ -1,10 +1,17 @@
 """acausal2d component library.
 
 - :mod:`acausal2d.library.planar`: planar multibody basics (PlanarWorld,
-  Fixed, Body, FixedTranslation, Revolute, Prismatic).
+  Fixed, Body, FixedTranslation, FixedRotation, BodyShape, Revolute,
+  Prismatic, IdealRolling).
+- :mod:`acausal2d.library.planar_forces`: PlanarMechanics' Spring, Damper,
+  SpringDamper, WorldForce, WorldTorque, RelativeForce.
+- :mod:`acausal2d.library.planar_sensors`: PlanarMechanics' absolute and
+  relative position/velocity/acceleration sensors, CutForce, CutTorque,
+  Power, Distance.
 - :mod:`acausal2d.library.rotational`: 1D rotational elements.
 - :mod:`acausal2d.library.translational`: 1D translational elements.
-- :mod:`acausal2d.library.signals`: signal sources.
+- :mod:`acausal2d.library.signals`: signal sources, FirstOrder,
+  InverseBlockConstraints.
 - :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (seed Anhang B).
 - :mod:`acausal2d.library.linkage_drives`: motion presets, sources and
   measuring modules for the linkage elements.

@@ -699,13 +699,31 @@ def _span_layout(span, ends, layout):
     a, b = ends("ctr2D1"), ends("ctr2D2")
     if a is None or b is None:
         return None
-    gam, length = tangent_any(a, b)
+    gam, length = _named_tangent(span, ends, a, b)
     layout.guess(span, "gamma", gam)
     names = set(span.variable_names())
     for name in ("l", "l_u", "l_u0", "l_x", "l_x0"):
         if name in names:
             layout.guess(span, name, length)
     return gam, gam + _PI
+
+
+def _named_tangent(span, ends, a, b):
+    """:func:`tangent_any` of a span's two ends; wheels that overlap, or
+    that leave no tangent, are refused naming the span and both parts."""
+    one, two = ends.owner("ctr2D1"), ends.owner("ctr2D2")
+    where = "%s runs from %s to %s" % (span.describe(), one.describe(), two.describe())
+    if isinstance(a, tuple) and isinstance(b, tuple) and a[2] and b[2]:
+        dist = math.hypot(b[0] - a[0], b[1] - a[1])
+        if dist < abs(a[2]) + abs(b[2]):
+            raise ModelDefinitionError(
+                "%s, which overlap: centre distance %.6g m < sum of the radii %.6g m; move "
+                "them apart (x0, y0) or make them smaller (r)" % (where, dist,
+                                                                 abs(a[2]) + abs(b[2])))
+    try:
+        return tangent_any(a, b)
+    except ModelDefinitionError as exc:
+        raise ModelDefinitionError("%s: %s" % (where, exc)) from None
 
 
 def _wheel_layout(wheel, g1, g2, layout):
@@ -748,6 +766,12 @@ def belt_layout(model):
                 if g is not None:
                     return g
             return None
+
+        def owner(frame_name):
+            found = [c.owner for c in partners(getattr(span, frame_name))
+                     if _frame_geometry(c) is not None]
+            return found[0] if found else None
+        ends.owner = owner
         return ends
 
     leaving = {}   # (id(wheel), contact) -> leaving angle at t0

@@ -133,6 +133,41 @@ def _compress(A, B):
     return base, a, b
 
 
+class _SupportFunction:
+    """``p(psi) = p0 + sum_j a[j-1] cos(j base psi) + b[j-1] sin(j base psi)``;
+    calling it gives ``(p, p', p'')`` at the angles ``psi``."""
+
+    def __init__(self, p0, a, b, base):
+        self.p0, self.a, self.b = p0, a, b
+        self.js = base * np.arange(1, len(a) + 1, dtype=float)
+
+    def __call__(self, psi):
+        js, a, b = self.js, self.a, self.b
+        C = np.cos(np.outer(psi, js))
+        S = np.sin(np.outer(psi, js))
+        p = self.p0 + C @ a + S @ b
+        dp = (-S * js) @ a + (C * js) @ b
+        d2p = (-C * js ** 2) @ a + (-S * js ** 2) @ b
+        return p, dp, d2p
+
+
+def _normal_angles(support, kap, x):
+    """Normal angles psi whose contour points lie at the polar angles
+    ``kap`` (Newton from ``x``)."""
+    for _ in range(60):
+        p, dp, d2p = support(x)
+        cx, sx = np.cos(x), np.sin(x)
+        X = p * cx - dp * sx
+        Y = p * sx + dp * cx
+        cross = np.cos(kap) * Y - np.sin(kap) * X
+        step = cross / ((p + d2p) * np.cos(kap - x))
+        x = x - step
+        if np.max(np.abs(step)) < 1e-14:
+            return x
+    raise ModelDefinitionError("Contour.from_support: the polar angle could not be "
+                               "inverted (contour not star-shaped about the axis?)")
+
+
 class Contour:
     """Polar contour ``r_C(kappa)`` of a curved pulley (see the module
     docstring).  Build it with one of the class methods.
@@ -259,16 +294,7 @@ class Contour:
         at ``tol`` times the mean radius.  Requires ``p + p'' > 0``."""
         a = np.asarray(a, dtype=float)
         b = np.asarray(b, dtype=float)
-        js = base * np.arange(1, len(a) + 1, dtype=float)
-
-        def p_and_derivs(psi):
-            C = np.cos(np.outer(psi, js))
-            S = np.sin(np.outer(psi, js))
-            p = p0 + C @ a + S @ b
-            dp = (-S * js) @ a + (C * js) @ b
-            d2p = (-C * js ** 2) @ a + (-S * js ** 2) @ b
-            return p, dp, d2p
-
+        p_and_derivs = _SupportFunction(p0, a, b, base)
         psi = np.linspace(0.0, _TWO_PI, 4096, endpoint=False)
         p, dp, d2p = p_and_derivs(psi)
         if np.min(p + d2p) <= 0.0:
@@ -287,19 +313,7 @@ class Contour:
             kap = np.linspace(0.0, _TWO_PI, N, endpoint=False)
             x = np.interp(kap + _TWO_PI * np.floor((kd[0] - kap) / _TWO_PI + 1.0),
                           kd_ext, psi_ext)
-            for _ in range(60):
-                p, dp, d2p = p_and_derivs(x)
-                cx, sx = np.cos(x), np.sin(x)
-                X = p * cx - dp * sx
-                Y = p * sx + dp * cx
-                cross = np.cos(kap) * Y - np.sin(kap) * X
-                step = cross / ((p + d2p) * np.cos(kap - x))
-                x = x - step
-                if np.max(np.abs(step)) < 1e-14:
-                    break
-            else:
-                raise ModelDefinitionError("Contour.from_support: the polar angle could not be "
-                                           "inverted (contour not star-shaped about the axis?)")
+            x = _normal_angles(p_and_derivs, kap, x)
             p, dp, _ = p_and_derivs(x)
             rad = np.hypot(p, dp)
             c0, A, B, mag = _series_from_samples(rad, 0.0)

@@ -1084,6 +1084,9 @@ class DSD(_Linkage):
         (x1, y1, _), (x2, y2, _) = vals
         asm.check(self, (x2 - x1) ** 2 + (y2 - y1) ** 2 - self.v ** 2,
                   "|P1 P2| >= |v| (B.122)", "Increase the distance P1-P2 or reduce v.")
+        asm.check(self, ca.sqrt((x2 - x1) ** 2 + (y2 - y1) ** 2) - 1e-9,
+                  "P1 != P2 (the guide's pivot P1 is not on the slider's pivot P2)",
+                  "Move P1 (x10, y10) or P2 (x20, y20): the guide direction is undefined.")
         a, xG = vdi_dsd(x1, y1, x2, y2, self.v, sqrt=lambda z: ca.sqrt(ca.fmax(z, 0)))
         xPS, yPS = x1 + xG * ca.cos(a), y1 + xG * ca.sin(a)
         dU, dS = _rot(a, self.xSUrel, self.ySUrel), _rot(a, self.xSSrel, self.ySSrel)
@@ -1226,6 +1229,9 @@ class SSD(_Linkage):
             return False
         (x1, y1, a1), (x2, y2, _) = vals
         a2 = a1 + self.phiv
+        asm.check(self, ca.fabs(ca.sin(self.phiv)) - 1e-9,
+                  "guides 1 and 2 not parallel, sin(phiv) != 0 (B.158-B.177)",
+                  "Give phiv a value other than 0 or 180 degrees.")
         xG1, xG2 = solve_ssd(x1, y1, a1, x2, y2, self.v1, self.v2, self.phiv)
         PS1 = (x1 + xG1 * ca.cos(a1), y1 + xG1 * ca.sin(a1))
         P = (PS1[0] - self.v1 * ca.sin(a1), PS1[1] + self.v1 * ca.cos(a1))
@@ -1381,6 +1387,9 @@ class SDS(_Linkage):
         if vals is None:
             return False
         (x1, y1, a1), (x2, y2, a2) = vals
+        asm.check(self, ca.fabs(ca.sin(a2 - a1)) - 1e-9,
+                  "guides 1 and 2 not parallel at the start (B.197-B.216)",
+                  "Turn a guide (phi10, phi20) or start where the guides cross.")
         xG1, xG2 = solve_sds(x1, y1, a1, x2, y2, a2, self.v1, self.v2)
         PS1 = (x1 + xG1 * ca.cos(a1), y1 + xG1 * ca.sin(a1))
         PS2 = (x2 + xG2 * ca.cos(a2), y2 + xG2 * ca.sin(a2))

@@ -14,7 +14,22 @@ import numpy as np
 
 from acausal2d import (Component, der, Frame, Outer, Parameter, RotationalFlange,
                        TranslationalFlange, Variable)
+from acausal2d.errors import ModelDefinitionError
 from acausal2d.language.unionfind import connector_sets
+
+
+def rotate(phi, vx, vy):
+    """World components of the vector (vx, vy) given in a frame turned by
+    ``phi``: R(phi) (vx, vy), R the 2x2 rotation (seed Anhang A.1)."""
+    c, s = ca.cos(phi), ca.sin(phi)
+    return c * vx - s * vy, s * vx + c * vy
+
+
+def resolve(phi, vx, vy):
+    """Components of the world vector (vx, vy) along the axes of a frame
+    turned by ``phi``: R(phi)^T (vx, vy)."""
+    c, s = ca.cos(phi), ca.sin(phi)
+    return c * vx + s * vy, -s * vx + c * vy
 
 
 class PlanarWorld(Component):
@@ -74,13 +89,18 @@ class Body(Component):
     that origin, under the world's gravity (PlanarMechanics Body; seed Anhang
     A.3 with the centre of gravity at the frame origin).
 
-    Outputs: x, y, phi of the frame."""
+    Outputs: x, y, phi of the frame and the velocities vx = der(x),
+    vy = der(y), w = der(phi) (PlanarMechanics' r, v, phi, w); give them
+    start values to start a free body moving (``vx=start(1, fixed=True)``)."""
     world = Outer(PlanarWorld)
     m = Parameter(1.0, "kg", "mass", min=0.0)
     I = Parameter(0.1, "kg.m2", "rotational inertia about the frame origin", min=0.0)
     x = Variable(unit="m", doc="x position")
     y = Variable(unit="m", doc="y position")
     phi = Variable(unit="rad", doc="angle")
+    vx = Variable(unit="m/s", doc="x velocity der(x)")
+    vy = Variable(unit="m/s", doc="y velocity der(y)")
+    w = Variable(unit="rad/s", doc="angular velocity der(phi)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -90,6 +110,7 @@ class Body(Component):
         f = self.frame_a
         g = self.world.g
         return [self.x == f.x, self.y == f.y, self.phi == f.phi,
+                self.vx == der(self.x), self.vy == der(self.y), self.w == der(self.phi),
                 self.m * der(der(self.x)) == f.fx + self.m * g[0],
                 self.m * der(der(self.y)) == f.fy + self.m * g[1],
                 self.I * der(der(self.phi)) == f.t]
@@ -130,8 +151,12 @@ class Revolute(Component):
     """Revolute joint: frame_b turns against frame_a by phi about their common
     origin; w = der(phi).  With ``use_flange=True`` a 1D rotational flange
     (angle phi, driving torque tau) and a support flange (fixed at 0, carried
-    by frame_a) are added.  ``state_select`` applies to phi and w (default
-    'prefer', as in PlanarMechanics)."""
+    by frame_a) are added: the frame_b part receives +tau and the frame_a
+    part -tau, so a 1D element that pushes the flange positively drives phi
+    positively; the support is grounded inside the joint (PlanarMechanics
+    Joints.Revolute).  ``state_select`` applies to phi and w (default
+    'prefer'; PlanarMechanics' default is 'default').  Seed eq. 2.1 (a joint
+    of one degree of freedom), eq. 4.1 at the frames."""
     phi = Variable(unit="rad", doc="relative angle")
     w = Variable(unit="rad/s", doc="relative angular velocity")
 
@@ -159,7 +184,13 @@ class Revolute(Component):
         return eqs
 
     def shapes(self):
-        return [{"type": "joint", "x": "frame_a.x", "y": "frame_a.y"}]
+        """The joint circle; with a flange also the drive torque (the torque
+        the frame_b part receives) as a curved arrow."""
+        out = [{"type": "joint", "x": "frame_a.x", "y": "frame_a.y"}]
+        if self.use_flange:
+            out.append({"type": "torque", "x": "frame_a.x", "y": "frame_a.y",
+                        "t": "flange_a.tau"})
+        return out
 
     def topology(self):
         return [("joint", self.frame_a, self.frame_b, 1)]
@@ -169,12 +200,16 @@ class Prismatic(Component):
     """Prismatic joint: frame_b moves by s along the unit vector of r
     (resolved in frame_a); same angle; v = der(s).  With ``use_flange=True`` a
     1D translational flange (position s, driving force f) and a support flange
-    (fixed at 0) are added.  ``state_select`` applies to s and v.
+    (fixed at 0) are added: the joint pushes the frame_b part with +f e0 and
+    the frame_a part with -f e0 (e0 the axis in world), the support is
+    grounded inside the joint (PlanarMechanics Joints.Prismatic).
+    ``state_select`` applies to s and v.  Seed eq. 2.1, eq. 4.1 at the
+    frames.
 
     ``guide=(s_min, s_max)`` (drawing only) is the range of s that the
     animation draws as the guide when one frame is fixed in the world; see
     :meth:`shapes`."""
-    r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a")
+    r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a", nonzero=True)
     s = Variable(unit="m", doc="relative position")
     v = Variable(unit="m/s", doc="relative velocity")
 
@@ -228,7 +263,8 @@ class Prismatic(Component):
         fixed_a, fixed_b = fixed_of(self.frame_a), fixed_of(self.frame_b)
         if fixed_a is None and fixed_b is None:
             return [{"type": "slider", "x": "frame_b.x", "y": "frame_b.y", "phi": "frame_a.phi",
-                     "guide": [["frame_a.x", "frame_a.y"], ["frame_b.x", "frame_b.y"]]}]
+                     "guide": [["frame_a.x", "frame_a.y"], ["frame_b.x", "frame_b.y"]]}] \
+                + self._drive_arrow()
         if fixed_a is None:
             moving, ground, sign = "frame_a", fixed_b, -1.0     # frame_a = frame_b - s e
         else:
@@ -246,7 +282,154 @@ class Prismatic(Component):
             ends = (0.0, 2.0 * s0) if s0 != 0.0 else (-norm / 2, norm / 2)
         guide = [[gx + sign * e * ex, gy + sign * e * ey] for e in ends]
         return [{"type": "slider", "x": moving + ".x", "y": moving + ".y",
-                 "phi": moving + ".phi", "guide": guide}]
+                 "phi": moving + ".phi", "guide": guide}] + self._drive_arrow(moving)
+
+    def _drive_arrow(self, moving="frame_b"):
+        """With a flange: the drive force f as an arrow at the moving frame
+        along the axis (the frame_b part receives +f e0, the frame_a part
+        -f e0)."""
+        if not self.use_flange:
+            return []
+        rx, ry = (float(v) for v in np.ravel(self.parameter_value("r")))
+        angle = math.atan2(ry, rx) + (0.0 if moving == "frame_b" else math.pi)
+        return [{"type": "arrow", "x": moving + ".x", "y": moving + ".y",
+                 "fx": "flange_a.f", "fy": 0.0, "phi": "frame_a.phi", "angle": angle}]
 
     def topology(self):
         return [("joint", self.frame_a, self.frame_b, 1)]
+
+
+class FixedRotation(Component):
+    """Rigid rotation by the constant angle ``alpha`` (PlanarMechanics
+    Parts.FixedRotation): frame_b has frame_a's origin and the angle
+    ``frame_a.phi + alpha``; forces and torque pass unchanged (seed
+    Anhang A.1 placement of a frame, eq. 4.1 at the frames)."""
+    alpha = Parameter(0.0, "rad", "angle of frame_b against frame_a")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+
+    def equations(self):
+        a, b = self.frame_a, self.frame_b
+        return [b.x == a.x, b.y == a.y, b.phi == a.phi + self.alpha,
+                a.fx + b.fx == 0, a.fy + b.fy == 0, a.t + b.t == 0]
+
+    def shapes(self):
+        """A small mark at the common origin (the element has no extent)."""
+        return [{"type": "sensor", "points": [["frame_a.x", "frame_a.y"]]}]
+
+    def topology(self):
+        return [("rigid", [self.frame_a, self.frame_b])]
+
+
+_BODY_SHAPES = ("rod", "box")
+
+
+class BodyShape(Component):
+    """Rigid link with mass (PlanarMechanics Parts.BodyShape): frame_b at
+    ``r`` from frame_a (resolved in frame_a, as :class:`FixedTranslation`),
+    the centre of mass at ``r_CM`` from frame_a, mass ``m`` and inertia
+    ``I`` about the centre of mass, under the world's gravity (seed Anhang
+    A.2/A.3: centre-of-gravity transform and inertia forces).
+
+    Newton-Euler at the centre of mass C:
+    ``m der(der(r_C)) = f_a + f_b + m g`` and
+    ``I der(der(phi)) = t_a + t_b + (r_a - r_C) x f_a + (r_b - r_C) x f_b``.
+
+    Drawn as a rod (``shape='rod'``) or a box (``shape='box'``) of width
+    ``width`` from frame_a to frame_b, with the mass at C.  Variables: x, y
+    (centre of mass), phi, vx, vy, w."""
+    world = Outer(PlanarWorld)
+    r = Parameter((1.0, 0.0), "m", "vector from frame_a to frame_b, in frame_a")
+    r_CM = Parameter((0.5, 0.0), "m", "vector from frame_a to the centre of mass, in frame_a")
+    m = Parameter(1.0, "kg", "mass", min=0.0)
+    I = Parameter(0.1, "kg.m2", "rotational inertia about the centre of mass", min=0.0)
+    width = Parameter(0.1, "m", "width of the drawn rod or box", positive=True)
+    x = Variable(unit="m", doc="x position of the centre of mass")
+    y = Variable(unit="m", doc="y position of the centre of mass")
+    phi = Variable(unit="rad", doc="angle")
+    vx = Variable(unit="m/s", doc="x velocity of the centre of mass")
+    vy = Variable(unit="m/s", doc="y velocity of the centre of mass")
+    w = Variable(unit="rad/s", doc="angular velocity")
+
+    def __init__(self, shape="rod", **kw):
+        super().__init__(**kw)
+        if shape not in _BODY_SHAPES:
+            raise ModelDefinitionError("%s: shape must be one of %s, not %r"
+                                       % (type(self).__name__, ", ".join(_BODY_SHAPES), shape))
+        self.shape = shape
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+
+    def equations(self):
+        a, b, g = self.frame_a, self.frame_b, self.world.g
+        rbx, rby = rotate(a.phi, self.r[0], self.r[1])
+        rcx, rcy = rotate(a.phi, self.r_CM[0], self.r_CM[1])
+        moment = (-rcx * a.fy + rcy * a.fx) + ((rbx - rcx) * b.fy - (rby - rcy) * b.fx)
+        return [b.x == a.x + rbx, b.y == a.y + rby, b.phi == a.phi,
+                self.x == a.x + rcx, self.y == a.y + rcy, self.phi == a.phi,
+                self.vx == der(self.x), self.vy == der(self.y), self.w == der(self.phi),
+                self.m * der(der(self.x)) == a.fx + b.fx + self.m * g[0],
+                self.m * der(der(self.y)) == a.fy + b.fy + self.m * g[1],
+                self.I * der(der(self.phi)) == a.t + b.t + moment]
+
+    def shapes(self):
+        ends = {"a": ["frame_a.x", "frame_a.y"], "b": ["frame_b.x", "frame_b.y"]}
+        if self.shape == "box":
+            first = dict(type="box", width=float(self.parameter_value("width")), **ends)
+        else:
+            first = {"type": "link", "points": [ends["a"], ends["b"]],
+                     "width": float(self.parameter_value("width"))}
+        return [first, {"type": "body", "x": "x", "y": "y"}]
+
+    def topology(self):
+        return [("rigid", [self.frame_a, self.frame_b])]
+
+
+class IdealRolling(Component):
+    """Wheel of radius ``R`` rolling without slip on the ground line y = 0
+    (PlanarMechanics Joints.IdealRolling): frame_a is the wheel centre at
+    height R, and ``x + R phi = x0`` (rolling, written at position level;
+    ``x0`` is the centre's x at phi = 0).  The contact force passes through
+    the contact point (x, 0), hence ``frame_a.t = R frame_a.fx``; the
+    normal force is whatever holds the centre at y = R (seed eq. 4.1 at the
+    frame, eq. 2.1: a joint of one degree of freedom against the ground).
+
+    The wheel's mass is a :class:`Body` at frame_a.  Variables: x, phi,
+    vx = der(x), w = der(phi); the contact point's velocity vx + R w is
+    zero."""
+    R = Parameter(1.0, "m", "radius of the wheel", positive=True)
+    x0 = Parameter(0.0, "m", "x of the wheel centre at phi = 0")
+    x = Variable(unit="m", doc="x position of the wheel centre")
+    phi = Variable(unit="rad", doc="wheel angle")
+    vx = Variable(unit="m/s", doc="velocity of the wheel centre")
+    w = Variable(unit="rad/s", doc="angular velocity of the wheel")
+
+    def __init__(self, state_select="default", **kw):
+        super().__init__(**kw)
+        for name in ("x", "phi", "w"):
+            self.variable(name).state_select = state_select
+        self.frame_a = Frame()
+        # the ground side of the rolling contact, for topology() only (not a
+        # connector of the model: no variables, no equations)
+        self.__dict__["_ground_side"] = Frame()
+
+    def equations(self):
+        a = self.frame_a
+        return [a.x == self.x, a.y == self.R, a.phi == self.phi,
+                self.x + self.R * self.phi == self.x0,
+                self.vx == der(self.x), self.w == der(self.phi),
+                a.t == self.R * a.fx]
+
+    def topology(self):
+        """A joint of one degree of freedom between the ground and the
+        wheel (seed eq. 2.1: rolling without slip removes two)."""
+        return [("ground", [self._ground_side]), ("joint", self._ground_side, self.frame_a, 1)]
+
+    def shapes(self):
+        """The wheel (spokes turn with phi) and the ground under it."""
+        return [{"type": "ground", "x": "frame_a.x", "y": 0.0},
+                {"type": "pulley", "x": "frame_a.x", "y": "frame_a.y",
+                 "r": float(self.parameter_value("R")), "phi": "frame_a.phi"}]

@@ -3,7 +3,8 @@ flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
 import casadi as ca
 
-from acausal2d import Component, der, Parameter, RealInput, RotationalFlange, Variable
+from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
+                       Variable)
 
 
 class Fixed(Component):
@@ -20,7 +21,7 @@ class Fixed(Component):
 
 class Inertia(Component):
     """Rotational inertia J between two rigidly coupled flanges; w = der(phi)."""
-    J = Parameter(1.0, "kg.m2", "moment of inertia")
+    J = Parameter(1.0, "kg.m2", "moment of inertia", min=0.0)
     phi = Variable(unit="rad", doc="absolute angle")
     w = Variable(unit="rad/s", doc="angular velocity")
 
@@ -51,7 +52,7 @@ class _Compliant(Component):
 
 class Spring(_Compliant):
     """Linear torsion spring tau = c (phi_rel - phi_rel0)."""
-    c = Parameter(1.0, "N.m/rad", "spring constant")
+    c = Parameter(1.0, "N.m/rad", "spring constant", positive=True)
     phi_rel0 = Parameter(0.0, "rad", "unstretched relative angle")
 
     def equations(self):
@@ -60,10 +61,43 @@ class Spring(_Compliant):
 
 class Damper(_Compliant):
     """Linear rotational damper tau = d der(phi_rel)."""
-    d = Parameter(1.0, "N.m.s/rad", "damping constant")
+    d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
 
     def equations(self):
         return self._common() + [self.tau == self.d * der(self.phi_rel)]
+
+
+class SpringDamper(_Compliant):
+    """Linear torsion spring and damper in parallel
+    (Modelica.Mechanics.Rotational.Components.SpringDamper):
+    ``tau = c (phi_rel - phi_rel0) + d w_rel``, ``w_rel = der(phi_rel)``;
+    ``tau`` acts on flange_b (``-tau`` on flange_a, seed eq. 4.1 at the
+    flanges).  ``loss_power = d w_rel^2`` is the power dissipated."""
+    c = Parameter(1.0, "N.m/rad", "spring constant", min=0.0)
+    d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
+    phi_rel0 = Parameter(0.0, "rad", "unstretched relative angle")
+    w_rel = Variable(unit="rad/s", doc="relative angular velocity")
+    loss_power = Variable(unit="W", doc="power dissipated by the damper")
+
+    def equations(self):
+        return self._common() + [
+            self.w_rel == der(self.phi_rel),
+            self.tau == self.c * (self.phi_rel - self.phi_rel0) + self.d * self.w_rel,
+            self.loss_power == self.d * self.w_rel ** 2]
+
+
+class AngleSensor(Component):
+    """Absolute angle of the flange as the signal ``phi``
+    (Modelica.Mechanics.Rotational.Sensors.AngleSensor); takes no torque,
+    so a joint it measures stays free.  Seed eq. 4.1 at the flange."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+        self.phi = RealOutput()
+
+    def equations(self):
+        return [self.phi.u == self.flange.phi, self.flange.tau == 0]
 
 
 class Torque(Component):
@@ -153,10 +187,10 @@ class Clutch(Component):
     Outputs: ``phi_rel``, ``w_rel``, ``tau``, ``T_max``; the friction power
     dissipated in the clutch is ``tau * w_rel`` (>= 0).
     """
-    mu = Parameter(0.3, "1", "friction coefficient")
-    fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1")
-    cgeo = Parameter(0.1, "m", "effective friction radius x number of friction faces")
-    w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)")
+    mu = Parameter(0.3, "1", "friction coefficient", min=0.0)
+    fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1", min=0.0)
+    cgeo = Parameter(0.1, "m", "effective friction radius x number of friction faces", positive=True)
+    w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)", positive=True)
     phi_rel = Variable(unit="rad", state_select="avoid",
                        doc="relative angle flange_b - flange_a")
     w_rel = Variable(unit="rad/s", doc="relative angular velocity")
@@ -201,10 +235,10 @@ class AsyncMotor(Component):
     Start at rest by default (``w=start(0, fixed=True)``), or give
     ``w=start(w_sync, fixed=True)`` for a motor running idle at t0.
     """
-    J = Parameter(0.01, "kg.m2", "rotor inertia")
-    w_sync = Parameter(157.07963267948966, "rad/s", "synchronous speed (default 50 Hz, 2 pole pairs)")
-    T_k = Parameter(40.0, "N.m", "breakdown torque")
-    s_k = Parameter(0.2, "1", "breakdown slip")
+    J = Parameter(0.01, "kg.m2", "rotor inertia", min=0.0)
+    w_sync = Parameter(157.07963267948966, "rad/s", "synchronous speed (default 50 Hz, 2 pole pairs)", positive=True)
+    T_k = Parameter(40.0, "N.m", "breakdown torque", positive=True)
+    s_k = Parameter(0.2, "1", "breakdown slip", positive=True)
     phi = Variable(unit="rad", fixed=True, doc="rotor angle")
     w = Variable(unit="rad/s", fixed=True, doc="rotor angular velocity")
     s = Variable(unit="1", doc="slip")

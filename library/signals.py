@@ -1,7 +1,14 @@
-"""Signal sources (RealOutput ``y``)."""
+"""Signal blocks (Modelica.Blocks conventions): sources with a RealOutput
+``y``, the first-order filter :class:`FirstOrder` and
+:class:`InverseBlockConstraints`, which lets a prescribed output drive a
+model backwards (an inverse model).
+
+Signals carry no physics of the seed; they feed its drives and sources
+(seed ch. 4.2 motion presets, ch. 8 showcase drives)."""
 import casadi as ca
 
-from acausal2d import Component, Parameter, RealOutput, time
+from acausal2d import Component, der, Parameter, RealInput, RealOutput, time, Variable
+from acausal2d.errors import ModelDefinitionError
 
 
 class _Source(Component):
@@ -19,21 +26,28 @@ class Constant(_Source):
 
 
 class Sine(_Source):
-    """y = offset + amplitude sin(2 pi f (t - start_time) + phase) after start_time."""
+    """Sine wave (Modelica.Blocks.Sources.Sine): ``y = offset`` before
+    ``start_time`` and ``offset + amplitude sin(2 pi f (t - start_time) +
+    phase)`` from then on (the switch at ``start_time`` is a time event).
+    With the default ``start_time = 0`` the wave is the same for every
+    t >= 0 as before the option existed."""
     amplitude = Parameter(1.0, "", "amplitude")
-    f = Parameter(1.0, "Hz", "frequency")
+    f = Parameter(1.0, "Hz", "frequency", min=0.0)
     phase = Parameter(0.0, "rad", "phase")
     offset = Parameter(0.0, "", "offset")
+    start_time = Parameter(0.0, "s", "output = offset before this time")
 
     def equations(self):
-        return [self.y.u == self.offset + self.amplitude
-                * ca.sin(2 * ca.pi * self.f * time + self.phase)]
+        wave = self.amplitude * ca.sin(2 * ca.pi * self.f * (time - self.start_time) + self.phase)
+        return [self.y.u == self.offset + ca.if_else(time < self.start_time, 0, wave)]
 
 
 class Ramp(_Source):
-    """Linear ramp from offset by height over [start_time, start_time + duration]."""
+    """Linear ramp (Modelica.Blocks.Sources.Ramp): ``offset`` before
+    ``start_time``, rising linearly by ``height`` over ``duration``, then
+    ``offset + height``; both kinks are time events."""
     height = Parameter(1.0, "", "height of the ramp")
-    duration = Parameter(1.0, "s", "duration")
+    duration = Parameter(1.0, "s", "duration", positive=True)
     offset = Parameter(0.0, "", "value before the ramp")
     start_time = Parameter(0.0, "s", "start of the ramp")
 
@@ -55,3 +69,71 @@ class TimeFunction(_Source):
 
     def equations(self):
         return [self.y.u == self.func(time)]
+
+
+_INIT_TYPES = ("steady_state", "initial_output", "free")
+
+
+class FirstOrder(Component):
+    """First-order transfer function (Modelica.Blocks.Continuous.FirstOrder)
+    ``T der(y) + y = k u`` from the input ``u`` to the output ``y``.
+
+    ``init`` chooses the start: ``"steady_state"`` (Modelica's
+    initType SteadyState: ``der(y) = 0`` at the start, so ``y = k u`` there),
+    ``"initial_output"`` (``y`` starts at ``y_start``) or ``"free"`` (the
+    start value of ``y`` is only a guess).  The steady state is held as
+    the fixed start value 0 of the variable ``dy = der(y)``.
+
+    Variables: ``y_value`` (the output, also on the connector ``y``) and
+    ``dy``."""
+    k = Parameter(1.0, "", "gain")
+    T = Parameter(1.0, "s", "time constant", positive=True)
+    y_start = Parameter(0.0, "", "start value of y (init='initial_output')")
+    y_value = Variable(unit="", doc="output value")
+    dy = Variable(unit="1/s", doc="der(y)")
+
+    def __init__(self, init="steady_state", **kw):
+        super().__init__(**kw)
+        if init not in _INIT_TYPES:
+            raise ModelDefinitionError("%s: init must be one of %s, not %r"
+                                       % (type(self).__name__, ", ".join(_INIT_TYPES), init))
+        self.init = init
+        if init == "steady_state":
+            self.variable("dy").start, self.variable("dy").fixed = 0.0, True
+        elif init == "initial_output":
+            self.variable("y_value").fixed = True
+        self.u = RealInput()
+        self.y = RealOutput()
+
+    def guesses(self, context):
+        """y starts at y_start when init='initial_output'."""
+        return {"y_value": self.y_start} if self.init == "initial_output" else {}
+
+    def equations(self):
+        return [self.dy == der(self.y_value), self.y.u == self.y_value,
+                self.T * self.dy + self.y_value == self.k * self.u.u]
+
+
+class InverseBlockConstraints(Component):
+    """Modelica.Blocks.Math.InverseBlockConstraints: the two inputs are
+    made equal (``u1 = u2``) and the output ``y1`` (and its copy ``y2``)
+    is left as an unknown of the model.
+
+    Connect a prescribed signal to ``u2``, the measured output of a model
+    to ``u1`` and ``y1`` to the model's input: the model then runs
+    backwards, its input is solved for so that its output follows the
+    prescription.  The prescription is differentiated as often as the
+    model needs (index reduction), so it must be smooth enough: a motion
+    prescribed through a mechanism of relative degree 2 needs a
+    prescription whose second derivative exists (e.g. a ramp filtered by a
+    :class:`FirstOrder`)."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.u1 = RealInput()
+        self.u2 = RealInput()
+        self.y1 = RealOutput()
+        self.y2 = RealOutput()
+
+    def equations(self):
+        return [self.u1.u == self.u2.u, self.y2.u == self.y1.u]

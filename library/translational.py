@@ -1,7 +1,8 @@
 """1D translational mechanics (Modelica.Mechanics.Translational conventions):
 flange.s is the absolute position, flange.f the force acting on the element
 from the connected part."""
-from acausal2d import Component, der, Parameter, RealInput, TranslationalFlange, Variable
+from acausal2d import (Component, der, Parameter, RealInput, RealOutput, TranslationalFlange,
+                       Variable)
 
 
 class Fixed(Component):
@@ -18,7 +19,7 @@ class Fixed(Component):
 
 class Mass(Component):
     """Sliding mass m between two rigidly coupled flanges; v = der(s)."""
-    m = Parameter(1.0, "kg", "mass")
+    m = Parameter(1.0, "kg", "mass", min=0.0)
     s = Variable(unit="m", doc="position")
     v = Variable(unit="m/s", doc="velocity")
 
@@ -49,7 +50,7 @@ class _Compliant(Component):
 
 class Spring(_Compliant):
     """Linear spring f = c (s_rel - s_rel0)."""
-    c = Parameter(1.0, "N/m", "spring constant")
+    c = Parameter(1.0, "N/m", "spring constant", positive=True)
     s_rel0 = Parameter(0.0, "m", "unstretched length")
 
     def equations(self):
@@ -58,15 +59,37 @@ class Spring(_Compliant):
 
 class Damper(_Compliant):
     """Linear damper f = d v_rel with v_rel = der(s_rel)."""
-    d = Parameter(1.0, "N.s/m", "damping constant")
+    d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
     v_rel = Variable(unit="m/s", doc="relative velocity")
 
     def equations(self):
         return self._common() + [self.v_rel == der(self.s_rel), self.f == self.d * self.v_rel]
 
 
+class SpringDamper(_Compliant):
+    """Linear spring and damper in parallel
+    (Modelica.Mechanics.Translational.Components.SpringDamper):
+    ``f = c (s_rel - s_rel0) + d v_rel``, ``v_rel = der(s_rel)``; the force
+    ``f`` acts on flange_b (``-f`` on flange_a, seed eq. 4.1 at the
+    flanges).  ``loss_power = d v_rel^2`` is the power dissipated."""
+    c = Parameter(1.0, "N/m", "spring constant", min=0.0)
+    d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
+    s_rel0 = Parameter(0.0, "m", "unstretched length")
+    v_rel = Variable(unit="m/s", doc="relative velocity")
+    loss_power = Variable(unit="W", doc="power dissipated by the damper")
+
+    def equations(self):
+        return self._common() + [
+            self.v_rel == der(self.s_rel),
+            self.f == self.c * (self.s_rel - self.s_rel0) + self.d * self.v_rel,
+            self.loss_power == self.d * self.v_rel ** 2]
+
+
 class Force(Component):
-    """Force from the signal f_in acting on the flange."""
+    """Force from the signal f_in acting on the flange
+    (Modelica.Mechanics.Translational.Sources.Force without support: the
+    reaction goes to ground); a positive signal pushes the flange in its
+    positive direction.  Seed eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -90,3 +113,17 @@ class Position(Component):
 
     def equations(self):
         return [self.flange.s == self.s_in.u]
+
+
+class PositionSensor(Component):
+    """Absolute position of the flange as the signal ``s``
+    (Modelica.Mechanics.Translational.Sensors.PositionSensor); takes no
+    force.  Seed eq. 4.1 at the flange."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = TranslationalFlange()
+        self.s = RealOutput()
+
+    def equations(self):
+        return [self.s.u == self.flange.s, self.flange.f == 0]

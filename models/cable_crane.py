@@ -79,16 +79,19 @@ balance along the bisector gives the haul-back force); each drum's payout
 equals the change of the unstretched rope length l/(1 + eps) + r beta of its
 rope; the skyline keeps its material; no rope goes slack during the cycle.
 
-Run ``python models/cable_crane.py`` to simulate one cycle and write PNG
-plots to ./out/.
+``acausal2d simulate models/cable_crane.py`` simulates one cycle and writes
+the rope forces (Bild 8.5), skyline forces and drum torques (the model's
+``figures``); ``acausal2d study models/cable_crane.py`` the paths of carriage
+and hook (running the file does both, into ./out).
 """
 import math
 import os
+import sys
 
 import numpy as np
 from scipy.optimize import fsolve
 
-from acausal2d import Component, start
+from acausal2d import Component, start, study
 from acausal2d.library import rotational
 from acausal2d.library.belt import Belt, Drum, Pulley, connect_band
 from acausal2d.library.crane import Carriage, Hook, move, span_geometry
@@ -327,6 +330,21 @@ class CableCrane(Component):
     experiment = {"stop_time": T_STOP, "intervals": 600, "rtol": 1e-7}
     outputs = ["load1.F", "load3.F", "load6.F", "haul1.F", "haul2.F", "sky2.F",
                "carriage.x", "carriage.y", "hook.x", "hook.y", "D1.ctrR.tau", "D2.ctrR.tau"]
+    figures = [{"name": "cable_crane_rope_forces", "signals": ["load1.F", "load6.F", "haul1.F"],
+                "title": "rope forces of load and haul-back rope (Bild 8.5)"},
+               {"name": "cable_crane_skyline_drums", "title": "skyline forces, drum torques",
+                "signals": ["sky2.F", "sky4.F", "D1.ctrR.tau", "D2.ctrR.tau"]}]
+
+    @study
+    def paths(ctx):
+        """Paths of carriage and hook over the cycle with the skyline at the
+        start, the middle of the transport and the end."""
+        res = ctx.result
+        for name in ("load1.F", "load6.F", "haul1.F", "sky2.F"):
+            v = res[name]
+            ctx.note("%-8s start %9.1f N  min %9.1f N  max %9.1f N" % (name, v[0], v.min(),
+                                                                       v.max()))
+        ctx.save(paths_figure(res), "cable_crane_paths")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -360,28 +378,51 @@ class CableCrane(Component):
         self.connect(self.drive1.flange, self.D1.ctrR)
         self.connect(self.drive2.flange, self.D2.ctrR)
         for rope, nodes in ROPES.items():
-            F = forces[rope]
-            c = STIFFNESS[rope]
-            spans, _ = rope_geometry(rope, pose, st0["hook"])
-            for k in range(len(nodes) - 1):
-                kw_start = {"eps": start(F / c, fixed=True)}
-                if nodes[k + 1][0] in ("mount", "hook"):
-                    # ends prepare_belts does not know: give the branch here
-                    g, l = spans[k]["gamma"], spans[k]["l"]
-                    kw_start.update(gamma=start(g), l=start(l), l_u=start(l), l_u0=start(l))
-                span = Belt(c=c, d=T_RELAX * c, **kw_start)
-                setattr(self, "%s%d" % (rope, k + 1), span)
-                for node, end in ((nodes[k], 1), (nodes[k + 1], 2)):
-                    if node[0] in ("pulley", "drum"):
-                        contact = 1 if (node[0] == "drum" or end == 2) else 2
-                        connect_band(self, span, end, getattr(self, node[1]), contact)
-                    elif node[0] == "fixed":
-                        fixed = self.anchor if node[1] == ANCHOR else self.top
-                        self.connect(fixed.frame, getattr(span, "ctr2D%d" % end))
-                    elif node[0] == "mount":
-                        self.connect(self.carriage.Hc, getattr(span, "ctr2D%d" % end))
-                    else:
-                        self.connect(self.hook.frame, getattr(span, "ctr2D%d" % end))
+            self._rope(rope, nodes, forces[rope], pose, st0["hook"])
+
+    def _rope(self, rope, nodes, F, pose, hook):
+        """The spans of one rope along its ``nodes``, pretensioned to F."""
+        c = STIFFNESS[rope]
+        spans, _ = rope_geometry(rope, pose, hook)
+        for k in range(len(nodes) - 1):
+            kw_start = {"eps": start(F / c, fixed=True)}
+            if nodes[k + 1][0] in ("mount", "hook"):
+                # ends prepare_belts does not know: give the branch here
+                g, l = spans[k]["gamma"], spans[k]["l"]
+                kw_start.update(gamma=start(g), l=start(l), l_u=start(l), l_u0=start(l))
+            span = Belt(c=c, d=T_RELAX * c, **kw_start)
+            setattr(self, "%s%d" % (rope, k + 1), span)
+            for node, end in ((nodes[k], 1), (nodes[k + 1], 2)):
+                self._attach(span, end, node)
+
+    def _attach(self, span, end, node):
+        """Connect end ``end`` of ``span`` to the rope node ``node``."""
+        port = getattr(span, "ctr2D%d" % end)
+        if node[0] in ("pulley", "drum"):
+            contact = 1 if (node[0] == "drum" or end == 2) else 2
+            connect_band(self, span, end, getattr(self, node[1]), contact)
+        elif node[0] == "fixed":
+            self.connect((self.anchor if node[1] == ANCHOR else self.top).frame, port)
+        elif node[0] == "mount":
+            self.connect(self.carriage.Hc, port)
+        else:
+            self.connect(self.hook.frame, port)
+
+
+    def shapes(self):
+        """The masts standing on the sloped terrain, a ground symbol at each
+        foot: from the foot to the skyline pulley S on the left, to the
+        skyline fastening T on the right (the pulley housings on the masts
+        are drawn by the pulleys).  The terrain runs from the skyline's
+        ground anchor G."""
+        terrain = [["anchor.frame.x", "anchor.frame.y"], [0.0, 0.0], [SPAN, Y_RIGHT],
+                   [SPAN + 5.0, Y_RIGHT + 5.0 * math.tan(SLOPE)]]
+        masts = ((("S.ctr2D1.x", "S.ctr2D1.y"), (0.0, 0.0)),
+                 (("top.frame.x", "top.frame.y"), (SPAN, Y_RIGHT)))
+        return ([{"type": "link", "points": terrain, "width": 0.15, "color": "#a0522d"}]
+                + [{"type": "link", "points": [list(top), list(foot)], "width": 0.35,
+                    "color": "#5d6d7e"} for top, foot in masts]
+                + [{"type": "ground", "x": foot[0], "y": foot[1]} for _, foot in masts])
 
 
 SECTIONS = {"load": ["load%d" % k for k in range(1, 7)],
@@ -389,47 +430,14 @@ SECTIONS = {"load": ["load%d" % k for k in range(1, 7)],
             "sky": ["sky%d" % k for k in range(1, 5)]}
 
 
-def plot_cycle(res, out):
-    """Write the main curves as PNG files into ``out``; returns the paths."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    paths = []
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    ax.plot(res.time, res["load1.F"] / 1e3, label="load rope (at drum D1)")
-    ax.plot(res.time, res["load6.F"] / 1e3, "--", label="load rope (at the hook)")
-    ax.plot(res.time, res["haul1.F"] / 1e3, label="haul-back rope (at drum D2)")
-    for t0, txt in ((T_LIFT, "lift"), (T_MOVE, "transport"), (T_LOWER, "lower")):
-        ax.axvline(t0, color="0.7", lw=0.8)
-        ax.text(t0 + 0.2, ax.get_ylim()[1] * 0.97, txt, va="top", fontsize=8)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("rope force [kN]")
-    ax.set_title("Cable crane: rope forces of load and haul-back rope (Bild 8.5)")
-    ax.grid(True)
-    ax.legend(loc="lower right")
-    fig.tight_layout()
-    paths.append(os.path.join(out, "cable_crane_rope_forces.png"))
-    fig.savefig(paths[-1], dpi=100)
-    plt.close(fig)
-
-    fig, axs = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
-    axs[0].plot(res.time, res["sky2.F"] / 1e3, label="skyline S - W1")
-    axs[0].plot(res.time, res["sky4.F"] / 1e3, label="skyline W2 - T")
-    axs[0].set_ylabel("skyline force [kN]")
-    axs[0].grid(True)
-    axs[0].legend()
-    axs[1].plot(res.time, res["D1.ctrR.tau"] / 1e3, label="drum D1 (load rope)")
-    axs[1].plot(res.time, res["D2.ctrR.tau"] / 1e3, label="drum D2 (haul-back)")
-    axs[1].set_ylabel("drum torque [kN m]")
-    axs[1].set_xlabel("time [s]")
-    axs[1].grid(True)
-    axs[1].legend()
-    fig.tight_layout()
-    paths.append(os.path.join(out, "cable_crane_skyline_drums.png"))
-    fig.savefig(paths[-1], dpi=100)
-    plt.close(fig)
-
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+def paths_figure(res):
+    """Paths of carriage and hook with the skyline at three instants and the
+    masts (object API)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(9, 4.5))
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
     ax.plot([-20, 0, SPAN, SPAN + 5], [0, 0, Y_RIGHT, Y_RIGHT + 5 * math.tan(SLOPE)],
             color="sienna", label="ground")
     ax.plot([0, 0], [0, H_MAST], "k", lw=3)
@@ -445,29 +453,23 @@ def plot_cycle(res, out):
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title("Cable crane: paths of carriage and hook")
-    ax.grid(True)
+    ax.set_title("CableCrane: paths of carriage and hook")
+    ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    paths.append(os.path.join(out, "cable_crane_paths.png"))
-    fig.savefig(paths[-1], dpi=100)
-    plt.close(fig)
+    return fig
+
+
+def plot_cycle(res, out):
+    """Write the declared figures (rope forces, Bild 8.5; skyline forces and
+    drum torques) and the paths of carriage and hook as PNG files into
+    ``out``; returns the paths."""
+    from acausal2d.tools.plotting import declared_figures, save_figure, write_figures
+    paths = write_figures(res, out, declared_figures(res.model.model))
+    paths.append(save_figure(paths_figure(res), os.path.join(out, "cable_crane_paths.png")))
     return paths
 
 
 if __name__ == "__main__":
-    import time as _time
-    from acausal2d import compile_model
-    out = os.path.join(os.getcwd(), "out")
-    os.makedirs(out, exist_ok=True)
-    t0 = _time.perf_counter()
-    cm = compile_model(CableCrane())
-    t1 = _time.perf_counter()
-    res = cm.simulate()
-    t2 = _time.perf_counter()
-    print("compile %.2f s, simulate %.2f s (seed: 140 s in SimulationX)" % (t1 - t0, t2 - t1))
-    for name in ("load1.F", "load6.F", "haul1.F", "sky2.F"):
-        v = res[name]
-        print("%-8s start %9.1f N  min %9.1f N  max %9.1f N" % (name, v[0], v.min(), v.max()))
-    for p in plot_cycle(res, out):
-        print("wrote", p)
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

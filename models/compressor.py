@@ -85,16 +85,18 @@ tensioner and clutch losses positive, below 1 %); indicated work and
 delivered mass against the ideal compressor; start-up peak, no slack span,
 run-out to rest.
 
-Run ``python models/compressor.py`` to simulate and write the span forces
-(Bild 8.9) and the drive quantities as PNG files into ./out/.
+``acausal2d simulate models/compressor.py`` writes the span forces (Bild
+8.9) and the drive quantities (the model's ``figures``); ``acausal2d study
+models/compressor.py`` the steady-state revolutions and the work balance
+(running the file does both, into ./out).
 """
 import math
-import os
+import sys
 
 import casadi as ca
 import numpy as np
 
-from acausal2d import Component, start
+from acausal2d import Component, start, study
 from acausal2d.language.connectors import Frame
 from acausal2d.language.dsl import Parameter, Variable
 from acausal2d.library import rotational, translational
@@ -206,11 +208,28 @@ class Compressor(Component):
     experiment = {"stop_time": 16.0, "intervals": 3200, "rtol": 1e-6}
     outputs = ["span1.F", "span2.F", "span3.F", "motor.w", "crank.w", "clutch.tau",
                "cyl.p", "lever.phi"]
+    figures = [{"name": "compressor_span_forces", "signals": ["span1.F", "span2.F", "span3.F"],
+                "title": "span forces, clutch closes at 2 s, opens at 10 s (Bild 8.9)"},
+               {"name": "compressor_drive", "title": "drive",
+                "signals": [["motor.w", "crank.w"], ["clutch.tau", "motor.T_el"], ["cyl.p"],
+                            ["lever.phi"]]}]
+
+    @study
+    def steady_state(ctx):
+        """Span forces over the crank angle of consecutive steady revolutions
+        and the work balance of the last one (a 0.1 ms output window over
+        9.4 .. 10 s)."""
+        steady_state_report(ctx)
 
     def __init__(self, **kw):
         super().__init__(**kw)
         T, B, C = tensioner_geometry()
-        l0_spring, _ = tensioner_preload()
+        self._motor_and_belt(T)
+        self._tensioner(C)
+        self._crank_drive()
+
+    def _motor_and_belt(self, T):
+        """Motor, clutch and the three-pulley belt drive (tensioner at T)."""
         # --- motor and clutch
         self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2,
                                            phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
@@ -233,7 +252,10 @@ class Compressor(Component):
         connect_band(self, self.span2, 2, self.tens, 1)
         connect_band(self, self.span3, 1, self.tens, 2)
         connect_band(self, self.span3, 2, self.driven, 1)
-        # --- tensioner: bell-crank lever with spring-damper
+
+    def _tensioner(self, C):
+        """Bell-crank lever with the spring-damper anchored at C."""
+        l0_spring, _ = tensioner_preload()
         self.pivot = Fixed(r=PIVOT)
         self.lever = Revolute(phi=start(LEVER0, fixed=True), w=start(0.0, fixed=True))
         self.arm1 = FixedTranslation(r=(ARM1, 0.0))
@@ -246,7 +268,9 @@ class Compressor(Component):
         self.connect(self.arm1.frame_b, self.tens.ctr2D1)
         self.connect(self.arm2.frame_b, self.spring.frame_a)
         self.connect(self.spring.frame_b, self.anchor.frame)
-        # --- crank drive on the driven pulley's shaft, cylinder above it
+
+    def _crank_drive(self):
+        """Crank drive on the driven pulley's shaft, cylinder above it."""
         self.shaft = Fixed(r=P2)
         self.crank = Revolute(use_flange=True, state_select="always",
                               phi=start(-math.pi / 2, fixed=True), w=start(0.0, fixed=True))
@@ -347,94 +371,49 @@ def cycle_work(res, t0, t1):
             "W_fric": -integ(res["driven.T_f"][sel] * w2)}
 
 
-def plot(res, out):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    files = []
-    fig, ax = plt.subplots(figsize=(9, 4.5))
-    for k, lab in ((1, "span 1 (tight, driven -> drive)"), (2, "span 2 (drive -> tensioner)"),
-                   (3, "span 3 (tensioner -> driven)")):
-        ax.plot(res.time, res["span%d.F" % k], lw=0.8, label=lab)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("span force [N]")
-    ax.set_title("Compressor: span forces, clutch closes at 2 s, opens at 10 s (Bild 8.9)")
-    ax.grid(True)
-    ax.legend(loc="upper right", fontsize=8)
+def steady_state_figure(res, revs):
+    """Span forces over the crank angle of the last revolutions (object API)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(7, 4))
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    ang = np.arange(360)
+    for k in (1, 2, 3):
+        for j in range(len(revs) - 3, len(revs) - 1):
+            ax.plot(ang, over_crank_angle(res, "span%d.F" % k, revs[j], revs[j + 1]),
+                    lw=0.8, label="span%d.F, revolution %d" % (k, j))
+    ax.set_xlabel("crank angle from bottom dead centre [deg]")
+    ax.set_ylabel("F [N]")
+    ax.set_title("Compressor: steady state, consecutive revolutions")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
     fig.tight_layout()
-    files.append(os.path.join(out, "compressor_span_forces.png"))
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
-
-    fig, axs = plt.subplots(4, 1, figsize=(9, 9), sharex=True)
-    axs[0].plot(res.time, res["motor.w"], label="motor")
-    axs[0].plot(res.time, 3 * res["crank.w"], label="crank x 3 (ratio)")
-    axs[0].set_ylabel("speed [rad/s]")
-    axs[0].legend(fontsize=8)
-    axs[1].plot(res.time, res["clutch.tau"], lw=0.8, label="clutch torque")
-    axs[1].plot(res.time, res["motor.T_el"], lw=0.8, label="motor torque")
-    axs[1].set_ylabel("torque [N m]")
-    axs[1].legend(fontsize=8)
-    axs[2].plot(res.time, res["cyl.p"] / 1e5, lw=0.6)
-    axs[2].set_ylabel("cylinder p [bar]")
-    axs[3].plot(res.time, np.degrees(res["lever.phi"]), lw=0.8)
-    axs[3].set_ylabel("tensioner lever [deg]")
-    axs[3].set_xlabel("time [s]")
-    for a in axs:
-        a.grid(True)
-    fig.tight_layout()
-    files.append(os.path.join(out, "compressor_drive.png"))
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
-
-    revs = revolutions(res, 9.4, 10.0)
-    if len(revs) >= 3:
-        fig, ax = plt.subplots(figsize=(7, 4))
-        ang = np.arange(360)
-        for k in (1, 2, 3):
-            for j in range(len(revs) - 3, len(revs) - 1):
-                ax.plot(ang, over_crank_angle(res, "span%d.F" % k, revs[j], revs[j + 1]),
-                        lw=0.8, label="span %d, rev. %d" % (k, j))
-        ax.set_xlabel("crank angle from bottom dead centre [deg]")
-        ax.set_ylabel("span force [N]")
-        ax.set_title("Steady state: two consecutive revolutions")
-        ax.grid(True)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        files.append(os.path.join(out, "compressor_steady_state.png"))
-        fig.savefig(files[-1], dpi=110)
-        plt.close(fig)
-    return files
+    return fig
 
 
-if __name__ == "__main__":
-    import time as _time
-
-    from acausal2d import compile_model
-    out = os.path.join(os.getcwd(), "out")
-    os.makedirs(out, exist_ok=True)
-    t0 = _time.perf_counter()
-    cm = compile_model(Compressor())
-    t1 = _time.perf_counter()
-    # the experiment's 5 ms grid plus a 0.1 ms window over the last steady
-    # revolutions (for the work integrals and the steady-state plot)
+def steady_state_report(ctx):
+    """The steady-state study (:meth:`Compressor.steady_state`)."""
     stop = Compressor.experiment["stop_time"]
-    ot = np.unique(np.concatenate([np.linspace(0.0, stop, Compressor.experiment["intervals"] + 1),
-                                   np.linspace(9.4, 10.0, 6001)]))
-    res = cm.simulate(output_times=ot)
-    t2 = _time.perf_counter()
-    print("compile %.2f s, simulate %.2f s (16 s simulated), %d events"
-          % (t1 - t0, t2 - t1, len(res.events)))
+    ot = np.unique(np.concatenate([
+        np.linspace(0.0, stop, Compressor.experiment["intervals"] + 1),
+        np.linspace(9.4, 10.0, 6001)]))
+    res = ctx.simulate(output_times=ot)
     revs = revolutions(res, 9.4, 10.0)
     if len(revs) >= 2:
         w = cycle_work(res, revs[-2], revs[-1])
-        print("last steady revolution %.4f..%.4f s: belt work on driven pulley %.2f J, "
-              "indicated work %.2f J, bearing friction %.2f J, motor work %.2f J"
-              % (revs[-2], revs[-1], w["W_belt"], w["W_ind"], w["W_fric"], w["W_motor"]))
+        ctx.note("last steady revolution %.4f..%.4f s: belt work on the driven pulley %.2f J, "
+                 "indicated work %.2f J, bearing friction %.2f J, motor work %.2f J"
+                 % (revs[-2], revs[-1], w["W_belt"], w["W_ind"], w["W_fric"], w["W_motor"]))
+    sel = (res.time > 8.0) & (res.time < 10.0)
     for k in (1, 2, 3):
-        sel = (res.time > 8.0) & (res.time < 10.0)
-        print("span%d: max %.1f N (all), steady range %.1f .. %.1f N"
-              % (k, res["span%d.F" % k].max(), res["span%d.F" % k][sel].min(),
-                 res["span%d.F" % k][sel].max()))
-    for f in plot(res, out):
-        print("wrote", f)
+        F = res["span%d.F" % k]
+        ctx.note("span%d: max %.1f N (all), steady range %.1f .. %.1f N"
+                 % (k, F.max(), F[sel].min(), F[sel].max()))
+    if len(revs) >= 3:
+        ctx.save(steady_state_figure(res, revs), "compressor_steady_state")
+
+
+if __name__ == "__main__":
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

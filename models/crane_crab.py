@@ -38,6 +38,7 @@ class CraneCrab(Component):
 
 
 if __name__ == "__main__":
-    from acausal2d import simulate
-    res = simulate(CraneCrab())
-    print("body.phi(10 s) = %.6f rad" % res.final("body.phi"))
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

@@ -33,6 +33,7 @@ class DoublePendulum(Component):
 
 
 if __name__ == "__main__":
-    from acausal2d import simulate
-    res = simulate(DoublePendulum())
-    print("revolute1.phi(10 s) = %.6f rad" % res.final("revolute1.phi"))
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

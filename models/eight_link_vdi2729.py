@@ -49,12 +49,14 @@ empty:
 Outputs: relative slider travel C0-C (``relC0C.s_rel``) and E-C
 (``relEC.s_rel``), drive torque ``preset1.tau`` and power ``preset1.power``
 over the crank angle ``dAN1.phiL`` for one revolution (T = 2 pi / 1.5 s).
-Run ``python models/eight_link_vdi2729.py`` (prints a table; ``--plot``
-shows the curves with matplotlib).
+``acausal2d simulate models/eight_link_vdi2729.py`` plots the slider travels
+and the drive torque over the crank angle (the model's ``figures``);
+``acausal2d study models/eight_link_vdi2729.py`` runs the force-driven
+variant over one period (running the file does both, into ./out).
 """
 import math
 
-from acausal2d import Component, start
+from acausal2d import Component, simulate, start, study
 from acausal2d.library.linkage import DAN, DSD, FGP, SDS, SSD
 from acausal2d.library.linkage_drives import Preset, RelativePosition, TorqueSource
 from acausal2d.library.planar import Fixed
@@ -74,6 +76,19 @@ class EightLinkVDI2729(Component):
     (dynamic analysis of the same mechanism)."""
     experiment = {"stop_time": PERIOD, "intervals": 360, "rtol": 1e-8}
     outputs = ["dAN1.phiL", "relC0C.s_rel", "relEC.s_rel", "preset1.tau", "preset1.power"]
+    figures = [{"name": "slider_travels", "x": "dAN1.phiL", "title": "slider travels",
+                "signals": ["relC0C.s_rel", "relEC.s_rel"]},
+               {"name": "drive", "x": "dAN1.phiL", "title": "drive torque and power",
+                "signals": ["preset1.tau", "preset1.power"]}]
+
+    @study
+    def force_driven(ctx):
+        """The mechanism driven by a torque on a flywheel instead of the
+        prescribed crank motion, over one period."""
+        res = simulate(EightLinkVDI2729(drive="force"), stop_time=PERIOD)
+        ctx.note("force-driven: crank angle after %.3f s = %.4f rad (speed %.4f rad/s)"
+                 % (PERIOD, res.final("dAN1.phiL"), res.final("dAN1.omL")))
+        ctx.save(res, "eight_link_force_driven")
 
     def __init__(self, drive="kinematic", flywheel_J=0.05, torque=0.0, **kw):
         super().__init__(**kw)
@@ -141,27 +156,5 @@ names, centre-of-gravity and angle variable names."""
 if __name__ == "__main__":
     import sys
 
-    import numpy as np
-
-    from acausal2d import simulate
-    res = simulate(EightLinkVDI2729())
-    print("crank angle [deg]  C0-C [mm]   E-C [mm]   drive torque [N m]")
-    for k in range(0, len(res.time), 30):
-        print("%10.1f %12.4f %10.4f %14.6f" % (
-            np.degrees(res["dAN1.phiL"][k]), res["relC0C.s_rel"][k] / MM,
-            res["relEC.s_rel"][k] / MM, res["preset1.tau"][k]))
-    dyn = simulate(EightLinkVDI2729(drive="force"), stop_time=PERIOD)
-    print("force-driven: crank angle after %.3f s = %.4f rad (speed %.4f rad/s)"
-          % (PERIOD, dyn.final("dAN1.phiL"), dyn.final("dAN1.omL")))
-    if "--plot" in sys.argv:
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(3, 1, sharex=True)
-        phi = np.degrees(res["dAN1.phiL"])
-        ax[0].plot(phi, res["relC0C.s_rel"] / MM)
-        ax[0].set_ylabel("C0-C [mm]")
-        ax[1].plot(phi, res["relEC.s_rel"] / MM)
-        ax[1].set_ylabel("E-C [mm]")
-        ax[2].plot(phi, res["preset1.tau"])
-        ax[2].set_ylabel("drive torque [N m]")
-        ax[2].set_xlabel("crank angle [deg]")
-        plt.show()
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

@@ -21,8 +21,8 @@ DSDS(a)     slotted slider (Schubschleife)       SAN + DSD
 The DSDS(a) chain is driven at its slider: driven at the crank, its two
 straight guides become parallel twice per turn (no full revolution exists).
 All dimensions are in metres; masses keep the element defaults, gravity acts.
-Run ``python models/four_link_mechanisms.py`` to simulate all nine and print
-the output range of each.
+``acausal2d simulate models/four_link_mechanisms.py --model DDDS`` simulates
+one of them; running the file simulates all nine into ./out/<name>.
 """
 import math
 
@@ -176,9 +176,8 @@ MECHANISMS = [DDDD, DDDS, SDDD, DDSD, DSDD, SDDS, SSDD, DSSD, DSDS]
 
 
 if __name__ == "__main__":
-    from acausal2d import simulate
-    for cls in MECHANISMS:
-        res = simulate(cls())
-        out = cls.outputs[1]
-        print("%-5s %-12s from %+.6f to %+.6f (min %+.6f, max %+.6f)"
-              % (cls.__name__, out, res[out][0], res[out][-1], res[out].min(), res[out].max()))
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(max(run_model_file(__file__, cls.__name__, "out/" + cls.__name__)
+                 for cls in MECHANISMS))

@@ -71,16 +71,18 @@ Other chosen values
   needed, so the drive starts without a transient);
 - tolerances: rtol 1e-8, 721 output points (every degree of drive angle).
 
-Run ``python models/noncircular_belt_drive.py`` to simulate and write the
-ratio and span forces over the drive angle (Bild 7.27) to ./out/.
+``acausal2d simulate models/noncircular_belt_drive.py`` writes the ratio and
+the span forces over the drive angle (Bild 7.27, the model's ``figures``);
+``acausal2d study models/noncircular_belt_drive.py`` draws the designed
+pulleys and reports the design (running the file does both, into ./out).
 """
 import functools
 import math
-import os
+import sys
 
 import numpy as np
 
-from acausal2d import Component, Variable, compile_model, start
+from acausal2d import Component, Variable, start, study
 from acausal2d.library import rotational, signals
 from acausal2d.library.belt import Belt, connect_band, tangent_any
 from acausal2d.library.belt_curved import CurvedPulley, SupportContour, _ContourGeometry
@@ -125,6 +127,65 @@ class Design:
         self.__dict__.update(kw)
 
 
+def _unpack(z, K):
+    """(p1c, p2m, p2c, nu0, nuc, mu0, muc) of the unknown vector ``z``."""
+    n = 2 * K
+    return (z[:n], z[n], z[n + 1:2 * n + 1], z[2 * n + 1], z[2 * n + 2:3 * n + 2],
+            z[3 * n + 2], z[3 * n + 3:4 * n + 3])
+
+
+class _Fit:
+    """Residuals (contact conditions at M angles) of the pulley-pair fit
+    with K harmonics, and their Jacobian."""
+
+    def __init__(self, phi, xP, f, r1_mean, a):
+        self.phi, self.xP, self.f, self.r1_mean, self.a = phi, xP, f, r1_mean, a
+
+    def __call__(self, z, K, jac):
+        n, M = 2 * K, self.phi.size
+        p1c, p2m, p2c, nu0, nuc, mu0, muc = _unpack(z, K)
+        Bphi, _ = _basis(self.phi, K, 1)
+        Bn = np.hstack([np.ones((M, 1)), Bphi])            # d(nu)/d(nu0, nuc)
+        res, rows = [], []
+        for ang, col in ((nu0 + Bphi @ nuc, 2 * n + 1), (mu0 + Bphi @ muc, 3 * n + 2)):
+            # small pulley: p1(ang - phi) = x_P cos(ang)
+            B1, dB1 = _basis(ang - self.phi, K, 1)
+            res.append(self.r1_mean + B1 @ p1c - self.xP * np.cos(ang))
+            if jac:
+                J = np.zeros((M, len(z)))
+                J[:, :n] = B1
+                J[:, col:col + n + 1] = (dB1 @ p1c + self.xP * np.sin(ang))[:, None] * Bn
+                rows.append(J)
+            # large pulley: p2(ang - f) = (x_P - a) cos(ang)
+            B2, dB2 = _basis(ang - self.f, K, 2)
+            res.append(p2m + B2 @ p2c - (self.xP - self.a) * np.cos(ang))
+            if jac:
+                J = np.zeros((M, len(z)))
+                J[:, n] = 1.0
+                J[:, n + 1:2 * n + 1] = B2
+                J[:, col:col + n + 1] = (dB2 @ p2c + (self.xP - self.a) * np.sin(ang))[:, None] \
+                    * Bn
+                rows.append(J)
+        return np.vstack(rows) if jac else np.concatenate(res)
+
+
+def _start(Kc, prev, r1_mean, xP):
+    """Start vector with Kc harmonics: circles, or the previous solution
+    ``prev`` (fewer harmonics) padded with zeros."""
+    n = 2 * Kc
+    z = np.zeros(4 * n + 3)
+    nu_c = math.pi - np.arccos(r1_mean / np.abs(xP))
+    z[n], z[2 * n + 1], z[3 * n + 2] = 2 * r1_mean, nu_c.mean(), -nu_c.mean()
+    if prev is not None:
+        Kp = len(prev[0]) // 2
+        for off, c in ((0, prev[0]), (n + 1, prev[2]), (2 * n + 2, prev[4]),
+                       (3 * n + 3, prev[6])):
+            z[off:off + Kp] = c[:Kp]
+            z[off + Kc:off + Kc + Kp] = c[Kp:]
+        z[n], z[2 * n + 1], z[3 * n + 2] = prev[1], prev[3], prev[5]
+    return z
+
+
 @functools.lru_cache(maxsize=4)
 def design(a=A_DIST, r1_mean=R1_MEAN, lam=LAM, bet=BET, K=24, M=256):
     """Synthesise the pulley pair (module docstring).  Returns a
@@ -132,72 +193,25 @@ def design(a=A_DIST, r1_mean=R1_MEAN, lam=LAM, bet=BET, K=24, M=256):
     from scipy.optimize import least_squares
     phi = np.linspace(0.0, 2 * math.pi, M, endpoint=False)
     g = g_ratio(phi, lam, bet)
-    f = f_motion(phi, lam, bet)
     xP = -a * g / (1 - g)
-
-    def unpack(z, K):
-        n = 2 * K
-        return (z[:n], z[n], z[n + 1:2 * n + 1], z[2 * n + 1], z[2 * n + 2:3 * n + 2],
-                z[3 * n + 2], z[3 * n + 3:4 * n + 3])
-
-    def evaluate(z, K, jac):
-        n = 2 * K
-        p1c, p2m, p2c, nu0, nuc, mu0, muc = unpack(z, K)
-        Bphi, _ = _basis(phi, K, 1)
-        nu = nu0 + Bphi @ nuc
-        mu = mu0 + Bphi @ muc
-        res, rows = [], []
-        Bn = np.hstack([np.ones((M, 1)), Bphi])            # d(nu)/d(nu0, nuc)
-        for ang, col in ((nu, 2 * n + 1), (mu, 3 * n + 2)):
-            # small pulley: p1(ang - phi) = x_P cos(ang)
-            B1, dB1 = _basis(ang - phi, K, 1)
-            res.append(r1_mean + B1 @ p1c - xP * np.cos(ang))
-            if jac:
-                J = np.zeros((M, len(z)))
-                J[:, :n] = B1
-                J[:, col:col + n + 1] = (dB1 @ p1c + xP * np.sin(ang))[:, None] * Bn
-                rows.append(J)
-        for ang, col in ((nu, 2 * n + 1), (mu, 3 * n + 2)):
-            # large pulley: p2(ang - f) = (x_P - a) cos(ang)
-            B2, dB2 = _basis(ang - f, K, 2)
-            res.append(p2m + B2 @ p2c - (xP - a) * np.cos(ang))
-            if jac:
-                J = np.zeros((M, len(z)))
-                J[:, n] = 1.0
-                J[:, n + 1:2 * n + 1] = B2
-                J[:, col:col + n + 1] = (dB2 @ p2c + (xP - a) * np.sin(ang))[:, None] * Bn
-                rows.append(J)
-        return np.vstack(rows) if jac else np.concatenate(res)
-
+    fit = _Fit(phi, xP, f_motion(phi, lam, bet), r1_mean, a)
     prev = None
     for Kc in (8, K):
-        n = 2 * Kc
-        z = np.zeros(4 * n + 3)
-        nu_c = math.pi - np.arccos(r1_mean / np.abs(xP))
-        z[n], z[2 * n + 1], z[3 * n + 2] = 2 * r1_mean, nu_c.mean(), -nu_c.mean()
-        if prev is not None:
-            Kp = len(prev[0]) // 2
-            for off, c in ((0, prev[0]), (n + 1, prev[2]), (2 * n + 2, prev[4]),
-                           (3 * n + 3, prev[6])):
-                z[off:off + Kp] = c[:Kp]
-                z[off + Kc:off + Kc + Kp] = c[Kp:]
-            z[n], z[2 * n + 1], z[3 * n + 2] = prev[1], prev[3], prev[5]
-        sol = least_squares(lambda z: evaluate(z, Kc, False), z,
-                            jac=lambda z: evaluate(z, Kc, True), method="lm",
+        sol = least_squares(lambda z: fit(z, Kc, False), _start(Kc, prev, r1_mean, xP),
+                            jac=lambda z: fit(z, Kc, True), method="lm",
                             xtol=1e-15, ftol=1e-15, gtol=1e-15)
-        prev = unpack(sol.x, Kc)
+        prev = _unpack(sol.x, Kc)
     p1c, p2m, p2c, nu0, nuc, mu0, muc = prev
-    res = float(np.max(np.abs(evaluate(sol.x, K, False))))
+    res = float(np.max(np.abs(fit(sol.x, K, False))))
     # coefficients below 1e-14 m (the sine terms vanish by the symmetry of
     # the design about the centre line) are dropped from the contours
     p1c = np.where(np.abs(p1c) < 1e-14, 0.0, p1c)
     p2c = np.where(np.abs(p2c) < 1e-14, 0.0, p2c)
     sup1 = (r1_mean, p1c[:K], p1c[K:], 1)
     sup2 = (float(p2m), p2c[:K], p2c[K:], 2)
-    c1 = SupportContour(*sup1)
-    c2 = SupportContour(*sup2)
     return Design(a=a, lam=lam, bet=bet, K=K, M=M, residual=res, support1=sup1,
-                  support2=sup2, contour1=c1, contour2=c2)
+                  support2=sup2, contour1=SupportContour(*sup1),
+                  contour2=SupportContour(*sup2))
 
 
 def belt_length(des, phi1, phi2=None):
@@ -254,6 +268,10 @@ class NonCircularBeltDrive(Component):
     the span forces ``upper.F``, ``lower.F``."""
     experiment = {"stop_time": 2.0, "intervals": 720, "rtol": 1e-8}
     outputs = ["ratio", "ratio_design", "drive_deg", "upper.F", "lower.F", "large.w_rel"]
+    figures = [{"name": "ratio", "x": "small.phi_rel", "signals": ["ratio", "ratio_design"],
+                "title": "transmission ratio over the drive angle (Bild 7.27)"},
+               {"name": "span_forces", "x": "small.phi_rel", "signals": ["upper.F", "lower.F"],
+                "title": "span forces over the drive angle (Bild 7.27)"}]
 
     ratio = Variable(start=2.0, doc="transmission ratio omega1/omega2")
     ratio_design = Variable(start=2.0, doc="designed ratio 1/g(phi1)")
@@ -289,74 +307,45 @@ class NonCircularBeltDrive(Component):
                 self.ratio_design * g == 1.0,
                 self.drive_deg == p1 * 180.0 / math.pi]
 
-
-def plot(res, out_dir):
-    """Ratio and span forces over the drive angle (Bild 7.27) as PNG."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    x = res["drive_deg"]
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    ax1.plot(x, res["ratio"], label="simulated")
-    ax1.plot(x, res["ratio_design"], "--", label="designed 1/g")
-    ax1.set_ylabel("ratio i = omega1/omega2")
-    ax1.grid(True)
-    ax1.legend()
-    ax2.plot(x, res["upper.F"], label="upper span (tight side)")
-    ax2.plot(x, res["lower.F"], label="lower span")
-    ax2.set_xlabel("drive angle [deg]")
-    ax2.set_ylabel("span force [N]")
-    ax2.grid(True)
-    ax2.legend()
-    fig.suptitle("Toothed belt drive with non-circular pulleys (Bild 7.27)")
-    fig.tight_layout()
-    png = os.path.join(out_dir, "noncircular_belt_drive.png")
-    fig.savefig(png, dpi=100)
-    plt.close(fig)
-    return png
+    @study
+    def pulleys(ctx):
+        """The designed pulley pair: contours, collocation residual and the
+        belt length over a revolution."""
+        des = ctx.model.des
+        L, _ = belt_length(des, np.linspace(0, 2 * math.pi, 37))
+        ctx.note("design residual %.2e m, perimeters %.6f / %.6f m" % (
+            des.residual, des.contour1.perimeter, des.contour2.perimeter))
+        ctx.note("belt length %.9f m, variation %.2e m over a revolution" % (
+            L.mean(), L.max() - L.min()))
+        res = ctx.result
+        ctx.note("simulated ratio %.4f .. %.4f (designed 1/g %.4f .. %.4f)" % (
+            res["ratio"].min(), res["ratio"].max(), res["ratio_design"].min(),
+            res["ratio_design"].max()))
+        ctx.save(pulley_figure(des), "noncircular_belt_drive_pulleys")
 
 
-def plot_pulleys(des, out_dir):
-    """Outline of both pulleys and the belt at the start."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def pulley_figure(des):
+    """Outline of both designed pulleys at the start (phi = 0) as a
+    matplotlib Figure (object API)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(8, 3.5))
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
     k = np.linspace(0, 2 * math.pi, 721)
-    fig, ax = plt.subplots(figsize=(8, 3.5))
-    for C, x0 in ((des.contour1, 0.0), (des.contour2, des.a)):
+    for C, x0, label in ((des.contour1, 0.0, "small (driving)"), (des.contour2, des.a, "large")):
         x, y = C.point(k)
-        ax.plot(x + x0, y)
+        ax.plot(x + x0, y, label=label)
     ax.set_aspect("equal")
-    ax.grid(True)
-    ax.set_title("Designed pulley contours (phi = 0)")
-    png = os.path.join(out_dir, "noncircular_belt_drive_pulleys.png")
-    fig.savefig(png, dpi=100)
-    plt.close(fig)
-    return png
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title("NonCircularBeltDrive: designed pulley contours (phi = 0)")
+    fig.tight_layout()
+    return fig
 
 
 if __name__ == "__main__":
-    import time
-    out = os.path.join(os.getcwd(), "out")
-    os.makedirs(out, exist_ok=True)
-    t0 = time.perf_counter()
-    des = design()
-    t1 = time.perf_counter()
-    print("design: residual %.2e m, perimeters %.6f / %.6f m, %.2f s"
-          % (des.residual, des.contour1.perimeter, des.contour2.perimeter, t1 - t0))
-    L, _ = belt_length(des, np.linspace(0, 2 * math.pi, 37))
-    print("belt length %.9f m, variation %.2e m" % (L.mean(), L.max() - L.min()))
-    cm = compile_model(NonCircularBeltDrive(des))
-    t2 = time.perf_counter()
-    res = cm.simulate()
-    t3 = time.perf_counter()
-    print("compile %.2f s, simulate %.2f s" % (t2 - t1, t3 - t2))
-    r = res["ratio"]
-    print("ratio: min %.4f max %.4f (swing %.4f), designed 1/g: %.4f .. %.4f"
-          % (r.min(), r.max(), r.max() / r.min(), res["ratio_design"].min(),
-             res["ratio_design"].max()))
-    print("span forces: upper %.1f .. %.1f N, lower %.1f .. %.1f N"
-          % (res["upper.F"].min(), res["upper.F"].max(), res["lower.F"].min(),
-             res["lower.F"].max()))
-    print("wrote", plot(res, out))
-    print("wrote", plot_pulleys(des, out))
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

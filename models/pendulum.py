@@ -24,6 +24,7 @@ class Pendulum(Component):
 
 
 if __name__ == "__main__":
-    from acausal2d import simulate
-    res = simulate(Pendulum())
-    print("body.phi(3 s) = %.6f rad" % res.final("body.phi"))
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

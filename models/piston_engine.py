@@ -50,7 +50,7 @@ class PistonEngine(Component):
 
 
 if __name__ == "__main__":
-    from acausal2d import simulate
-    res = simulate(PistonEngine())
-    print("revoluteDrive.phi(10 s) = %.10f rad (reference -16.8149394961727)"
-          % res.final("revoluteDrive.phi"))
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

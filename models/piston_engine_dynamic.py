@@ -24,7 +24,5 @@ class PistonEngineDynamic(PistonEngine):
 
 
 if __name__ == "__main__":
-    from acausal2d import simulate
-    res = simulate(PistonEngineDynamic())
-    print("revoluteDrive.phi(10 s) = %.10f rad, %d state re-selections"
-          % (res.final("revoluteDrive.phi"), res.stats["reselections"]))
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

@@ -41,16 +41,18 @@ k_i = (r_i - mu r_pin)/(r_i + mu r_pin) the sections carry T1, T2 = k1 T1,
 T3 = k2 T2, T4 = k3 T3, T5 = k4 T4, and T2 + T3 + T4 + T5 = m g.  The
 efficiency is eta = m g / (4 T1) and the rope utilisation T5 / T1.
 
-Run the file to simulate with and without friction, write the section
-forces (Bild 7.23) and the efficiency sweep over mu (Bild 7.24) as PNG files.
+``acausal2d simulate models/pulley_block.py`` plots the section forces
+(Bild 7.23); ``acausal2d study models/pulley_block.py`` runs the efficiency
+sweep over mu (Bild 7.24) on Dask and compares it with the closed form
+(running the file does both, into ./out).
 """
 import math
-import os
+import sys
 
 import casadi as ca
 import numpy as np
 
-from acausal2d import Component, compile_model, start
+from acausal2d import Component, start, study
 from acausal2d.library.belt import Belt, Pulley, RopeDrive, connect_band
 from acausal2d.library.planar import Body, Fixed, FixedTranslation
 from acausal2d.library.signals import TimeFunction
@@ -85,6 +87,10 @@ class PulleyBlock(Component):
     ``pull.F``, pull travel ``pull.s_in.u``, load position ``load.y``."""
     experiment = {"stop_time": 6.0, "intervals": 600, "rtol": 1e-8}
     outputs = ["rope1.F", "rope2.F", "rope3.F", "rope4.F", "rope5.F", "pull.F", "load.y"]
+    figures = [{"name": "rope_forces", "title": "rope section forces (Bild 7.23)",
+                "signals": ["rope1.F", "rope2.F", "rope3.F", "rope4.F", "rope5.F"]},
+               {"name": "travel", "title": "pull end and load", "signals": ["pull.s_in.u",
+                                                                           "load.y"]}]
 
     def __init__(self, friction=True, mu=0.25, **kw):
         super().__init__(**kw)
@@ -133,6 +139,21 @@ class PulleyBlock(Component):
         connect_band(self, self.rope5, 1, self.L4, 2)
         self.connect(self.rope5.ctr2D2, self.anchor.frame)
 
+    @study
+    def efficiency(ctx):
+        """Efficiency and rope utilisation over the bearing friction mu
+        (Bild 7.24), a sweep on Dask, against the closed form."""
+        table = ctx.sweep(vary={MU_TIED: "0:0.5:11"}, metrics=efficiency_metrics,
+                          stop_time=3.0, intervals=30, rtol=1e-8)
+        ctx.save(table, "pulley_block_efficiency")
+        mus = table.column(MU_TIED)
+        eta, util = table.column("efficiency"), table.column("utilisation")
+        ctx.save(efficiency_figure(mus, eta, util), "pulley_block_efficiency")
+        for mu, e, u in zip(mus, eta, util):
+            T = quasi_static_forces(mu)
+            ctx.note("mu = %.2f  efficiency %.4f (closed form %.4f)  utilisation %.4f "
+                     "(closed form %.4f)" % (mu, e, MASS * G / (4 * T[0]), u, T[4] / T[0]))
+
 
 def friction_factor(r, mu, r_pin=0.004):
     """T_out / T_in of a pulley wrapped by 180 degrees (module docstring)."""
@@ -149,71 +170,61 @@ def quasi_static_forces(mu, m=MASS, g=G):
     return [T1 * q for q in rel]
 
 
+def efficiency_metrics(res):
+    """Efficiency m g / (4 F1) and rope utilisation F5 / F1 at the end of a
+    run (the quasi-static phase; a sweep metric)."""
+    F1, F5 = res.final("rope1.F"), res.final("rope5.F")
+    return {"efficiency": MASS * G / (4 * F1), "utilisation": F5 / F1}
+
+
+MU_TIED = ",".join("%s.mu" % p for p in PULLEYS)
+"""The four pulleys' friction coefficients, varied together in a sweep."""
+
+
 def efficiency_sweep(mus=None, png="pulley_block_efficiency.png", compiled=None,
-                     t_eval=3.0):
-    """Simulate the pulley block for every mu in ``mus`` (one compilation) and
-    return (mus, efficiency, utilisation) at the quasi-static time ``t_eval``:
-    efficiency = m g / (4 F_pull), utilisation = F5 / F1 (Bild 7.24).  Writes
-    a PNG plot to ``png`` unless it is None."""
-    if mus is None:
-        mus = np.linspace(0.0, 0.5, 6)
-    cm = compiled or compile_model(PulleyBlock(friction=True))
-    eta, util = [], []
-    for mu in mus:
-        params = {"%s.mu" % p: float(mu) for p in PULLEYS}
-        res = cm.simulate(stop_time=t_eval, params=params, rtol=1e-8,
-                          output_times=np.linspace(0.0, t_eval, 31))
-        F1, F5 = res.at("rope1.F", t_eval), res.at("rope5.F", t_eval)
-        eta.append(MASS * G / (4 * F1))
-        util.append(F5 / F1)
-    eta, util = np.array(eta), np.array(util)
+                     t_eval=3.0, **sweep_options):
+    """Simulate the pulley block to the quasi-static time ``t_eval`` for
+    every mu in ``mus`` (all four pulleys) with :func:`acausal2d.sweep`
+    (on Dask; in this process with the CompiledModel ``compiled``) and
+    return (mus, efficiency, utilisation) (Bild 7.24).  Writes a PNG plot
+    to ``png`` unless it is None."""
+    from acausal2d import sweep
+    mus = np.linspace(0.0, 0.5, 6) if mus is None else np.asarray(mus, dtype=float)
+    table = sweep(compiled or __file__, vary={MU_TIED: mus}, metrics=efficiency_metrics,
+                  stop_time=t_eval, intervals=30, rtol=1e-8, model_name="PulleyBlock",
+                  **sweep_options)
+    if table.failed:
+        raise RuntimeError("pulley block sweep: %s" % table.failed[0]["error"])
+    eta, util = table.column("efficiency"), table.column("utilisation")
     if png:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6, 4))
-        ax.plot(mus, eta, "o-", label="efficiency m g / (4 F1)")
-        ax.plot(mus, util, "s-", label="rope utilisation F5 / F1")
-        ax.set_xlabel("bearing friction coefficient mu")
-        ax.set_ylabel("-")
-        ax.set_title("Pulley block: efficiency and rope utilisation (Bild 7.24)")
-        ax.grid(True)
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(png, dpi=100)
-        plt.close(fig)
-    return np.asarray(mus), eta, util
+        from acausal2d.tools.plotting import save_figure
+        save_figure(efficiency_figure(mus, eta, util), png, dpi=100)
+    return mus, eta, util
 
 
-def plot_forces(res, png="pulley_block_forces.png"):
-    """Section forces over time (Bild 7.23)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 4))
-    for k in range(1, 6):
-        ax.plot(res.time, res["rope%d.F" % k], label="section %d" % k)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("rope force [N]")
-    ax.set_title("Pulley block with bearing friction (Bild 7.23)")
-    ax.grid(True)
-    ax.legend()
+def efficiency_figure(mus, eta, util):
+    """Efficiency and rope utilisation over mu, simulated and in closed form
+    (Bild 7.24), as a matplotlib Figure (object API)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(6.5, 4.2))
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    fine = np.linspace(float(mus.min()), float(mus.max()), 101)
+    T = np.array([quasi_static_forces(m) for m in fine])
+    ax.plot(fine, MASS * G / (4 * T[:, 0]), color="0.6", lw=1, label="closed form")
+    ax.plot(fine, T[:, 4] / T[:, 0], color="0.6", lw=1)
+    ax.plot(mus, eta, "o-", label="efficiency m g / (4 F1) [-]")
+    ax.plot(mus, util, "s-", label="rope utilisation F5 / F1 [-]")
+    ax.set_xlabel("bearing friction coefficient mu [-]")
+    ax.set_ylabel("[-]")
+    ax.set_title("PulleyBlock: efficiency and rope utilisation (Bild 7.24)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(png, dpi=100)
-    plt.close(fig)
-    return png
+    return fig
 
 
 if __name__ == "__main__":
-    out = os.path.join(os.getcwd(), "out")
-    os.makedirs(out, exist_ok=True)
-    cm = compile_model(PulleyBlock(friction=True))
-    res = cm.simulate()
-    print("mu = 0.25: forces at t = 3 s:",
-          ", ".join("F%d = %.3f N" % (k, res.at("rope%d.F" % k, 3.0)) for k in range(1, 6)))
-    print("closed form:", ", ".join("%.3f" % T for T in quasi_static_forces(0.25)))
-    print("wrote", plot_forces(res, os.path.join(out, "pulley_block_forces.png")))
-    mus, eta, util = efficiency_sweep(np.linspace(0, 0.5, 11), compiled=cm,
-                                      png=os.path.join(out, "pulley_block_efficiency.png"))
-    for m_, e_, u_ in zip(mus, eta, util):
-        print("mu = %.2f  efficiency %.4f  utilisation %.4f" % (m_, e_, u_))
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

@@ -144,6 +144,6 @@ def test_integration_failure_names_time_and_variable(capsys):
     assert err.value.variable == "x"
     # SUNDIALS' own message is in our error, not printed (scikit-sundae prints
     # it with Python's print: sys.stdout may be a notebook's stream)
-    assert "[IDA" in str(err.value)
+    assert "mxstep steps taken before reaching tout" in str(err.value)
     out = capsys.readouterr()
     assert "IDA" not in out.out + out.err

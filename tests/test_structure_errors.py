@@ -137,3 +137,34 @@ def test_connecting_different_kinds_is_reported():
             self.connect(self.body.frame_a, self.inertia.flange_a)
     with pytest.raises(ModelDefinitionError, match="connector kinds differ"):
         M()
+
+
+class _Pendulum(Component):
+    """A pendulum with one of its connections left out."""
+
+    def __init__(self, missing, **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed()
+        self.revolute = Revolute(phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.rod = FixedTranslation(r=(1.0, 0.0))
+        self.body = Body(m=1.0, I=0.1)
+        self.connect(self.fixed.frame, self.revolute.frame_a)
+        if missing != "joint":
+            self.connect(self.revolute.frame_b, self.rod.frame_a)
+        if missing != "body":
+            self.connect(self.rod.frame_b, self.body.frame_a)
+
+
+@pytest.mark.parametrize("missing,groups,loose", [
+    ("joint", ["Fixed 'fixed', Revolute 'revolute'", "Body 'body', FixedTranslation 'rod'"],
+     "revolute.frame_b, rod.frame_a"),
+    ("body", ["Fixed 'fixed', FixedTranslation 'rod', Revolute 'revolute'", "Body 'body'"],
+     "body.frame_a, rod.frame_b")])
+def test_structural_error_names_the_loose_parts(missing, groups, loose):
+    with pytest.raises(StructuralError) as err:
+        compile_model(_Pendulum(missing))
+    msg = str(err.value)
+    assert msg.startswith("The model falls apart into 2 separate groups of components:")
+    for g in groups:
+        assert "  - " + g in msg
+    assert "Unconnected connectors (probably one of them should connect the groups): " + loose in msg

@@ -43,7 +43,9 @@ def check_balance(equations, variables, table):
         raise StructuralError(
             "Equation without unknowns (it repeats what other equations already state, e.g. "
             "a connection closing a loop of equal potentials, or a value fixed twice):\n%s\n"
-            "Remove it." % _names([equations[i] for i in empty], lambda e: e.describe()))
+            "If the equation is your own, remove it; if it belongs to a library element, a "
+            "connection of that element is missing or made twice."
+            % _names([equations[i] for i in empty], lambda e: e.describe()))
     n_eq, n_var = len(equations), len(variables)
     m = Matching(rows, n_var).match_all()
     if n_eq == n_var and m.perfect:

@@ -6,17 +6,29 @@ Each pass is a function of its inputs that returns new values; the symbols
 of one compilation live in its own
 :class:`~acausal2d.language.symbols.SymbolTable`, owned by the system.
 """
-from ..errors import ModelDefinitionError
+from ..errors import ModelDefinitionError, StructuralError
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import SymbolTable
 from .aliases import eliminate_all_aliases
 from .always_states import differentiate_for_always
 from .balance import check_balance
+from .diagnosis import loose_parts
 from .flatten import flatten
 from .pantelides import pantelides
 from .relations import extract_relations
 from .structure import initial_structure
 from .system import System
+
+
+def _balanced(model, equations, variables, table):
+    """check_balance, with the loose parts of the model named in its error."""
+    try:
+        check_balance(equations, variables, table)
+    except StructuralError as exc:
+        hint = loose_parts(model)
+        if not hint:
+            raise
+        raise StructuralError("%s\n%s" % (hint, exc)) from None
 
 
 def compile_system(model):
@@ -30,9 +42,9 @@ def compile_system(model):
             "model of the file with --model." % model.describe())
     exprs, relations = extract_relations([eq.expr for eq in flat.equations], table)
     equations = [eq.with_expr(e) for eq, e in zip(flat.equations, exprs)]
-    check_balance(equations, flat.variables, table)
+    _balanced(model, equations, flat.variables, table)
     equations, variables, aliases = eliminate_all_aliases(equations, flat.variables, table)
-    check_balance(equations, variables, table)
+    _balanced(model, equations, variables, table)
     s = initial_structure(table, [eq.expr for eq in equations], variables)
     s = pantelides(s, lambda i: equations[i].describe())
     info = {v.sym.element_hash(): v for v in variables}

@@ -12,6 +12,8 @@ generates code again).  Parameters stay symbolic inputs of every function.
 import casadi as ca
 import numpy as np
 
+from ..errors import ModelDefinitionError
+
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import time
 from .aliases import substitution
@@ -54,7 +56,7 @@ class System:
         self._nodes(variables)
         self._functions()
         self._alias_maps()
-        self.outputs = list(getattr(model, "outputs", ()) or ())
+        self.outputs = declared_outputs(model)
         self._formulations = {}
 
     # ------------------------------------------------------------ setup
@@ -222,6 +224,24 @@ class System:
             self._formulations[selection.dummies] = f
         return f
 
+    def check_fixed_values(self, p):
+        """Raise ModelDefinitionError if a variable fixed by parameters alone
+        (an eliminated alias with no remaining unknown) is inf or NaN for the
+        parameter values ``p``, naming it and the equations that fix it."""
+        offsets = self.alias_offset_fn(p).full().ravel()
+        bad = [k for k in range(len(self.aliases))
+               if self.alias_node[k] < 0 and not np.isfinite(offsets[k])]
+        if not bad:
+            return
+        names = [self.aliases[k].var.name for k in bad[:6]]
+        syms = [self.aliases[k].var.sym for k in bad[:6]]
+        eqs = [eq.describe() for eq in self.flat_equations
+               if any(ca.depends_on(eq.expr, sym) for sym in syms)][:6]
+        raise ModelDefinitionError(
+            "%s would be inf or NaN with these parameter values (a division by zero, the "
+            "square root or logarithm of a negative number):\n%s\nChange the parameters of "
+            "these equations." % (", ".join(names), "\n".join("  - " + e for e in eqs)))
+
     def alias_values(self, Z, p):
         """Values of the eliminated variables and their derivatives for node
         values Z (one point per row)."""
@@ -237,3 +257,17 @@ def _is_zero(v):
         return float(v) == 0.0
     except (TypeError, RuntimeError):
         return False
+
+
+def declared_outputs(model):
+    """The model's ``outputs`` (signal names to plot), checked: a list or
+    tuple of strings; None or missing means none."""
+    outputs = getattr(model, "outputs", None)
+    if outputs is None:
+        return []
+    if isinstance(outputs, str) or not isinstance(outputs, (list, tuple)) \
+            or not all(isinstance(o, str) for o in outputs):
+        raise ModelDefinitionError("%s: outputs must be a list of signal names like "
+                                   "['body.phi', 'revolute.w'], got %r"
+                                   % (type(model).__name__, outputs))
+    return list(outputs)

@@ -32,7 +32,10 @@ from the whole model), :meth:`~Component.guesses` (start guesses),
 :meth:`~Component.equations`.  After a simulation, :meth:`~Component.shapes`
 and :meth:`~Component.topology` describe drawing and structure.
 """
+import inspect
 import math
+import os
+import sys
 import numbers
 
 import numpy as np
@@ -52,17 +55,20 @@ class Parameter:
 
     ``default`` is a number or a tuple of numbers (a vector parameter);
     ``unit`` is the SI unit and ``doc`` a one-line description.  The value
-    rules ``min``/``max`` (inclusive bounds) and ``positive`` (> 0) are
+    rules ``min``/``max`` (inclusive bounds), ``positive`` (> 0) and
+    ``nonzero`` (a vector of nonzero length, a scalar other than 0) are
     checked wherever a value is set.  Inside ``equations()`` the attribute
     is a CasADi symbol; elsewhere (e.g. in ``__init__``) it is the numeric
     value.
     """
 
-    def __init__(self, default, unit="", doc="", min=None, max=None, positive=False):
+    def __init__(self, default, unit="", doc="", min=None, max=None, positive=False,
+                 nonzero=False):
         self.default = default
         self.unit = unit
         self.doc = doc
         self.min, self.max, self.positive = min, max, bool(positive)
+        self.nonzero = bool(nonzero)
         self.name = None
 
     def __set_name__(self, owner, name):
@@ -88,6 +94,8 @@ class Parameter:
             parts.append(">= %g" % self.min)
         if self.max is not None:
             parts.append("<= %g" % self.max)
+        if self.nonzero:
+            parts.append("nonzero length" if self.size > 1 else "!= 0")
         return " and ".join(parts)
 
     def validated(self, value, where):
@@ -99,7 +107,7 @@ class Parameter:
         arr = self._numbers(value, desc)
         if not np.all(np.isfinite(arr)):
             raise ModelDefinitionError("%s = %r is not finite; give a finite number" % (desc, value))
-        if not all(self._obeys(x) for x in arr):
+        if not all(self._obeys(x) for x in arr) or (self.nonzero and not np.any(arr != 0)):
             raise ModelDefinitionError("%s = %s breaks its rule %s (%s%s)" % (
                 desc, _fmt_value(arr), self.rule, self.doc or "value",
                 ", " + self.unit if self.unit else ""))
@@ -130,6 +138,19 @@ class Parameter:
         if sym is not None:
             return sym
         return obj.parameter_value(self.name)
+
+
+def _creation_site():
+    """``file:line`` of the user code creating a component: the first
+    caller outside the package and its library (the name of the component
+    is not known while it is being constructed)."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        module = frame.f_globals.get("__name__", "")
+        if module != "acausal2d" and not module.startswith("acausal2d."):
+            return "%s:%d" % (os.path.basename(frame.f_code.co_filename), frame.f_lineno)
+        frame = frame.f_back
+    return "?"
 
 
 def _check_state_select(value, where):
@@ -229,6 +250,9 @@ class Outer:
     def __set_name__(self, owner, name):
         self.name = name
 
+    def __repr__(self):
+        return "Outer(%s)" % self.cls.__name__
+
     def find(self, comp):
         """The instance ``comp`` uses, or None if the model holds none."""
         node = comp._parent
@@ -272,6 +296,45 @@ class VarInfo:
         return "VarInfo(%s)" % self.name
 
 
+def _declarations(cls, kind):
+    """{name: declaration} of the ``kind`` attributes of ``cls`` and its
+    bases (the most derived declaration of a name wins), in declaration
+    order, base classes first."""
+    found = {}
+    for klass in reversed(cls.__mro__):
+        for name, attr in vars(klass).items():
+            if isinstance(attr, kind):
+                found[name] = attr
+    return found
+
+
+def _doc_table(rows, indent="    "):
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]) - 1)]
+    return "\n".join((indent + "  ".join(c.ljust(w) for c, w in zip(r, widths))
+                      + "  " + r[-1]).rstrip() for r in rows)
+
+
+def declaration_doc(cls):
+    """The docstring of component class ``cls`` (as written, or its base
+    class's) followed by tables of its parameters (name, default, unit,
+    rule, description) and class-level variables (name, unit, description),
+    inherited ones included; set as ``cls.__doc__`` for every subclass so
+    that ``help(Body)`` shows them."""
+    own = vars(cls).get("__doc__")
+    text = inspect.cleandoc(own) if own else ""
+    marker = "\n\nParameters (default, unit, rule, description):\n"
+    params = _declarations(cls, Parameter)
+    if params:
+        rows = [(n, _fmt_value(p.default), p.unit or "-", p.rule or "-", p.doc)
+                for n, p in params.items()]
+        text += marker + _doc_table(rows)
+    variables = _declarations(cls, Variable)
+    if variables:
+        rows = [(n, v.unit or "-", v.doc) for n, v in variables.items()]
+        text += "\n\nVariables (unit, description):\n" + _doc_table(rows)
+    return text.lstrip("\n") or None
+
+
 def _join(path, name):
     return name if not path else path + "." + name
 
@@ -287,6 +350,10 @@ class Component:
     attributes.
     """
 
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        cls.__doc__ = declaration_doc(cls)
+
     def __init__(self, **kwargs):
         d = self.__dict__
         d.update(_name=None, _parent=None, _children={}, _connectors={}, _var_decls={},
@@ -301,7 +368,8 @@ class Component:
         for name, value in kwargs.items():
             if name in d["_param_values"]:
                 decl = self.parameter_declaration(name)
-                d["_param_values"][name] = decl.validated(value, type(self).__name__)
+                where = "%s created at %s" % (type(self).__name__, _creation_site())
+                d["_param_values"][name] = decl.validated(value, where)
                 d["_given"].add(name)
             else:
                 d["_overrides"][name] = value

@@ -87,7 +87,7 @@ class SundialsMessages:
 
     def write(self, text):
         if text.startswith("\n[") and ", Error: " in text:
-            self.messages.append(" ".join(text.split()))
+            self.messages.append(" ".join(text.split("]", 1)[-1].split()))
             self._eat_newline = True
             return len(text)
         if self._eat_newline and text == "\n":
@@ -104,7 +104,9 @@ class SundialsMessages:
 
     @property
     def text(self):
-        return " ".join(self.messages)
+        """The last SUNDIALS message (earlier ones are retries of the same
+        step at nearly the same time)."""
+        return self.messages[-1] if self.messages else ""
 
 
 class Problem:

@@ -54,25 +54,74 @@ def choose_initial_conditions(s, fixed_nodes, priority, has_start, states=()):
     return held
 
 
-def initialization_error(system, held, exc, p=None):
-    """The InitializationError for a Newton failure (largest residuals, or
-    the equations that are not finite)."""
+def _guess_hints(system, ev, held, exc, rows):
+    """'name (try about value)' of the free start guesses that most change
+    the residuals ``rows`` at the last Newton iterate: the least-squares
+    correction of the level-0 unknowns, ranked by its size."""
+    s = system.structure
+    held = set(int(j) for j in held)
+    free = [j for j in system.level0 if j not in held and s.var_to_diff[j] >= 0]
+    preferred = [j for j in free if system.priority[j] >= STATE_SELECT.index("prefer")]
+    free = preferred or free          # joint angles and travels first
+    if ev is None or not free or not rows:
+        return []
+    J = ev.jacobian(exc.t, exc.z, exc.d, dense=True)[np.ix_(rows, free)]
+    if not np.all(np.isfinite(J)):
+        return []
+    with np.errstate(all="ignore"):
+        dz = np.linalg.lstsq(J, -exc.residual[rows], rcond=1e-10)[0]
+    z = exc.z[free]
+    size = np.abs(dz) / (system.nominal[free] + np.abs(z))
+    order = [k for k in np.argsort(-size) if size[k] > 1e-3][:5]
+    return ["%s (try about %.4g)" % (s.var_sym[free[k]].name(), z[k] + dz[k]) for k in order]
+
+
+def initialization_error(system, held, exc, p=None, ev=None):
+    """The InitializationError for a Newton failure: the equations whose
+    residuals are not finite, or the position-level residuals left (loop
+    closure) with the start guesses that would reduce them most, or the
+    largest residuals of the derivative levels."""
     res = exc.residual
-    text = non_finite(system, res, p if p is not None else np.zeros(len(system.parameters)))
-    if text is not None:
-        err = InitializationError("No consistent initial values: " + text)
-        err.last = exc.z
-        return err
-    worst = np.argsort(-np.abs(res))[:6]
-    lines = ["  - %s   (residual %.3g)" % (system.describe_equation(i), res[i])
-             for i in worst if abs(res[i]) > 1e-10]
-    err = InitializationError(
-        "No consistent initial values found (the mechanism cannot assemble, or start values "
-        "are too far from a solution). Largest remaining residuals:\n%s\nCheck the geometry "
-        "(link lengths that cannot close a loop) and the start values of %s."
-        % ("\n".join(lines), ", ".join(system.node_name(j) for j in list(held)[:8])))
+    p = p if p is not None else np.zeros(len(system.parameters))
+    text = non_finite(system, res, p)
+    if text is None and ev is not None:
+        text = _non_finite_derivatives(system, ev, exc, p)
+    if text is None:
+        text = _residual_report(system, held, exc, ev)
+    err = InitializationError("No consistent initial values: " + text)
     err.last = exc.z
     return err
+
+
+def _non_finite_derivatives(system, ev, exc, p):
+    """Text naming the equations whose derivatives are inf or NaN at the
+    last Newton iterate (Newton cannot step there), or None."""
+    J = ev.jacobian(exc.t, exc.z, exc.d, dense=False).tocsr()
+    bad = ~np.isfinite(J.data)
+    if not bad.any():
+        return None
+    marks = np.zeros(system.structure.n_eq)
+    marks[np.unique(J.nonzero()[0][bad])] = np.nan
+    return "the derivatives of " + non_finite(system, marks, p) + \
+        " (a square root or norm of zero has no derivative there: give start values away from it)"
+
+
+def _residual_report(system, held, exc, ev):
+    res = exc.residual
+    s = system.structure
+    level0 = [i for i in np.argsort(-np.abs(res)) if abs(res[i]) > 1e-10 and s.eq_level[i] == 0
+              and all(s.var_to_diff[j] >= 0 for j in s.eq_vars[i])]
+    rows = level0 or [i for i in np.argsort(-np.abs(res)) if abs(res[i]) > 1e-10]
+    lines = ["  - %s   (residual %.3g)" % (system.describe_equation(i), res[i]) for i in rows[:6]]
+    what = ("the position equations do not close (loop closure or fixed positions)" if level0
+            else "the equations are not met")
+    hints = _guess_hints(system, ev, held, exc, level0) if level0 else []
+    kept = ", ".join(system.node_name(j) for j in list(held)[:8]) or "none"
+    return ("%s; the largest residuals:\n%s\n%sHeld at their start values: %s.  Check the "
+            "geometry (link lengths that cannot close a loop) and the start values." % (
+                what, "\n".join(lines),
+                "Start guesses that would reduce them most: %s.\n" % ", ".join(hints)
+                if hints else "", kept))
 
 
 def _guess_selection(system, ev, t0, z, d):
@@ -99,7 +148,7 @@ def initial_point(system, ev, t0, p):
     z = _first_consistent(system, ev, t0, z, d, held, p)
     d = values_from(system, ev.crossings(t0, z, d))
     z, d = EventIteration(system, ev,
-                          lambda t, exc: initialization_error(system, held, exc, p)) \
+                          lambda t, exc: initialization_error(system, held, exc, p, ev)) \
         .settle(t0, z, d, held)
     if sel is not None:
         worst = worst_level(system, ev, sel, t0, z, d)
@@ -117,6 +166,7 @@ def _first_consistent(system, ev, t0, z, d, held, p):
         except NoConvergence as exc:
             dn = values_from(system, ev.crossings(t0, exc.z, d))
             if np.array_equal(dn, d):
-                raise initialization_error(system, held, exc, p) from None
+                raise initialization_error(system, held, exc, p, ev) from None
             d = dn
-    raise initialization_error(system, held, NoConvergence(z, ev.residual(t0, z, d)), p)
+    raise initialization_error(system, held, NoConvergence(z, ev.residual(t0, z, d), t0, d), p,
+                               ev)

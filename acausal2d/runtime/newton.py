@@ -10,11 +10,12 @@ _WATCHDOG = 3   # Newton iterations whose full step is accepted even if the resi
 
 class NoConvergence(Exception):
     """Newton did not converge; ``z`` is the last iterate, ``residual`` its
-    residuals of E (without the held conditions)."""
+    residuals of E (without the held conditions), at time ``t`` with the
+    relation values ``d``."""
 
-    def __init__(self, z, residual):
+    def __init__(self, z, residual, t=0.0, d=None):
         super().__init__("Newton did not converge")
-        self.z, self.residual = z, residual
+        self.z, self.residual, self.t, self.d = z, residual, t, d
 
 
 def _step(J, r, square):
@@ -85,4 +86,4 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
         z, r, norm = found
     if norm < tol * 10:
         return z
-    raise NoConvergence(z, r[:ev.n_eq])
+    raise NoConvergence(z, r[:ev.n_eq], t, d)

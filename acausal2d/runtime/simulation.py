@@ -29,8 +29,7 @@ from .newton import NoConvergence, solve_consistent
 from .selection import reselect, select, singularity, worst_level
 
 
-CALL_WALL = 0.5            # wall seconds of output points per IDA call, once measured
-FIRST_CALL_OUTPUTS = 256   # output points of the first IDA call
+OUTPUTS_PER_CALL = 20000   # output points of one IDA call (budgets are looked at between)
 STATE_TOL_FACTOR = 0.03
 """IDA's local error test covers the states only (the algebraic unknowns are
 solved exactly at every output point, see :mod:`~acausal2d.runtime.ida`);
@@ -81,7 +80,6 @@ class Simulation:
                  max_wall_time=None):
         self.system, self.p = system, np.asarray(p, dtype=float)
         self.max_steps, self.max_wall_time = max_steps, max_wall_time
-        self.per_output = None        # wall seconds per output point of the last IDA call
         self.times = np.asarray(times, dtype=float)
         self.t_end = float(self.times[-1])
         self.rtol = rtol * STATE_TOL_FACTOR
@@ -189,14 +187,12 @@ class Simulation:
         prob.reset_monitors(self.t, y0, yp0, self.watch)
         t_stop, outputs = self._stop_and_outputs()
         n0 = self.seg_start = len(self.out)
-        steps0, wall = prob.steps, _time.perf_counter()
+        steps0 = prob.steps
         try:
             outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop)
         except Exception as exc:       # scikit-sundae raises on bad input at the start
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
-        if len(T):
-            self.per_output = (_time.perf_counter() - wall) / len(T)
         self.out.extend(zip(T.tolist(), projector.project(T, Y, self.d)))
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
@@ -208,15 +204,13 @@ class Simulation:
 
     def _stop_and_outputs(self):
         """(stop time, output times) of the next IDA call: up to the next
-        time event, and no more output points than take about
-        :data:`CALL_WALL` seconds (so that budgets and progress are looked at
-        during long runs; a call re-initializes IDA)."""
+        time event, with at most :data:`OUTPUTS_PER_CALL` output points (a
+        call re-initializes IDA, so the steps, and with them the solution,
+        do not depend on the output grid of ordinary runs)."""
         self.time_event = self._next_time_event()
         outputs = self.times[(self.times > self.t + self.eps) & (self.times <= self.time_event)]
-        n = FIRST_CALL_OUTPUTS if self.per_output is None else \
-            max(FIRST_CALL_OUTPUTS, int(CALL_WALL / max(self.per_output, 1e-9)))
-        if len(outputs) > n:
-            outputs = outputs[:n]
+        if len(outputs) > OUTPUTS_PER_CALL:
+            outputs = outputs[:OUTPUTS_PER_CALL]
             return float(outputs[-1]), outputs
         return self.time_event, outputs
 
@@ -289,7 +283,8 @@ class Simulation:
         """Relations ``flipped`` switch at t: record both limits, settle."""
         wall = _time.perf_counter()
         form = self._solver()[0]
-        self.out.append((self.t, z_left.copy()))
+        if not (self.out and self.out[-1][0] == self.t):     # an output row may be there
+            self.out.append((self.t, z_left.copy()))
         d = self.d.copy()
         d[flipped] = 1.0 - d[flipped]
         held = list(form.states)

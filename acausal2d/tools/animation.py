@@ -49,6 +49,28 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
     current point.
 ``{"type": "label", "x": X, "y": Y, "text": "..."}``
     a text label next to a point.
+``{"type": "damper", "a": [X, Y], "b": [X, Y], "offset": O}``
+    viscous damper between two points: a pot (open cylinder) from ``a``
+    and a piston rod from ``b`` (``offset`` optional, pixels: shifts the
+    damper sideways, e.g. beside a spring between the same points).
+``{"type": "box", "a": [X, Y], "b": [X, Y], "width": W}``
+    a rectangular link from ``a`` to ``b`` with square ends (``width``
+    optional, world units; default 12 pixels).
+``{"type": "sensor", "points": [[X, Y], ...]}``
+    a sensor: a small square mark at each point, a dotted line between
+    them (one point: an absolute sensor, two: a relative one).
+``{"type": "arrow", "x": X, "y": Y, "fx": FX, "fy": FY, "phi": P, "angle": A, "scale": S, "label": "..."}``
+    a force arrow whose head touches the point (x, y) where it pushes; the
+    vector is (fx, fy) turned by ``phi + angle`` (both optional, default
+    0: world components).  Its length is ``scale`` world units per unit of
+    force, or, without ``scale``, 60 pixels for the largest force of the
+    run.  A zero force draws nothing.  With ``label`` the arrow shows the
+    label and the force's magnitude in N.
+``{"type": "torque", "x": X, "y": Y, "t": T, "scale": S, "label": "..."}``
+    a torque as a curved arrow around the point, counter-clockwise for
+    t > 0; its sweep grows with |t| up to 300 degrees at the largest
+    torque of the run (or at |t| = 1/``scale``).  A zero torque draws
+    nothing; ``label`` adds the label and the torque's magnitude in N.m.
 
 Any shape may also have a ``"color"`` (a CSS colour string) that replaces its
 main colour.  Other keys are ignored.  A signal value that is NaN (written
@@ -63,7 +85,12 @@ Below it are a play/pause button (``id="play"``), a scrubbing slider
 (``id="speed"``, 0.25x to 4x real time), a loop check box and a time readout
 (``id="time"``).  Space toggles playback, the arrow keys step.  The page
 starts paused at frame 0, or at frame ``N`` when the URL ends in
-``#frame=N`` (it also follows later changes of the fragment).
+``#frame=N`` (it also follows later changes of the fragment); it starts
+playing if the scene says ``"autoplay": true`` or the URL has ``?autoplay``
+(or ``#autoplay``).  The grid spacing is shown with the scene's length
+``"unit"`` (default ``m``).  A scene with ``"plot": {"signal": name,
+"label": text}`` shows that signal in a strip under the mechanism
+(``id="plot"``) with a cursor at the current time.
 For scripting and tests it exposes ``window.acausal2d`` with ``frame`` (the
 current frame index), ``nframes``, ``playing``, ``setFrame(i)``, ``play()``,
 ``pause()``, ``errors`` (messages of uncaught errors on the page) and
@@ -84,6 +111,7 @@ import pathlib
 import numpy as np
 
 from ..errors import Acausal2dError
+from .files import write_text
 
 __all__ = ["validate_scene", "render_html", "write_html", "SHAPE_TYPES", "MAX_FRAMES"]
 
@@ -108,6 +136,14 @@ SHAPE_TYPES = {
     "spring": (("a", "point", True), ("b", "point", True)),
     "trace": (("x", "value", True), ("y", "value", True)),
     "label": (("x", "value", True), ("y", "value", True), ("text", "text", True)),
+    "damper": (("a", "point", True), ("b", "point", True), ("offset", "value", False)),
+    "box": (("a", "point", True), ("b", "point", True), ("width", "value", False)),
+    "sensor": (("points", "points:1", True),),
+    "arrow": (("x", "value", True), ("y", "value", True), ("fx", "value", True),
+              ("fy", "value", True), ("phi", "value", False), ("angle", "value", False),
+              ("scale", "value", False), ("label", "text", False)),
+    "torque": (("x", "value", True), ("y", "value", True), ("t", "value", True),
+               ("scale", "value", False), ("label", "text", False)),
 }
 """The shape types a scene may contain and their fields."""
 
@@ -173,6 +209,22 @@ def _check_points(pts, where, signals, minimum, exact=False):
         _check_point(p, f"{where}[{j}]", signals)
 
 
+def _check_text(v, where, signals):
+    if not isinstance(v, str):
+        raise Acausal2dError(f"{where} must be a string, not {type(v).__name__}")
+
+
+_FIELD_CHECKS = {
+    "value": _check_value,
+    "point": _check_point,
+    "guide": lambda v, where, signals: _check_points(v, where, signals, 2, exact=True),
+    # no signals in a contour: constants in the pulley frame
+    "contour": lambda v, where, signals: _check_points(v, where, {}, 3),
+    "text": _check_text,
+}
+"""Checks of a shape field by its kind (``points:n`` is handled apart)."""
+
+
 def _check_shape(i, shape, signals):
     if not isinstance(shape, dict):
         raise Acausal2dError(f"shape {i} must be a dict with a 'type', not {type(shape).__name__}")
@@ -181,25 +233,15 @@ def _check_shape(i, shape, signals):
         raise Acausal2dError(
             f"shape {i} has unknown type {kind!r}; known types: {', '.join(SHAPE_TYPES)}")
     for field, fkind, required in SHAPE_TYPES[kind]:
-        where = f"shape {i} ({kind}) field {field!r}"
         if field not in shape or shape[field] is None:
             if required:
                 raise Acausal2dError(f"shape {i} ({kind}) is missing the required field {field!r}")
             continue
-        v = shape[field]
-        if fkind == "value":
-            _check_value(v, where, signals)
-        elif fkind == "point":
-            _check_point(v, where, signals)
-        elif fkind.startswith("points:"):
-            _check_points(v, where, signals, int(fkind.split(":")[1]))
-        elif fkind == "guide":
-            _check_points(v, where, signals, 2, exact=True)
-        elif fkind == "contour":
-            _check_points(v, where, {}, 3)  # no signals allowed: constants in the pulley frame
-        elif fkind == "text":
-            if not isinstance(v, str):
-                raise Acausal2dError(f"{where} must be a string, not {type(v).__name__}")
+        where = f"shape {i} ({kind}) field {field!r}"
+        if fkind.startswith("points:"):
+            _check_points(shape[field], where, signals, int(fkind.split(":")[1]))
+        else:
+            _FIELD_CHECKS[fkind](shape[field], where, signals)
     if "color" in shape and not isinstance(shape["color"], str):
         raise Acausal2dError(f"shape {i} ({kind}) field 'color' must be a CSS colour string")
 
@@ -226,7 +268,20 @@ def _validated(scene):
                              f"(a scene needs {', '.join(map(repr, _SCENE_KEYS))})")
     if not isinstance(scene["title"], str):
         raise Acausal2dError("scene['title'] must be a string")
-    time = _numeric_array(scene["time"], "scene['time']")
+    time = _scene_time(scene["time"])
+    signals = _scene_signals(scene["signals"], time.size)
+    shapes = scene["shapes"]
+    if isinstance(shapes, (str, bytes, dict)) or not hasattr(shapes, "__iter__"):
+        raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
+    for i, shape in enumerate(shapes):
+        _check_shape(i, shape, signals)
+    _check_options(scene, signals)
+    return time, signals
+
+
+def _scene_time(values):
+    """scene['time'] as a finite, non-decreasing float array."""
+    time = _numeric_array(values, "scene['time']")
     if time.size == 0:
         raise Acausal2dError("scene['time'] is empty; a scene needs at least one sample")
     if not np.all(np.isfinite(time)):
@@ -235,23 +290,36 @@ def _validated(scene):
         k = int(np.argmax(np.diff(time) < 0))
         raise Acausal2dError(f"scene['time'] must be non-decreasing, but time[{k + 1}] = "
                              f"{time[k + 1]} < time[{k}] = {time[k]}")
-    if not isinstance(scene["signals"], dict):
+    return time
+
+
+def _scene_signals(values, n):
+    """scene['signals'] as {name: float array of ``n`` values}."""
+    if not isinstance(values, dict):
         raise Acausal2dError("scene['signals'] must be a dict {name: list of values}")
     signals = {}
-    for name, values in scene["signals"].items():
+    for name, column in values.items():
         if not isinstance(name, str):
             raise Acausal2dError(f"signal names must be strings, got {name!r}")
-        arr = _numeric_array(values, f"signal {name!r}")
-        if arr.size != time.size:
+        arr = _numeric_array(column, f"signal {name!r}")
+        if arr.size != n:
             raise Acausal2dError(f"signal {name!r} has {arr.size} values but scene['time'] "
-                                 f"has {time.size}; every signal needs one value per time")
+                                 f"has {n}; every signal needs one value per time")
         signals[name] = arr
-    shapes = scene["shapes"]
-    if isinstance(shapes, (str, bytes, dict)) or not hasattr(shapes, "__iter__"):
-        raise Acausal2dError("scene['shapes'] must be a list of shape dicts")
-    for i, shape in enumerate(shapes):
-        _check_shape(i, shape, signals)
-    return time, signals
+    return signals
+
+
+def _check_options(scene, signals):
+    """The optional scene keys: unit, autoplay, plot."""
+    if not isinstance(scene.get("unit", "m"), str):
+        raise Acausal2dError("scene['unit'] must be a string such as 'm'")
+    if not isinstance(scene.get("autoplay", False), bool):
+        raise Acausal2dError("scene['autoplay'] must be true or false")
+    plot = scene.get("plot")
+    if plot is not None:
+        if not isinstance(plot, dict) or not isinstance(plot.get("signal"), str):
+            raise Acausal2dError("scene['plot'] must be a dict {'signal': name, 'label': text}")
+        _check_value(plot["signal"], "scene['plot']['signal']", signals)
 
 
 # --------------------------------------------------------------------------
@@ -325,64 +393,82 @@ def _clean_shape(shape):
     return out
 
 
+class _Extent:
+    """Running world bounding box of shapes over all frames: points given
+    as numbers, signal names or arrays, each with a world-sized radius."""
+
+    def __init__(self, signals, n):
+        self.signals, self.n = signals, n
+        self.lo, self.hi = [math.inf, math.inf], [-math.inf, -math.inf]
+
+    def val(self, v):
+        if isinstance(v, str):
+            return self.signals[v]
+        if isinstance(v, np.ndarray):
+            return v
+        return np.full(self.n, np.nan if v is None else float(v))
+
+    def add(self, x, y, rad=0.0):
+        rad = np.abs(self.val(rad)) if rad is not None else 0.0
+        with np.errstate(invalid="ignore"):
+            for d, c in ((0, self.val(x)), (1, self.val(y))):
+                a, b = c - rad, c + rad
+                if np.any(np.isfinite(a)):
+                    self.lo[d] = min(self.lo[d], float(np.nanmin(a)))
+                if np.any(np.isfinite(b)):
+                    self.hi[d] = max(self.hi[d], float(np.nanmax(b)))
+
+    def box(self):
+        if not all(map(math.isfinite, self.lo + self.hi)):
+            return [-1.0, -1.0, 1.0, 1.0]
+        return [self.lo[0], self.lo[1], self.hi[0], self.hi[1]]
+
+
+def _extent_of_strip(ext, sh):
+    """Links, belts, springs, ...: their points widened by half the width."""
+    width = sh.get("width")
+    half = 0.0 if width is None else ext.val(width) / 2
+    for p in sh.get("points") or (sh["a"], sh["b"]):
+        ext.add(p[0], p[1], half)
+
+
+def _extent_of_slider(ext, sh):
+    length = sh.get("length")
+    if length is None:
+        ext.add(sh["x"], sh["y"])
+    else:
+        length = ext.val(length)
+        ext.add(sh["x"], sh["y"], np.hypot(length / 2, 0.3 * length))
+    for p in sh.get("guide") or ():
+        ext.add(p[0], p[1])
+
+
+def _extent_of_pulley(ext, sh):
+    rad = np.abs(ext.val(sh["r"]))
+    if sh.get("contour"):
+        cmax = max(math.hypot(float(c[0]), float(c[1])) for c in sh["contour"])
+        rad = np.fmax(rad, cmax)
+    ext.add(sh["x"], sh["y"], rad)
+
+
+_EXTENTS = dict(
+    {k: lambda ext, sh: ext.add(sh["x"], sh["y"])
+     for k in ("ground", "joint", "trace", "label", "arrow", "torque")},
+    body=lambda ext, sh: ext.add(sh["x"], sh["y"], sh.get("r", 0.0)),
+    slider=_extent_of_slider, pulley=_extent_of_pulley,
+    **{k: _extent_of_strip for k in ("link", "belt", "sensor", "spring", "damper", "box")})
+"""How each shape type extends the bounding box."""
+
+
 def _bbox(shapes, signals, n):
     """World bounding box ``[xmin, ymin, xmax, ymax]`` of all shapes over all
     frames (point extents plus world-sized radii)."""
-    lo = [math.inf, math.inf]
-    hi = [-math.inf, -math.inf]
-
-    def val(v):
-        if isinstance(v, str):
-            return signals[v]
-        if isinstance(v, np.ndarray):
-            return v
-        return np.full(n, np.nan if v is None else float(v))
-
-    def add(x, y, rad=0.0):
-        x = val(x)
-        y = val(y)
-        rad = np.abs(val(rad)) if rad is not None else 0.0
-        with np.errstate(invalid="ignore"):
-            for d, c in ((0, x), (1, y)):
-                a = c - rad
-                b = c + rad
-                if np.any(np.isfinite(a)):
-                    lo[d] = min(lo[d], float(np.nanmin(a)))
-                if np.any(np.isfinite(b)):
-                    hi[d] = max(hi[d], float(np.nanmax(b)))
-
+    ext = _Extent(signals, n)
     for sh in shapes:
-        kind = sh["type"]
-        if kind in ("ground", "joint", "trace", "label"):
-            add(sh["x"], sh["y"])
-        elif kind == "body":
-            add(sh["x"], sh["y"], sh.get("r", 0.0))
-        elif kind in ("link", "belt"):
-            width = sh.get("width")
-            half = 0.0 if width is None else val(width) / 2
-            for p in sh["points"]:
-                add(p[0], p[1], half)
-        elif kind == "spring":
-            add(sh["a"][0], sh["a"][1])
-            add(sh["b"][0], sh["b"][1])
-        elif kind == "slider":
-            length = sh.get("length")
-            if length is None:
-                add(sh["x"], sh["y"])
-            else:
-                length = val(length)
-                add(sh["x"], sh["y"], np.hypot(length / 2, 0.3 * length))
-            for p in sh.get("guide") or ():
-                add(p[0], p[1])
-        elif kind == "pulley":
-            rad = np.abs(val(sh["r"]))
-            if sh.get("contour"):
-                cmax = max(math.hypot(float(c[0]), float(c[1])) for c in sh["contour"])
-                rad = np.fmax(rad, cmax)
-            add(sh["x"], sh["y"], rad)
-    if not all(map(math.isfinite, lo + hi)):
-        return [-1.0, -1.0, 1.0, 1.0]
-    return [lo[0], lo[1], hi[0], hi[1]]
+        extend = _EXTENTS.get(sh["type"])
+        if extend is not None:
+            extend(ext, sh)
+    return ext.box()
 
 
 def _scene_data(scene, max_frames):
@@ -392,6 +478,10 @@ def _scene_data(scene, max_frames):
     used = set()
     for s in scene["shapes"]:
         used |= _used_signals(s)
+    plot = scene.get("plot")
+    if plot is not None:
+        used.add(plot["signal"])
+        plot = {"signal": plot["signal"], "label": str(plot.get("label", plot["signal"]))}
     sub = {name: signals[name][idx] for name in sorted(used)}
     bbox = _bbox(shapes, sub, idx.size)
     return {
@@ -402,6 +492,9 @@ def _scene_data(scene, max_frames):
         "bbox": [_round(v) for v in bbox],
         "nframes": int(idx.size),
         "source_samples": int(time.size),
+        "unit": scene.get("unit", "m"),
+        "autoplay": bool(scene.get("autoplay", False)),
+        "plot": plot,
     }
 
 
@@ -442,7 +535,5 @@ def write_html(scene, path, **options):
     """Write :func:`render_html` of ``scene`` to ``path`` (UTF-8, parent
     directories created) and return the path as a :class:`pathlib.Path`."""
     path = pathlib.Path(os.fspath(path))
-    text = render_html(scene, **options)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
+    write_text(path, render_html(scene, **options))
     return path

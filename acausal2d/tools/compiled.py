@@ -51,7 +51,51 @@ class CompiledModel:
 
     @property
     def outputs(self):
+        """The signals the model declares as its outputs."""
         return self.system.outputs
+
+    @property
+    def parameter_names(self):
+        """Names of all parameters: vectors as a whole and by element."""
+        return list(self._whole) + [n for n, *_ in self.system.parameters if n not in self._whole]
+
+    @property
+    def units(self):
+        """{column or parameter name: unit} from the declarations; the
+        k-th derivative of ``x`` gets x's unit divided by s^k."""
+        if getattr(self, "_units", None) is None:
+            s = self.system
+            units = {}
+            for j, name in enumerate(s.node_names):
+                units[name] = derivative_unit(s.node_info[j].unit, s.structure.var_level[j])
+            for a in s.aliases:
+                units[a.var.name] = a.var.unit
+            for name in s.alias_der_names:
+                base = name
+                order = 0
+                while base.startswith("der("):
+                    base, order = base[4:-1], order + 1
+                units[name] = derivative_unit(units.get(base, ""), order)
+            for name, (decl, _) in self._whole.items():
+                units[name] = decl.unit
+            for name, _, _, decl in s.parameters:
+                units.setdefault(name, decl.unit)
+            self._units = units
+        return self._units
+
+    def parameters_table(self):
+        """Every parameter (vectors as a whole) with its value, unit, rule
+        and description, as a fixed-width text table (``acausal2d params``)."""
+        vals = self.parameter_values()
+        rows = [("parameter", "value", "unit", "rule", "description")]
+        for name, (decl, idx) in self._whole.items():
+            v = vals[idx]
+            text = "%.6g" % v[0] if len(v) == 1 else "(%s)" % ", ".join("%.6g" % x for x in v)
+            rows.append((name, text, decl.unit or "-", decl.rule or "-", decl.doc))
+        widths = [max(len(r[i]) for r in rows) for i in range(4)]
+        lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)) + "  " + r[4] for r in rows]
+        lines.insert(1, "  ".join("-" * w for w in widths) + "  " + "-" * 11)
+        return "\n".join(line.rstrip() for line in lines)
 
     def _whole_parameters(self):
         """{parameter name (vectors as a whole): (declaration, indices)}."""
@@ -115,13 +159,16 @@ class CompiledModel:
     def _settings(self, stop_time, rtol, atol, intervals, start_time, output_times):
         """(output times, rtol) from the arguments and the model's
         ``experiment``, checked."""
-        exp = dict(getattr(self.model, "experiment", {}) or {})
+        exp = _experiment(self.model)
         rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
         _check_tolerances(rtol, atol)
         if output_times is None:
-            stop = float(stop_time if stop_time is not None else exp.get("stop_time", 1.0))
-            intervals = int(intervals if intervals is not None else exp.get("intervals", 500))
-            output_times = _output_grid(start_time, stop, intervals)
+            stop = _number("stop_time", stop_time if stop_time is not None
+                           else exp.get("stop_time", 1.0))
+            intervals = _number("intervals", intervals if intervals is not None
+                                else exp.get("intervals", 500))
+            output_times = _output_grid(_number("start_time", start_time), stop, intervals,
+                                        len(self.names))
         output_times = np.asarray(output_times, dtype=float)
         if output_times.ndim != 1 or len(output_times) < 2 or \
                 not np.all(np.isfinite(output_times)) or np.any(np.diff(output_times) <= 0):
@@ -145,6 +192,7 @@ class CompiledModel:
         """
         times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
         p = self.parameter_values(params)
+        self.system.check_fixed_values(p)
         try:
             with translated("simulating %s" % type(self.model).__name__):
                 log = Simulation(self.system, p, times, rtol, atol, progress,
@@ -189,13 +237,73 @@ def _check_tolerances(rtol, atol):
         raise Acausal2dError("atol must be positive, got %g" % atol)
 
 
-def _output_grid(start_time, stop, intervals):
+MAX_RESULT_BYTES = 4e9
+"""Largest result (output points times columns, 8 bytes each) a run makes."""
+
+_EXPERIMENT_KEYS = ("stop_time", "rtol", "intervals")
+
+
+def _number(name, value):
+    """A finite number, or the project's error naming the setting."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise Acausal2dError("%s must be a number, got %r" % (name, value))
+    if not np.isfinite(value):
+        raise Acausal2dError("%s must be finite, got %r" % (name, value))
+    return value
+
+
+def _experiment(model):
+    """The model's ``experiment`` settings, checked."""
+    exp = getattr(model, "experiment", None) or {}
+    if not isinstance(exp, dict):
+        raise ModelDefinitionError("%s: experiment must be a dict like {'stop_time': 2.0}, got %r"
+                                   % (type(model).__name__, exp))
+    unknown = sorted(set(exp) - set(_EXPERIMENT_KEYS))
+    if unknown:
+        raise ModelDefinitionError("%s: experiment has unknown settings %s; known: %s"
+                                   % (type(model).__name__, ", ".join(map(repr, unknown)),
+                                      ", ".join(_EXPERIMENT_KEYS)))
+    for key, value in exp.items():
+        _number("%s: experiment['%s']" % (type(model).__name__, key), value)
+    return dict(exp)
+
+
+def _output_grid(start_time, stop, intervals, columns):
     if not stop > start_time:
         raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
                              % (stop, start_time))
     if intervals < 1:
-        raise Acausal2dError("intervals must be at least 1, got %d" % intervals)
-    return np.linspace(start_time, stop, intervals + 1)
+        raise Acausal2dError("intervals must be at least 1, got %r" % (intervals,))
+    if int(intervals) != intervals:
+        raise Acausal2dError("intervals must be a whole number, got %r" % (intervals,))
+    size = 8.0 * (intervals + 1) * (columns + 1)
+    if size > MAX_RESULT_BYTES:
+        raise Acausal2dError("%d output intervals of %d signals would take %.3g GB of memory "
+                             "(at most %.3g GB); ask for fewer intervals"
+                             % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
+    return np.linspace(start_time, stop, int(intervals) + 1)
+
+def derivative_unit(unit, order=1):
+    """Unit of the ``order``-th time derivative of a quantity of ``unit``:
+    ``m`` -> ``m/s`` -> ``m/s2``, ``rad/s`` -> ``rad/s2``, ``""`` -> ``1/s``,
+    ``N/m`` -> ``N/(m.s)``."""
+    for _ in range(order):
+        if not unit:
+            unit = "1/s"
+        elif "/" not in unit:
+            unit += "/s"
+        else:
+            num, den = unit.split("/", 1)
+            if den == "s":
+                den = "s2"
+            elif den[:1] == "s" and den[1:].isdigit():
+                den = "s%d" % (int(den[1:]) + 1)
+            elif den.startswith("(") and den.endswith(".s)"):
+                den = den[:-3] + ".s2)"
+            else:
+                den = "(%s.s)" % den
+            unit = num + "/" + den
+    return unit
 
 
 class _Scalar:

@@ -1,10 +1,10 @@
 """Simulation results: every variable by its dotted name."""
 import csv
-import os
 
 import numpy as np
 
 from ..errors import Acausal2dError
+from .files import atomic_path
 
 
 class Result:
@@ -65,33 +65,42 @@ class Result:
         """Value of ``name`` at the end of the run."""
         return float(self[name][-1])
 
+    def unit(self, name):
+        """Unit of a column or parameter from its declaration ('' if none)."""
+        from .plotting import unit_of
+        return unit_of(self, name)
+
     def to_csv(self, path, names=None):
         """Write a CSV file with a ``time`` column and the given variables (all
-        by default, derivatives excluded); creates the folder if needed."""
+        by default, derivatives excluded); creates the folder if needed and
+        replaces an existing file atomically."""
         if names is None:
             names = [n for n in self._index if not n.startswith("der(")]
-        folder = os.path.dirname(os.path.abspath(path))
-        os.makedirs(folder, exist_ok=True)
-        with open(path, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(["time"] + list(names))
-            cols = [self.time] + [self[n] for n in names]
-            for row in zip(*cols):
-                w.writerow(["%.17g" % v for v in row])
+        with atomic_path(path) as tmp:
+            with open(tmp, "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(["time"] + list(names))
+                cols = [self.time] + [self[n] for n in names]
+                for row in zip(*cols):
+                    w.writerow(["%.17g" % v for v in row])
         return path
 
-    def plot(self, names=None, path=None, title=None):
-        """Plot signals over time (default: the model's outputs); writes a
-        PNG to ``path`` or returns a matplotlib Figure.  See
-        :func:`acausal2d.tools.plotting.plot`."""
+    def plot(self, names=None, path=None, title=None, x=None):
+        """Plot signals (default: the model's outputs) over time or over the
+        signal ``x``, with units in the labels; same-unit signals share an
+        axes with a legend.  Writes ``path`` or returns a matplotlib Figure.
+        See :func:`acausal2d.tools.plotting.plot`."""
         from .plotting import plot
-        return plot(self, names, path, title)
+        return plot(self, names, path, title, x=x)
 
-    def animate(self, path, traces=(), title=None):
+    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):
         """Write a self-contained HTML animation of the mechanism, drawn from
         the components' ``shapes()``; ``traces`` are frame names (or
-        ``"x_name:y_name"`` pairs) whose path is drawn.  See
-        :mod:`acausal2d.tools.animation`."""
+        ``"x_name:y_name"`` pairs) whose path is drawn, ``arrows`` frames or
+        rotational flanges whose forces and torques are drawn, ``signal`` a
+        signal plotted under the mechanism with a cursor synced to the time
+        slider, ``autoplay`` starts playback.  See
+        :mod:`acausal2d.tools.scene` and :mod:`acausal2d.tools.animation`."""
         from .scene import animate
-        return animate(self, path, traces, title)
+        return animate(self, path, traces, title, arrows, signal, autoplay)
 

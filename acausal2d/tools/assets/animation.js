@@ -21,7 +21,8 @@
     joint: "#ffffff", jointEdge: "#1f2933", body: "#2d3436", slider: "#a9c3db",
     sliderEdge: "#2b4f6e", guide: "#8a9099", pulley: "#e9edf1", pulleyEdge: "#555d66",
     spoke: "#7b858f", belt: "#e07b00", spring: "#2e9e4f", trace: "rgba(240,128,128,0.8)",
-    tracePoint: "#e74c3c", label: "#1f2933"
+    tracePoint: "#e74c3c", label: "#1f2933", force: "#c0392b", torque: "#8e44ad",
+    plotLine: "#4682b4", cursor: "#e74c3c"
   };
 
   var frame = 0, playing = false, rafId = null, anchorWall = 0, anchorSim = 0;
@@ -189,6 +190,26 @@
     circle(p[0], p[1], 4); ctx.fillStyle = sh.color || COLORS.tracePoint; ctx.fill();
     ctx.strokeStyle = "#ffffff"; ctx.lineWidth = 1.2; ctx.stroke();
   }
+  // ---- force and torque arrows: one scale per kind over the whole run ----
+  function maxOver(kind, fn) {
+    var m = 0;
+    shapes.forEach(function (sh) {
+      if (!sh || sh.type !== kind) return;
+      for (var k = 0; k < N; k++) { var v = fn(sh, k); if (isFinite(v) && v > m) m = v; }
+    });
+    return m;
+  }
+  function arrowHead(x, y, ang, size) {
+    ctx.beginPath(); ctx.moveTo(x, y);
+    ctx.lineTo(x - size * Math.cos(ang - 0.4), y - size * Math.sin(ang - 0.4));
+    ctx.lineTo(x - size * Math.cos(ang + 0.4), y - size * Math.sin(ang + 0.4));
+    ctx.closePath(); ctx.fill();
+  }
+  function arrowText(text, x, y) {
+    ctx.font = "11px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "middle";
+    ctx.lineWidth = 3; ctx.strokeStyle = "rgba(251,251,252,0.9)"; ctx.strokeText(text, x, y);
+    ctx.fillText(text, x, y);
+  }
   function drawLabel(sh, k) {
     var p = pt([sh.x, sh.y], k); if (!p) return;
     ctx.font = "13px system-ui, -apple-system, 'Segoe UI', Roboto, Helvetica, Arial, sans-serif";
@@ -198,12 +219,112 @@
     ctx.fillStyle = sh.color || COLORS.label; ctx.fillText(String(sh.text), p[0] + 7, p[1] - 5);
   }
 
+  // ---- force elements and sensors (damper, box, sensor, arrow, torque) ----
+  var ELEMENT_COLORS = {
+    damper: "#6c5ce7", box: "#4682b4", boxEdge: "#2b4f6e", sensor: "#d35400",
+    arrow: "#c0392b", torque: "#8e44ad"
+  };
+  function drawDamper(sh, k) {
+    var a = pt(sh.a, k), b = pt(sh.b, k); if (!a || !b) return;
+    var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.sqrt(dx * dx + dy * dy);
+    if (L < 1) return;
+    var ux = dx / L, uy = dy / L, nx = -uy, ny = ux, off = sh.offset === undefined ? 0 : val(sh.offset, k);
+    if (!isFinite(off)) return;
+    var potLen = Math.min(30, 0.6 * L), half = 6;
+    var ox = nx * off, oy = ny * off, pot0 = 0.5 * (L - potLen), pot1 = pot0 + potLen, pist = pot0 + 0.6 * potLen;
+    function q(d, o) { return [a[0] + ox + ux * d + nx * o, a[1] + oy + uy * d + ny * o]; }
+    ctx.strokeStyle = sh.color || ELEMENT_COLORS.damper; ctx.lineWidth = 2;
+    ctx.lineCap = "round"; ctx.lineJoin = "miter";
+    var s0 = q(0, 0), s1 = q(pot0, 0), p1 = q(pot0, -half), p2 = q(pot1, -half);
+    var p3 = q(pot0, half), p4 = q(pot1, half);
+    polyline([s0, s1]); ctx.stroke();                         // rod of the pot
+    polyline([p2, p1, p3, p4]); ctx.stroke();                 // the pot, open towards b
+    var r0 = q(pist, -half + 2), r1 = q(pist, half - 2), e0 = q(pist, 0), e1 = q(L, 0);
+    polyline([r0, r1]); ctx.lineWidth = 3; ctx.stroke();      // piston
+    polyline([e0, e1]); ctx.lineWidth = 2; ctx.stroke();      // piston rod
+  }
+  function drawBox(sh, k) {
+    var a = pt(sh.a, k), b = pt(sh.b, k), w = worldLen(sh.width, k, 12, 2);
+    if (!a || !b || !isFinite(w)) return;
+    var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.sqrt(dx * dx + dy * dy);
+    ctx.save(); ctx.translate(a[0], a[1]); ctx.rotate(Math.atan2(dy, dx));
+    ctx.beginPath(); ctx.rect(0, -w / 2, L, w);
+    ctx.fillStyle = sh.color || ELEMENT_COLORS.box; ctx.fill();
+    ctx.strokeStyle = ELEMENT_COLORS.boxEdge; ctx.lineWidth = 1.6; ctx.lineJoin = "miter"; ctx.stroke();
+    ctx.restore();
+  }
+  function drawSensor(sh, k) {
+    var ps = pts(sh.points, k); if (!ps) return;
+    var c = sh.color || ELEMENT_COLORS.sensor;
+    if (ps.length > 1) {
+      ctx.save(); ctx.setLineDash([2, 3]); polyline(ps);
+      ctx.strokeStyle = c; ctx.lineWidth = 1.2; ctx.stroke(); ctx.restore();
+    }
+    for (var i = 0; i < ps.length; i++) {
+      ctx.beginPath(); ctx.rect(ps[i][0] - 3.5, ps[i][1] - 3.5, 7, 7);
+      ctx.fillStyle = "#ffffff"; ctx.fill(); ctx.strokeStyle = c; ctx.lineWidth = 1.5; ctx.stroke();
+    }
+  }
+  function largest(sh, key, fn) {  // largest value of fn(frame) over the run, cached per shape
+    if (sh[key] === undefined) {
+      var m = 0;
+      for (var j = 0; j < N; j++) { var v = fn(j); if (isFinite(v) && v > m) m = v; }
+      sh[key] = m;
+    }
+    return sh[key];
+  }
+  function arrowVector(sh, k) {
+    var fx = val(sh.fx, k), fy = val(sh.fy, k);
+    var a = (sh.phi === undefined ? 0 : val(sh.phi, k)) + (sh.angle === undefined ? 0 : val(sh.angle, k));
+    return [Math.cos(a) * fx - Math.sin(a) * fy, Math.sin(a) * fx + Math.cos(a) * fy];
+  }
+  function drawArrow(sh, k) {
+    var p = pt([sh.x, sh.y], k), f = arrowVector(sh, k); if (!p || !finite(f[0], f[1])) return;
+    var mag = Math.sqrt(f[0] * f[0] + f[1] * f[1]), len;
+    if (sh.scale !== undefined) { len = Math.abs(val(sh.scale, k)) * mag * view.s; }
+    else {
+      var top = largest(sh, "_largest", function (j) { var g = arrowVector(sh, j); return Math.sqrt(g[0] * g[0] + g[1] * g[1]); });
+      len = top > 0 ? 60 * mag / top : 0;
+    }
+    if (!(len > 0.5)) return;
+    var ux = f[0] / mag, uy = -f[1] / mag, head = Math.min(10, 0.5 * len + 3);
+    var tail = [p[0] - ux * len, p[1] - uy * len], base = [p[0] - ux * head, p[1] - uy * head];
+    var c = sh.color || ELEMENT_COLORS.arrow;
+    polyline([tail, base]); ctx.strokeStyle = c; ctx.lineWidth = 2.5; ctx.lineCap = "round"; ctx.stroke();
+    ctx.beginPath(); ctx.moveTo(p[0], p[1]);
+    ctx.lineTo(base[0] + uy * 0.45 * head, base[1] - ux * 0.45 * head);
+    ctx.lineTo(base[0] - uy * 0.45 * head, base[1] + ux * 0.45 * head);
+    ctx.closePath(); ctx.fillStyle = c; ctx.fill();
+    if (sh.label !== undefined) arrowText(sh.label + " " + (+mag.toPrecision(3)) + " N",
+                                          tail[0] + 6, tail[1]);
+  }
+  function drawTorque(sh, k) {
+    var p = pt([sh.x, sh.y], k), t = val(sh.t, k); if (!p || !isFinite(t) || t === 0) return;
+    var top = sh.scale !== undefined ? 1 / Math.abs(val(sh.scale, k))
+      : largest(sh, "_largest", function (j) { return Math.abs(val(sh.t, j)); });
+    if (!(top > 0)) return;
+    var sweep = Math.min(1, Math.abs(t) / top) * 300 * Math.PI / 180, R = 17, dir = t > 0 ? -1 : 1;
+    if (sweep < 0.05) return;
+    var a0 = Math.PI / 2, a1 = a0 + dir * sweep, c = sh.color || ELEMENT_COLORS.torque;
+    ctx.beginPath(); ctx.arc(p[0], p[1], R, a0, a1, dir < 0);
+    ctx.strokeStyle = c; ctx.lineWidth = 2; ctx.lineCap = "round"; ctx.stroke();
+    var ex = p[0] + R * Math.cos(a1), ey = p[1] + R * Math.sin(a1);
+    var tx = -Math.sin(a1) * dir, ty = Math.cos(a1) * dir;        // direction of travel
+    ctx.beginPath(); ctx.moveTo(ex + tx * 7, ey + ty * 7);
+    ctx.lineTo(ex - ty * 4, ey + tx * 4); ctx.lineTo(ex + ty * 4, ey - tx * 4);
+    ctx.closePath(); ctx.fillStyle = c; ctx.fill();
+    if (sh.label !== undefined) arrowText(sh.label + " " + (+Math.abs(t).toPrecision(3)) +
+                                          " N\u00b7m", p[0] + R + 6, p[1] - R);
+  }
+
   // Layers, drawn bottom to top; unknown shape types are ignored.
   var LAYERS = {
     trace: [[0, drawTracePath], [90, drawTracePoint]], pulley: [[10, drawPulley]],
     slider: [[15, drawGuide], [60, drawSlider]], ground: [[20, drawGround]],
     belt: [[30, drawBelt]], spring: [[40, drawSpring]], link: [[50, drawLink]],
-    body: [[70, drawBody]], joint: [[80, drawJoint]], label: [[100, drawLabel]]
+    body: [[70, drawBody]], joint: [[80, drawJoint]], label: [[100, drawLabel]],
+    damper: [[42, drawDamper]], box: [[52, drawBox]], sensor: [[85, drawSensor]],
+    arrow: [[95, drawArrow]], torque: [[95, drawTorque]]
   };
   var ops = [];
   shapes.forEach(function (sh, i) {
@@ -237,7 +358,54 @@
     ctx.strokeStyle = COLORS.axis; ctx.stroke();
     ctx.font = "11px system-ui, sans-serif"; ctx.fillStyle = "#8a9099";
     ctx.textAlign = "left"; ctx.textBaseline = "bottom";
-    ctx.fillText("grid " + fmt(step), 10, view.h - 8);
+    gridLabel = "grid " + fmt(step) + " " + (D.unit || "m");
+    ctx.fillText(gridLabel, 10, view.h - 8);
+  }
+
+  // ---- the signal strip under the mechanism, its cursor synced to the frame ----
+  var plotCanvas = document.getElementById("plot"), plotCtx = null, plotView = null;
+  var gridLabel = "";
+  function fitPlot() {
+    if (!D.plot || !plotCanvas) return;
+    plotCanvas.hidden = false;
+    plotCtx = plotCtx || plotCanvas.getContext("2d");
+    var dpr = window.devicePixelRatio || 1;
+    var w = Math.max(1, plotCanvas.clientWidth), h = Math.max(1, plotCanvas.clientHeight);
+    plotCanvas.width = Math.round(w * dpr); plotCanvas.height = Math.round(h * dpr);
+    plotCtx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    var y = S[D.plot.signal], lo = Infinity, hi = -Infinity;
+    for (var k = 0; k < N; k++) if (y[k] !== null) { lo = Math.min(lo, y[k]); hi = Math.max(hi, y[k]); }
+    if (!(hi > lo)) { lo = (isFinite(lo) ? lo : 0) - 1; hi = lo + 2; }
+    var t0 = T[0], t1 = N > 1 && T[N - 1] > T[0] ? T[N - 1] : T[0] + 1;
+    plotView = { w: w, h: h, left: 64, right: w - 14, top: 18, bottom: h - 18, lo: lo, hi: hi, t0: t0, t1: t1 };
+  }
+  function plotX(t) { var v = plotView; return v.left + (v.right - v.left) * (t - v.t0) / (v.t1 - v.t0); }
+  function plotY(y) { var v = plotView; return v.bottom - (v.bottom - v.top) * (y - v.lo) / (v.hi - v.lo); }
+  function drawPlot() {
+    if (!plotView) return;
+    var c = plotCtx, v = plotView, y = S[D.plot.signal];
+    c.fillStyle = "#ffffff"; c.fillRect(0, 0, v.w, v.h);
+    c.strokeStyle = COLORS.axis; c.lineWidth = 1; c.strokeRect(v.left, v.top, v.right - v.left, v.bottom - v.top);
+    c.beginPath();
+    var pen = false;
+    for (var k = 0; k < N; k++) {
+      if (y[k] === null) { pen = false; continue; }
+      if (pen) c.lineTo(plotX(T[k]), plotY(y[k])); else c.moveTo(plotX(T[k]), plotY(y[k]));
+      pen = true;
+    }
+    c.strokeStyle = COLORS.plotLine; c.lineWidth = 1.5; c.stroke();
+    var cx = Math.round(plotX(T[frame])) + 0.5;
+    c.beginPath(); c.moveTo(cx, v.top); c.lineTo(cx, v.bottom);
+    c.strokeStyle = COLORS.cursor; c.lineWidth = 2; c.stroke();
+    c.font = "11px system-ui, sans-serif"; c.fillStyle = COLORS.text;
+    c.textAlign = "left"; c.textBaseline = "top";
+    var cur = y[frame] === null ? "" : " = " + fmt(y[frame]);
+    c.fillText(D.plot.label + cur, v.left + 4, 3);
+    c.textAlign = "right"; c.textBaseline = "middle";
+    c.fillText(fmt(v.hi), v.left - 4, v.top); c.fillText(fmt(v.lo), v.left - 4, v.bottom);
+  }
+  function plotCursor() {
+    return plotView ? { x: plotX(T[frame]), t: T[frame] } : null;
   }
 
   function fit() {
@@ -270,6 +438,7 @@
     }
     timeOut.textContent = "t = " + (N ? T[frame].toFixed(3) : "0") + " s  (" + (frame + 1) + "/" + N + ")";
     scrub.value = String(frame);
+    drawPlot();
   }
 
   function findFrame(simT) {  // last frame with clock <= simT
@@ -328,7 +497,7 @@
   speedSel.addEventListener("change", function () {
     if (playing) { anchorSim = anchorSim + (performance.now() - anchorWall) / 1000 * speed(); anchor(); }
   });
-  window.addEventListener("resize", function () { fit(); draw(); });
+  window.addEventListener("resize", function () { fitPlot(); fit(); draw(); });
   window.addEventListener("hashchange", function () {
     var h = frameFromHash(); if (h !== null) setFrame(h);
   });
@@ -345,8 +514,10 @@
   scrub.max = String(Math.max(0, N - 1));
   var h0 = frameFromHash();
   frame = h0 === null ? 0 : Math.max(0, Math.min(N - 1, h0));
+  fitPlot();
   fit();
   draw();
+  if (D.autoplay || /(?:^[?#]|[?&#])autoplay(?:[=&#]|$)/.test(window.location.search + window.location.hash)) play();
 
   window.acausal2d = {
     get frame() { return frame; },
@@ -356,6 +527,8 @@
     play: play,
     pause: pause,
     errors: errors,
-    scene: D
+    scene: D,
+    get gridLabel() { return gridLabel; },
+    plotCursor: plotCursor
   };
 })();
