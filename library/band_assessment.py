@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["Finding", "BandMaterial", "Assessment", "assess", "precheck_transfer", "jumps",
-           "sign_changes"]
+           "sign_changes", "new_figure"]
 
 
 @dataclass
@@ -206,11 +206,8 @@ class Assessment:
         """Write the assessment plot (contour with involute, free band length
         and its change, GF1/GF2/S_Bf, space and lever arm, stresses) as a
         PNG file (written atomically); returns ``path``."""
-        from .contour_export import write_atomic
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(2, 2, figsize=(11, 8))
+        from acausal2d.tools.plotting import save_figure
+        fig, axes = new_figure(2, 2, (11, 8))
         _plot_contour(axes[0, 0], self.synthesis)
         _plot_band_length(axes[0, 1], self)
         _plot_limit_functions(axes[1, 0], self)
@@ -218,9 +215,20 @@ class Assessment:
         fig.suptitle("Band curve assessment (seed ch. 5): %s"
                      % ("ok" if self.ok else "%d finding(s)" % len(self.findings)))
         fig.tight_layout()
-        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
-        plt.close(fig)
+        save_figure(fig, path, dpi=100)
         return path
+
+
+def new_figure(rows=1, cols=1, size=(7, 4.5)):
+    """A matplotlib Figure (object API, Agg canvas attached: the caller's
+    backend is left alone) and its axes ``fig.subplots(rows, cols)``, for
+    the plots of the band synthesis; write it with
+    :func:`acausal2d.tools.plotting.save_figure`."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=size)
+    FigureCanvasAgg(fig)
+    return fig, fig.subplots(rows, cols)
 
 
 def _plot_contour(ax, syn):

@@ -33,41 +33,14 @@ files: CSV in metres; SVG and DXF in millimetres (DXF header ``$INSUNITS`` =
 import csv
 import math
 import os
-import tempfile
 
 import numpy as np
 
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.tools.files import atomic_path, write_text
 
 __all__ = ["CamOutline", "cam_outline", "analysis_contour", "write_csv", "write_svg",
-           "write_dxf", "export_contour", "write_atomic", "write_text"]
-
-
-def write_atomic(path, writer):
-    """Write a file atomically: ``writer(tmp_path)`` writes a temporary file
-    in the target folder, which then replaces ``path``.  Returns ``path``."""
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=os.path.splitext(path)[1])
-    os.close(fd)
-    mask = os.umask(0)
-    os.umask(mask)
-    try:
-        writer(tmp)
-        os.chmod(tmp, 0o666 & ~mask)        # mkstemp's 0600 -> the usual file mode
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-    return path
-
-
-def write_text(path, text):
-    """Write ``text`` to ``path`` atomically; returns ``path``."""
-    def writer(tmp):
-        with open(tmp, "w") as fh:
-            fh.write(text)
-    return write_atomic(path, writer)
+           "write_dxf", "export_contour"]
 
 
 # --------------------------------------------------------------------------
@@ -307,14 +280,13 @@ def write_csv(path, outline):
     """CSV of the outline: columns part (pivot / arc / closure), phi (drive
     parameter of arc vertices), x, y in metres in the cam frame; the first
     row is the pivot (0, 0)."""
-    def writer(tmp):
-        with open(tmp, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(["part", "phi_rad", "x_m", "y_m"])
-            w.writerow(["pivot", "", "0", "0"])
-            for part, p, x, y in zip(outline.part, outline.phi, outline.x, outline.y):
-                w.writerow([part, "" if np.isnan(p) else "%.17g" % p, "%.17g" % x, "%.17g" % y])
-    return write_atomic(path, writer)
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["part", "phi_rad", "x_m", "y_m"])
+        w.writerow(["pivot", "", "0", "0"])
+        for part, p, x, y in zip(outline.part, outline.phi, outline.x, outline.y):
+            w.writerow([part, "" if np.isnan(p) else "%.17g" % p, "%.17g" % x, "%.17g" % y])
+    return path
 
 
 def write_svg(path, outline, margin_mm=5.0):
@@ -360,7 +332,9 @@ def write_dxf(path, outline):
     msp.add_line((-c, 0.0), (c, 0.0), dxfattribs={"layer": "PIVOT"})
     msp.add_line((0.0, -c), (0.0, c), dxfattribs={"layer": "PIVOT"})
     msp.add_circle((0.0, 0.0), outline.hub_radius * 1e3, dxfattribs={"layer": "PIVOT"})
-    return write_atomic(path, doc.saveas)
+    with atomic_path(path) as tmp:
+        doc.saveas(tmp)
+    return path
 
 
 def export_contour(syn, folder, name, hub_radius=None, tol=1e-6):

@@ -68,11 +68,13 @@ from acausal2d.library.band_functional import BandStructure, synthesize
 from acausal2d.library.band_synthesis import Bandkurve, DB_SD
 from acausal2d.library.belt import SpringBelt, connect_band
 from acausal2d.library.belt_curved import CurvedDrum
-from acausal2d.library.contour_export import (analysis_contour, export_contour, write_atomic,
-                                               write_text)
+from acausal2d.library.band_assessment import new_figure
+from acausal2d.library.contour_export import analysis_contour, export_contour
 from acausal2d.library.linkage import DAN, DDD
 from acausal2d.library.linkage_drives import Preset
 from acausal2d.library.planar import Fixed, Revolute
+from acausal2d.tools.files import write_text
+from acausal2d.tools.plotting import save_figure
 
 A0 = (0.0, 0.0)
 B0 = (-0.296, 0.0)
@@ -84,6 +86,7 @@ H_MAX = 0.08                  # m
 X_OPEN = 0.03                 # m, spring extension with the door open
 L0_SPRING = 0.10              # m, unloaded spring length
 DEGREE = 5
+QUASI_STATIC = {"stop_time": SPAN / OMEGA_STATIC, "intervals": 200, "rtol": 1e-9}
 
 
 def _add_door(model):
@@ -101,12 +104,14 @@ def _add_door(model):
 class DoorMechanism(Component):
     """Part 1: the door mechanism without balancing (seed Bild 7.7), driven
     quasi-statically from closed to open; ``drive.tau`` is the required
-    balancing torque on the door-side rocker."""
-    experiment = {"stop_time": SPAN / OMEGA_STATIC, "intervals": 200, "rtol": 1e-9}
+    balancing torque on the door-side rocker.  (Its ``experiment`` is set
+    per instance, so that the file's default model is :class:`BalancedDoor`,
+    its subclass.)"""
     outputs = ["drive.tau", "rocker.phiL"]
 
     def __init__(self, **kw):
         super().__init__(**kw)
+        self.experiment = dict(QUASI_STATIC)
         _add_door(self)
 
     def write_outputs(self, res, folder):
@@ -209,6 +214,7 @@ class BalancedDoor(DoorMechanism):
     the band with the 938 N/m spring to B0 (seed Bild 7.12), driven
     quasi-statically from closed to open: ``drive.tau`` is the torque left
     over (0 for a perfect balance); ``spring.F`` the spring force."""
+    experiment = QUASI_STATIC
     outputs = ["drive.tau", "spring.F", "spring.l_dF"]
 
     def __init__(self, **kw):
@@ -252,25 +258,15 @@ def _design_text(des):
                                                                for c in f2.coefficients)])
 
 
-def _figure(ncols=1, size=(7, 4.5)):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, ncols, figsize=size)
-    return plt, fig, ax
-
-
-def _save(plt, fig, path):
+def _save(fig, path):
     fig.tight_layout()
-    write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=100)
 
 
 def _plot_torque(res, path):
     des_phi = res["rocker.phiL"] - PHI_CLOSED
     coef = np.polyfit(des_phi, res["drive.tau"], DEGREE)
-    plt, fig, ax = _figure()
+    fig, ax = new_figure()
     ax.plot(np.degrees(des_phi), res["drive.tau"], "o", ms=3, label="quasi-static drive torque")
     ax.plot(np.degrees(des_phi), np.polyval(coef, des_phi), "-", label="regression, degree %d"
             % DEGREE)
@@ -279,11 +275,11 @@ def _plot_torque(res, path):
     ax.set_title("Cabinet door: required torque (Bild 7.8)")
     ax.grid(True, alpha=0.3)
     ax.legend()
-    return _save(plt, fig, path)
+    return _save(fig, path)
 
 
 def _plot_transfer(des, path):
-    plt, fig, ax = _figure(2, (10, 4))
+    fig, ax = new_figure(1, 2, (10, 4))
     psi = des.fit.phi
     ax[0].plot(np.degrees(psi), des.fit.x * 1e3, label="x_S, ansatz (run 2)")
     ax[0].plot(np.degrees(psi), des.fit.x_exact * 1e3, "--", label="exact (eq. 6.5)")
@@ -296,11 +292,11 @@ def _plot_transfer(des, path):
         a.grid(True, alpha=0.3)
         a.legend()
     fig.suptitle("Cabinet door: transfer functions (Bild 7.9)")
-    return _save(plt, fig, path)
+    return _save(fig, path)
 
 
 def _plot_synthesis(res, path):
-    plt, fig, ax = _figure(size=(6, 6))
+    fig, ax = new_figure(size=(6, 6))
     ax.plot(res["bandkurve.xe"], res["bandkurve.ye"], label="involute (material point)")
     ax.plot(res["bandkurve.xu"], res["bandkurve.yu"], lw=2.5, label="evolute = cam contour")
     ax.plot(res["dbsd.ctr2D3.x"], res["dbsd.ctr2D3.y"], ":", label="path k_PS of the spring eye")
@@ -309,13 +305,13 @@ def _plot_synthesis(res, path):
     ax.set_title("Cabinet door cam: involute and evolute (Bild 7.11)")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    return _save(plt, fig, path)
+    return _save(fig, path)
 
 
 def _plot_balance(res, path):
     des = door_design()
     phi = res["cam.phi"]
-    plt, fig, ax = _figure()
+    fig, ax = new_figure()
     ax.plot(np.degrees(phi), des.required_torque(phi), label="required torque (door alone)")
     ax.plot(np.degrees(phi), res["drive.tau"], label="drive torque with the spring-band cam")
     ax.set_xlabel("cam angle [deg]")
@@ -323,4 +319,11 @@ def _plot_balance(res, path):
     ax.set_title("Balanced cabinet door (Bild 7.12)")
     ax.grid(True, alpha=0.3)
     ax.legend()
-    return _save(plt, fig, path)
+    return _save(fig, path)
+
+
+if __name__ == "__main__":
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

@@ -37,11 +37,14 @@ import numpy as np
 
 from acausal2d import Component
 from acausal2d.library import rotational, signals, translational
+from acausal2d.library.band_assessment import new_figure
 from acausal2d.library.band_functional import BandStructure, synthesize
 from acausal2d.library.band_synthesis import Bandkurve
-from acausal2d.library.contour_export import cam_outline, export_contour, write_atomic, write_text
+from acausal2d.library.contour_export import cam_outline, export_contour
 from acausal2d.library.linkage import SAN
 from acausal2d.library.planar import Fixed, Revolute
+from acausal2d.tools.files import write_text
+from acausal2d.tools.plotting import save_figure
 
 XS0 = 0.10                    # m, slider start distance from P1
 V1, V2 = 0.02, 0.12           # m/rad, slider speeds per radian of cam angle
@@ -118,11 +121,8 @@ def plot_cam(syn, path):
     """The cam plate (manufacturing outline) in the cam frame with the
     involute of the slider pivot and free bands at every 0.5 rad (the
     picture of the README)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     out = cam_outline(syn)
-    fig, ax = plt.subplots(figsize=(6.5, 6))
+    fig, ax = new_figure(size=(6.5, 6))
     ax.fill(out.x, out.y, color="#dde6f0", ec="#1f4e79", lw=1.5, label="cam plate")
     ax.plot(syn.x_u, syn.y_u, color="#1f4e79", lw=3, label="synthesised contour (evolute)")
     ax.plot(syn.x_e, syn.y_e, color="darkorange", lw=1.2, label="involute of the slider pivot")
@@ -138,16 +138,12 @@ def plot_cam(syn, path):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
-    write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
-    plt.close(fig)
+    save_figure(fig, path, dpi=100)
     return path
 
 
 def _plot(res, path):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 6))
+    fig, ax = new_figure(size=(7, 6))
     ax.plot(res["bandkurve.xe"], res["bandkurve.ye"], label="involute (slider pivot)")
     ax.plot(res["bandkurve.xu"], res["bandkurve.yu"], lw=2.5, label="evolute = cam contour")
     ax.plot([0.0], [0.0], "k+", ms=12, mew=2, label="cam pivot P1")
@@ -158,6 +154,12 @@ def _plot(res, path):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
-    plt.close(fig)
+    save_figure(fig, path, dpi=100)
     return path
+
+
+if __name__ == "__main__":
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

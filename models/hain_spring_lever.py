@@ -36,10 +36,11 @@ import numpy as np
 
 from acausal2d import Component, start
 from acausal2d.library import translational
-from acausal2d.library.contour_export import write_atomic
+from acausal2d.library.band_assessment import new_figure
 from acausal2d.library.linkage import DAN
 from acausal2d.library.linkage_drives import Preset
 from acausal2d.library.planar import Fixed, Prismatic, Revolute
+from acausal2d.tools.plotting import save_figure
 
 R_LEVER = 0.5
 B_HEIGHT = 0.5
@@ -85,11 +86,8 @@ class HainSpringLever(Component):
 
     def write_outputs(self, res, folder):
         """Drive torque against the torques of weight and spring (3.10-3.12)."""
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
         phi = math.pi / 2 - res["lever.phiL"]
-        fig, ax = plt.subplots(figsize=(7, 4.5))
+        fig, ax = new_figure(size=(7, 4.5))
         ax.plot(np.degrees(phi), MASS * G * K_COG * np.sin(phi), label="weight m g k sin(phi)")
         ax.plot(np.degrees(phi), spring_torque(phi, res["spring.c"][0], res["spring.s_rel0"][0]),
                 "--", label="spring, eq. 3.10")
@@ -101,6 +99,12 @@ class HainSpringLever(Component):
         ax.legend()
         fig.tight_layout()
         path = os.path.join(folder, "hain_torques.png")
-        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=100, format="png"))
-        plt.close(fig)
+        save_figure(fig, path, dpi=100)
         return [path]
+
+
+if __name__ == "__main__":
+    import sys
+
+    from acausal2d.tools.cli import run_model_file
+    sys.exit(run_model_file(__file__))

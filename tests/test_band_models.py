@@ -169,16 +169,29 @@ def test_db_ds_synthesis():
 
 
 @pytest.mark.parametrize("model, files", [
-    ("db_ds_synthesis.py", ["db_ds_cam.dxf", "db_ds_cam.svg", "db_ds_cam.csv",
-                            "db_ds_involute_evolute.png", "db_ds_criteria.png", "db_ds_cam.png",
-                            "db_ds_assessment.txt"]),
-    ("hain_spring_lever.py", ["hain_torques.png"])])
+    (["db_ds_synthesis.py"], ["db_ds_cam.dxf", "db_ds_cam.svg", "db_ds_cam.csv",
+                              "db_ds_involute_evolute.png", "db_ds_criteria.png", "db_ds_cam.png",
+                              "db_ds_assessment.txt"]),
+    (["cabinet_door.py", "--model", "BalancingSynthesis"],
+     ["cabinet_door_cam.dxf", "cabinet_door_cam.svg", "cabinet_door_cam.csv",
+      "cabinet_door_involute.png", "cabinet_door_transfer.png", "cabinet_door_criteria.png",
+      "cabinet_door_assessment.txt"]),
+    (["cabinet_door.py"], ["cabinet_door_balance.png"]),       # default: BalancedDoor
+    (["hain_spring_lever.py"], ["hain_torques.png"])],
+    ids=["db_ds_synthesis", "cabinet_door_synthesis", "cabinet_door", "hain_spring_lever"])
 def test_models_run_from_the_cli(model, files, tmp_path):
+    """The model's own files (write_outputs) are written, named in the
+    summary and listed in the run's manifest, so the next run into the same
+    folder removes them first; no temporary file is left."""
+    import json
+    from acausal2d.tools.files import MANIFEST, _TEMPORARY
     exe = os.path.join(os.path.dirname(sys.executable), "acausal2d")
-    proc = subprocess.run([exe, "simulate", os.path.join(ROOT, "models", model),
+    proc = subprocess.run([exe, "simulate", os.path.join(ROOT, "models", model[0]), *model[1:],
                            "--out", str(tmp_path)], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     for name in files:
         assert (tmp_path / name).stat().st_size > 100, name
         assert name in proc.stdout
-    assert not [p for p in os.listdir(tmp_path) if p.startswith(".tmp")]
+    listed = json.loads((tmp_path / MANIFEST).read_text())["files"]
+    assert set(files) <= set(listed) and "result.csv" in listed
+    assert not [p for p in os.listdir(tmp_path) if _TEMPORARY.match(p)]
