@@ -151,6 +151,7 @@ class BandSynthesis:
 
     :meth:`evaluate` evaluates the exact expressions at other parameter
     values; :meth:`evolute_derivatives` gives derivatives of the contour;
+    :meth:`table` and :meth:`to_csv` give all of it as a table;
     :meth:`assess` runs the assessment of ch. 5."""
 
     def __init__(self, structure, phi, fn, deriv_fn):
@@ -188,6 +189,25 @@ class BandSynthesis:
             self._maps[key] = fn.map(n)
         return self._maps[key]
 
+    def table(self):
+        """The synthesis as a table: dict of equally long columns -- drive
+        parameter ``phi``, ``cam`` angle, material point ``x_P3, y_P3``
+        (world), involute ``x_e, y_e`` and evolute = cam contour ``x_u,
+        y_u`` (cam frame) and the ch. 5 quantities of :data:`CRITERIA`."""
+        cols = {"phi": self.phi, "cam": self.cam, "x_P3": self.x_P3, "y_P3": self.y_P3,
+                "x_e": self.x_e, "y_e": self.y_e, "x_u": self.x_u, "y_u": self.y_u}
+        cols.update(self.criteria)
+        return cols
+
+    def to_csv(self, path):
+        """Write :meth:`table` as CSV (header row of the column names, full
+        precision), atomically; returns ``path``."""
+        from acausal2d.tools.files import write_text
+        cols = self.table()
+        rows = [",".join(cols)] + [",".join("%.17g" % v for v in row)
+                                   for row in zip(*cols.values())]
+        return write_text(path, "\n".join(rows) + "\n")
+
     def assess(self, **kw):
         """Assessment of the band curve after seed ch. 5 (see
         :func:`acausal2d.library.band_assessment.assess`)."""
@@ -208,7 +228,8 @@ def _expressions(structure, p):
     Z = xe1 * ye2 - ye1 * xe2
     E2 = xe1 * xe1 + ye1 * ye1
     xu, yu = xe - ye1 * E2 / Z, ye + xe1 * E2 / Z                   # 3.7, 3.8
-    named = {"cam": cam, "dcam": ca.jacobian(cam, p), "x_P3": xP, "y_P3": yP, "x_e": xe, "y_e": ye, "x_u": xu, "y_u": yu,
+    named = {"cam": cam, "dcam": ca.jacobian(cam, p), "x_P3": xP, "y_P3": yP,
+             "x_e": xe, "y_e": ye, "x_u": xu, "y_u": yu,
              "xe1": xe1, "ye1": ye1, "xe2": xe2, "ye2": ye2, "xe3": xe3, "ye3": ye3}
     named.update(band_criteria(xe, ye, xe1, ye1, xe2, ye2, xe3, ye3, xu, yu))
     if structure.transfer is not None:

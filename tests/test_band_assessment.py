@@ -87,7 +87,8 @@ def test_broken_transfer_function_and_dwell():
     dwell = synthesize(BandStructure.slider((0, 0), (0, 0), 0.0, lambda p: ca.if_else(
         p < 1.0, 0.3 - 0.05 * p + 0.025 * p ** 2, 0.275)), np.linspace(0.0, 2.0, 201))
     b = dwell.assess()
-    assert b.has("dwell") and "1 .. 2" in [f for f in b.findings if f.criterion == "dwell"][0].message
+    assert b.has("dwell")
+    assert "1 .. 2" in [f for f in b.findings if f.criterion == "dwell"][0].message
     # a smooth transfer function raises nothing
     smooth = synthesize(BandStructure.slider((0, 0), (0, 0), 0.0, lambda p: 0.3 - 0.05 * p
                                              + 0.01 * ca.sin(p)), np.linspace(0.0, 2.0, 201))

@@ -98,6 +98,25 @@ def test_csv(syn, tmp_path):
     assert float(arc[7][2]) == v["x_u"][0] and float(arc[7][3]) == v["y_u"][0]
 
 
+def test_synthesis_table_csv(syn, tmp_path):
+    """The functional synthesis as a table (involute, evolute, ch. 5
+    quantities): the CSV reads back bit for bit, its evolute columns are
+    the exact contour points at the grid's parameter values."""
+    cols = syn.table()
+    assert list(cols)[:8] == ["phi", "cam", "x_P3", "y_P3", "x_e", "y_e", "x_u", "y_u"]
+    assert {"l_Bf", "S_Bf", "Z", "GF2", "a", "h", "rho_cam"} <= set(cols)
+    path = syn.to_csv(str(tmp_path / "synthesis.csv"))
+    with open(path) as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == list(cols) and len(rows) == len(syn.phi) + 1
+    data = np.array(rows[1:], dtype=float)
+    for k, name in enumerate(cols):
+        assert np.array_equal(data[:, k], cols[name]), name
+    v = syn.evaluate(data[[0, 100, -1], 0])
+    assert np.array_equal(v["x_u"], data[[0, 100, -1], 6])
+    assert os.listdir(tmp_path) == ["synthesis.csv"]
+
+
 def test_svg_draws_in_headless_chromium(syn, tmp_path):
     """The SVG opens in Chromium (headless screenshot, the suite's browser
     of tests/test_animation.py) and draws the filled contour, its outline
