@@ -21,6 +21,13 @@
 - :mod:`acausal2d.library.belt_curved`: pulley and drum with curved contour
   (seed eq. 4.100-4.122); contours from a function, a table, a Fourier
   series or a support function.
+- :mod:`acausal2d.library.band_synthesis`: band synthesis elements DB_BD,
+  DB_SD, Bandkurve (seed ch. 4.3); :mod:`~acausal2d.library.band_functional`
+  the same synthesis as a function (``synthesize``);
+  :mod:`~acausal2d.library.band_assessment` the criteria of ch. 5;
+  :mod:`~acausal2d.library.band_balancing` spring-band balancing of ch. 6;
+  :mod:`~acausal2d.library.contour_export` cam contours as CSV/SVG/DXF and
+  as a CurvedDrum/CurvedPulley contour.
 - :mod:`acausal2d.library.pneumatics`: gas cylinder with check valves.
 - :mod:`acausal2d.library.crane`: carriage and hook of the cable crane.
 """

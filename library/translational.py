@@ -100,6 +100,21 @@ class Force(Component):
         return [self.flange.f == -self.f_in.u]
 
 
+class Position(Component):
+    """Drives the flange position to the signal s_in (m); velocity and
+    acceleration follow by index reduction (the translational counterpart of
+    rotational.Position, e.g. a slider travel prescribed as a function of
+    time)."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = TranslationalFlange()
+        self.s_in = RealInput()
+
+    def equations(self):
+        return [self.flange.s == self.s_in.u]
+
+
 class PositionSensor(Component):
     """Absolute position of the flange as the signal ``s``
     (Modelica.Mechanics.Translational.Sensors.PositionSensor); takes no

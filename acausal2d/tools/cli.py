@@ -104,7 +104,9 @@ def _animation_options(args, cm):
     return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay}
 
 
-def _print_summary(model, res, out, pngs):
+def _print_summary(model, res, out, pngs, extra=()):
+    """The run's summary: singular positions, early stop, solver counts,
+    the files written (``extra``: those the model wrote itself) and states."""
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -112,10 +114,11 @@ def _print_summary(model, res, out, pngs):
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d steps, %d output points, "
           "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
-          "%d plot%s, animation.html)" % (
+          "%d plot%s, animation.html%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
-              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s"))
+              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
+              "".join(", " + os.path.basename(f) for f in extra)))
     states = getattr(res, "states", None) or []
     print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
 
@@ -138,8 +141,8 @@ def cmd_simulate(args):
                           max_steps=args.max_steps, max_wall_time=args.max_wall_time)
     finally:
         progress.close()
-    pngs = _write_outputs(res, out, settings, args)
-    _print_summary(model, res, out, pngs)
+    pngs, extra = _write_outputs(res, out, settings, args)
+    _print_summary(model, res, out, pngs, extra)
     if res.stopped:
         print("stopped early: %s" % res.stopped, file=sys.stderr)
         return 3
@@ -156,7 +159,8 @@ def _simulate_settings(args, cm):
 
 
 def _write_outputs(res, out, settings, args):
-    """CSV, figures, animation and the run's manifest; returns the figures."""
+    """CSV, figures, animation, the files the model writes itself and the
+    run's manifest; returns the figures and the model's files."""
     from .files import write_manifest
     from .plotting import write_figures
     files = [res.to_csv(os.path.join(out, "result.csv"))]
@@ -166,9 +170,21 @@ def _write_outputs(res, out, settings, args):
     files += pngs
     files.append(res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
                              **settings["animation"]))
-    write_manifest(out, files, model=type(res.model.model).__name__ if res.model else None,
+    extra = _model_files(res, out)
+    write_manifest(out, files + extra,
+                   model=type(res.model.model).__name__ if res.model else None,
                    stopped=res.stopped)
-    return pngs
+    return pngs, extra
+
+
+def _model_files(res, out):
+    """Files the model writes itself after a run: its optional method
+    ``write_outputs(result, folder)`` returns their paths (e.g. the contour
+    plots and cam contour files of the band synthesis models)."""
+    write = getattr(res.model.model if res.model else None, "write_outputs", None)
+    if not callable(write):
+        return []
+    return [os.fspath(p) for p in write(res, out) or ()]
 
 
 def cmd_params(args):
