@@ -389,6 +389,47 @@ class DevTools:
         self.log.close()
 
 
+class Page:
+    """One tab of a DevTools-driven Chromium, 800 x 600 CSS pixels."""
+
+    def __init__(self, cdp):
+        self.cdp = cdp
+        target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
+        self.session = cdp.call("Target.attachToTarget",
+                                {"targetId": target, "flatten": True})["sessionId"]
+        for domain in ("Page", "Runtime", "Log"):
+            cdp.call(f"{domain}.enable", session=self.session)
+        self.resize(800, 600)
+
+    def resize(self, width, height):
+        self.cdp.call("Emulation.setDeviceMetricsOverride",
+                      {"width": width, "height": height, "deviceScaleFactor": 1,
+                       "mobile": False}, session=self.session)
+
+    def open(self, url):
+        self.cdp.call("Page.navigate", {"url": url}, session=self.session)
+        self.cdp.wait_event("Page.loadEventFired")
+
+    def js(self, expr):
+        res = self.cdp.call("Runtime.evaluate", {"expression": expr, "returnByValue": True,
+                                                 "awaitPromise": True}, session=self.session)
+        assert "exceptionDetails" not in res, res
+        return res["result"].get("value")
+
+    def screenshot(self, name):
+        data = self.cdp.call("Page.captureScreenshot", {"format": "png"},
+                             session=self.session)["data"]
+        path = ARTIFACTS / name
+        path.write_bytes(base64.b64decode(data))
+        return read_png(path)
+
+    def mouse(self, kind, x, y, buttons=1):
+        """A left-button mouse event at (x, y) CSS pixels."""
+        self.cdp.call("Input.dispatchMouseEvent", {"type": kind, "x": x, "y": y,
+                                                   "button": "left", "buttons": buttons,
+                                                   "clickCount": 1}, session=self.session)
+
+
 def console_errors(events):
     """Uncaught exceptions, console.error/assert calls and error log entries
     (e.g. failed resource loads) reported by the DevTools protocol."""
@@ -424,29 +465,9 @@ def test_browser_scrub_play_and_console(page_path, tmp_path):
     ARTIFACTS.mkdir(exist_ok=True)
     cdp = DevTools(tmp_path / "profile", ARTIFACTS / "chromium_cdp.log")
     try:
-        target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
-        session = cdp.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
-        for domain in ("Page", "Runtime", "Log"):
-            cdp.call(f"{domain}.enable", session=session)
-        cdp.call("Emulation.setDeviceMetricsOverride",
-                 {"width": 800, "height": 600, "deviceScaleFactor": 1, "mobile": False},
-                 session=session)
-
-        def js(expr):
-            res = cdp.call("Runtime.evaluate", {"expression": expr, "returnByValue": True,
-                                                "awaitPromise": True}, session=session)
-            assert "exceptionDetails" not in res, res
-            return res["result"].get("value")
-
-        def screenshot(name):
-            data = cdp.call("Page.captureScreenshot", {"format": "png"}, session=session)["data"]
-            path = ARTIFACTS / name
-            path.write_bytes(base64.b64decode(data))
-            return read_png(path)
-
-        cdp.call("Page.navigate", {"url": page_path.resolve().as_uri() + "#frame=120"},
-                 session=session)
-        cdp.wait_event("Page.loadEventFired")
+        page = Page(cdp)
+        js, screenshot = page.js, page.screenshot
+        page.open(page_path.resolve().as_uri() + "#frame=120")
         state = js("({frame: acausal2d.frame, n: acausal2d.nframes, playing: acausal2d.playing,"
                    " scrub: document.getElementById('scrub').value,"
                    " max: document.getElementById('scrub').max,"
@@ -483,9 +504,7 @@ def test_browser_scrub_play_and_console(page_path, tmp_path):
         assert js("acausal2d.frame") == frame and js("acausal2d.playing") is False
 
         # the canvas follows the window size
-        cdp.call("Emulation.setDeviceMetricsOverride",
-                 {"width": 500, "height": 700, "deviceScaleFactor": 1, "mobile": False},
-                 session=session)
+        page.resize(500, 700)
         js("new Promise(r => requestAnimationFrame(() => setTimeout(r, 50)))")
         size = js("[document.getElementById('view').width, document.getElementById('view').height,"
                   " window.innerHeight]")

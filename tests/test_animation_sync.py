@@ -3,7 +3,6 @@
 DevTools protocol (helpers of test_animation.py): autoplay starts playback,
 the grid label carries its unit, the signal strip's cursor follows the time
 slider, and force arrows are drawn.  Screenshots go to tests/artifacts/."""
-import base64
 import json
 import os
 import re
@@ -14,7 +13,7 @@ import sys
 import numpy as np
 import pytest
 
-from test_animation import ARTIFACTS, DevTools, console_errors, read_png, require_chromium
+from test_animation import ARTIFACTS, DevTools, Page, console_errors, require_chromium
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -33,38 +32,6 @@ def engine_page(tmp_path_factory):
                "--signal", "revoluteDrive.w", "--arrows", "fixed.frame", "--out", str(out))
     assert proc.returncode == 0, proc.stderr
     return out / "animation.html"
-
-
-class Page:
-    """One tab of a DevTools-driven Chromium."""
-
-    def __init__(self, cdp):
-        self.cdp = cdp
-        target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
-        self.session = cdp.call("Target.attachToTarget",
-                                {"targetId": target, "flatten": True})["sessionId"]
-        for domain in ("Page", "Runtime", "Log"):
-            cdp.call(f"{domain}.enable", session=self.session)
-        cdp.call("Emulation.setDeviceMetricsOverride",
-                 {"width": 800, "height": 600, "deviceScaleFactor": 1, "mobile": False},
-                 session=self.session)
-
-    def open(self, url):
-        self.cdp.call("Page.navigate", {"url": url}, session=self.session)
-        self.cdp.wait_event("Page.loadEventFired")
-
-    def js(self, expr):
-        res = self.cdp.call("Runtime.evaluate", {"expression": expr, "returnByValue": True,
-                                                 "awaitPromise": True}, session=self.session)
-        assert "exceptionDetails" not in res, res
-        return res["result"].get("value")
-
-    def screenshot(self, name):
-        data = self.cdp.call("Page.captureScreenshot", {"format": "png"},
-                             session=self.session)["data"]
-        path = ARTIFACTS / name
-        path.write_bytes(base64.b64decode(data))
-        return read_png(path)
 
 
 def cursor_column(img, top, bottom):

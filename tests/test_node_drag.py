@@ -12,8 +12,8 @@ import pytest
 import acausal2d
 from acausal2d.library.node_correction import PositionCorrection
 from conftest import load_model_class
-from test_animation import (ARTIFACTS, DevTools, assert_canvas_drawn, assert_differ,
-                            console_errors, read_png, require_chromium)
+from test_animation import (ARTIFACTS, DevTools, Page, assert_canvas_drawn, assert_differ,
+                            console_errors, require_chromium)
 
 
 @pytest.fixture(scope="module")
@@ -32,35 +32,9 @@ def test_dragging_a_node_keeps_the_link_lengths(four_bar_page, tmp_path):
     require_chromium()
     cdp = DevTools(tmp_path / "profile", ARTIFACTS / "chromium_drag_cdp.log")
     try:
-        target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
-        session = cdp.call("Target.attachToTarget", {"targetId": target,
-                                                     "flatten": True})["sessionId"]
-        for domain in ("Page", "Runtime", "Log"):
-            cdp.call(f"{domain}.enable", session=session)
-        cdp.call("Emulation.setDeviceMetricsOverride",
-                 {"width": 800, "height": 600, "deviceScaleFactor": 1, "mobile": False},
-                 session=session)
-
-        def js(expr):
-            res = cdp.call("Runtime.evaluate", {"expression": expr, "returnByValue": True,
-                                                "awaitPromise": True}, session=session)
-            assert "exceptionDetails" not in res, res
-            return res["result"].get("value")
-
-        def screenshot(name):
-            import base64
-            data = cdp.call("Page.captureScreenshot", {"format": "png"}, session=session)["data"]
-            path = ARTIFACTS / name
-            path.write_bytes(base64.b64decode(data))
-            return read_png(path)
-
-        def mouse(kind, x, y, buttons=1):
-            cdp.call("Input.dispatchMouseEvent", {"type": kind, "x": x, "y": y, "button": "left",
-                                                  "buttons": buttons, "clickCount": 1},
-                     session=session)
-
-        cdp.call("Page.navigate", {"url": page.resolve().as_uri()}, session=session)
-        cdp.wait_event("Page.loadEventFired")
+        page_tab = Page(cdp)
+        js, screenshot, mouse = page_tab.js, page_tab.screenshot, page_tab.mouse
+        page_tab.open(page.resolve().as_uri())
         before = screenshot("drag_before.png")
         assert_canvas_drawn(before, "before dragging")
 
@@ -132,24 +106,13 @@ def test_the_page_corrects_exactly_as_the_python_solver(tmp_path):
     require_chromium()
     cdp = DevTools(tmp_path / "profile", ARTIFACTS / "chromium_drag2_cdp.log")
     try:
-        target = cdp.call("Target.createTarget", {"url": "about:blank"})["targetId"]
-        session = cdp.call("Target.attachToTarget", {"targetId": target,
-                                                     "flatten": True})["sessionId"]
-        for domain in ("Page", "Runtime"):
-            cdp.call(f"{domain}.enable", session=session)
-
-        def js(expr):
-            res = cdp.call("Runtime.evaluate", {"expression": expr, "returnByValue": True,
-                                                "awaitPromise": True}, session=session)
-            assert "exceptionDetails" not in res, res
-            return res["result"].get("value")
-
+        tab = Page(cdp)
+        js = tab.js
         for name, (build, node, (dx, dy)) in PAGES.items():
             model = build()
             page = acausal2d.simulate(model, intervals=20).animate(
                 ARTIFACTS / ("drag_%s.html" % name))
-            cdp.call("Page.navigate", {"url": page.resolve().as_uri()}, session=session)
-            cdp.wait_event("Page.loadEventFired")
+            tab.open(page.resolve().as_uri())
             js("acausal2d.drag.enable()")
             start = js("acausal2d.drag.positions()")
             solver = PositionCorrection(model.node_system(drives=False))
