@@ -752,6 +752,28 @@ def _wheel_layout(wheel, g1, g2, layout):
         layout.param(wheel, "n_beta", n + 1.0 if raw + 2 * _PI * n == 0.0 else n)
 
 
+class _SpanEnds:
+    """The parts a span's ends are connected to: ``ends(frame_name)`` is
+    the start geometry of that end (see :func:`_frame_geometry`) or None,
+    ``ends.owner(frame_name)`` the component it belongs to."""
+
+    def __init__(self, span, partners):
+        self.span, self.partners = span, partners
+
+    def _find(self, frame_name):
+        for c in self.partners(getattr(self.span, frame_name)):
+            g = _frame_geometry(c)
+            if g is not None:
+                return g, c.owner
+        return None, None
+
+    def __call__(self, frame_name):
+        return self._find(frame_name)[0]
+
+    def owner(self, frame_name):
+        return self._find(frame_name)[1]
+
+
 def belt_layout(model):
     """Start values and wrap-angle offsets of all belt elements in ``model``
     from the tangent construction at t0 (see the module docstring), as a
@@ -760,19 +782,7 @@ def belt_layout(model):
     layout = Layout()
 
     def end_geometry(span):
-        def ends(frame_name):
-            for c in partners(getattr(span, frame_name)):
-                g = _frame_geometry(c)
-                if g is not None:
-                    return g
-            return None
-
-        def owner(frame_name):
-            found = [c.owner for c in partners(getattr(span, frame_name))
-                     if _frame_geometry(c) is not None]
-            return found[0] if found else None
-        ends.owner = owner
-        return ends
+        return _SpanEnds(span, partners)
 
     leaving = {}   # (id(wheel), contact) -> leaving angle at t0
     comps = list(model.components())
