@@ -4,7 +4,6 @@ the documented exit code and without tracebacks or LAPACK chatter.  (The
 fuzz suite, test_fuzz.py, varies these inputs by the hundred; the tests here
 pin the report's own cases.)"""
 import csv
-import math
 import os
 import textwrap
 

@@ -368,8 +368,12 @@ class Component:
         for name, value in kwargs.items():
             if name in d["_param_values"]:
                 decl = self.parameter_declaration(name)
-                where = "%s created at %s" % (type(self).__name__, _creation_site())
-                d["_param_values"][name] = decl.validated(value, where)
+                try:
+                    d["_param_values"][name] = decl.validated(value, type(self).__name__)
+                except ModelDefinitionError:     # the same error, saying where (walks the stack)
+                    decl.validated(value, "%s created at %s" % (type(self).__name__,
+                                                                 _creation_site()))
+                    raise
                 d["_given"].add(name)
             else:
                 d["_overrides"][name] = value
