@@ -10,6 +10,9 @@ __version__ = "0.1.0"
 
 _os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is imported
 
+from . import _moved  # noqa: E402  (old import paths, e.g. acausal2d.tools.cli)
+_moved.install()
+
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
                     fmin, fmax, sign, if_else, pi)
 
@@ -19,11 +22,9 @@ from .language.dsl import Component, Outer, Parameter, Variable, start  # noqa: 
 from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
                      SimulationError, StructuralError)
 from .language.symbols import der, time, time_derivative  # noqa: E402,F401
-# imported as functions here, so that importing the submodules of the same
-# names later does not replace them in the package namespace
-from .tools.check import check  # noqa: E402,F401
-from .tools.compare import compare  # noqa: E402,F401
-from .tools.study import study  # noqa: E402,F401
+from .analysis.check import check  # noqa: E402,F401
+from .analysis.compare import compare  # noqa: E402,F401
+from .analysis.study import study  # noqa: E402,F401
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
@@ -31,17 +32,17 @@ Model = Component
 
 def compile_model(model):
     """Flatten, index-reduce and prepare ``model`` for simulation; returns a
-    :class:`~acausal2d.tools.compiled.CompiledModel` that simulates many
+    :class:`~acausal2d.compiled.CompiledModel` that simulates many
     times with different parameter values without recompiling."""
-    from .tools.compiled import compile_model as _compile
+    from .compiled import compile_model as _compile
     return _compile(model)
 
 
 def simulate(model, stop_time=None, **options):
     """Compile (if needed) and simulate ``model``; returns a
-    :class:`~acausal2d.tools.result.Result`.  See
-    :meth:`~acausal2d.tools.compiled.CompiledModel.simulate`."""
-    from .tools.compiled import CompiledModel
+    :class:`~acausal2d.result.Result`.  See
+    :meth:`~acausal2d.compiled.CompiledModel.simulate`."""
+    from .compiled import CompiledModel
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
 
@@ -49,12 +50,12 @@ def simulate(model, stop_time=None, **options):
 def sweep(model, vary=None, points=None, **options):
     """Parameter study on Dask: simulate ``model`` (a model file) for every
     combination of the ``vary`` values (or every dict of ``points``) and
-    return the table (see :func:`acausal2d.tools.sweep.sweep`)."""
-    from .tools.sweep import sweep as _sweep
+    return the table (see :func:`acausal2d.analysis.sweep.sweep`)."""
+    from .analysis.sweep import sweep as _sweep
     return _sweep(model, vary=vary, points=points, **options)
 
 
 def load_model(path, name=None, **kwargs):
-    """Instantiate the model of a model file (see :func:`acausal2d.tools.loader.load_model`)."""
-    from .tools.loader import load_model as _load
+    """Instantiate the model of a model file (see :func:`acausal2d.io.loader.load_model`)."""
+    from .io.loader import load_model as _load
     return _load(path, name, **kwargs)

@@ -1,6 +1,6 @@
 """``python -m acausal2d`` runs the command line (same as ``acausal2d``)."""
 import sys
 
-from .tools.cli import main
+from .cli import main
 
 sys.exit(main())

@@ -28,7 +28,7 @@ class SimulationError(Acausal2dError):
     """The integrator failed or the motion cannot go on; the message gives
     the time and names the variable, relation or component responsible.
     ``result`` holds the motion up to that time (a
-    :class:`~acausal2d.tools.result.Result`) when there is one."""
+    :class:`~acausal2d.result.Result`) when there is one."""
 
     def __init__(self, message, time=None, status=None, variable=None):
         super().__init__(message)

@@ -27,7 +27,7 @@ MODELS = os.path.join(ROOT, "models")
 _FIRST = r"""
 import sys, time
 sys.path.insert(0, %r)
-import acausal2d, acausal2d.tools.compiled, acausal2d.runtime.simulation
+import acausal2d, acausal2d.compiled, acausal2d.runtime.simulation
 from piston_engine import PistonEngine
 t = time.perf_counter()
 cm = acausal2d.compile_model(PistonEngine())

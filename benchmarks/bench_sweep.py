@@ -23,7 +23,7 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 sys.path.insert(0, os.path.join(ROOT, "models"))
 
 import acausal2d  # noqa: E402
-from acausal2d.tools.sweep import cluster  # noqa: E402
+from acausal2d.analysis.sweep import cluster  # noqa: E402
 import pulley_block as pb  # noqa: E402
 
 MODEL = os.path.join(ROOT, "models", "pulley_block.py")

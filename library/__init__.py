@@ -3,9 +3,9 @@
 - :mod:`acausal2d.library.planar`: planar multibody basics (PlanarWorld,
   Fixed, Body, FixedTranslation, FixedRotation, BodyShape, Revolute,
   Prismatic, IdealRolling).
-- :mod:`acausal2d.library.planar_forces`: PlanarMechanics' Spring, Damper,
+- :mod:`acausal2d.library.planar.forces`: PlanarMechanics' Spring, Damper,
   SpringDamper, WorldForce, WorldTorque, RelativeForce.
-- :mod:`acausal2d.library.planar_sensors`: PlanarMechanics' absolute and
+- :mod:`acausal2d.library.planar.sensors`: PlanarMechanics' absolute and
   relative position/velocity/acceleration sensors, CutForce, CutTorque,
   Power, Distance.
 - :mod:`acausal2d.library.rotational`: 1D rotational elements.
@@ -13,21 +13,21 @@
 - :mod:`acausal2d.library.signals`: signal sources, FirstOrder,
   InverseBlockConstraints.
 - :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (seed Anhang B).
-- :mod:`acausal2d.library.linkage_drives`: motion presets, sources and
+- :mod:`acausal2d.library.linkage.drives`: motion presets, sources and
   measuring modules for the linkage elements.
 - :mod:`acausal2d.library.belt`: belt and rope drives (seed ch. 4.4): elastic
   belt spans, belt with tension spring, belt with draw-off nozzle, circular
   pulleys and drums with optional bearing friction.
-- :mod:`acausal2d.library.belt_curved`: pulley and drum with curved contour
+- :mod:`acausal2d.library.belt.curved`: pulley and drum with curved contour
   (seed eq. 4.100-4.122); contours from a function, a table, a Fourier
   series or a support function.
-- :mod:`acausal2d.library.band_synthesis`: band synthesis elements DB_BD,
-  DB_SD, Bandkurve (seed ch. 4.3); :mod:`~acausal2d.library.band_functional`
+- :mod:`acausal2d.library.synthesis`: band synthesis elements DB_BD,
+  DB_SD, Bandkurve (seed ch. 4.3); :mod:`~acausal2d.library.synthesis.functional`
   the same synthesis as a function (``synthesize``);
-  :mod:`~acausal2d.library.band_assessment` the criteria of ch. 5;
-  :mod:`~acausal2d.library.band_balancing` spring-band balancing of ch. 6;
-  :mod:`~acausal2d.library.contour_export` cam contours as CSV/SVG/DXF and
+  :mod:`~acausal2d.library.synthesis.assessment` the criteria of ch. 5;
+  :mod:`~acausal2d.library.synthesis.balancing` spring-band balancing of ch. 6;
+  :mod:`~acausal2d.library.synthesis.contour_export` cam contours as CSV/SVG/DXF and
   as a CurvedDrum/CurvedPulley contour.
 - :mod:`acausal2d.library.pneumatics`: gas cylinder with check valves.
-- :mod:`acausal2d.library.crane`: carriage and hook of the cable crane.
+- :mod:`acausal2d.library.belt.crane`: carriage and hook of the cable crane.
 """

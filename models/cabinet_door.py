@@ -63,18 +63,18 @@ import numpy as np
 
 from acausal2d import Component, simulate, start
 from acausal2d.library import rotational, signals
-from acausal2d.library.band_balancing import spring_band_transfer
-from acausal2d.library.band_functional import BandStructure, synthesize
-from acausal2d.library.band_synthesis import Bandkurve, DB_SD
+from acausal2d.library.synthesis.balancing import spring_band_transfer
+from acausal2d.library.synthesis.functional import BandStructure, synthesize
+from acausal2d.library.synthesis import Bandkurve, DB_SD
 from acausal2d.library.belt import SpringBelt, connect_band
-from acausal2d.library.belt_curved import CurvedDrum
-from acausal2d.library.band_assessment import new_figure
-from acausal2d.library.contour_export import analysis_contour, export_contour
+from acausal2d.library.belt.curved import CurvedDrum
+from acausal2d.library.synthesis.assessment import new_figure
+from acausal2d.library.synthesis.contour_export import analysis_contour, export_contour
 from acausal2d.library.linkage import DAN, DDD
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import Fixed, Revolute
-from acausal2d.tools.files import write_text
-from acausal2d.tools.plotting import save_figure
+from acausal2d.io.files import write_text
+from acausal2d.visual.plotting import save_figure
 
 A0 = (0.0, 0.0)
 B0 = (-0.296, 0.0)
@@ -325,5 +325,5 @@ def _plot_balance(res, path):
 if __name__ == "__main__":
     import sys
 
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

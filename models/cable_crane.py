@@ -19,8 +19,8 @@ section is an elastic :class:`~acausal2d.library.belt.Belt` span (seed
 eq. 4.52-4.66, a spring-damper as in the seed's model), every pulley a
 :class:`~acausal2d.library.belt.Pulley` (4.87-4.99), the drums
 :class:`~acausal2d.library.belt.Drum`; the carriage and the hook are
-:class:`~acausal2d.library.crane.Carriage` and
-:class:`~acausal2d.library.crane.Hook`.  The carriage rides on the skyline
+:class:`~acausal2d.library.belt.crane.Carriage` and
+:class:`~acausal2d.library.belt.crane.Hook`.  The carriage rides on the skyline
 through its running wheels, so the skyline sags under it (a polygon of
 straight massless spans; see library/crane.py).
 
@@ -94,7 +94,7 @@ from scipy.optimize import fsolve
 from acausal2d import Component, start, study
 from acausal2d.library import rotational
 from acausal2d.library.belt import Belt, Drum, Pulley, connect_band
-from acausal2d.library.crane import Carriage, Hook, move, span_geometry
+from acausal2d.library.belt.crane import Carriage, Hook, move, span_geometry
 from acausal2d.library.planar import Fixed
 from acausal2d.library.signals import TimeFunction
 
@@ -464,12 +464,12 @@ def plot_cycle(res, out):
     """Write the declared figures (rope forces, Bild 8.5; skyline forces and
     drum torques) and the paths of carriage and hook as PNG files into
     ``out``; returns the paths."""
-    from acausal2d.tools.plotting import declared_figures, save_figure, write_figures
+    from acausal2d.visual.plotting import declared_figures, save_figure, write_figures
     paths = write_figures(res, out, declared_figures(res.model.model))
     paths.append(save_figure(paths_figure(res), os.path.join(out, "cable_crane_paths.png")))
     return paths
 
 
 if __name__ == "__main__":
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

@@ -37,14 +37,14 @@ import numpy as np
 
 from acausal2d import Component
 from acausal2d.library import rotational, signals, translational
-from acausal2d.library.band_assessment import new_figure
-from acausal2d.library.band_functional import BandStructure, synthesize
-from acausal2d.library.band_synthesis import Bandkurve
-from acausal2d.library.contour_export import cam_outline, export_contour
+from acausal2d.library.synthesis.assessment import new_figure
+from acausal2d.library.synthesis.functional import BandStructure, synthesize
+from acausal2d.library.synthesis import Bandkurve
+from acausal2d.library.synthesis.contour_export import cam_outline, export_contour
 from acausal2d.library.linkage import SAN
 from acausal2d.library.planar import Fixed, Revolute
-from acausal2d.tools.files import write_text
-from acausal2d.tools.plotting import save_figure
+from acausal2d.io.files import write_text
+from acausal2d.visual.plotting import save_figure
 
 XS0 = 0.10                    # m, slider start distance from P1
 V1, V2 = 0.02, 0.12           # m/rad, slider speeds per radian of cam angle
@@ -161,5 +161,5 @@ def _plot(res, path):
 if __name__ == "__main__":
     import sys
 
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

@@ -58,7 +58,7 @@ import math
 
 from acausal2d import Component, simulate, start, study
 from acausal2d.library.linkage import DAN, DSD, FGP, SDS, SSD
-from acausal2d.library.linkage_drives import Preset, RelativePosition, TorqueSource
+from acausal2d.library.linkage.drives import Preset, RelativePosition, TorqueSource
 from acausal2d.library.planar import Fixed
 from acausal2d.library.rotational import Inertia
 
@@ -156,5 +156,5 @@ names, centre-of-gravity and angle variable names."""
 if __name__ == "__main__":
     import sys
 
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

@@ -28,7 +28,7 @@ import math
 
 from acausal2d import Component
 from acausal2d.library.linkage import DAN, DDD, DDS, DSD, SAN, SSD
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 
 TWO_PI = 2.0 * math.pi
 
@@ -178,6 +178,6 @@ MECHANISMS = [DDDD, DDDS, SDDD, DDSD, DSDD, SDDS, SSDD, DSSD, DSDS]
 if __name__ == "__main__":
     import sys
 
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(max(run_model_file(__file__, cls.__name__, "out/" + cls.__name__)
                  for cls in MECHANISMS))

@@ -36,11 +36,11 @@ import numpy as np
 
 from acausal2d import Component, start
 from acausal2d.library import translational
-from acausal2d.library.band_assessment import new_figure
+from acausal2d.library.synthesis.assessment import new_figure
 from acausal2d.library.linkage import DAN
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import Fixed, Prismatic, Revolute
-from acausal2d.tools.plotting import save_figure
+from acausal2d.visual.plotting import save_figure
 
 R_LEVER = 0.5
 B_HEIGHT = 0.5
@@ -106,5 +106,5 @@ class HainSpringLever(Component):
 if __name__ == "__main__":
     import sys
 
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

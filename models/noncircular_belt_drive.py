@@ -85,7 +85,7 @@ import numpy as np
 from acausal2d import Component, Variable, start, study
 from acausal2d.library import rotational, signals
 from acausal2d.library.belt import Belt, connect_band, tangent_any
-from acausal2d.library.belt_curved import CurvedPulley, SupportContour, _ContourGeometry
+from acausal2d.library.belt.curved import CurvedPulley, SupportContour, _ContourGeometry
 
 A_DIST = 0.8                       # centre distance [m]
 OMEGA1 = 2 * math.pi               # 360 deg/s
@@ -347,5 +347,5 @@ def pulley_figure(des):
 
 
 if __name__ == "__main__":
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

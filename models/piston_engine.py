@@ -52,5 +52,5 @@ class PistonEngine(Component):
 if __name__ == "__main__":
     import sys
 
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

@@ -24,5 +24,5 @@ class PistonEngineDynamic(PistonEngine):
 
 
 if __name__ == "__main__":
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

@@ -8,8 +8,8 @@ reference's (5000 intervals).
 from acausal2d import Component, start
 from acausal2d.library import rotational, signals, translational
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
-from acausal2d.library.planar_forces import Damper, Spring, SpringDamper, WorldForce
-from acausal2d.library.planar_sensors import (AbsoluteAcceleration, AbsolutePosition,
+from acausal2d.library.planar.forces import Damper, Spring, SpringDamper, WorldForce
+from acausal2d.library.planar.sensors import (AbsoluteAcceleration, AbsolutePosition,
                                               AbsoluteVelocity, CutForce, RelativeAcceleration,
                                               RelativePosition, RelativeVelocity)
 

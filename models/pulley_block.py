@@ -197,7 +197,7 @@ def efficiency_sweep(mus=None, png="pulley_block_efficiency.png", compiled=None,
         raise RuntimeError("pulley block sweep: %s" % table.failed[0]["error"])
     eta, util = table.column("efficiency"), table.column("utilisation")
     if png:
-        from acausal2d.tools.plotting import save_figure
+        from acausal2d.visual.plotting import save_figure
         save_figure(efficiency_figure(mus, eta, util), png, dpi=100)
     return mus, eta, util
 
@@ -226,5 +226,5 @@ def efficiency_figure(mus, eta, util):
 
 
 if __name__ == "__main__":
-    from acausal2d.tools.cli import run_model_file
+    from acausal2d.cli import run_model_file
     sys.exit(run_model_file(__file__))

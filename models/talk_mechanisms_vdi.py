@@ -26,7 +26,7 @@ import math
 
 from acausal2d import Component
 from acausal2d.library.linkage import DAN, DDD, DDS, FGP
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import PlanarWorld
 
 from talk_mechanisms import NEEDLE_BAR, PRESS_BASE, PRESS_MOVING, TURN

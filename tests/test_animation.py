@@ -1,4 +1,4 @@
-"""Tests of acausal2d.tools.animation: scene validation, the self-contained HTML
+"""Tests of acausal2d.visual.animation: scene validation, the self-contained HTML
 page, and the page running in a real (headless) Chromium.
 
 The browser tests need Debian's chromium at /usr/bin/chromium
@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 from matplotlib import image as mpimg
 
-from acausal2d.tools.animation import MAX_FRAMES, render_html, validate_scene, write_html
+from acausal2d.visual.animation import MAX_FRAMES, render_html, validate_scene, write_html
 from acausal2d.errors import Acausal2dError
 
 CHROMIUM = "/usr/bin/chromium"

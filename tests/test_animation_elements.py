@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from acausal2d.errors import Acausal2dError
-from acausal2d.tools.animation import _scene_data, validate_scene, write_html
-from acausal2d.tools.scene import qualify_shape
+from acausal2d.visual.animation import _scene_data, validate_scene, write_html
+from acausal2d.visual.scene import qualify_shape
 from test_animation import ARTIFACTS, CANVAS_ROWS, assert_differ, screenshot_frames
 
 

@@ -113,7 +113,7 @@ def test_cable_crane_masts_are_drawn():
     """Both masts stand on the terrain with a ground symbol at the foot and
     reach the skyline pulley S (left) and the fastening T (right)."""
     import acausal2d
-    from acausal2d.tools.scene import build_scene
+    from acausal2d.visual.scene import build_scene
     from conftest import load_model_class
     h_mast, span, y_right = (load_model_class("cable_crane.py", n)
                              for n in ("H_MAST", "SPAN", "Y_RIGHT"))

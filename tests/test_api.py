@@ -11,8 +11,8 @@ from conftest import load_model_class
 def test_check_and_compare_can_be_called_again(tmp_path):
     """``acausal2d.check`` / ``acausal2d.compare`` stay functions after the
     submodules of the same names have been imported."""
-    import acausal2d.tools.check  # noqa: F401
-    import acausal2d.tools.compare  # noqa: F401
+    import acausal2d.analysis.check  # noqa: F401
+    import acausal2d.analysis.compare  # noqa: F401
     pendulum = load_model_class("pendulum.py", "Pendulum")
     for _ in range(2):
         report = acausal2d.check(pendulum())

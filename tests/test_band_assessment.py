@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from matplotlib import image as mpimg
 
-from acausal2d.library.band_assessment import BandMaterial, jumps, sign_changes
-from acausal2d.library.band_functional import BandStructure, synthesize
+from acausal2d.library.synthesis.assessment import BandMaterial, jumps, sign_changes
+from acausal2d.library.synthesis.functional import BandStructure, synthesize
 
 B0 = (-0.296, 0.0)
 

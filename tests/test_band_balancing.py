@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from acausal2d import ModelDefinitionError
-from acausal2d.library.band_balancing import (exact_spring_travel, softest_spring,
+from acausal2d.library.synthesis.balancing import (exact_spring_travel, softest_spring,
                                               spring_band_transfer, torque_integral)
 
 PHI = np.linspace(0.0, 1.5, 151)

@@ -13,8 +13,8 @@ import acausal2d
 from acausal2d import Component, start
 from acausal2d.library import rotational, signals
 from acausal2d.library.belt import SpringBelt, connect_band
-from acausal2d.library.belt_curved import CurvedDrum
-from acausal2d.library.contour_export import analysis_contour
+from acausal2d.library.belt.curved import CurvedDrum
+from acausal2d.library.synthesis.contour_export import analysis_contour
 from acausal2d.library.planar import Fixed
 from conftest import ROOT, load_model_class
 
@@ -184,7 +184,7 @@ def test_models_run_from_the_cli(model, files, tmp_path):
     summary and listed in the run's manifest, so the next run into the same
     folder removes them first; no temporary file is left."""
     import json
-    from acausal2d.tools.files import MANIFEST, _TEMPORARY
+    from acausal2d.io.files import MANIFEST, _TEMPORARY
     exe = os.path.join(os.path.dirname(sys.executable), "acausal2d")
     proc = subprocess.run([exe, "simulate", os.path.join(ROOT, "models", model[0]), *model[1:],
                            "--out", str(tmp_path)], capture_output=True, text=True, timeout=300)

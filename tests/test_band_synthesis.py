@@ -10,10 +10,10 @@ import pytest
 import acausal2d
 from acausal2d import Component
 from acausal2d.library import rotational, signals, translational
-from acausal2d.library.band_functional import BandStructure, synthesize
-from acausal2d.library.band_synthesis import Bandkurve, DB_BD, DB_SD, dbbd_band
+from acausal2d.library.synthesis.functional import BandStructure, synthesize
+from acausal2d.library.synthesis import Bandkurve, DB_BD, DB_SD, dbbd_band
 from acausal2d.library.linkage import DAN, DDD, FGP, SAN, vdi_ddd
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import Fixed, Revolute
 
 R4, L1, XS0 = 0.05, 0.4, 0.6

@@ -11,7 +11,7 @@ import acausal2d
 from acausal2d import Component, start
 from acausal2d.library import rotational, signals
 from acausal2d.library.belt import Belt, Drum, Pulley, RopeDrive, connect_band, tangent_any
-from acausal2d.library.belt_curved import (Contour, CurvedDrum, CurvedPulley, SupportContour,
+from acausal2d.library.belt.curved import (Contour, CurvedDrum, CurvedPulley, SupportContour,
                                            _ContourGeometry)
 from acausal2d.library.planar import Body, Fixed, Prismatic
 from conftest import load_model_class

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from acausal2d import compile_model
-from acausal2d.tools.animation import render_html, validate_scene
+from acausal2d.visual.animation import render_html, validate_scene
 from acausal2d.library.belt import Drum, Pulley
-from acausal2d.library.belt_curved import CurvedPulley
-from acausal2d.tools.scene import build_scene
+from acausal2d.library.belt.curved import CurvedPulley
+from acausal2d.visual.scene import build_scene
 
 MODELS = pathlib.Path(__file__).resolve().parent.parent / "models"
 
@@ -232,7 +232,7 @@ def test_pulley_block_topology():
     presets -- add no link.  F = 3 (6 - 1) - 4 (3 - 1) = 15 - 8 = 7: the
     four pulley angles and x, y, phi of the lower block, the same as the
     seven position states of the structural count; no closed loop."""
-    from acausal2d.tools.check import check
+    from acausal2d.analysis.check import check
     model = _load("pulley_block").PulleyBlock()
     report = check(model)
     assert (report.links, report.joints, report.grubler) == (6, 4, 7)
@@ -261,6 +261,6 @@ def test_pulley_block_topology():
     ("cable_crane", "CableCrane", (13, 11, 14, 14)),
 ])
 def test_belt_model_topology(name, cls, expected):
-    from acausal2d.tools.check import check
+    from acausal2d.analysis.check import check
     report = check(getattr(_load(name), cls)())
     assert (report.links, report.joints, report.grubler, report.structural_dof) == expected

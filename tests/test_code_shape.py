@@ -28,7 +28,7 @@ def _code_lines(node):
 
 def test_the_sources_are_found():
     names = {p.name for p in _sources()}
-    assert {"simulation.py", "planar.py", "piston_engine.py"} <= names
+    assert {"simulation.py", "joints.py", "piston_engine.py"} <= names
 
 
 @pytest.mark.parametrize("path", _sources(), ids=lambda p: str(p.relative_to(ROOT)))

@@ -1,11 +1,12 @@
-"""Tests of acausal2d.tools.compare: reading result/reference CSV files and
+"""Tests of acausal2d.analysis.compare: reading result/reference CSV files and
 comparing signals inside a tolerance tube."""
 import io
 
 import numpy as np
 import pytest
 
-from acausal2d.tools.compare import Comparison, compare, read_csv, run_compare_cli
+from acausal2d.analysis.compare import Comparison, compare, read_csv
+from acausal2d.cli.compare import run_compare_cli
 from acausal2d.errors import Acausal2dError
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.tools.compare import compare, read_csv
+from acausal2d.analysis.compare import compare, read_csv
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DP_REF = os.path.join(ROOT, "tests", "data", "references", "DoublePendulum.csv")

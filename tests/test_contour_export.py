@@ -11,8 +11,8 @@ import pytest
 from matplotlib import image as mpimg
 
 from acausal2d import ModelDefinitionError
-from acausal2d.library.band_functional import BandStructure, synthesize
-from acausal2d.library.contour_export import (analysis_contour, cam_outline, export_contour,
+from acausal2d.library.synthesis.functional import BandStructure, synthesize
+from acausal2d.library.synthesis.contour_export import (analysis_contour, cam_outline, export_contour,
                                               write_dxf)
 
 CHROMIUM = "/usr/bin/chromium"

@@ -15,7 +15,7 @@ import pytest
 
 import acausal2d
 from acausal2d import Acausal2dError
-from acausal2d.tools.cli import main
+from acausal2d.cli import main
 import fuzz_cases
 
 CASES = fuzz_cases.all_cases()

@@ -7,10 +7,10 @@ import sys
 import pytest
 
 import acausal2d
-from acausal2d.tools.check import check
-from acausal2d.tools.animation import validate_scene
-from acausal2d.library.linkage import _Linkage
-from acausal2d.tools.scene import build_scene
+from acausal2d.analysis.check import check
+from acausal2d.visual.animation import validate_scene
+from acausal2d.library.linkage.base import _Linkage
+from acausal2d.visual.scene import build_scene
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), os.pardir, "models"))
 

@@ -8,7 +8,7 @@ from scipy.interpolate import CubicSpline
 import acausal2d
 from acausal2d import Component
 from acausal2d.library.linkage import DAN, DDD
-from acausal2d.library.linkage_drives import (Preset, RelativeAngle, RelativePosition,
+from acausal2d.library.linkage.drives import (Preset, RelativeAngle, RelativePosition,
                                               TorqueSensor)
 
 TABLE = [(0.0, 0.0), (0.25, 0.4), (0.5, 1.5), (0.75, 2.0), (1.0, 2.2)]

@@ -6,7 +6,7 @@ import pytest
 import acausal2d
 from acausal2d import Component
 from acausal2d.library.linkage import DAN, DDD, DSD, AssemblyError
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 
 
 class FourBar(Component):

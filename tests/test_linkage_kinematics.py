@@ -9,7 +9,7 @@ import pytest
 import acausal2d
 from acausal2d import Component
 from acausal2d.library.linkage import DAN, DDD, DDS, DSD, FGP, SAN, SDS, SSD
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from vdi2729_reference import e, line_intersection, n, vdi_dan, vdi_ddd, vdi_dds, vdi_dsd, wrap
 
 TOL = 1e-9

@@ -14,9 +14,9 @@ from scipy.integrate import solve_ivp
 
 import acausal2d
 from acausal2d import ModelDefinitionError
-from acausal2d.tools.cli import main
-from acausal2d.tools.mec2 import model_from_mec2
-from acausal2d.tools.scene import build_scene
+from acausal2d.cli import main
+from acausal2d.io.mec2 import model_from_mec2
+from acausal2d.visual.scene import build_scene
 from conftest import ROOT
 from vdi2729_reference import vdi_ddd
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.library.node_correction import PositionCorrection
+from acausal2d.library.nodes.correction import PositionCorrection
 from conftest import load_model_class
 from test_animation import (ARTIFACTS, DevTools, Page, assert_canvas_drawn, assert_differ,
                             console_errors, require_chromium)

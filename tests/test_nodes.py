@@ -12,7 +12,7 @@ from acausal2d import ModelDefinitionError
 from acausal2d.language.nodes import (NodeAssemblyError, NodeModel, at_least, at_most, between,
                                       delta, drive, mec2_drive, ref, speed)
 from acausal2d.library.linkage import DAN, DDD, DDS
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import PlanarWorld
 from vdi2729_reference import vdi_ddd
 

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from acausal2d import Component, compile_model, start
-from acausal2d.tools.animation import validate_scene
+from acausal2d.visual.animation import validate_scene
 from acausal2d.library.planar import Body, Fixed, Prismatic, fixed_of, is_connected
-from acausal2d.tools.scene import build_scene
+from acausal2d.visual.scene import build_scene
 from conftest import load_model_class
 
 

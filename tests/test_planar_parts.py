@@ -17,9 +17,9 @@ from acausal2d.library import (planar, planar_forces, planar_sensors, rotational
                                translational)
 from acausal2d.library.planar import (Body, BodyShape, Fixed, FixedRotation, FixedTranslation,
                                       Prismatic, Revolute)
-from acausal2d.library.planar_forces import Damper, Spring
-from acausal2d.tools.animation import validate_scene
-from acausal2d.tools.scene import build_scene
+from acausal2d.library.planar.forces import Damper, Spring
+from acausal2d.visual.animation import validate_scene
+from acausal2d.visual.scene import build_scene
 from conftest import load_model_class
 
 G = 9.81

@@ -18,8 +18,8 @@ from acausal2d import Component, start
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library import rotational, signals
 from acausal2d.library.planar import Body, Fixed, FixedRotation, FixedTranslation, Revolute
-from acausal2d.library.planar_forces import RelativeForce, WorldForce, WorldTorque
-from acausal2d.library.planar_sensors import (AbsoluteAcceleration, AbsolutePosition,
+from acausal2d.library.planar.forces import RelativeForce, WorldForce, WorldTorque
+from acausal2d.library.planar.sensors import (AbsoluteAcceleration, AbsolutePosition,
                                               AbsoluteVelocity, CutForce, CutTorque, Distance,
                                               Power, RelativeAcceleration, RelativePosition,
                                               RelativeVelocity)

@@ -2,7 +2,7 @@
 
 1. A time event that falls on a requested output time gives three result rows
 at that time instead of the two (left and right limit) that
-:class:`~acausal2d.tools.result.Result` documents ("Event instants appear
+:class:`~acausal2d.result.Result` documents ("Event instants appear
 twice").  Consumers that split curves at repeated times (compare's event
 handling, a left/right-limit lookup) see a spurious extra piece.
 

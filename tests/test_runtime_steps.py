@@ -11,7 +11,7 @@ import pytest
 import acausal2d
 from acausal2d import Component, ModelDefinitionError, start
 from acausal2d.library.linkage import DAN, DDD
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute
 from conftest import load_model_class
 from test_singular_positions import Parallelogram, SwingingParallelogram

@@ -16,9 +16,9 @@ from acausal2d import (Component, InitializationError, ModelDefinitionError, Par
 from acausal2d.library import rotational, translational
 from acausal2d.library.belt import Belt, Pulley, connect_band
 from acausal2d.library.linkage import DAN, DDD, DSD, SDS, SSD
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
-from acausal2d.tools.cli import main
+from acausal2d.cli import main
 
 NOISE = ("Traceback", "DLASCL", "** On entry", "[IDA")
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -451,7 +451,7 @@ def test_seen_run_stopped_at_a_limit_position_exits_3(tmp_path, capfd):
         import math
         from acausal2d import Component
         from acausal2d.library.linkage import DAN, DDD
-        from acausal2d.library.linkage_drives import Preset
+        from acausal2d.library.linkage.drives import Preset
         class Rocker(Component):
             experiment = {"stop_time": 1.0, "intervals": 50}
             def __init__(self, **kw):

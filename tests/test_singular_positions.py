@@ -11,7 +11,7 @@ import pytest
 import acausal2d
 from acausal2d import Component, start
 from acausal2d.library.linkage import DAN, DDD
-from acausal2d.library.linkage_drives import Preset
+from acausal2d.library.linkage.drives import Preset
 from acausal2d.library.planar import Fixed, FixedTranslation, Revolute
 from acausal2d.library.rotational import Inertia, Position
 from vdi2729_reference import vdi_dan, vdi_ddd

@@ -9,8 +9,8 @@ import pytest
 
 import acausal2d
 from acausal2d.language.nodes import NodeAssemblyError
-from acausal2d.library.node_correction import PositionCorrection
-from acausal2d.tools.cli import main
+from acausal2d.library.nodes.correction import PositionCorrection
+from acausal2d.cli import main
 from conftest import MODELS, load_model_class
 
 FILE = "talk_mechanisms.py"

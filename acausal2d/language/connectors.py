@@ -18,7 +18,7 @@ potential names to values or parameter expressions (a callable receiving the
 owning component is evaluated when the model is flattened).  A connector
 with ``required=True`` must be connected.
 """
-from .dsl import Variable, VarInfo, _join
+from .declarations import Variable, VarInfo, _join
 from ..errors import ModelDefinitionError
 
 

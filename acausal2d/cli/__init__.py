@@ -1,0 +1,105 @@
+"""The ``acausal2d`` command line: one module per group of commands
+(:mod:`.simulate`; :mod:`.model_info`: check, params; :mod:`.compare`;
+:mod:`.studies`: sweep, study), assembled by :func:`build_parser`.
+
+Exit codes: 0 success; 1 comparison failed (outside the tube); 2 error in
+the model or the input, or a run that cannot go on (the message names what
+to change; no traceback); 3 run stopped early (a limit position, a step or
+wall-clock budget): its results up to there are written; 130 interrupted
+(Ctrl-C).  ``simulate`` lists the files it writes in the output folder's
+``acausal2d-run.json`` and removes those of the previous run there first,
+so a failed run never leaves earlier results that look like its own.
+"""
+import argparse
+import sys
+import time
+
+from ..errors import Acausal2dError
+
+
+PROGRESS_DELAY = 1.0      # s of wall time before the progress bar appears
+PROGRESS_INTERVAL = 0.1   # s of wall time between two updates
+
+
+class _Progress:
+    """A progress bar over simulated time on ``stream`` (default: the
+    current ``sys.stderr``), shown after ``PROGRESS_DELAY`` and updated at
+    most every ``PROGRESS_INTERVAL`` seconds."""
+
+    def __init__(self, stream=None):
+        self.start = time.perf_counter()
+        self.last = None
+        self.stream = stream if stream is not None else sys.stderr
+        self.shown = False
+
+    def __call__(self, t, t_end):
+        now = time.perf_counter()
+        if now - self.start < PROGRESS_DELAY or \
+                (self.last is not None and now - self.last < PROGRESS_INTERVAL and t < t_end):
+            return
+        self.last = now
+        self.shown = True
+        frac = min(max(t / t_end if t_end else 1.0, 0.0), 1.0)
+        bar = "#" * int(30 * frac)
+        self.stream.write("\r  [%-30s] t = %.4g / %.4g s" % (bar, t, t_end))
+        self.stream.flush()
+
+    def close(self):
+        """End the bar's line (if it was shown)."""
+        if self.shown:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+COMMAND_MODULES = ("simulate", "model_info", "compare", "studies")
+"""The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
+
+
+def build_parser():
+    """The argparse parser of the ``acausal2d`` command."""
+    import importlib
+    from .. import __version__
+    p = argparse.ArgumentParser(prog="acausal2d", description="simulate, check and compare "
+                                "models of planar linkages and belt drives")
+    p.add_argument("--version", action="version", version="acausal2d " + __version__)
+    sub = p.add_subparsers(dest="command", required=True)
+    for name in COMMAND_MODULES:
+        importlib.import_module("." + name, __name__).add_parsers(sub)
+    return p
+
+
+def run_model_file(path, model=None, out="out"):
+    """What running a model file does (its ``__main__`` block): simulate it
+    (figures, CSV, animation) and run its declared studies, into ``out``.
+    Returns the exit code."""
+    from ..io.loader import load_model
+    from ..analysis.study import declared_studies
+    extra = ["--model", model] if model else []
+    code = main(["simulate", path, "--out", out] + extra)
+    if code == 0 and declared_studies(type(load_model(path, model))):
+        code = main(["study", path, "--out", out] + extra)
+    return code
+
+
+def main(argv=None):
+    """Entry point of the ``acausal2d`` command; returns the exit code (see
+    the module docstring)."""
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:        # argparse: --help, --version, or a usage error (2)
+        return exc.code if isinstance(exc.code, int) else 2
+    try:
+        return args.func(args)
+    except Acausal2dError as exc:
+        print("error: %s" % exc, file=sys.stderr)
+        return 2
+    except OSError as exc:      # files: --out on an existing file, unreadable CSV ...
+        print("error: %s" % exc, file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

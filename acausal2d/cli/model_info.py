@@ -1,0 +1,34 @@
+"""``acausal2d check`` (the structure report) and ``acausal2d params`` (the
+parameter table) of a model file."""
+
+
+def cmd_check(args):
+    """``acausal2d check``: print the structure report of a model."""
+    from ..analysis.check import check
+    from ..io.loader import load_model
+    print(check(load_model(args.model_file, args.model)))
+    return 0
+
+
+def cmd_params(args):
+    """``acausal2d params``: print the model's parameter table."""
+    from ..compiled import compile_model
+    from ..io.loader import load_model
+    model = load_model(args.model_file, args.model)
+    print("%s parameters (set with --set NAME=VALUE or params={NAME: value}):"
+          % type(model).__name__)
+    print(compile_model(model).parameters_table())
+    return 0
+
+
+def add_parsers(sub):
+    """``acausal2d check`` and ``acausal2d params``."""
+    c = sub.add_parser("check", help="print the structure of a model")
+    c.add_argument("model_file")
+    c.add_argument("--model")
+    c.set_defaults(func=cmd_check)
+    r = sub.add_parser("params", help="list a model's parameters with value, unit, rule and "
+                       "description")
+    r.add_argument("model_file")
+    r.add_argument("--model")
+    r.set_defaults(func=cmd_params)

@@ -1,0 +1,151 @@
+"""``acausal2d simulate``: run a model file and write the CSV, the figures,
+the animation page and the run's manifest."""
+import os
+import sys
+
+from . import _Progress
+from .args import _check_names, _parse_set, _positive_float, _positive_int
+
+
+def _plot_specs(args, cm):
+    """The figures ``simulate`` writes: --plot groups, else the model's
+    declared ``figures``, else one figure per declared output; --x applies
+    to all of them.  Every signal name is checked before the run."""
+    from ..visual.plotting import declared_figures, parse_groups
+    if args.plot:
+        specs = [{"groups": [g], "x": None, "title": None, "name": None}
+                 for g in parse_groups(args.plot)]
+    else:
+        specs = declared_figures(cm.model) or \
+            [{"groups": [[n]], "x": None, "title": None, "name": None} for n in cm.outputs]
+    for spec in specs:
+        spec["x"] = args.x or spec["x"]
+        option = "--plot" if args.plot else "%s.figures" % type(cm.model).__name__
+        _check_names([n for g in spec["groups"] for n in g], cm, option)
+        _check_names([spec["x"]] if spec["x"] else [], cm, "--x" if args.x else option)
+    return specs
+
+
+def _animation_options(args, cm):
+    from ..visual.scene import arrow_signals
+    arrows = [a.strip() for a in args.arrows.split(",") if a.strip()] if args.arrows else []
+    arrow_signals(arrows, cm.names, cm.model)      # names checked before the run
+    if args.signal:
+        _check_names([args.signal], cm, "--signal")
+    return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay}
+
+
+def _print_summary(model, res, out, pngs, extra=()):
+    """The run's summary: singular positions, early stop, solver counts,
+    the files written (``extra``: those the model wrote itself) and states."""
+    for sing in res.singularities:
+        print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
+    if res.stopped:
+        print("  " + res.stopped)
+    st = res.stats
+    print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d steps, %d output points, "
+          "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
+          "%d plot%s, animation.html%s)" % (
+              type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
+              st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
+              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
+              "".join(", " + os.path.basename(f) for f in extra)))
+    states = getattr(res, "states", None) or []
+    print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
+
+
+def cmd_simulate(args):
+    """``acausal2d simulate``: run a model file; write the CSV, plots and animation."""
+    from ..compiled import compile_model
+    from ..io.files import clear_previous_run
+    from ..io.loader import load_model
+    model = load_model(args.model_file, args.model)
+    out = args.out
+    os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
+    clear_previous_run(out)
+    cm = compile_model(model)
+    settings = _simulate_settings(args, cm)
+    progress = _Progress()
+    try:
+        res = cm.simulate(stop_time=args.stop_time, params=settings["params"], rtol=args.rtol,
+                          intervals=args.intervals, progress=progress,
+                          max_steps=args.max_steps, max_wall_time=args.max_wall_time)
+    finally:
+        progress.close()
+    pngs, extra = _write_outputs(res, out, settings, args)
+    _print_summary(model, res, out, pngs, extra)
+    if res.stopped:
+        print("stopped early: %s" % res.stopped, file=sys.stderr)
+        return 3
+    return 0
+
+
+def _simulate_settings(args, cm):
+    """Plots, animation, traces and parameters, all checked before the run."""
+    from ..visual.scene import trace_signals
+    traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
+    trace_signals(traces, cm.names)
+    return {"traces": traces, "specs": _plot_specs(args, cm),
+            "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
+
+
+def _write_outputs(res, out, settings, args):
+    """CSV, figures, animation, the files the model writes itself and the
+    run's manifest; returns the figures and the model's files."""
+    from ..io.files import write_manifest
+    from ..visual.plotting import write_figures
+    files = [res.to_csv(os.path.join(out, "result.csv"))]
+    pngs = write_figures(res, out, settings["specs"], args.format)
+    if not settings["specs"]:
+        print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
+    files += pngs
+    files.append(res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
+                             **settings["animation"]))
+    extra = _model_files(res, out)
+    write_manifest(out, files + extra,
+                   model=type(res.model.model).__name__ if res.model else None,
+                   stopped=res.stopped)
+    return pngs, extra
+
+
+def _model_files(res, out):
+    """Files the model writes itself after a run: its optional method
+    ``write_outputs(result, folder)`` returns their paths (e.g. the contour
+    plots and cam contour files of the band synthesis models)."""
+    write = getattr(res.model.model if res.model else None, "write_outputs", None)
+    if not callable(write):
+        return []
+    return [os.fspath(p) for p in write(res, out) or ()]
+
+
+def add_parsers(sub):
+    """``acausal2d simulate``."""
+    s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
+    s.add_argument("model_file")
+    s.add_argument("--model", help="model class in the file (if it defines several)")
+    s.add_argument("--stop-time", type=float)
+    s.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="parameter value (vectors as 1,0); repeatable")
+    s.add_argument("--rtol", type=float)
+    s.add_argument("--intervals", type=int, help="number of output intervals")
+    s.add_argument("--plot", help="signals to plot: a,b overlays a and b in one figure (one axes "
+                   "per unit), a,b;c writes two figures (default: the model's figures or "
+                   "outputs)")
+    s.add_argument("--x", metavar="SIGNAL", help="x axis of the plots (default time); angles "
+                   "in rad are unwrapped and shown in degrees")
+    s.add_argument("--format", choices=("png", "svg", "pdf"), default="png",
+                   help="file format of the plots (default: png)")
+    s.add_argument("--autoplay", action="store_true", help="the animation starts playing")
+    s.add_argument("--arrows", metavar="NAMES", help="comma-separated frames (force and torque "
+                   "arrows) or rotational flanges (torque arrows) drawn in the animation")
+    s.add_argument("--signal", metavar="SIGNAL", help="a signal plotted under the animation "
+                   "with a cursor that follows the time slider")
+    s.add_argument("--trace", help="comma-separated points whose path the animation draws "
+                   "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
+                   "(dyad.xP:dyad.yP)")
+    s.add_argument("--max-steps", type=_positive_int, default=1000000,
+                   help="step budget of the run (default 1000000); exit 3 when used up")
+    s.add_argument("--max-wall-time", type=_positive_float, metavar="SECONDS",
+                   help="wall-clock budget of the run; exit 3 when used up")
+    s.add_argument("--out", default="out", help="output directory (default: out)")
+    s.set_defaults(func=cmd_simulate)

@@ -1,0 +1,121 @@
+"""``acausal2d sweep`` (parameter studies on Dask) and ``acausal2d study``
+(the studies a model declares)."""
+import os
+
+from ..errors import Acausal2dError
+from .args import _check_names, _nonnegative, _parse_set, _positive_int
+
+
+def _sweep_settings(args, cm):
+    """Points, fixed values and outputs of ``acausal2d sweep``, checked
+    against the compiled model before anything runs."""
+    from ..analysis.sweep import expand_params, grid_points, parse_vary
+    vary = parse_vary(args.vary)
+    fixed = _parse_set(args.set)
+    known = set(cm.parameter_names)
+    for name in list(expand_params({c: 0 for c in vary})) + list(fixed):
+        if name not in known:
+            close = [n for n in cm.parameter_names if name.split(".")[-1] in n][:8]
+            raise Acausal2dError("--vary/--set: unknown parameter %r%s" % (
+                name, "; similar: " + ", ".join(close) if close else ""))
+    cm.parameter_values(fixed)                  # fixed values checked against their rules
+    outputs = [n.strip() for n in args.outputs.split(",") if n.strip()] if args.outputs \
+        else list(cm.outputs)
+    _check_names(outputs, cm, "--outputs")
+    _check_run_settings(args, cm)
+    if args.x is not None and args.x not in vary:
+        raise Acausal2dError("--x %r is not a varied parameter; varied: %s"
+                             % (args.x, ", ".join(vary)))
+    return grid_points(vary), fixed, outputs
+
+
+def _check_run_settings(args, cm):
+    """--stop-time, --rtol and --at of a sweep, checked once before the
+    points run (each point would fail alike)."""
+    stop = args.stop_time if args.stop_time is not None else \
+        float((getattr(cm.model, "experiment", None) or {}).get("stop_time", 1.0))
+    if not stop > 0:
+        raise Acausal2dError("--stop-time must be larger than 0, got %g" % stop)
+    if args.rtol is not None and not 0 < args.rtol < 0.1:
+        raise Acausal2dError("--rtol must be between 0 and 0.1 (e.g. 1e-6), got %g" % args.rtol)
+    if args.at is not None and args.at > stop:
+        raise Acausal2dError("--at %g lies after the end of the run (%g s)" % (args.at, stop))
+
+
+def cmd_sweep(args):
+    """``acausal2d sweep``: a parameter study on Dask; write sweep.csv and sweep.png."""
+    from ..analysis.sweep import ModelSpec, compiled_model, sweep
+    cm = compiled_model(ModelSpec(args.model_file, args.model))   # errors here exit with 2
+    points, fixed, outputs = _sweep_settings(args, cm)
+    name = type(cm.model).__name__
+    os.makedirs(args.out, exist_ok=True)
+    result = sweep(args.model_file, points=points, params=fixed, outputs=outputs, at=args.at,
+                   stop_time=args.stop_time, rtol=args.rtol, intervals=args.intervals,
+                   scheduler=args.scheduler, workers=args.workers, model_name=args.model)
+    csv_path = result.to_csv(os.path.join(args.out, "sweep.csv"))
+    files = [csv_path]
+    if outputs and len(result.failed) < len(result.rows):
+        files.append(result.plot(os.path.join(args.out, "sweep.png"), x=args.x))
+    for row in result.failed:
+        print("  point %d failed: %s" % (row["point"], row["error"]))
+    print("%s: %s -> %s" % (name, result.summary(), ", ".join(files)))
+    return 0
+
+
+def cmd_study(args):
+    """``acausal2d study``: run (or list) the model's declared studies."""
+    from ..io.loader import load_model
+    from ..analysis.study import declared_studies, run_studies
+    model = load_model(args.model_file, args.model)
+    if args.list:
+        studies = declared_studies(type(model))
+        for name, st in studies.items():
+            print("%-16s %s" % (name, st.doc))
+        if not studies:
+            print("%s declares no studies" % type(model).__name__)
+        return 0
+    files = run_studies(args.model_file, model, args.names, args.out,
+                        {"scheduler": args.scheduler, "workers": args.workers})
+    print("%s: %d file%s -> %s" % (type(model).__name__, len(files),
+                                   "" if len(files) == 1 else "s", ", ".join(files)))
+    return 0
+
+
+def add_parsers(sub):
+    """``acausal2d sweep`` and ``acausal2d study``."""
+    w = sub.add_parser("sweep", help="parameter study on Dask: simulate every combination of "
+                       "the --vary values; write sweep.csv and sweep.png")
+    w.add_argument("model_file")
+    w.add_argument("--model")
+    w.add_argument("--vary", action="append", required=True, metavar="PARAM=START:STOP:COUNT",
+                   help="values of a parameter: START:STOP:COUNT or v1,v2,...; tie parameters "
+                   "to one value with a.p,b.p=...; repeatable (all combinations)")
+    w.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="a parameter value held for every point; repeatable")
+    w.add_argument("--outputs", help="comma-separated signals recorded per point (default: "
+                   "the model's outputs)")
+    w.add_argument("--at", type=_nonnegative, metavar="T",
+                   help="record the outputs at time T (default: at the end of the run)")
+    w.add_argument("--stop-time", type=float)
+    w.add_argument("--rtol", type=float)
+    w.add_argument("--intervals", type=_positive_int)
+    w.add_argument("--scheduler", help="address of a running Dask scheduler (tcp://host:8786);"
+                   " default: a local cluster; 'serial': run in this process")
+    w.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                   "cluster (default: one per core)")
+    w.add_argument("--x", metavar="PARAM", help="varied parameter on the plot's x axis "
+                   "(default: the first --vary)")
+    w.add_argument("--out", default="out", help="output directory (default: out)")
+    w.set_defaults(func=cmd_sweep)
+    t = sub.add_parser("study", help="run the studies the model declares (sweeps, plots over "
+                       "an angle, ...) and write their figures and tables")
+    t.add_argument("model_file")
+    t.add_argument("names", nargs="*", help="studies to run (default: all)")
+    t.add_argument("--model")
+    t.add_argument("--list", action="store_true", help="list the model's studies")
+    t.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps "
+                   "(default: a local cluster; 'serial': this process)")
+    t.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                   "cluster (default: one per core)")
+    t.add_argument("--out", default="out", help="output directory (default: out)")
+    t.set_defaults(func=cmd_study)

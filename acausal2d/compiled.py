@@ -1,0 +1,320 @@
+"""The user's handle on a compiled model: :func:`compile_model` and
+:class:`CompiledModel`, which simulates many times with other parameter
+values without recompiling and returns :class:`~acausal2d.result.Result`
+objects."""
+import time as _time
+
+import numpy as np
+
+from .compiler.pipeline import compile_system
+from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
+                      translated)
+from .runtime.evaluator import Evaluator
+from .runtime.initialize import initial_point
+from .runtime.selection import select
+from .runtime.simulation import Simulation
+from .result import Result
+
+
+MAX_STEPS = 1000000
+"""Default step budget of a run."""
+
+
+def compile_model(model):
+    """Compile a model instance into a :class:`CompiledModel`."""
+    return CompiledModel(model)
+
+
+class CompiledModel:
+    """A model ready to simulate; reusable with other parameter values.
+
+    ``system`` is the frozen :class:`~acausal2d.compiler.system.System`."""
+
+    def __init__(self, model):
+        t0 = _time.perf_counter()
+        self.model = model
+        with translated("compiling %s" % type(model).__name__, StructuralError):
+            self.system = compile_system(model)
+        self._whole = self._whole_parameters()
+        self.compile_time = _time.perf_counter() - t0
+
+    # ------------------------------------------------------------ parameters
+    @property
+    def parameters(self):
+        """(name, symbol, value, declaration) of every scalar parameter."""
+        return self.system.parameters
+
+    @property
+    def names(self):
+        """Names of all time-varying columns a result of this model holds."""
+        return self.system.names
+
+    @property
+    def outputs(self):
+        """The signals the model declares as its outputs."""
+        return self.system.outputs
+
+    @property
+    def parameter_names(self):
+        """Names of all parameters: vectors as a whole and by element."""
+        return list(self._whole) + [n for n, *_ in self.system.parameters if n not in self._whole]
+
+    @property
+    def units(self):
+        """{column or parameter name: unit} from the declarations; the
+        k-th derivative of ``x`` gets x's unit divided by s^k."""
+        if getattr(self, "_units", None) is None:
+            s = self.system
+            units = {}
+            for j, name in enumerate(s.node_names):
+                units[name] = derivative_unit(s.node_info[j].unit, s.structure.var_level[j])
+            for a in s.aliases:
+                units[a.var.name] = a.var.unit
+            for name in s.alias_der_names:
+                base = name
+                order = 0
+                while base.startswith("der("):
+                    base, order = base[4:-1], order + 1
+                units[name] = derivative_unit(units.get(base, ""), order)
+            for name, (decl, _) in self._whole.items():
+                units[name] = decl.unit
+            for name, _, _, decl in s.parameters:
+                units.setdefault(name, decl.unit)
+            self._units = units
+        return self._units
+
+    def parameters_table(self):
+        """Every parameter (vectors as a whole) with its value, unit, rule
+        and description, as a fixed-width text table (``acausal2d params``)."""
+        vals = self.parameter_values()
+        rows = [("parameter", "value", "unit", "rule", "description")]
+        for name, (decl, idx) in self._whole.items():
+            v = vals[idx]
+            text = "%.6g" % v[0] if len(v) == 1 else "(%s)" % ", ".join("%.6g" % x for x in v)
+            rows.append((name, text, decl.unit or "-", decl.rule or "-", decl.doc))
+        widths = [max(len(r[i]) for r in rows) for i in range(4)]
+        lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)) + "  " + r[4] for r in rows]
+        lines.insert(1, "  ".join("-" * w for w in widths) + "  " + "-" * 11)
+        return "\n".join(line.rstrip() for line in lines)
+
+    def _whole_parameters(self):
+        """{parameter name (vectors as a whole): (declaration, indices)}."""
+        whole = {}
+        for k, (name, _, _, decl) in enumerate(self.system.parameters):
+            base = name.rsplit("[", 1)[0] if name.endswith("]") else name
+            whole.setdefault(base, (decl, []))[1].append(k)
+        return whole
+
+    def parameter_values(self, params=None):
+        """Numeric parameter vector with overrides ``{dotted name: value}``
+        (vector parameters as a whole, ``"rod.r": (1, 0)``, or by element,
+        ``"rod.r[0]"``); every value is checked against its declaration."""
+        vals = np.array([v for _, _, v, _ in self.system.parameters], dtype=float)
+        if params is None:
+            return vals
+        if not isinstance(params, dict):
+            raise ModelDefinitionError("params must be a dict {'comp.param': value}, got %r"
+                                       % (params,))
+        for name, value in params.items():
+            index = self._indices(name)
+            vals[index] = np.atleast_1d(self._checked(name, value))
+        return vals
+
+    def _indices(self, name):
+        if name in self._whole:
+            return self._whole[name][1]
+        if name in self.system.param_index:
+            return [self.system.param_index[name]]
+        close = [n for n in self._whole if str(name).split(".")[-1] in n][:8]
+        raise ModelDefinitionError("unknown parameter %r%s" % (
+            name, "; parameters with a similar name: " + ", ".join(close) if close else
+            "; parameters: " + ", ".join(list(self._whole)[:20])))
+
+    def _checked(self, name, value):
+        comp = name.rsplit(".", 1)[0] if "." in name else "<model>"
+        if name in self._whole:
+            decl = self._whole[name][0]
+            return decl.validated(value, comp)
+        decl = self.system.parameters[self.system.param_index[name]][3]
+        return _Scalar(decl).validated(value, comp)
+
+    # ------------------------------------------------------------ analysis
+    def initial_point(self, t0=0.0, params=None):
+        """Consistent values at t0: an
+        :class:`~acausal2d.runtime.initialize.InitialPoint` with the
+        selection made there."""
+        p = self.parameter_values(params)
+        with translated("initializing %s" % type(self.model).__name__):
+            ev = Evaluator(self.system, p)
+            point = initial_point(self.system, ev, t0, p)
+            if point.selection is None:
+                point.selection = select(self.system, ev, t0, point.z, point.d)
+        return point
+
+    def describe_equation(self, i):
+        """Text of index-reduced equation i with its origin and order."""
+        return self.system.describe_equation(i)
+
+    # ------------------------------------------------------------ simulate
+    def _settings(self, stop_time, rtol, atol, intervals, start_time, output_times):
+        """(output times, rtol) from the arguments and the model's
+        ``experiment``, checked."""
+        exp = _experiment(self.model)
+        rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
+        _check_tolerances(rtol, atol)
+        if output_times is None:
+            stop = _number("stop_time", stop_time if stop_time is not None
+                           else exp.get("stop_time", 1.0))
+            intervals = _number("intervals", intervals if intervals is not None
+                                else exp.get("intervals", 500))
+            output_times = _output_grid(_number("start_time", start_time), stop, intervals,
+                                        len(self.names))
+        output_times = np.asarray(output_times, dtype=float)
+        if output_times.ndim != 1 or len(output_times) < 2 or \
+                not np.all(np.isfinite(output_times)) or np.any(np.diff(output_times) <= 0):
+            raise Acausal2dError("output_times must be at least two finite, increasing times")
+        return output_times, rtol
+
+    def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
+                 start_time=0.0, output_times=None, progress=None, max_steps=MAX_STEPS,
+                 max_wall_time=None):
+        """Simulate and return a :class:`~acausal2d.result.Result`.
+
+        stop_time: end time (default: the model's ``experiment['stop_time']``
+        or 1 s); params: {dotted parameter name: value}; rtol/atol:
+        integrator tolerances (default 1e-6 and rtol times each variable's
+        nominal); intervals: number of output intervals (default 500)
+        unless ``output_times`` is given; progress: optional callable(t,
+        t_end), called as the run advances; max_steps, max_wall_time:
+        budgets of integrator steps and wall-clock seconds, after which the
+        run stops early with the data so far (``result.stopped`` says why;
+        default: 1,000,000 steps, no time limit).
+        """
+        times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
+        p = self.parameter_values(params)
+        self.system.check_fixed_values(p)
+        try:
+            with translated("simulating %s" % type(self.model).__name__):
+                log = Simulation(self.system, p, times, rtol, atol, progress,
+                                 _budget(max_steps, "max_steps"),
+                                 _budget(max_wall_time, "max_wall_time")).run()
+        except SimulationError as exc:
+            if getattr(exc, "partial", None) is not None:
+                exc.result = self._result(exc.partial, p)
+            raise
+        return self._result(log, p)
+
+    def _result(self, log, p):
+        """The :class:`Result` of a run log."""
+        log.stats.compile_time = self.compile_time
+        s = self.system
+        res = Result(log.times, s.node_names, log.nodes,
+                     s.alias_names + s.alias_der_names, s.alias_values(log.nodes, p),
+                     [name for name, *_ in s.parameters], p, log.events,
+                     log.stats.as_dict(), self.outputs, self)
+        res.singularities = log.singularities
+        res.stopped = log.stopped
+        res.states = log.states
+        return res
+
+
+def _budget(value, name):
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 \
+            or value != value:
+        raise Acausal2dError("%s must be a positive number, got %r" % (name, value))
+    return value
+
+
+def _check_tolerances(rtol, atol):
+    if not rtol > 0:
+        raise Acausal2dError("rtol must be positive, got %g" % rtol)
+    if not rtol < 0.1:
+        raise Acausal2dError("rtol must be below 0.1 (a relative tolerance, e.g. 1e-6), got %g"
+                             % rtol)
+    if atol is not None and not atol > 0:
+        raise Acausal2dError("atol must be positive, got %g" % atol)
+
+
+MAX_RESULT_BYTES = 4e9
+"""Largest result (output points times columns, 8 bytes each) a run makes."""
+
+_EXPERIMENT_KEYS = ("stop_time", "rtol", "intervals")
+
+
+def _number(name, value):
+    """A finite number, or the project's error naming the setting."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise Acausal2dError("%s must be a number, got %r" % (name, value))
+    if not np.isfinite(value):
+        raise Acausal2dError("%s must be finite, got %r" % (name, value))
+    return value
+
+
+def _experiment(model):
+    """The model's ``experiment`` settings, checked."""
+    exp = getattr(model, "experiment", None) or {}
+    if not isinstance(exp, dict):
+        raise ModelDefinitionError("%s: experiment must be a dict like {'stop_time': 2.0}, got %r"
+                                   % (type(model).__name__, exp))
+    unknown = sorted(set(exp) - set(_EXPERIMENT_KEYS))
+    if unknown:
+        raise ModelDefinitionError("%s: experiment has unknown settings %s; known: %s"
+                                   % (type(model).__name__, ", ".join(map(repr, unknown)),
+                                      ", ".join(_EXPERIMENT_KEYS)))
+    for key, value in exp.items():
+        _number("%s: experiment['%s']" % (type(model).__name__, key), value)
+    return dict(exp)
+
+
+def _output_grid(start_time, stop, intervals, columns):
+    if not stop > start_time:
+        raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
+                             % (stop, start_time))
+    if intervals < 1:
+        raise Acausal2dError("intervals must be at least 1, got %r" % (intervals,))
+    if int(intervals) != intervals:
+        raise Acausal2dError("intervals must be a whole number, got %r" % (intervals,))
+    size = 8.0 * (intervals + 1) * (columns + 1)
+    if size > MAX_RESULT_BYTES:
+        raise Acausal2dError("%d output intervals of %d signals would take %.3g GB of memory "
+                             "(at most %.3g GB); ask for fewer intervals"
+                             % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
+    return np.linspace(start_time, stop, int(intervals) + 1)
+
+def derivative_unit(unit, order=1):
+    """Unit of the ``order``-th time derivative of a quantity of ``unit``:
+    ``m`` -> ``m/s`` -> ``m/s2``, ``rad/s`` -> ``rad/s2``, ``""`` -> ``1/s``,
+    ``N/m`` -> ``N/(m.s)``."""
+    for _ in range(order):
+        if not unit:
+            unit = "1/s"
+        elif "/" not in unit:
+            unit += "/s"
+        else:
+            num, den = unit.split("/", 1)
+            if den == "s":
+                den = "s2"
+            elif den[:1] == "s" and den[1:].isdigit():
+                den = "s%d" % (int(den[1:]) + 1)
+            elif den.startswith("(") and den.endswith(".s)"):
+                den = den[:-3] + ".s2)"
+            else:
+                den = "(%s.s)" % den
+            unit = num + "/" + den
+    return unit
+
+
+class _Scalar:
+    """The rules of a vector parameter's declaration applied to one element."""
+
+    def __init__(self, decl):
+        self.decl = decl
+
+    def validated(self, value, where):
+        from .language.dsl import Parameter
+        d = self.decl
+        one = Parameter(0.0, d.unit, d.doc, d.min, d.max, d.positive)
+        one.name = d.name
+        return one.validated(value, where)

@@ -1,0 +1,106 @@
+"""Loading models from model files (Python source under any file name)."""
+import importlib.machinery
+import importlib.util
+import inspect
+import os
+import sys
+
+from ..errors import Acausal2dError, ModelDefinitionError
+from ..language.dsl import Component
+
+
+def _import(path):
+    """Execute the model file as a module; errors of the user's code,
+    including ``SystemExit``, become ModelDefinitionError naming the file."""
+    folder = os.path.dirname(path)
+    if folder not in sys.path:
+        sys.path.insert(0, folder)
+    stem = os.path.splitext(os.path.basename(path))[0]
+    modname = "acausal2d_model_" + "".join(ch if ch.isalnum() else "_" for ch in stem)
+    loader = importlib.machinery.SourceFileLoader(modname, path)
+    spec = importlib.util.spec_from_loader(modname, loader)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[modname] = module
+    try:
+        loader.exec_module(module)
+    except Acausal2dError:
+        raise
+    except SystemExit as exc:
+        raise ModelDefinitionError("importing %s: the file calls sys.exit(%s); a model file "
+                                   "must define its model classes and return" % (path, exc.code)) \
+            from None
+    except SyntaxError as exc:
+        raise ModelDefinitionError("%s is not valid Python (line %s: %s)"
+                                   % (path, exc.lineno, exc.msg)) from None
+    except Exception as exc:
+        raise ModelDefinitionError("importing %s failed: %s: %s"
+                                   % (path, type(exc).__name__, exc)) from None
+    return module, modname
+
+
+def _choose(path, module, modname, name):
+    """The model class: ``name`` if given, else the only model of the file."""
+    classes = [obj for _, obj in inspect.getmembers(module, inspect.isclass)
+               if issubclass(obj, Component) and obj.__module__ == modname
+               and not obj.__name__.startswith("_")]
+    if name is not None:
+        return _named(path, module, name, classes)
+    if not classes:
+        raise ModelDefinitionError("%s defines no model (a subclass of acausal2d.Component)"
+                                   % path)
+    models = [c for c in classes if getattr(c, "experiment", None) is not None] or classes
+    if len(models) > 1:
+        raise ModelDefinitionError("%s defines several models (%s); choose one with --model NAME "
+                                   "(load_model(path, name))"
+                                   % (path, ", ".join(c.__name__ for c in models)))
+    return models[0]
+
+
+def _named(path, module, name, classes):
+    """The class ``name`` of the file; the framework's ``Component`` is not
+    a model."""
+    cls = getattr(module, name, None)
+    if cls is Component or not (inspect.isclass(cls) and issubclass(cls, Component)):
+        raise ModelDefinitionError("%s defines no model %r; models in the file: %s"
+                                   % (path, name, ", ".join(c.__name__ for c in classes)
+                                      or "none"))
+    return cls
+
+
+def load_model(path, name=None, **kwargs):
+    """Import the model file ``path`` (Python source; any file name) and
+    instantiate its model.
+
+    The model is the class ``name`` if given; otherwise the one model the
+    file defines: the one class with an ``experiment`` (declared or
+    inherited), or the file's only component class.  A file with several
+    models (a base model and its subclass count as two) must be given a
+    name; the error lists them.  ``Component`` itself is not a model.
+    ``kwargs`` go to the model's constructor.  A ``.json`` file is a mec2
+    model (:func:`acausal2d.io.mec2.load_mec2`)."""
+    if isinstance(path, (str, os.PathLike)) and os.fspath(path).lower().endswith(".json"):
+        return _load_json(path, name, kwargs)
+    if not isinstance(path, (str, os.PathLike)) or not os.path.isfile(path):
+        raise ModelDefinitionError("model file %s does not exist" % (path,))
+    path = os.path.abspath(os.fspath(path))
+    module, modname = _import(path)
+    cls = _choose(path, module, modname, name)
+    try:
+        return cls(**kwargs)
+    except Acausal2dError:
+        raise
+    except SystemExit as exc:
+        raise ModelDefinitionError("building %s: it calls sys.exit(%s)" % (cls.__name__, exc.code)) \
+            from None
+    except Exception as exc:
+        raise ModelDefinitionError("building %s failed: %s: %s"
+                                   % (cls.__name__, type(exc).__name__, exc)) from None
+
+
+def _load_json(path, name, kwargs):
+    """A mec2 model file: one model, no constructor arguments."""
+    from .mec2 import load_mec2
+    if name is not None or kwargs:
+        raise ModelDefinitionError("%s is a mec2 model (one model, no arguments); drop "
+                                   "--model and the keyword arguments" % (path,))
+    return load_mec2(os.fspath(path))

@@ -1,0 +1,106 @@
+"""Simulation results: every variable by its dotted name."""
+import csv
+
+import numpy as np
+
+from .errors import Acausal2dError
+from .io.files import atomic_path
+
+
+class Result:
+    """Time series of a simulation.
+
+    ``result["revolute.phi"]`` gives a numpy array over ``result.time`` for
+    any unknown, eliminated alias, derivative (``"der(revolute.phi)"``) or
+    parameter.  Event instants appear twice (left and right limit).
+    ``events`` lists (time, description); ``stats`` holds counters and wall
+    times.  ``singularities`` lists the singular positions met during the
+    run (dicts with time, element, kind) and ``stopped`` says why a run
+    ended early (None if it reached its stop time).
+    """
+
+    def __init__(self, time, node_names, node_values, alias_names, alias_values,
+                 param_names, param_values, events=(), stats=None, outputs=(), model=None):
+        self.time = np.asarray(time)
+        self._index = {}
+        self._cols = []
+        for names, values in ((node_names, node_values), (alias_names, alias_values)):
+            values = np.asarray(values).reshape(len(self.time), -1) if len(names) else None
+            for k, name in enumerate(names):
+                self._index[name] = len(self._cols)
+                self._cols.append(values[:, k])
+        self.parameters = dict(zip(param_names, (float(v) for v in param_values)))
+        self.events = list(events)
+        self.stats = dict(stats or {})
+        self.outputs = list(outputs)
+        self.model = model
+        self.singularities = []
+        self.stopped = None
+
+    @property
+    def names(self):
+        """Names of all time-varying columns (unknowns, aliases, derivatives)."""
+        return list(self._index)
+
+    def __contains__(self, name):
+        return name in self._index or name in self.parameters or name == "time"
+
+    def __getitem__(self, name):
+        if name == "time":
+            return self.time
+        k = self._index.get(name)
+        if k is not None:
+            return self._cols[k]
+        if name in self.parameters:
+            return np.full(len(self.time), self.parameters[name])
+        close = [n for n in self._index if name.split(".")[-1] in n][:8]
+        raise Acausal2dError("no variable %r in the result%s" % (
+            name, "; similar: " + ", ".join(close) if close else ""))
+
+    def at(self, name, t):
+        """Value of ``name`` at time ``t`` (linear interpolation)."""
+        return float(np.interp(t, self.time, self[name]))
+
+    def final(self, name):
+        """Value of ``name`` at the end of the run."""
+        return float(self[name][-1])
+
+    def unit(self, name):
+        """Unit of a column or parameter from its declaration ('' if none)."""
+        from .visual.plotting import unit_of
+        return unit_of(self, name)
+
+    def to_csv(self, path, names=None):
+        """Write a CSV file with a ``time`` column and the given variables (all
+        by default, derivatives excluded); creates the folder if needed and
+        replaces an existing file atomically."""
+        if names is None:
+            names = [n for n in self._index if not n.startswith("der(")]
+        with atomic_path(path) as tmp:
+            with open(tmp, "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(["time"] + list(names))
+                cols = [self.time] + [self[n] for n in names]
+                for row in zip(*cols):
+                    w.writerow(["%.17g" % v for v in row])
+        return path
+
+    def plot(self, names=None, path=None, title=None, x=None):
+        """Plot signals (default: the model's outputs) over time or over the
+        signal ``x``, with units in the labels; same-unit signals share an
+        axes with a legend.  Writes ``path`` or returns a matplotlib Figure.
+        See :func:`acausal2d.visual.plotting.plot`."""
+        from .visual.plotting import plot
+        return plot(self, names, path, title, x=x)
+
+    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+        """Write a self-contained HTML animation of the mechanism, drawn from
+        the components' ``shapes()``; ``traces`` are frame names (or
+        ``"x_name:y_name"`` pairs) whose path is drawn, ``arrows`` frames or
+        rotational flanges whose forces and torques are drawn, ``signal`` a
+        signal plotted under the mechanism with a cursor synced to the time
+        slider, ``autoplay`` starts playback.  See
+        :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
+        from .visual.scene import animate
+        return animate(self, path, traces, title, arrows, signal, autoplay)
+

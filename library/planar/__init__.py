@@ -1,0 +1,22 @@
+"""Planar multibody elements with the semantics of the Modelica library
+PlanarMechanics (frames resolved in the world frame, phi and t
+counter-clockwise positive), one concern per module:
+
+- :mod:`.base`: rotations (seed Anhang A.1), the gravity field
+  :class:`PlanarWorld`, connection queries.
+- :mod:`.parts`: Fixed, Body, FixedTranslation, FixedRotation, BodyShape.
+- :mod:`.joints`: Revolute, Prismatic, IdealRolling.
+- :mod:`.forces`: Spring, Damper, SpringDamper, WorldForce, WorldTorque,
+  RelativeForce.
+- :mod:`.sensors`: absolute and relative position/velocity/acceleration
+  sensors, CutForce, CutTorque, Power, Distance.
+
+``from acausal2d.library.planar import Body`` gives the parts and joints;
+forces and sensors are imported from their modules.
+"""
+from .base import PlanarWorld, is_connected, resolve, rotate
+from .parts import Body, BodyShape, Fixed, FixedRotation, FixedTranslation, fixed_of
+from .joints import IdealRolling, Prismatic, Revolute
+
+__all__ = ["PlanarWorld", "fixed_of", "is_connected", "resolve", "rotate", "Body", "BodyShape",
+           "Fixed", "FixedRotation", "FixedTranslation", "IdealRolling", "Prismatic", "Revolute"]
