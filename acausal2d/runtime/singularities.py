@@ -319,23 +319,3 @@ def step_away(system, ev, selection, form, d, t_f, z_f, history, t_end, output_t
     if landed is None:
         return None
     return landed[0], landed[1], land.fill(output_times, landed[0])
-    h_s, at_s, cond_f = found
-    states = _hermite(history, t_f, h_s) if len(form.states) else None
-    land = _Landing(system, ev, selection, form, d, t_f, z_f, states)
-    for m in (1.0, 2.0, 3.0, 4.0, 6.0, 8.0, 16.0, 32.0, 64.0):
-        h = min(h_s * (1.0 + m), t_end - t_f)
-        if h <= h_s:
-            break
-        guess = land.predict(h)
-        z_new = land.solve(t_f + h, guess)
-        if z_new is None or not land.continues(h, z_new, guess, cond_f):
-            continue
-        t_land = t_f + h
-        filled = []
-        for t_out in output_times[(output_times > t_f) & (output_times < t_land)]:
-            g = land.predict(t_out - t_f)
-            z_out = land.solve(float(t_out), g)
-            filled.append((float(t_out), z_out if z_out is not None else g))
-        record = singularity(system, t_f + h_s, "singular position passed", at_s)
-        return t_land, z_new, record, filled
-    return None
