@@ -104,3 +104,31 @@ class Result:
         from .visual.scene import animate
         return animate(self, path, traces, title, arrows, signal, autoplay)
 
+
+    # ------------------------------------------------- kinematics (ch. 2.6)
+    def poles(self, links, joints=None):
+        """Instantaneous poles P_ij of ``links`` ({label: link}) at every
+        output time (seed ch. 2.6, Bild 2.10-2.14); with ``joints`` the poles
+        not at joints by Aronhold-Kennedy.  See
+        :func:`acausal2d.analysis.poles.poles`."""
+        from .analysis.poles import poles
+        return poles(self, links, joints)
+
+    def ratio(self, out, inp, ref="ground", in_ref=None):
+        """Ratio i = phi_dot(out, ref) / phi_dot(inp, in_ref) (eq. 2.5-2.7).
+        See :func:`acausal2d.analysis.poles.ratio`."""
+        from .analysis.poles import ratio
+        return ratio(self, out, inp, ref, in_ref)
+
+    def turn_slide(self, slide, crank, crank_ref="ground"):
+        """Drehschubstrecke x_dot / phi_dot of a slide coordinate over a
+        crank (eq. 2.8-2.10).  See :func:`acausal2d.analysis.poles.turn_slide`."""
+        from .analysis.poles import turn_slide
+        return turn_slide(self, slide, crank, crank_ref)
+
+    def transfer(self, q, p, orders=(0, 1, 2)):
+        """Transfer functions q(p), q' = dq/dp, q'' = d2q/dp2 of order 0..2
+        from the run's derivatives (eq. 2.2-2.4).  See
+        :func:`acausal2d.analysis.poles.transfer`."""
+        from .analysis.poles import transfer
+        return transfer(self, q, p, orders)

@@ -1,0 +1,217 @@
+"""Instantaneous poles, ratio, Drehschubstrecke (seed ch. 2.6, eq. 2.5-2.10)
+and transfer functions of order 0..2 (eq. 2.2-2.4) against closed forms of
+the four-bar, the eccentric slider-crank and the slotted crank
+(Kurbelschleife)."""
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d.analysis.poles import cartesian, directed_ratio, kennedy, pole_homogeneous
+from acausal2d.language.nodes import NodeModel, speed
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TURN = 2 * math.pi
+TIMES = np.linspace(0.0, 1.0, 73)
+A, E = 0.06, 0.06                      # crank length, guide offset [m]
+
+
+class FourBar(NodeModel):
+    """Crank A0A (0.06 m) at 1 turn/s, coupler AB, rocker B0B."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.node("A0", 0, 0, base=True)
+        self.node("B0", 0.18, -0.06, base=True)
+        self.node("A", 0, A, m=10)
+        self.node("B", 0.12, 0.06)
+        self.n2("A0A", "A0", "A", len="const", ang=speed(TURN))
+        self.n2("AB", "A", "B", len="const")
+        self.n2("B0B", "B0", "B", len="const")
+
+
+class SliderCrank(NodeModel):
+    """Eccentric slider-crank: B slides on y = -E (guide from the fixed
+    node G), crank 0.06 m at 1 turn/s, rod AB."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.node("A0", 0, 0, base=True)
+        self.node("G", -0.1, -E, base=True)
+        self.node("A", 0, A, m=1)
+        self.node("B", 0.18, -E, m=1)
+        self.n2("A0A", "A0", "A", len="const", ang=speed(TURN))
+        self.n2("AB", "A", "B", len="const")
+        self.n2("GB", "G", "B", ang="const")
+
+
+class SlottedCrank(NodeModel):
+    """Kurbelschleife: crank A0A (0.06 m) at 1 turn/s, A slides in the slot
+    of the rocker B0A (B0 = (0.15, 0)), both its length and angle free."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.node("A0", 0, 0, base=True)
+        self.node("B0", 0.15, 0, base=True)
+        self.node("A", 0, A, m=1)
+        self.n2("A0A", "A0", "A", len="const", ang=speed(TURN))
+        self.n2("B0A", "B0", "A")
+
+
+def run(model):
+    return acausal2d.compile_model(model).simulate(output_times=TIMES, rtol=1e-10)
+
+
+@pytest.fixture(scope="module")
+def fourbar():
+    return run(FourBar())
+
+
+@pytest.fixture(scope="module")
+def slider():
+    return run(SliderCrank())
+
+
+def _circle_intersection(p, rp, q, rq, near):
+    """Intersection of two circles nearest to ``near`` (rows)."""
+    d = q - p
+    dist = np.hypot(d[:, 0], d[:, 1])
+    a = (rp ** 2 - rq ** 2 + dist ** 2) / (2 * dist)
+    h = np.sqrt(rp ** 2 - a ** 2)
+    m = p + d * (a / dist)[:, None]
+    off = np.column_stack([-d[:, 1], d[:, 0]]) * (h / dist)[:, None]
+    c1, c2 = m + off, m - off
+    pick = np.linalg.norm(c1 - near, axis=1) < np.linalg.norm(c2 - near, axis=1)
+    return np.where(pick[:, None], c1, c2)
+
+
+def _fourbar_closed(res):
+    """Closed-form A, B and i_41-21 = a sin(th3 - th2) / (c sin(th3 - th4))."""
+    phi = np.pi / 2 + TURN * res.time
+    a_pt = A * np.column_stack([np.cos(phi), np.sin(phi)])
+    b0 = np.tile([0.18, -0.06], (len(phi), 1))
+    b, c = math.hypot(0.12, 0.0), math.hypot(0.06, 0.12)
+    near = np.column_stack([res["B.x"], res["B.y"]])
+    b_pt = _circle_intersection(a_pt, b, b0, c, near)
+    th3 = np.arctan2(*(b_pt - a_pt).T[::-1])
+    th4 = np.arctan2(*(b_pt - b0).T[::-1])
+    i41 = A * np.sin(th3 - phi) / (c * np.sin(th3 - th4))
+    return a_pt, b_pt, i41
+
+
+LINKS = {"1": "ground", "2": "A0A", "3": "AB", "4": "B0B"}
+
+
+def test_fourbar_poles_at_joints_are_the_joints(fourbar):
+    a_pt, b_pt, _ = _fourbar_closed(fourbar)
+    P = fourbar.poles(LINKS)
+    assert np.abs(P[("1", "2")]).max() < 1e-12                     # A0 = origin
+    assert np.abs(P[("2", "3")] - a_pt).max() < 1e-9
+    assert np.abs(P[("3", "4")] - b_pt).max() < 1e-9
+    assert np.abs(P[("1", "4")] - [0.18, -0.06]).max() < 1e-9
+
+
+def test_fourbar_kennedy_poles_agree_with_velocity_poles(fourbar):
+    """P13 and P24 constructed by Aronhold-Kennedy from the four joint
+    poles equal the poles of the velocity fields; the three-pole lines hold."""
+    joints = [("1", "2"), ("2", "3"), ("3", "4"), ("1", "4")]
+    built = fourbar.poles(LINKS, joints=joints)
+    direct = fourbar.poles(LINKS)
+    for key in (("1", "3"), ("2", "4")):
+        ok = np.isfinite(direct[key]).all(axis=1)
+        assert ok.sum() > 60
+        scale = 1 + np.linalg.norm(direct[key][ok], axis=1)
+        assert (np.linalg.norm(built[key][ok] - direct[key][ok], axis=1) / scale).max() < 1e-8
+    p12, p14, p24 = direct[("1", "2")], direct[("1", "4")], direct[("2", "4")]
+    u, v = p14 - p12, p24 - p12
+    cross = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    assert np.nanmax(np.abs(cross)) < 1e-10                        # collinear (Kennedy)
+
+
+def test_fourbar_ratio_closed_form_and_pole_distances(fourbar):
+    """i_41-21 = w4/w2 (eq. 2.5) against the closed form and against the
+    directed pole distances 12-24 / 14-24."""
+    _, _, i41 = _fourbar_closed(fourbar)
+    i = fourbar.ratio("B0B", "A0A")
+    assert np.abs(i - i41).max() < 1e-9
+    P = fourbar.poles(LINKS)
+    from_poles = directed_ratio(P[("1", "2")], P[("1", "4")], P[("2", "4")])
+    ok = np.isfinite(from_poles)
+    assert np.abs(from_poles[ok] - i[ok]).max() < 1e-7
+    assert (np.sign(i) > 0).any() and (np.sign(i) < 0).any()      # Gleichlauf and Gegenlauf
+
+
+def _slider_closed(phi):
+    """x_B and its derivatives by phi for B on y = -E (eccentric)."""
+    l2 = 0.18 ** 2 + (A + E) ** 2
+    h, h1, h2 = A * np.sin(phi) + E, A * np.cos(phi), -A * np.sin(phi)
+    s = np.sqrt(l2 - h ** 2)
+    s1 = -h * h1 / s
+    s2 = -(h1 ** 2 + h * h2) / s - (h * h1) ** 2 / s ** 3
+    return A * np.cos(phi) + s, -A * np.sin(phi) + s1, -A * np.cos(phi) + s2
+
+
+def test_slider_crank_transfer_functions_to_1e9(slider):
+    """q = x_B over the crank angle: q, q', q'' (eq. 2.2-2.4) from the run's
+    derivatives against the closed forms, to 1e-9."""
+    tf = slider.transfer("B.x", "A0A.w")
+    x, x1, x2 = _slider_closed(slider["A0A.w"])
+    assert np.abs(tf[0] - x).max() < 1e-9
+    assert np.abs(tf[1] - x1).max() < 1e-9
+    assert np.abs(tf[2] - x2).max() < 1e-9
+    assert np.abs(x2).max() > 0.05                               # not a trivial curve
+
+
+def test_drehschubstrecke_slider_crank_is_pole_distance(slider):
+    """r_41-21 = x_dot_41 / phi_dot_21 (eq. 2.8) = the closed-form q', and
+    the directed pole distance 12-24 (pole 24 by Kennedy from 12, 23, 34 and
+    14 at infinity)."""
+    r = slider.turn_slide("GB.r", "A0A")
+    _, x1, _ = _slider_closed(slider["A0A.w"])
+    assert np.abs(r - x1).max() < 1e-9
+    links = {"1": "ground", "2": "A0A", "3": "AB", "4": ("B.x", "B.y", "GB.w")}
+    P = slider.poles(links, joints=[("1", "2"), ("2", "3"), ("3", "4"), ("1", "4")])
+    assert np.isnan(P[("1", "4")]).all()                            # prismatic: at infinity
+    d = P[("2", "4")] - P[("1", "2")]
+    along = -d[:, 1]                       # (k x d) . e with e = (1, 0), the guide
+    ok = np.isfinite(along)
+    assert ok.sum() > 60 and np.abs(along[ok] - r[ok]).max() < 1e-8
+
+
+def test_diagonal_drehschubstrecke_slotted_crank():
+    """Kurbelschleife: r_34-21 = x_dot_34 / phi_dot_21 (eq. 2.9) with x_34 the
+    slide of A in the turning slot: d|B0A|/dphi = a d sin(phi) / |B0A|; the
+    diagonal ratio i_41-21 of the rocker (eq. 2.5) against its closed form."""
+    res = run(SlottedCrank())
+    phi = res["A0A.w"]
+    rho = np.sqrt(A ** 2 + 0.15 ** 2 - 2 * A * 0.15 * np.cos(phi))
+    assert np.abs(res.turn_slide("B0A.r", "A0A") - A * 0.15 * np.sin(phi) / rho).max() < 1e-9
+    i41 = A * (A - 0.15 * np.cos(phi)) / rho ** 2                  # d(psi)/d(phi)
+    assert np.abs(res.ratio("B0A", "A0A") - i41).max() < 1e-9
+    ad = A * 0.15
+    rho1 = ad * np.sin(phi) / rho
+    tf_r, tf_w = res.transfer("B0A.r", "A0A.w"), res.transfer("B0A.w", "A0A.w")
+    assert np.abs(tf_r[2] - (ad * np.cos(phi) / rho - rho1 ** 2 / rho)).max() < 1e-9
+    psi2 = ad * np.sin(phi) / rho ** 2 - 2 * A * (A - 0.15 * np.cos(phi)) * ad * np.sin(phi) \
+        / rho ** 4
+    assert np.abs(tf_w[1] - i41).max() < 1e-9 and np.abs(tf_w[2] - psi2).max() < 1e-9
+
+
+def test_kennedy_line_intersection_closed_form():
+    """Intersection of the line (0,0)-(1,1) with the line through (2,0) in
+    direction (0,1) (a pole at infinity): (2, 2)."""
+    h = lambda *v: np.array([v], dtype=float)
+    p = kennedy(h(0, 0, 1), h(1, 1, 1), h(2, 0, 1), h(0, 1, 0))
+    assert np.allclose(cartesian(p), [[2.0, 2.0]], atol=1e-14)
+
+
+def test_absolute_pole_of_ground_and_missing_link(fourbar):
+    assert np.isnan(cartesian(pole_homogeneous(fourbar, "ground", "ground"))).all()
+    with pytest.raises(acausal2d.Acausal2dError, match="no link"):
+        fourbar.poles({"1": "ground", "2": "nothing"})
+    with pytest.raises(acausal2d.Acausal2dError, match="orders are 0, 1 and 2"):
+        fourbar.transfer("B.x", "A0A.w", orders=(3,))
