@@ -93,16 +93,18 @@ class Result:
         from .visual.plotting import plot
         return plot(self, names, path, title, x=x)
 
-    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+                poles=None):
         """Write a self-contained HTML animation of the mechanism, drawn from
         the components' ``shapes()``; ``traces`` are frame names (or
         ``"x_name:y_name"`` pairs) whose path is drawn, ``arrows`` frames or
         rotational flanges whose forces and torques are drawn, ``signal`` a
         signal plotted under the mechanism with a cursor synced to the time
-        slider, ``autoplay`` starts playback.  See
+        slider, ``autoplay`` starts playback, ``poles`` ({label: link}, see
+        :meth:`poles`) draws the instantaneous poles on a layer.  See
         :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
         from .visual.scene import animate
-        return animate(self, path, traces, title, arrows, signal, autoplay)
+        return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
 
     # ------------------------------------------------- kinematics (ch. 2.6)

@@ -215,3 +215,43 @@ def test_absolute_pole_of_ground_and_missing_link(fourbar):
         fourbar.poles({"1": "ground", "2": "nothing"})
     with pytest.raises(acausal2d.Acausal2dError, match="orders are 0, 1 and 2"):
         fourbar.transfer("B.x", "A0A.w", orders=(3,))
+
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "acausal2d"] + list(args), capture_output=True,
+                          text=True, timeout=300, cwd=ROOT)
+
+
+def test_cli_transfer_figure_and_pole_layer(tmp_path):
+    """``--x DRIVE --transfer 0,1,2`` writes the transfer-function figure;
+    ``--poles`` puts the poles on the layer "poles" of the page, at the
+    joints where the seed's Bild 2.12 has them (P12 at A0, P23 at A)."""
+    import json
+    import re
+    proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
+                "--plot", "B.x", "--x", "A0A.w", "--transfer", "0,1,2", "--poles",
+                "1=ground,2=A0A,3=AB,4=B.x:B.y:AB0B.w", "--out", str(tmp_path))
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "transfer_B.x_over_A0A.w.png").stat().st_size > 10000
+    page = (tmp_path / "animation.html").read_text()
+    data = json.loads(re.search(r'id="acausal2d-data" type="application/json">(.*?)</script>',
+                                page, re.S).group(1))
+    poles = {s["text"]: s for s in data["shapes"] if s["type"] == "pole"}
+    assert set(poles) == {"P12", "P13", "P14", "P23", "P24", "P34"}
+    assert all(s["layer"] == "poles" for s in poles.values())
+    sig = data["signals"]
+    assert np.allclose(sig["pole P12.x"], 0, atol=1e-9) and np.allclose(sig["pole P12.y"], 0,
+                                                                         atol=1e-9)
+    p23 = np.array([sig["pole P23.x"], sig["pole P23.y"]])
+    a = np.array([sig["A.x"], sig["A.y"]])
+    assert np.abs(p23 - a).max() < 1e-6
+    assert all(v is None for v in sig["pole P14.x"])               # at infinity: hidden
+
+
+def test_cli_transfer_needs_x_and_valid_orders(tmp_path):
+    proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
+                "--plot", "B.x", "--transfer", "0,1", "--out", str(tmp_path))
+    assert proc.returncode == 2 and "--transfer needs --x DRIVE" in proc.stderr
+    proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
+                "--plot", "B.x", "--x", "A0A.w", "--transfer", "3", "--out", str(tmp_path))
+    assert proc.returncode == 2 and "--transfer takes orders 0, 1, 2" in proc.stderr

@@ -142,20 +142,54 @@ def model_shapes(model):
     return shapes
 
 
-def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+def pole_shapes(result, links, joints=None):
+    """(shapes, signals) drawing the instantaneous poles of ``links``
+    ({label: link}, see :func:`acausal2d.analysis.poles.poles`) on the layer
+    "poles" of the page, each labelled P<i><j>; a pole at infinity is hidden
+    in that frame."""
+    shapes, signals = [], {}
+    for (i, j), pts in result.poles(links, joints).items():
+        name = "pole P%s%s" % (i, j)
+        signals[name + ".x"] = [float(v) for v in pts[:, 0]]
+        signals[name + ".y"] = [float(v) for v in pts[:, 1]]
+        shapes.append({"type": "pole", "x": name + ".x", "y": name + ".y",
+                       "text": "P%s%s" % (i, j), "layer": "poles"})
+    return shapes, signals
+
+
+def parse_links(text):
+    """``"1=ground,2=A0A,4=B.x:B.y:GB.w"`` -> {label: link} (the
+    ``--poles`` option: frames, node constraints, x:y:phi signal triples)."""
+    links = {}
+    for item in (t.strip() for t in text.split(",") if t.strip()):
+        label, sep, spec = item.partition("=")
+        if not sep or not label.strip() or not spec.strip():
+            raise Acausal2dError("--poles takes label=link pairs, e.g. 1=ground,2=A0A,"
+                                 "3=crank.frame_b,4=B.x:B.y:GB.w; got %r" % item)
+        parts = [p.strip() for p in spec.split(":")]
+        links[label.strip()] = tuple(parts) if len(parts) == 3 else spec.strip()
+    return links
+
+
+def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+                poles=None):
     """Scene dict for :func:`acausal2d.visual.animation.render_html` from a result
     of a compiled model; ``traces`` are points whose path is drawn (coupler
     curves): frame names or ``"x_name:y_name"`` pairs, see
     :func:`trace_signals`; ``arrows`` frames or flanges whose forces and
     torques are drawn (:func:`arrow_signals`); ``signal`` a signal plotted
     under the mechanism with a cursor synced to the time slider;
-    ``autoplay`` starts the page playing."""
+    ``autoplay`` starts the page playing; ``poles`` ({label: link}) draws
+    the instantaneous poles of those links on a layer (:func:`pole_shapes`)."""
     model = result.model.model if result.model is not None else None
     shapes = model_shapes(model) if model is not None else []
     for x, y in trace_signals(traces, result.names):
         shapes.append({"type": "trace", "x": x, "y": y})
     shapes += arrow_signals(arrows, result.names)
     signals = {}
+    if poles:
+        more, signals = pole_shapes(result, poles)
+        shapes += more
     for shape in shapes:
         for name in _signal_names(shape):
             if name not in signals:
@@ -183,7 +217,8 @@ def _drag_system(model):
     return None
 
 
-def animate(result, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+def animate(result, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+            poles=None):
     """Write the self-contained HTML animation of ``result`` to ``path``
     (options as for :func:`build_scene`)."""
-    return write_html(build_scene(result, traces, title, arrows, signal, autoplay), path)
+    return write_html(build_scene(result, traces, title, arrows, signal, autoplay, poles), path)
