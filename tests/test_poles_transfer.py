@@ -255,3 +255,29 @@ def test_cli_transfer_needs_x_and_valid_orders(tmp_path):
     proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
                 "--plot", "B.x", "--x", "A0A.w", "--transfer", "3", "--out", str(tmp_path))
     assert proc.returncode == 2 and "--transfer takes orders 0, 1, 2" in proc.stderr
+
+
+def test_browser_pole_layer_is_drawn_and_hidden_by_its_check_box(tmp_path):
+    """The page draws the poles (teal rings) and its "poles" check box hides them."""
+    from test_animation import ARTIFACTS, DevTools, Page, require_chromium
+    require_chromium()
+    res = run(FourBar())
+    path = res.animate(tmp_path / "poles.html", poles=LINKS)
+    ARTIFACTS.mkdir(exist_ok=True)
+    cdp = DevTools(tmp_path / "profile", ARTIFACTS / "chromium_cdp_poles.log")
+    try:
+        page = Page(cdp)
+        page.open(path.resolve().as_uri() + "#frame=10")
+        assert page.js("document.getElementById('layer-poles').checked") is True
+        teal = np.array([0x16, 0xa0, 0x85]) / 255
+
+        def teal_pixels(name):
+            img = page.screenshot(name)[:540]
+            return int(np.all(np.abs(img - teal) < 0.08, axis=2).sum())
+        shown = teal_pixels("poles_on.png")
+        page.js("var b = document.getElementById('layer-poles'); b.click(); b.checked")
+        hidden = teal_pixels("poles_off.png")
+        assert shown > 50 and hidden == 0, (shown, hidden)
+        assert page.js("window.acausal2d.errors.length") == 0
+    finally:
+        cdp.close()
