@@ -281,3 +281,38 @@ def test_browser_pole_layer_is_drawn_and_hidden_by_its_check_box(tmp_path):
         assert page.js("window.acausal2d.errors.length") == 0
     finally:
         cdp.close()
+
+
+def test_vdi_fourbar_frames_rates_and_joint_points():
+    """The VDI 2729 four-bar DDDD (frames of DAN and DDD, whose output frames
+    the index reduction does not differentiate: their rates come from the
+    total derivative of the equations, analysis/rates.py): the rates agree
+    with the der() columns of the same links, the velocity poles lie at the
+    joints, and with the joint points given the Kennedy poles agree."""
+    from acausal2d.analysis.poles import derivative
+    model = acausal2d.load_model(os.path.join(ROOT, "models", "four_link_mechanisms.py"), "DDDD")
+    res = acausal2d.compile_model(model).simulate(output_times=np.linspace(0.01, 0.99, 50),
+                                                  rtol=1e-10)
+    assert "der(dyad.ctr2D3.x)" not in res.names
+    assert np.abs(derivative(res, "dyad.ctr2D3.x") - res["der(crank.ctr2D2.x)"]).max() < 1e-9
+    assert np.abs(derivative(res, "dyad.ctr2D3.phi", 2) - res["der(der(dyad.phiL1))"]).max() \
+        < 1e-8
+    links = {"1": "ground", "2": "crank.ctr2D2", "3": "dyad.ctr2D3", "4": "dyad.ctr2D4"}
+    P = res.poles(links)
+    b = np.column_stack([res["dyad.xP"], res["dyad.yP"]])
+    a = np.column_stack([res["crank.ctr2D2.x"], res["crank.ctr2D2.y"]])
+    assert np.abs(P[("3", "4")] - b).max() < 1e-8 and np.abs(P[("2", "3")] - a).max() < 1e-9
+    assert np.abs(P[("1", "4")] - [0.4, 0.0]).max() < 1e-9
+    joints = {("1", "2"): "crank.ctr2D1", ("2", "3"): "crank.ctr2D2",
+              ("3", "4"): ("dyad.xP", "dyad.yP"), ("1", "4"): "dyad.ctr2D4"}
+    built = res.poles(links, joints=joints)
+    assert np.abs(built[("3", "4")] - b).max() < 1e-12
+    for key in (("1", "3"), ("2", "4")):
+        ok = np.isfinite(P[key]).all(axis=1)
+        scale = 1 + np.linalg.norm(P[key][ok], axis=1)
+        assert ok.sum() > 40
+        assert (np.linalg.norm(built[key][ok] - P[key][ok], axis=1) / scale).max() < 1e-7
+    i = res.ratio("dyad.ctr2D4", "crank.ctr2D2")
+    assert np.abs(i - res["der(dyad.phiL2)"] / TURN).max() < 1e-9
+    assert np.abs(directed_ratio(built[("1", "2")], built[("1", "4")], built[("2", "4")]) - i) \
+        .max() < 1e-7

@@ -39,10 +39,10 @@ units) is at infinity."""
 
 # ------------------------------------------------------------- derivatives
 def derivative(res, name, order=1):
-    """The ``order``-th time derivative of the signal ``name`` from the
-    run's ``der(...)`` columns (zero for parameters and variables the
-    parameters alone fix); an error names the signal if the run holds no
-    such derivative."""
+    """The ``order``-th (1 or 2) time derivative of the signal ``name``:
+    the run's ``der(...)`` column where the index reduction made one, else
+    the total time derivative of the model's equations at each output
+    point (:class:`acausal2d.analysis.rates.Rates`); zero for parameters."""
     col = name
     for _ in range(order):
         col = "der(%s)" % col
@@ -50,57 +50,16 @@ def derivative(res, name, order=1):
         return np.asarray(res[col], dtype=float)
     if name == "time":
         return np.ones_like(res.time) if order == 1 else np.zeros_like(res.time)
-    if name in res.parameters or _fixed_by_parameters(res, name):
+    if name in res.parameters:
         return np.zeros_like(res.time)
-    polar = _polar_derivative(res, name, order)
-    if polar is not None:
-        return polar
-    if name not in res:
-        res[name]                                  # raises with similar names
-    raise Acausal2dError(
-        "the run holds no %s: %r is not differentiated by the index reduction.  Use a "
-        "signal of the same link that is (a frame's x, y, phi or a node's x, y), e.g. one "
-        "of: %s" % (col, name, ", ".join(_differentiated(res)[:8]) or "none"))
-
-
-def _polar_derivative(res, name, order):
-    """Derivative of the length r or angle w of a node-model constraint
-    from the derivatives of its two end points d = p2 - p1 (the index
-    reduction differentiates the nodes, not always r and w):
-    r' = d.d'/r, w' = (d x d')/r^2 and their derivatives; None if ``name``
-    is no such signal or ``order`` > 2."""
-    base, _, kind = name.rpartition(".")
-    ends = [base + s for s in (".a.x", ".a.y", ".b.x", ".b.y")]
-    if kind not in ("r", "w") or order > 2 or not all(e in res for e in ends):
-        return None
-    pos = [np.asarray(res[e], dtype=float) for e in ends]
-    d = np.column_stack([pos[2] - pos[0], pos[3] - pos[1]])
-    def diff(k):
-        return np.column_stack([derivative(res, ends[2], k) - derivative(res, ends[0], k),
-                                derivative(res, ends[3], k) - derivative(res, ends[1], k)])
-    d1 = diff(1)
-    d2 = diff(2) if order == 2 else None
-    r2 = np.sum(d * d, axis=1)
-    dot, cross = np.sum(d * d1, axis=1), d[:, 0] * d1[:, 1] - d[:, 1] * d1[:, 0]
-    if kind == "r" and order == 1:
-        return dot / np.sqrt(r2)
-    if kind == "r":
-        return (np.sum(d1 * d1, axis=1) + np.sum(d * d2, axis=1)) / np.sqrt(r2) \
-            - dot ** 2 / r2 ** 1.5
-    if order == 1:
-        return cross / r2
-    return (d[:, 0] * d2[:, 1] - d[:, 1] * d2[:, 0]) / r2 - 2 * cross * dot / r2 ** 2
-
-
-def _fixed_by_parameters(res, name):
-    system = getattr(getattr(res, "model", None), "system", None)
-    if system is None or name not in system.alias_names:
-        return False
-    return system.alias_node[system.alias_names.index(name)] < 0
-
-
-def _differentiated(res):
-    return [n[4:-1] for n in res.names if n.startswith("der(") and not n.startswith("der(der(")]
+    res[name]                                      # an unknown name raises here
+    if order not in (1, 2):
+        raise Acausal2dError("derivatives of order 1 and 2 only, not %r" % (order,))
+    rates = res.__dict__.get("_rates")
+    if rates is None:
+        from .rates import Rates
+        rates = res.__dict__["_rates"] = Rates(res)
+    return rates.of(name, order)
 
 
 # ------------------------------------------------------------------ links
@@ -232,13 +191,27 @@ def poles(res, links, joints=None):
     pole is at infinity.  Without ``joints`` every pole comes from the two
     links' velocity fields; with ``joints`` (pairs of labels joined by a
     revolute, prismatic or rolling joint) only those poles do and the
-    others are constructed by Aronhold-Kennedy (:func:`kennedy_poles`)."""
+    others are constructed by Aronhold-Kennedy (:func:`kennedy_poles`).
+    ``joints`` may also map pairs to the joint's point (a frame or node
+    name, or (x_name, y_name); None: from the velocities): the pole of a
+    revolute joint is its centre, also where the two links happen to turn
+    at the same rate and the velocity fields leave it undetermined."""
     labels = list(links)
-    pairs = itertools.combinations(sorted(labels), 2) if joints is None else \
-        (_pair(*p) for p in joints)
-    known = {(i, j): pole_homogeneous(res, links[i], links[j]) for i, j in pairs}
-    hom = kennedy_poles(labels, known) if joints is not None else known
-    return {key: cartesian(p) for key, p in sorted(hom.items())}
+    if joints is None:
+        known = {(i, j): pole_homogeneous(res, links[i], links[j])
+                 for i, j in itertools.combinations(sorted(labels), 2)}
+        return {key: cartesian(p) for key, p in sorted(known.items())}
+    at = joints if isinstance(joints, dict) else dict.fromkeys(map(tuple, joints))
+    known = {_pair(i, j): pole_homogeneous(res, links[i], links[j]) if point is None
+             else _joint_point(res, point) for (i, j), point in at.items()}
+    return {key: cartesian(p) for key, p in sorted(kennedy_poles(labels, known).items())}
+
+
+def _joint_point(res, point):
+    """Homogeneous pole (x, y, 1) of a revolute joint at the point ``point``:
+    a frame or node name (its .x, .y) or a pair (x_name, y_name)."""
+    x, y = (point + ".x", point + ".y") if isinstance(point, str) else point
+    return np.column_stack([res[x], res[y], np.ones_like(res.time)])
 
 
 # ------------------------------------------------------- ratio, Drehschub
