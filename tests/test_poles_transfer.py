@@ -316,3 +316,19 @@ def test_vdi_fourbar_frames_rates_and_joint_points():
     assert np.abs(i - res["der(dyad.phiL2)"] / TURN).max() < 1e-9
     assert np.abs(directed_ratio(built[("1", "2")], built[("1", "4")], built[("2", "4")]) - i) \
         .max() < 1e-7
+
+
+def test_diagonal_ratio_is_pole_distance_ratio_on_the_collineation_axis(fourbar):
+    """Eq. 2.6: i_34-21 = w_34 / w_21 = 12R / 34R with R the intersection of
+    the line P12-P34 with the collineation axis k_14-23 (through P14, P23)."""
+    P = fourbar.poles(LINKS)
+    h = lambda p: np.column_stack([p, np.ones(len(p))])
+    R = cartesian(kennedy(h(P[("1", "2")]), h(P[("3", "4")]), h(P[("1", "4")]),
+                          h(P[("2", "3")])))
+    i = fourbar.ratio("AB", "A0A", ref="B0B", in_ref="ground")
+    w = fourbar
+    expected = (w["der(AB.w)"] - w["der(B0B.w)"]) / w["der(A0A.w)"]
+    assert np.abs(i - expected).max() < 1e-12
+    lam = directed_ratio(P[("1", "2")], P[("3", "4")], R)
+    ok = np.isfinite(lam)
+    assert ok.sum() > 60 and np.abs(lam[ok] - i[ok]).max() < 1e-9
