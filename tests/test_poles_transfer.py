@@ -255,6 +255,13 @@ def test_cli_transfer_needs_x_and_valid_orders(tmp_path):
     proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
                 "--plot", "B.x", "--x", "A0A.w", "--transfer", "3", "--out", str(tmp_path))
     assert proc.returncode == 2 and "--transfer takes orders 0, 1, 2" in proc.stderr
+    proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
+                "--poles", "1=ground,2=crank", "--out", str(tmp_path))
+    assert proc.returncode == 2 and "'crank' is no link of the result" in proc.stderr
+    assert "simulated" not in proc.stdout                          # refused before the run
+    proc = _cli("simulate", "models/talk_mechanisms.py", "--model", "EccentricSliderCrank",
+                "--poles", "1=ground,A0A", "--out", str(tmp_path))
+    assert proc.returncode == 2 and "--poles takes label=link pairs" in proc.stderr
 
 
 def test_browser_pole_layer_is_drawn_and_hidden_by_its_check_box(tmp_path):

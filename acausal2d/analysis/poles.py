@@ -83,6 +83,28 @@ def link_columns(res, spec):
         "'ground'" % (spec,))
 
 
+class _Names:
+    """Signal names standing in for a result when links are checked before
+    a run (``in`` and ``[]`` as on a result)."""
+
+    def __init__(self, names):
+        self.names = set(names)
+
+    def __contains__(self, name):
+        return name in self.names
+
+    def __getitem__(self, name):
+        if name not in self.names:
+            raise Acausal2dError("no signal %r in the model" % (name,))
+
+
+def check_links(links, names):
+    """Raise :class:`~acausal2d.errors.Acausal2dError` unless every link of
+    ``links`` ({label: link}) names signals among ``names``."""
+    for spec in links.values():
+        link_columns(_Names(names), spec)
+
+
 def link_motion(res, spec):
     """Position r (n, 2), velocity v (n, 2) and angular velocity w (n,) of
     a point of the link ``spec``."""

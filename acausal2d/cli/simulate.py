@@ -35,8 +35,10 @@ def _animation_options(args, cm):
         _check_names([args.signal], cm, "--signal")
     poles = None
     if args.poles:
+        from ..analysis.poles import check_links
         from ..visual.scene import parse_links
         poles = parse_links(args.poles)
+        check_links(poles, cm.names)           # before the run
     return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay, "poles": poles}
 
 
