@@ -13,7 +13,10 @@ with z' known for every node that has a derivative node (its value is in
 the result) and unknown for the others; the second derivative likewise
 from d/dt (E_z z' + E_t) = 0 with the same matrix.  Both are linear least
 squares problems at each output point (overdetermined and consistent),
-solved exactly; no output grid is differenced.
+solved exactly; no output grid is differenced.  Linkages and node models
+give rates to round-off; where a run's values do not satisfy the
+differentiated equations (seen for stiff belt spans with relations, e.g.
+models/pulley_block.py) an error says so instead of returning a guess.
 """
 import casadi as ca
 import numpy as np
@@ -98,11 +101,19 @@ class Rates:
 
 
 def _lstsq(A, b, t):
+    """Least-squares solution of the (overdetermined, consistent) system;
+    an error where it leaves unknowns undetermined (rank deficient) or is
+    inconsistent beyond the accuracy of the run's own values (residual
+    against the size of each equation's terms)."""
     if A.shape[1] == 0:
         return np.zeros(0)
-    x, *_ = np.linalg.lstsq(A, b, rcond=None)
-    scale = 1.0 + np.abs(b).max()
-    if np.abs(A @ x - b).max() > 1e-8 * scale:
-        raise Acausal2dError("the rates at t = %.6g are not determined by the model's "
-                             "equations (the system is singular there)" % t)
+    x, _, rank, _ = np.linalg.lstsq(A, b, rcond=None)
+    scale = np.abs(A) @ np.abs(x) + np.abs(b)
+    if rank < A.shape[1] or (np.abs(A @ x - b) > 1e-6 * scale + 1e-9 * scale.max()).any():
+        raise Acausal2dError(
+            "the rates at t = %.6g cannot be recovered from the model's equations (%s); use a "
+            "signal the run holds a der() column of" % (t, "they leave some undetermined"
+                                                        if rank < A.shape[1] else
+                                                        "the run's values do not satisfy their "
+                                                        "time derivative there"))
     return x
