@@ -339,3 +339,52 @@ def test_diagonal_ratio_is_pole_distance_ratio_on_the_collineation_axis(fourbar)
     lam = directed_ratio(P[("1", "2")], P[("3", "4")], R)
     ok = np.isfinite(lam)
     assert ok.sum() > 60 and np.abs(lam[ok] - i[ok]).max() < 1e-9
+
+
+def test_mec2_pole_view_is_the_intersection_of_crank_and_rocker_lines():
+    """mec2's view {"show": "pole", "of": "b", "as": "trace"} (views_2.json,
+    a four-bar driven at its coupler b) becomes a pole and its path (the
+    fixed centrode) on the poles layer; the pole of the coupler is where
+    the lines A0A and B0B cross.  The moving centrode (``ref``) stays
+    listed as not drawn."""
+    from acausal2d.visual.scene import build_scene
+    model = acausal2d.load_model(os.path.join(ROOT, "tests", "data", "mec2_examples",
+                                              "views_2.json"))
+    assert [v["link"] for v in model.pole_views] == ["b"]
+    assert model.mec2_views_not_drawn == ["$.views[1] (trace of pole): no counterpart in the "
+                                          "animation"]
+    res = acausal2d.compile_model(model).simulate(rtol=1e-10)
+    scene = build_scene(res)
+    kinds = [(s["type"], s.get("layer")) for s in scene["shapes"] if s.get("layer")]
+    assert kinds == [("pole", "poles"), ("trace", "poles")]
+    p = np.column_stack([scene["signals"]["pole P(b).x"], scene["signals"]["pole P(b).y"]])
+    a0, b0 = np.array([1.0, 0.5]), np.array([2.0, 0.5])
+    a, b = (np.column_stack([res[n + ".x"], res[n + ".y"]]) for n in ("A", "B"))
+    u, v = a - a0, b - b0
+    den = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    s = ((b0 - a0)[0] * v[:, 1] - (b0 - a0)[1] * v[:, 0]) / den
+    crossing = a0 + s[:, None] * u
+    ok = np.abs(den) > 1e-3
+    assert ok.sum() > 500 and np.abs(p[ok] - crossing[ok]).max() < 1e-9
+    path = np.array(scene["signals"]["pole P(b) path.x"], dtype=float)
+    assert np.array_equal(path, p[:, 0])               # this centrode stays near the mechanism
+
+
+class _SliderCrankPoleView(SliderCrank):
+    pole_views = [{"link": "AB", "text": "P13", "trace": True}]
+
+
+def test_pole_path_is_hidden_where_the_pole_runs_off():
+    """The slider-crank rod's pole (crank line x vertical through B) goes to
+    infinity where the crank stands vertical: its path is cut there (NaN),
+    and kept where it lies within three times the mechanism's extent."""
+    from acausal2d.visual.scene import build_scene
+    res = run(_SliderCrankPoleView())
+    sig = build_scene(res)["signals"]
+    pole = np.column_stack([sig["pole P13.x"], sig["pole P13.y"]])
+    path = np.column_stack([sig["pole P13 path.x"], sig["pole P13 path.y"]])
+    kept = np.isfinite(path).all(axis=1)
+    assert 0 < kept.sum() < len(kept) - 4
+    assert np.array_equal(path[kept], pole[kept])
+    assert np.nanmax(np.abs(pole[~kept])) > 0.5                  # the mechanism spans 0.3 m
+    assert np.abs(path[kept]).max() < 0.3 * 1.5 + 0.2
