@@ -18,6 +18,8 @@ docstrings.  Coordinates in mm.
 ``acausal2d simulate models/talk_synthesis.py --model SpeedDiagram``."""
 import math
 
+import numpy as np
+
 from acausal2d.language.nodes import NodeModel, drive, ref
 from acausal2d.library.nodes.constructions import perpendicular, perpendicular_bisector
 
@@ -77,6 +79,42 @@ class PoleTriangleSynthesis(NodeModel):
                 perpendicular_bisector(self, "b" + seg, seg, mid, "P" + i + j)
                 if i == "1":
                     perpendicular(self, "c" + seg, mid, pt + "0", seg)
+
+
+    def write_outputs(self, res, folder):
+        """The synthesis drawn at t = 0 (``pole_triangle_synthesis.png``):
+        the three coupler positions, the circles of A and B about A0 and B0,
+        the guiding four-bar A0 A1 B1 B0 and the pole triangle."""
+        import os
+
+        from acausal2d.visual.plotting import save_figure
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+        pt = {n: (res[n + ".x"][0] * 1e3, res[n + ".y"][0] * 1e3) for n in
+              ("A1", "A2", "A3", "B1", "B2", "B3", "A0", "B0", "P12", "P13", "P23")}
+        fig = Figure(figsize=(7, 6))
+        FigureCanvasAgg(fig)
+        ax = fig.subplots()
+        for i, c in zip("123", ("#1f77b4", "#ff7f0e", "#2ca02c")):
+            ax.plot(*zip(pt["A" + i], pt["B" + i]), "-o", color=c, lw=3, label="position " + i)
+        for centre, ends in (("A0", "A"), ("B0", "B")):
+            r = np.hypot(*np.subtract(pt[ends + "1"], pt[centre]))
+            w = np.linspace(0, 2 * np.pi, 200)
+            ax.plot(pt[centre][0] + r * np.cos(w), pt[centre][1] + r * np.sin(w), ":",
+                    color="gray", lw=0.8)
+        ax.plot(*zip(pt["A0"], pt["A1"], pt["B1"], pt["B0"]), "--", color="k", lw=1,
+                label="four-bar A0 A1 B1 B0")
+        tri = [pt["P12"], pt["P13"], pt["P23"], pt["P12"]]
+        ax.plot(*zip(*tri), "-", color="#16a085", lw=1.5, label="pole triangle")
+        for n in ("A0", "B0", "P12", "P13", "P23"):
+            ax.annotate(n, pt[n], textcoords="offset points", xytext=(5, 5))
+        ax.set_aspect("equal")
+        ax.grid(True, alpha=0.3)
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("y [mm]")
+        ax.legend(fontsize=8, loc="best")
+        ax.set_title("PoleTriangleSynthesis: three-position synthesis at t = 0")
+        return [save_figure(fig, os.path.join(folder, "pole_triangle_synthesis.png"))]
 
 
 def _sin(x):

@@ -122,7 +122,8 @@ def test_speed_diagram_follows_willis():
 
 @pytest.mark.parametrize("file,name,figures", [
     ("talk_constructions.py", "FourNodeConstructions", ["constructions.png"]),
-    ("talk_synthesis.py", "PoleTriangleSynthesis", ["pivots.png", "pole_triangle.png"]),
+    ("talk_synthesis.py", "PoleTriangleSynthesis", ["pivots.png", "pole_triangle.png",
+                                                   "pole_triangle_synthesis.png"]),
     ("talk_synthesis.py", "SpeedDiagram", ["speeds.png"])])
 def test_models_run_from_the_cli_with_figures(tmp_path, file, name, figures):
     proc = subprocess.run([sys.executable, "-m", "acausal2d", "simulate",
