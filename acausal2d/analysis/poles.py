@@ -4,7 +4,10 @@ eq. 2.5-2.10, Bild 2.10-2.14) and transfer functions of order 0, 1, 2
 
 The velocities and accelerations come from the result's ``der(...)``
 columns, which the index reduction produced and the integrator solved
-together with the positions; nothing here differences the output grid.
+together with the positions, and for variables without such a column
+from the total time derivative of the model's equations
+(:mod:`acausal2d.analysis.rates`); nothing here differences the output
+grid.
 
 A *link* is named by
 
