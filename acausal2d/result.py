@@ -93,14 +93,44 @@ class Result:
         from .visual.plotting import plot
         return plot(self, names, path, title, x=x)
 
-    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+                poles=None):
         """Write a self-contained HTML animation of the mechanism, drawn from
         the components' ``shapes()``; ``traces`` are frame names (or
         ``"x_name:y_name"`` pairs) whose path is drawn, ``arrows`` frames or
         rotational flanges whose forces and torques are drawn, ``signal`` a
         signal plotted under the mechanism with a cursor synced to the time
-        slider, ``autoplay`` starts playback.  See
+        slider, ``autoplay`` starts playback, ``poles`` ({label: link}, see
+        :meth:`poles`) draws the instantaneous poles on a layer.  See
         :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
         from .visual.scene import animate
-        return animate(self, path, traces, title, arrows, signal, autoplay)
+        return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
+
+    # ------------------------------------------------- kinematics (ch. 2.6)
+    def poles(self, links, joints=None):
+        """Instantaneous poles P_ij of ``links`` ({label: link}) at every
+        output time (seed ch. 2.6, Bild 2.10-2.14); with ``joints`` the poles
+        not at joints by Aronhold-Kennedy.  See
+        :func:`acausal2d.analysis.poles.poles`."""
+        from .analysis.poles import poles
+        return poles(self, links, joints)
+
+    def ratio(self, out, inp, ref="ground", in_ref=None):
+        """Ratio i = phi_dot(out, ref) / phi_dot(inp, in_ref) (eq. 2.5-2.7).
+        See :func:`acausal2d.analysis.poles.ratio`."""
+        from .analysis.poles import ratio
+        return ratio(self, out, inp, ref, in_ref)
+
+    def turn_slide(self, slide, crank, crank_ref="ground"):
+        """Drehschubstrecke x_dot / phi_dot of a slide coordinate over a
+        crank (eq. 2.8-2.10).  See :func:`acausal2d.analysis.poles.turn_slide`."""
+        from .analysis.poles import turn_slide
+        return turn_slide(self, slide, crank, crank_ref)
+
+    def transfer(self, q, p, orders=(0, 1, 2)):
+        """Transfer functions q(p), q' = dq/dp, q'' = d2q/dp2 of order 0..2
+        from the run's derivatives (eq. 2.2-2.4).  See
+        :func:`acausal2d.analysis.poles.transfer`."""
+        from .analysis.poles import transfer
+        return transfer(self, q, p, orders)

@@ -4,6 +4,7 @@ import os
 import sys
 
 from . import _Progress
+from ..errors import Acausal2dError
 from .args import _check_names, _parse_set, _positive_float, _positive_int
 
 
@@ -32,7 +33,13 @@ def _animation_options(args, cm):
     arrow_signals(arrows, cm.names, cm.model)      # names checked before the run
     if args.signal:
         _check_names([args.signal], cm, "--signal")
-    return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay}
+    poles = None
+    if args.poles:
+        from ..analysis.poles import check_links
+        from ..visual.scene import parse_links
+        poles = parse_links(args.poles)
+        check_links(poles, cm.names)           # before the run
+    return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay, "poles": poles}
 
 
 def _print_summary(model, res, out, pngs, extra=()):
@@ -85,7 +92,14 @@ def _simulate_settings(args, cm):
     from ..visual.scene import trace_signals
     traces = [t.strip() for t in args.trace.split(",")] if args.trace else []
     trace_signals(traces, cm.names)
-    return {"traces": traces, "specs": _plot_specs(args, cm),
+    transfer = None
+    if args.transfer:
+        from ..visual.plotting import parse_orders
+        transfer = parse_orders(args.transfer)
+        if not args.x:
+            raise Acausal2dError("--transfer needs --x DRIVE: the drive coordinate the "
+                                 "transfer functions are taken over (e.g. --x crank.phi)")
+    return {"traces": traces, "specs": _plot_specs(args, cm), "transfer": transfer,
             "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
 
 
@@ -95,7 +109,12 @@ def _write_outputs(res, out, settings, args):
     from ..io.files import write_manifest
     from ..visual.plotting import write_figures
     files = [res.to_csv(os.path.join(out, "result.csv"))]
-    pngs = write_figures(res, out, settings["specs"], args.format)
+    if settings["transfer"]:
+        from ..visual.plotting import write_transfer_figures
+        pngs = write_transfer_figures(res, out, settings["specs"], settings["transfer"],
+                                      args.format)
+    else:
+        pngs = write_figures(res, out, settings["specs"], args.format)
     if not settings["specs"]:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
     files += pngs
@@ -143,6 +162,12 @@ def add_parsers(sub):
     s.add_argument("--trace", help="comma-separated points whose path the animation draws "
                    "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
                    "(dyad.xP:dyad.yP)")
+    s.add_argument("--transfer", metavar="ORDERS", help="with --x DRIVE: plot the transfer "
+                   "functions of these orders (0,1,2: q, dq/dDRIVE, d2q/dDRIVE2, seed eq. "
+                   "2.2-2.4) of each plotted signal instead of the signals")
+    s.add_argument("--poles", metavar="LINKS", help="draw the instantaneous poles of these "
+                   "links on a layer of the animation: label=link pairs, e.g. "
+                   "1=ground,2=A0A,3=AB,4=B0B (frames, node constraints or x:y:phi signals)")
     s.add_argument("--max-steps", type=_positive_int, default=1000000,
                    help="step budget of the run (default 1000000); exit 3 when used up")
     s.add_argument("--max-wall-time", type=_positive_float, metavar="SECONDS",

@@ -30,9 +30,12 @@ Mapping (mec2 -> acausal2d):
   mec2's page) drives over time like any drive.
 * loads: ``force {p, value, w0, wref}``, ``spring {p1, p2, k, len0}``.
 * views: ``{"as": "trace", "show": "pos", "of": node}`` (or the older
-  ``"p": node``) become traces of the animation; the other views
-  (vectors, charts, infos, relative and pole traces) have no counterpart
-  and are listed in the model's ``mec2_views_not_drawn``.  Shapes ``fix``
+  ``"p": node``) become traces of the animation; ``{"show": "pole", "of":
+  constraint}`` (as point or trace) the constraint's instantaneous pole on
+  the page's "poles" layer (``pole_views``, drawn by
+  :func:`acausal2d.visual.scene.declared_pole_views`); the other views
+  (vectors, charts, infos, relative traces and moving centrodes) have no
+  counterpart and are listed in the model's ``mec2_views_not_drawn``.  Shapes ``fix``
   and ``flt`` draw ground symbols; the other shapes are cosmetic and not
   drawn.
 
@@ -288,7 +291,8 @@ class Mec2Model(NodeModel):
 
     def __init__(self, data, **kw):
         super().__init__(**kw)
-        self.__dict__.update(mec2_traces=[], mec2_views_not_drawn=[], _grounds=[])
+        self.__dict__.update(mec2_traces=[], mec2_views_not_drawn=[], _grounds=[],
+                             pole_views=[])
         coords = {n["id"]: [float(n["x"]), float(n["y"])] for n in data.get("nodes") or ()}
         cstrs = _order(_items(data, "constraints"))
         _initial_vectors(cstrs, coords)
@@ -323,6 +327,9 @@ class Mec2Model(NodeModel):
             node = v.get("p", node)
             if kind == "trace" and node in self._nodes and "ref" not in v:
                 self.mec2_traces.append(node)
+            elif v.get("show") == "pole" and v.get("of") in self._cstrs and "ref" not in v:
+                self.pole_views.append({"link": v["of"], "text": "P(%s)" % v["of"],
+                                        "trace": kind == "trace"})
             else:
                 self.mec2_views_not_drawn.append(
                     "%s (%s of %s): no counterpart in the animation"

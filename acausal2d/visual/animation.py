@@ -72,8 +72,11 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
     torque of the run (or at |t| = 1/``scale``).  A zero torque draws
     nothing; ``label`` adds the label and the torque's magnitude in N.m.
 
+``{"type": "pole", "x": X, "y": Y, "text": "P13"}``
+    an instantaneous pole (ring and label; left out of the bounding box).
+
 Any shape may also have a ``"color"`` (a CSS colour string) that replaces its
-main colour.  Other keys are ignored.  A signal value that is NaN (written
+main colour, and a ``"layer"`` name: the page shows a check box per layer.  Other keys are ignored.  A signal value that is NaN (written
 as ``null`` in the JSON) hides the shape in that frame.
 
 The page
@@ -153,6 +156,7 @@ SHAPE_TYPES = {
     "belt": (("points", "points:2", True),),
     "spring": (("a", "point", True), ("b", "point", True)),
     "trace": (("x", "value", True), ("y", "value", True)),
+    "pole": (("x", "value", True), ("y", "value", True), ("text", "text", False)),
     "label": (("x", "value", True), ("y", "value", True), ("text", "text", True)),
     "damper": (("a", "point", True), ("b", "point", True), ("offset", "value", False)),
     "box": (("a", "point", True), ("b", "point", True), ("width", "value", False)),
@@ -436,8 +440,9 @@ def _clean_shape(shape):
         if shape.get(field) is None:
             continue
         out[field] = shape[field] if fkind == "text" else _normalize(shape[field])
-    if "color" in shape:
-        out["color"] = shape["color"]
+    for key in ("color", "layer"):
+        if key in shape:
+            out[key] = str(shape[key])
     return out
 
 

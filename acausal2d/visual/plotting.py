@@ -213,3 +213,54 @@ def sweep_figure(study, x, outputs):
                                                ", %d failed" % failed if failed else ""))
     fig.tight_layout()
     return fig
+
+
+def transfer_figure(result, q, p, orders=(0, 1, 2)):
+    """Figure of the transfer functions of ``q`` over the drive coordinate
+    ``p`` (seed eq. 2.2-2.4): one axes per order, q, q' = dq/dp and
+    q'' = d2q/dp2 from the run's derivatives (see
+    :meth:`acausal2d.result.Result.transfer`), over p (degrees for angles)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    curves = result.transfer(q, p, orders)
+    xv, xlabel = x_values(result, p)
+    uq, up = unit_of(result, q) or "-", unit_of(result, p) or "-"
+    labels = {0: "%s [%s]" % (q, uq), 1: "d%s/d%s [%s/%s]" % (q, p, uq, up),
+              2: "d2%s/d%s2 [%s/%s2]" % (q, p, uq, up)}
+    fig = Figure(figsize=(8, 2.2 * len(curves) + 0.9))
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(len(curves), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, order in zip(axes, sorted(curves)):
+        ax.plot(xv, curves[order], lw=1.3)
+        ax.set_ylabel(labels[order], fontsize=8)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(xlabel)
+    fig.suptitle(figure_title(result, "transfer functions of order %s"
+                              % ", ".join(map(str, sorted(curves)))))
+    fig.tight_layout()
+    return fig
+
+
+def write_transfer_figures(result, out_dir, specs, orders, fmt="png"):
+    """One transfer-function figure per signal of the figure ``specs`` over
+    each spec's x (the drive coordinate); returns the paths."""
+    from ..io.files import safe_filename
+    paths = []
+    for spec in specs:
+        for q in (n for g in spec["groups"] for n in g):
+            fig = transfer_figure(result, q, spec["x"], orders)
+            stem = safe_filename("transfer_%s_over_%s" % (q, spec["x"]))
+            paths.append(save_figure(fig, os.path.join(out_dir, stem + "." + fmt)))
+    return paths
+
+
+def parse_orders(text):
+    """``"0,1,2"`` -> (0, 1, 2) (the ``--transfer`` option)."""
+    try:
+        orders = tuple(sorted({int(t) for t in text.split(",") if t.strip()}))
+    except ValueError:
+        orders = ()
+    if not orders or any(o not in (0, 1, 2) for o in orders):
+        raise Acausal2dError("--transfer takes orders 0, 1, 2 separated by commas (e.g. "
+                             "0,1,2); got %r" % text)
+    return orders

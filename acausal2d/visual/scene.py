@@ -6,6 +6,8 @@ A component declares how it is drawn by returning shape dicts from
 names relative to the component (``"frame_a.x"``); this module qualifies
 them with the component's path and collects the signals from the result.
 """
+import numpy as np
+
 from .animation import write_html
 
 from ..errors import Acausal2dError
@@ -142,24 +144,107 @@ def model_shapes(model):
     return shapes
 
 
-def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+def pole_shapes(result, links, joints=None):
+    """(shapes, signals) drawing the instantaneous poles of ``links``
+    ({label: link}, see :func:`acausal2d.analysis.poles.poles`) on the layer
+    "poles" of the page, each labelled P<i><j>; a pole at infinity is hidden
+    in that frame."""
+    shapes, signals = [], {}
+    for (i, j), pts in result.poles(links, joints).items():
+        name = "pole P%s%s" % (i, j)
+        signals[name + ".x"] = [float(v) for v in pts[:, 0]]
+        signals[name + ".y"] = [float(v) for v in pts[:, 1]]
+        shapes.append({"type": "pole", "x": name + ".x", "y": name + ".y",
+                       "text": "P%s%s" % (i, j), "layer": "poles"})
+    return shapes, signals
+
+
+def declared_pole_views(result, model, signals):
+    """(shapes, signals) of the pole views the components of ``model``
+    declare as ``pole_views``: dicts {"link": link of the component,
+    "ref": reference link (default the ground), "text": label, "trace":
+    draw its path (the fixed centrode)} (the mec2 importer makes them from
+    mec2's ``pole`` views).  A path is drawn only where it stays within
+    three times the extent of the other ``signals`` (.x/.y) around their
+    centre: a pole runs off to infinity where the link translates."""
+    from ..analysis.poles import cartesian, pole_homogeneous
+    shapes, out = [], {}
+    box = _clip_box(signals)
+    for comp in model.components() if model is not None else ():
+        prefix = comp.path + "." if comp.path else ""
+        for view in getattr(comp, "pole_views", ()):
+            ref = view.get("ref", "ground")
+            pts = cartesian(pole_homogeneous(result, prefix + view["link"],
+                                             ref if ref == "ground" else prefix + ref))
+            name = "pole %s%s" % (prefix, view["text"])
+            out[name + ".x"], out[name + ".y"] = ([float(v) for v in pts[:, k]] for k in (0, 1))
+            shapes.append({"type": "pole", "x": name + ".x", "y": name + ".y",
+                           "text": view["text"], "layer": "poles"})
+            if view.get("trace"):
+                far = ((pts < box[0]) | (pts > box[1])).any(axis=1) | np.isnan(pts).any(axis=1)
+                path = np.where(far[:, None], np.nan, pts)
+                out[name + " path.x"], out[name + " path.y"] = path[:, 0].tolist(), \
+                    path[:, 1].tolist()
+                shapes.append({"type": "trace", "x": name + " path.x", "y": name + " path.y",
+                               "layer": "poles", "color": "#16a085"})
+    return shapes, out
+
+
+def _clip_box(signals):
+    """(low, high) corners: the extent of the .x/.y signals, widened to
+    three times its size about its centre."""
+    lo, hi = np.full(2, np.inf), np.full(2, -np.inf)
+    for k, tail in enumerate((".x", ".y")):
+        for name, values in signals.items():
+            if name.endswith(tail) and values:
+                v = np.asarray(values, dtype=float)
+                lo[k], hi[k] = min(lo[k], np.nanmin(v)), max(hi[k], np.nanmax(v))
+    if not np.isfinite(lo).all():
+        return np.full(2, -np.inf), np.full(2, np.inf)
+    mid, half = (lo + hi) / 2, max(float((hi - lo).max()), 1e-9) * 1.5
+    return mid - half, mid + half
+
+
+def parse_links(text):
+    """``"1=ground,2=A0A,4=B.x:B.y:GB.w"`` -> {label: link} (the
+    ``--poles`` option: frames, node constraints, x:y:phi signal triples)."""
+    links = {}
+    for item in (t.strip() for t in text.split(",") if t.strip()):
+        label, sep, spec = item.partition("=")
+        if not sep or not label.strip() or not spec.strip():
+            raise Acausal2dError("--poles takes label=link pairs, e.g. 1=ground,2=A0A,"
+                                 "3=crank.frame_b,4=B.x:B.y:GB.w; got %r" % item)
+        parts = [p.strip() for p in spec.split(":")]
+        links[label.strip()] = tuple(parts) if len(parts) == 3 else spec.strip()
+    return links
+
+
+def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+                poles=None):
     """Scene dict for :func:`acausal2d.visual.animation.render_html` from a result
     of a compiled model; ``traces`` are points whose path is drawn (coupler
     curves): frame names or ``"x_name:y_name"`` pairs, see
     :func:`trace_signals`; ``arrows`` frames or flanges whose forces and
     torques are drawn (:func:`arrow_signals`); ``signal`` a signal plotted
     under the mechanism with a cursor synced to the time slider;
-    ``autoplay`` starts the page playing."""
+    ``autoplay`` starts the page playing; ``poles`` ({label: link}) draws
+    the instantaneous poles of those links on a layer (:func:`pole_shapes`)."""
     model = result.model.model if result.model is not None else None
     shapes = model_shapes(model) if model is not None else []
     for x, y in trace_signals(traces, result.names):
         shapes.append({"type": "trace", "x": x, "y": y})
     shapes += arrow_signals(arrows, result.names)
     signals = {}
+    if poles:
+        more, signals = pole_shapes(result, poles)
+        shapes += more
     for shape in shapes:
         for name in _signal_names(shape):
             if name not in signals:
                 signals[name] = [float(v) for v in result[name]]
+    more, pole_signals = declared_pole_views(result, model, signals)
+    shapes += more
+    signals.update(pole_signals)
     scene = {"title": title or (type(model).__name__ if model is not None else "acausal2d"),
              "time": [float(t) for t in result.time], "signals": signals, "shapes": shapes,
              "unit": "m", "autoplay": bool(autoplay)}
@@ -183,7 +268,8 @@ def _drag_system(model):
     return None
 
 
-def animate(result, path, traces=(), title=None, arrows=(), signal=None, autoplay=False):
+def animate(result, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+            poles=None):
     """Write the self-contained HTML animation of ``result`` to ``path``
     (options as for :func:`build_scene`)."""
-    return write_html(build_scene(result, traces, title, arrows, signal, autoplay), path)
+    return write_html(build_scene(result, traces, title, arrows, signal, autoplay, poles), path)

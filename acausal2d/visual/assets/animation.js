@@ -224,6 +224,27 @@
     ctx.fillStyle = sh.color || COLORS.label; ctx.fillText(String(sh.text), p[0] + 7, p[1] - 5);
   }
 
+  function drawPole(sh, k) {
+    var p = pt([sh.x, sh.y], k); if (!p) return;
+    var c = sh.color || "#16a085";
+    circle(p[0], p[1], 5); ctx.strokeStyle = c; ctx.lineWidth = 2; ctx.stroke();
+    circle(p[0], p[1], 1.5); ctx.fillStyle = c; ctx.fill();
+    if (sh.text === undefined) return;
+    ctx.font = "12px system-ui, sans-serif"; ctx.textBaseline = "top"; ctx.textAlign = "left";
+    ctx.fillText(String(sh.text), p[0] + 6, p[1] + 4);
+  }
+  // ---- layers: one check box per "layer" name of the shapes ----
+  var hiddenLayers = {};
+  shapes.forEach(function (sh) {
+    if (!sh || !sh.layer || hiddenLayers.hasOwnProperty(sh.layer)) return;
+    hiddenLayers[sh.layer] = false;
+    var lab = document.createElement("label"), box = document.createElement("input");
+    box.type = "checkbox"; box.checked = true; box.id = "layer-" + sh.layer;
+    box.addEventListener("change", function () { hiddenLayers[sh.layer] = !box.checked; draw(); });
+    lab.appendChild(box); lab.appendChild(document.createTextNode(" " + sh.layer));
+    document.getElementById("bar").appendChild(lab);
+  });
+
   // ---- force elements and sensors (damper, box, sensor, arrow, torque) ----
   var ELEMENT_COLORS = {
     damper: "#6c5ce7", box: "#4682b4", boxEdge: "#2b4f6e", sensor: "#d35400",
@@ -329,7 +350,7 @@
     belt: [[30, drawBelt]], spring: [[40, drawSpring]], link: [[50, drawLink]],
     body: [[70, drawBody]], joint: [[80, drawJoint]], label: [[100, drawLabel]],
     damper: [[42, drawDamper]], box: [[52, drawBox]], sensor: [[85, drawSensor]],
-    arrow: [[95, drawArrow]], torque: [[95, drawTorque]]
+    arrow: [[95, drawArrow]], torque: [[95, drawTorque]], pole: [[98, drawPole]]
   };
   var ops = [];
   shapes.forEach(function (sh, i) {
@@ -433,6 +454,7 @@
     ctx.fillStyle = COLORS.background; ctx.fillRect(0, 0, view.w, view.h);
     drawGrid();
     for (var i = 0; i < ops.length; i++) {
+      if (ops[i].sh.layer && hiddenLayers[ops[i].sh.layer]) continue;
       ctx.save();
       try { ops[i].fn(ops[i].sh, frame); } finally { ctx.restore(); }
     }
