@@ -1,0 +1,163 @@
+"""Natural frequencies, damping ratios and mode shapes of a linearisation.
+
+The eigenvalues lambda of A (:mod:`acausal2d.analysis.linearize`) give, as
+MATLAB's ``damp`` does, the natural frequency |lambda| / 2 pi, the damped
+frequency |Im lambda| / 2 pi and the damping ratio -Re lambda / |lambda|;
+a complex pair is one mode, a real nonzero eigenvalue an aperiodic one.
+Zero eigenvalues are rigid-body modes (a free motion that meets no
+stiffness): their number is the dimension of the null space of A, and
+they are counted, not listed.
+
+A mode shape is the eigenvector v mapped to every position of the
+mechanism, dP/dx v, with dP/dx the sensitivities of the positions (x, y,
+phi of every frame, node coordinates, 1D flange positions s and angles
+phi) to the states; it is scaled so that its largest entry is 1 + 0j.
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import Acausal2dError
+from .linearize import linearize, linearize_point, signal_rows
+
+POSITION_SUFFIXES = (".x", ".y", ".phi", ".s")
+"""Names of the positions a mode shape is given in."""
+ZERO_TOL = 1e-9
+"""Eigenvalues below this fraction of the largest |eigenvalue| (at least 1 1/s) are zero."""
+
+
+@dataclass
+class Modes:
+    """``modes``: dicts (frequency_hz, damped_frequency_hz, damping_ratio,
+    eigenvalue [re, im], shape {position: [re, im]}) sorted by frequency;
+    ``rigid_body_modes``: the number of zero eigenvalues' independent
+    eigenvectors; ``linearization`` the
+    :class:`~acausal2d.analysis.linearize.Linearization`; ``vectors`` the
+    eigenvectors in the states (one column per mode)."""
+    modes: list
+    rigid_body_modes: int
+    linearization: object = field(repr=False)
+    vectors: np.ndarray = field(repr=False)
+
+    def to_dict(self):
+        """The JSON form of ``modes.json``."""
+        lin = self.linearization
+        return {"modes": self.modes, "rigid_body_modes": self.rigid_body_modes,
+                "states": list(lin.states), "point": {"time": float(lin.point.t),
+                                                      "kind": lin.point.kind}}
+
+    def table(self):
+        """Fixed-width text table: mode, natural and damped frequency,
+        damping ratio and the position that moves most."""
+        rows = [("mode", "f [Hz]", "f_d [Hz]", "damping", "largest motion")]
+        for k, m in enumerate(self.modes):
+            rows.append((str(k + 1), "%.6g" % m["frequency_hz"],
+                         "%.6g" % m["damped_frequency_hz"], "%.4g" % m["damping_ratio"],
+                         m["dominant"]))
+        widths = [max(len(r[i]) for r in rows) for i in range(5)]
+        lines = ["  ".join(c.rjust(w) if i < 4 else c for i, (c, w) in enumerate(zip(r, widths)))
+                 for r in rows]
+        lines.insert(1, "  ".join("-" * w for w in widths))
+        text = "\n".join(line.rstrip() for line in lines)
+        if self.rigid_body_modes:
+            text += "\n%d rigid-body mode%s (zero eigenvalue)" % (
+                self.rigid_body_modes, "" if self.rigid_body_modes == 1 else "s")
+        return text
+
+    def frequencies(self):
+        """Natural frequencies in Hz, ascending."""
+        return np.array([m["frequency_hz"] for m in self.modes])
+
+
+def position_names(compiled):
+    """Level-0 positions of the model: x, y, phi of frames and nodes, s and
+    phi of 1D flanges (nodes and eliminated aliases)."""
+    s = compiled.system
+    names = [n for j, n in enumerate(s.node_names) if s.structure.var_level[j] == 0]
+    names += list(s.alias_names)
+    return [n for n in names if n.endswith(POSITION_SUFFIXES)]
+
+
+def _rigid_count(A):
+    if not A.size:
+        return 0
+    sv = np.linalg.svd(A, compute_uv=False)
+    return int(np.sum(sv <= ZERO_TOL * max(1.0, sv[0])))
+
+
+def _mode(lam, shape, names):
+    """The dict of one mode with its shape normalised to a largest entry of 1."""
+    k = int(np.argmax(np.abs(shape))) if shape.size else 0
+    if shape.size and abs(shape[k]) > 0:
+        shape = shape / shape[k]
+    wn = abs(lam)
+    return {"frequency_hz": wn / (2 * np.pi), "damped_frequency_hz": abs(lam.imag) / (2 * np.pi),
+            "damping_ratio": -lam.real / wn, "eigenvalue": [float(lam.real), float(lam.imag)],
+            "dominant": names[k] if shape.size else "",
+            "shape": {n: [float(v.real), float(v.imag)] for n, v in zip(names, shape)
+                      if abs(v) > 1e-12}}
+
+
+def modes_of(lin):
+    """:class:`Modes` of a :class:`~acausal2d.analysis.linearize.Linearization`."""
+    A = lin.A
+    lam, V = np.linalg.eig(A)
+    top = max(1.0, float(np.max(np.abs(lam)))) if lam.size else 1.0
+    keep = [i for i in range(len(lam)) if abs(lam[i]) > ZERO_TOL * top and
+            (lam[i].imag > ZERO_TOL * top or abs(lam[i].imag) <= ZERO_TOL * top)]
+    keep.sort(key=lambda i: (abs(lam[i]), -lam[i].real))
+    names = position_names(lin.compiled)
+    P = signal_rows(lin.compiled.system, names, lin.dzdx)
+    modes = []
+    for i in keep:
+        lam_i = complex(lam[i].real, lam[i].imag if abs(lam[i].imag) > ZERO_TOL * top else 0.0)
+        modes.append(_mode(lam_i, P @ V[:, i], names))
+    return Modes(modes, _rigid_count(A), lin, V[:, keep])
+
+
+def modes(compiled, at=None, equilibrium=False, params=None, start=None):
+    """Natural frequencies and mode shapes of ``compiled`` at time ``at`` of
+    a run or at its static equilibrium (see
+    :func:`~acausal2d.analysis.linearize.linearize`)."""
+    return modes_of(linearize(compiled, at, equilibrium, params, start=start))
+
+
+class ModeFrequencies:
+    """A ``metrics`` function for :func:`acausal2d.sweep` (a Campbell
+    diagram): the natural frequencies ``f1 .. fN`` (Hz) of every point's
+    run, at its static equilibrium (``equilibrium=True``) or at the run's
+    end (the sweep's ``at`` time is not seen here: set ``stop_time``)."""
+
+    def __init__(self, count=3, equilibrium=False):
+        self.count, self.equilibrium = int(count), bool(equilibrium)
+
+    def __call__(self, result):
+        from .equilibrium import find_equilibrium
+        from .linearize import OperatingPoint, relation_values
+        cm = result.model
+        s = cm.system
+        p = np.array([result.parameters[n] for n, *_ in s.parameters], dtype=float)
+        if self.equilibrium:
+            params = {n: v for n, v in zip((n for n, *_ in s.parameters), p)}
+            point = find_equilibrium(cm, params=params).point
+        else:
+            t = float(result.time[-1])
+            z = np.array([result[n][-1] for n in s.node_names], dtype=float)
+            point = OperatingPoint(t, z, relation_values(cm, t, z, p), p)
+        f = modes_of(linearize_point(cm, point)).frequencies()
+        return {"f%d" % (k + 1): (float(f[k]) if k < len(f) else float("nan"))
+                for k in range(self.count)}
+
+
+def campbell(model, vary, count=3, equilibrium=False, stop_time=None, **options):
+    """Natural frequencies over swept parameters through
+    :func:`acausal2d.sweep` (``vary`` as there; ``count`` frequencies
+    ``f1..``); returns the :class:`~acausal2d.analysis.sweep.SweepResult`,
+    whose ``plot()`` is the Campbell-like diagram."""
+    from .sweep import sweep
+    if not vary:
+        raise Acausal2dError("campbell needs a parameter to vary, e.g. {'spring.c': '1e3:1e4:10'}")
+    if equilibrium and stop_time is None:
+        stop_time, options["intervals"] = 1e-3, 1
+    return sweep(model, vary=vary, metrics=ModeFrequencies(count, equilibrium),
+                 stop_time=stop_time, **options)

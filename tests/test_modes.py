@@ -1,0 +1,214 @@
+"""Linearisation and modes against closed forms (issue 21): a two-mass
+spring chain, a physical pendulum, a damped oscillator, the double
+pendulum's M and K, and A against a finite-difference linearisation of the
+run's right-hand side (states perturbed, the nonlinear equations solved by
+the runtime's Newton for every perturbation)."""
+import math
+
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d import Component, start
+from acausal2d.analysis.equilibrium import NoEquilibrium, find_equilibrium
+from acausal2d.analysis.linearize import linearize, point_at
+from acausal2d.analysis.modes import modes, modes_of
+from acausal2d.errors import Acausal2dError
+from acausal2d.library import rotational, translational
+from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute
+
+G = 9.81
+
+
+class TwoMassChain(Component):
+    """wall -k1- m1 -k2- m2 (translational, no gravity)."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.wall = translational.Fixed()
+        self.k1 = translational.Spring(c=1000.0)
+        self.m1 = translational.Mass(m=2.0, s=start(0.01, fixed=True), v=start(0.0, fixed=True))
+        self.k2 = translational.Spring(c=400.0)
+        self.m2 = translational.Mass(m=0.5, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
+        self.connect(self.wall.flange, self.k1.flange_a)
+        self.connect(self.k1.flange_b, self.m1.flange_a)
+        self.connect(self.m1.flange_b, self.k2.flange_a)
+        self.connect(self.k2.flange_b, self.m2.flange_a)
+
+
+class DampedOscillator(Component):
+    """wall -(spring c, damper d)- mass m."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.wall = translational.Fixed()
+        self.spring = translational.Spring(c=250.0)
+        self.damper = translational.Damper(d=3.0)
+        self.mass = translational.Mass(m=1.5, s=start(0.02, fixed=True), v=start(0.0, fixed=True))
+        self.connect(self.wall.flange, self.spring.flange_a)
+        self.connect(self.wall.flange, self.damper.flange_a)
+        self.connect(self.spring.flange_b, self.mass.flange_a)
+        self.connect(self.damper.flange_b, self.mass.flange_a)
+
+
+class PhysicalPendulum(Component):
+    """A body (m, I about its centre) at distance d from the pivot, started
+    horizontal; ``torque``: a constant torque on the joint."""
+
+    def __init__(self, torque=None, **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed()
+        self.revolute = Revolute(phi=start(0.0, fixed=True), w=start(0.0, fixed=True),
+                                 use_flange=torque is not None)
+        self.rod = FixedTranslation(r=(0.7, 0.0))
+        self.body = Body(m=2.0, I=0.05)
+        self.connect(self.fixed.frame, self.revolute.frame_a)
+        self.connect(self.revolute.frame_b, self.rod.frame_a)
+        self.connect(self.rod.frame_b, self.body.frame_a)
+        if torque is not None:
+            self.drive = rotational.ConstantTorque(tau=torque)
+            self.connect(self.drive.flange, self.revolute.flange_a)
+
+
+def _compiled(cls, **kw):
+    return acausal2d.compile_model(cls(**kw))
+
+
+def test_two_mass_chain_eigenfrequencies():
+    k1, k2, m1, m2 = 1000.0, 400.0, 2.0, 0.5
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    M = np.diag([m1, m2])
+    # closed form of the 2x2 eigenproblem det(K - w^2 M) = 0
+    a, b, c = m1 * m2, -(m1 * k2 + m2 * (k1 + k2)), k1 * k2
+    w2 = sorted([(-b - math.sqrt(b * b - 4 * a * c)) / (2 * a),
+                 (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)])
+    result = modes(_compiled(TwoMassChain))
+    f = result.frequencies()
+    assert len(f) == 2 and result.rigid_body_modes == 0
+    assert np.allclose(f, np.sqrt(w2) / (2 * math.pi), rtol=1e-9, atol=0)
+    assert all(abs(m["damping_ratio"]) < 1e-12 for m in result.modes)
+    # shapes: the amplitude ratio s2/s1 of each mode is (k1 + k2 - w^2 m1) / k2
+    for m, w2k in zip(result.modes, w2):
+        s1, s2 = (complex(*m["shape"][n]) for n in ("m1.s", "m2.s"))
+        assert s2 / s1 == pytest.approx((k1 + k2 - w2k * m1) / k2, rel=1e-9)
+    assert np.allclose(np.linalg.eigvals(np.linalg.solve(M, K)).real.min(), w2[0])
+
+
+def test_damped_oscillator_damping_ratio():
+    c, d, m = 250.0, 3.0, 1.5
+    result = modes(_compiled(DampedOscillator))
+    (mode,) = result.modes
+    wn = math.sqrt(c / m)
+    zeta = d / (2 * math.sqrt(c * m))
+    assert mode["damping_ratio"] == pytest.approx(zeta, rel=1e-9)
+    assert mode["frequency_hz"] == pytest.approx(wn / (2 * math.pi), rel=1e-9)
+    assert mode["damped_frequency_hz"] == pytest.approx(
+        wn * math.sqrt(1 - zeta ** 2) / (2 * math.pi), rel=1e-9)
+
+
+def test_physical_pendulum_at_lower_equilibrium():
+    m, I, d = 2.0, 0.05, 0.7
+    cm = _compiled(PhysicalPendulum)
+    eq = find_equilibrium(cm)          # from the horizontal start, where Newton is singular
+    phi = eq.point.z[cm.system.node_names.index("revolute.phi")]
+    assert eq.stable and eq.residual < 1e-8
+    assert phi == pytest.approx(-math.pi / 2, abs=1e-10)
+    result = modes(cm, equilibrium=True)
+    (mode,) = result.modes
+    assert mode["frequency_hz"] * 2 * math.pi == pytest.approx(
+        math.sqrt(m * G * d / (I + m * d * d)), rel=1e-9)
+    assert abs(mode["damping_ratio"]) < 1e-12
+    # the body swings sideways at the bottom: x moves by d per rad of phi, y not
+    shape = mode["shape"]
+    assert complex(*shape["body.frame_a.x"]) / complex(*shape["revolute.phi"]) == \
+        pytest.approx(d, rel=1e-9)
+    assert abs(complex(*shape.get("body.frame_a.y", [0, 0]))) < 1e-9
+
+
+def test_equilibrium_from_a_start_away_and_none_with_too_much_torque():
+    m, d = 2.0, 0.7
+    cm = _compiled(PhysicalPendulum, torque=0.5 * m * G * d)
+    eq = find_equilibrium(cm, start={"revolute.phi": 1.0})
+    phi = eq.point.z[cm.system.node_names.index("revolute.phi")]
+    # m g d cos(phi) = tau: the stable solution below the pivot, phi = -60 deg
+    assert eq.stable
+    assert phi == pytest.approx(-math.acos(0.5), abs=1e-10)
+    with pytest.raises(NoEquilibrium, match="no equilibrium"):
+        find_equilibrium(_compiled(PhysicalPendulum, torque=1.5 * m * G * d))
+
+
+def _double_pendulum():
+    from acausal2d.io.loader import load_model
+    return acausal2d.compile_model(load_model("models/double_pendulum.py"))
+
+
+def test_double_pendulum_modes_match_its_m_and_k():
+    m1, I1, l1, m2, I2, l2 = 1.0, 0.1, 1.0, 0.2, 0.01, 0.4
+    # absolute link angles from the vertical, linearised about the hanging position
+    M = np.array([[I1 + (m1 + m2) * l1 ** 2, m2 * l1 * l2], [m2 * l1 * l2, I2 + m2 * l2 ** 2]])
+    K = G * np.diag([(m1 + m2) * l1, m2 * l2])
+    w2, X = np.linalg.eig(np.linalg.solve(M, K))
+    order = np.argsort(w2)
+    w2, X = w2[order], X[:, order]
+    result = modes(_double_pendulum(), equilibrium=True)
+    assert np.allclose(result.frequencies() * 2 * math.pi, np.sqrt(w2), rtol=1e-9, atol=0)
+    for mode, x in zip(result.modes, X.T):
+        t1, t2 = (complex(*mode["shape"][n]) for n in ("body.phi", "body1.phi"))
+        assert (t2 / t1).imag == pytest.approx(0, abs=1e-9)
+        assert (t2 / t1).real == pytest.approx(x[1] / x[0], rel=1e-8)
+
+
+def _fd_A(cm, point, lin, h=1e-6):
+    """Central differences of der(x) over the states, each perturbed point
+    made consistent by Newton on all equations with the states held."""
+    from acausal2d.runtime.evaluator import Evaluator
+    from acausal2d.runtime.newton import solve_consistent
+    s = cm.system
+    ev = Evaluator(s, point.p)
+    idx = [s.node_names.index(n) for n in lin.states]
+    der = [s.structure.var_to_diff[j] for j in idx]
+    cols = []
+    for k, j in enumerate(idx):
+        f = []
+        for sign in (1.0, -1.0):
+            x = point.z[idx].copy()
+            x[k] += sign * h
+            z = solve_consistent(ev, point.t, point.z, point.d, idx, x, tol=1e-14)
+            f.append(z[der])
+        cols.append((f[0] - f[1]) / (2 * h))
+    return np.array(cols).T
+
+
+@pytest.mark.parametrize("path,t", [("models/double_pendulum.py", 0.7),
+                                    ("models/piston_engine.py", 1.3),
+                                    ("models/crane_crab.py", 0.4)])
+def test_exact_A_agrees_with_finite_differences(path, t):
+    from acausal2d.io.loader import load_model
+    cm = acausal2d.compile_model(load_model(path))
+    point = point_at(cm, t)
+    lin = linearize(cm, at=t)
+    assert lin.point.t == t and lin.A.shape == (len(lin.states),) * 2
+    fd = _fd_A(cm, point, lin)
+    scale = np.max(np.abs(lin.A))
+    assert np.max(np.abs(lin.A - fd)) <= 1e-6 * scale, (lin.A, fd)
+
+
+def test_crane_crab_hook_hangs_straight_down():
+    from acausal2d.io.loader import load_model
+    cm = acausal2d.compile_model(load_model("models/crane_crab.py"))    # started at 150 deg
+    eq = find_equilibrium(cm)
+    names = cm.system.node_names
+    phi = eq.point.z[names.index("revolute.phi")]
+    assert eq.stable and eq.residual < 1e-8
+    # rod r = (0, -1) in the joint frame: hanging straight down at phi = 0 (mod 2 pi)
+    assert math.remainder(phi, 2 * math.pi) == pytest.approx(0.0, abs=1e-10)
+    result = modes_of(linearize(cm, equilibrium=True))
+    # the trolley may slide freely (damper only): one rigid-body mode
+    assert result.rigid_body_modes == 1
+
+
+def test_kinematically_driven_model_is_named():
+    from acausal2d.io.loader import load_model
+    cm = acausal2d.compile_model(load_model("models/four_link_mechanisms.py", "DDDD"))
+    with pytest.raises(Acausal2dError, match="kinematically driven"):
+        modes(cm, at=0.1)
