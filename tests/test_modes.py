@@ -11,8 +11,8 @@ import pytest
 import acausal2d
 from acausal2d import Component, start
 from acausal2d.analysis.equilibrium import NoEquilibrium, find_equilibrium
-from acausal2d.analysis.linearize import linearize, point_at
-from acausal2d.analysis.modes import modes, modes_of
+from acausal2d.analysis.linearize import point_at
+from acausal2d.analysis.modes import linearize, modes, modes_of
 from acausal2d.errors import Acausal2dError
 from acausal2d.library import rotational, translational
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute
@@ -69,6 +69,32 @@ class PhysicalPendulum(Component):
             self.drive = rotational.ConstantTorque(tau=torque)
             self.connect(self.drive.flange, self.revolute.flange_a)
 
+
+class Parallelogram(Component):
+    """A parallelogram four-bar (ground 1, crank and rocker 0.5, coupler 1)
+    started at its change point: all pivots on one line."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.ground_a = Fixed()
+        self.ground_d = Fixed(r=(1.0, 0.0))
+        self.ja = Revolute(phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.crank = FixedTranslation(r=(0.5, 0.0))
+        self.body = Body(m=1.0, I=0.01)
+        self.jb = Revolute(phi=start(0.0))
+        self.coupler = FixedTranslation(r=(1.0, 0.0))
+        self.jc = Revolute(phi=start(0.0))
+        self.rocker = FixedTranslation(r=(-0.5, 0.0))
+        self.jd = Revolute()
+        self.connect(self.ground_a.frame, self.ja.frame_a)
+        self.connect(self.ja.frame_b, self.crank.frame_a)
+        self.connect(self.crank.frame_b, self.body.frame_a)
+        self.connect(self.crank.frame_b, self.jb.frame_a)
+        self.connect(self.jb.frame_b, self.coupler.frame_a)
+        self.connect(self.coupler.frame_b, self.jc.frame_a)
+        self.connect(self.jc.frame_b, self.rocker.frame_a)
+        self.connect(self.rocker.frame_b, self.jd.frame_a)
+        self.connect(self.ground_d.frame, self.jd.frame_b)
 
 def _compiled(cls, **kw):
     return acausal2d.compile_model(cls(**kw))
@@ -212,3 +238,40 @@ def test_kinematically_driven_model_is_named():
     cm = acausal2d.compile_model(load_model("models/four_link_mechanisms.py", "DDDD"))
     with pytest.raises(Acausal2dError, match="kinematically driven"):
         modes(cm, at=0.1)
+
+
+def test_campbell_frequencies_over_a_swept_stiffness():
+    from acausal2d.analysis.campbell import campbell
+    cm = _compiled(TwoMassChain)
+    table = campbell(cm, {"k2.c": [200.0, 400.0, 800.0]}, count=2, stop_time=0.01,
+                     progress=False)
+    k1, m1, m2 = 1000.0, 2.0, 0.5
+    for row in table.rows:
+        k2 = row["k2.c"]
+        w2 = np.linalg.eigvals(np.linalg.solve(np.diag([m1, m2]),
+                                               np.array([[k1 + k2, -k2], [-k2, k2]])))
+        expected = np.sort(np.sqrt(w2.real)) / (2 * math.pi)
+        assert [row["f1"], row["f2"]] == pytest.approx(list(expected), rel=1e-9)
+    assert table.plot() is not None
+
+
+def test_compiled_model_methods_and_singular_point():
+    cm = _compiled(DampedOscillator)
+    lin = cm.linearize(inputs=["spring.s_rel0"], outputs=["mass.s", "spring.f"])
+    c, d, m = 250.0, 3.0, 1.5
+    assert lin.states == ["mass.s", "mass.v"] or set(lin.states) == {"mass.s", "mass.v"}
+    i, j = lin.states.index("mass.s"), lin.states.index("mass.v")
+    A = np.zeros((2, 2))
+    A[i, j], A[j, i], A[j, j] = 1.0, -c / m, -d / m
+    assert np.allclose(lin.A, A, rtol=1e-12, atol=1e-12)
+    # u = unstretched length s_rel0: der(v) = -c (s - s_rel0)/m, f = c (s - s_rel0)
+    assert lin.B[j, 0] == pytest.approx(c / m, rel=1e-12) and lin.B[i, 0] == 0
+    assert abs(lin.D[1, 0]) == pytest.approx(c, rel=1e-12)
+    assert cm.equilibrium().residual < 1e-8
+    assert cm.modes().modes[0]["damping_ratio"] == pytest.approx(d / (2 * math.sqrt(c * m)))
+
+
+def test_singular_point_is_refused_with_the_reason():
+    with pytest.raises(acausal2d.SimulationError, match="cannot linearise Parallelogram") as info:
+        modes(_compiled(Parallelogram))
+    assert "'jb.phi'" in str(info.value) and "singular position" in str(info.value)

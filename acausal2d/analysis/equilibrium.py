@@ -22,7 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import Acausal2dError, SimulationError
-from .linearize import OperatingPoint, index1_states, linearize_point, relation_values
+from .linearize import (OperatingPoint, index1_states, linearize_point, point_at,
+                        relation_values)
 
 SHIFTS = (0.3, 1.5)
 """Shifts of a position state for further starts, in units of its nominal value (at least 1)."""
@@ -196,3 +197,16 @@ def _not_found(compiled, ev, best, deriv):
             "derivatives zero (smallest scaled residual %.3g, needed %.0e); unbalanced:\n%s\n"
             "Change the loads or the parameters, or give start values nearer an equilibrium."
             % (name, point.t, res, RESIDUAL_TOL, "\n".join("  - " + w for w in worst)))
+
+
+def operating_point(compiled, at=None, equilibrium=False, params=None, start=None, rtol=None):
+    """The point to linearise at: time ``at`` of a run (the start point by
+    default, see :func:`~acausal2d.analysis.linearize.point_at`) or, with
+    ``equilibrium=True``, the static equilibrium at time ``at`` (default
+    0) found from the start values (``start``: {node name: value})."""
+    if equilibrium:
+        return find_equilibrium(compiled, t=at or 0.0, params=params, start=start).point
+    if start:
+        raise Acausal2dError("start values are for the equilibrium search; a point of a run "
+                             "starts from the model's own start values")
+    return point_at(compiled, at, params, rtol)

@@ -87,7 +87,11 @@ def point_at(compiled, t=None, params=None, rtol=None):
     event."""
     p = compiled.parameter_values(params)
     if t is None or t == 0.0:
-        ip = compiled.initial_point(0.0, params)
+        try:
+            ip = compiled.initial_point(0.0, params)
+        except SimulationError as exc:        # the selection made there failed
+            raise SimulationError("cannot linearise %s at its start point: %s" % (
+                type(compiled.model).__name__, exc), time=0.0) from None
         return OperatingPoint(0.0, np.array(ip.z, dtype=float), np.array(ip.d, dtype=float), p)
     if not (isinstance(t, (int, float)) and np.isfinite(t) and t > 0):
         raise Acausal2dError("the time of the operating point (--at) must be a positive "
@@ -121,8 +125,14 @@ def index1_states(compiled, ev, point):
     selection the runtime makes at ``point`` - the one place that reads
     the runtime's selection and formulation."""
     from ..runtime.selection import select
-    with translated("selecting the states at t=%g" % point.t):
-        selection = select(compiled.system, ev, point.t, point.z, point.d)
+    try:
+        with translated("selecting the states at t=%g" % point.t):
+            selection = select(compiled.system, ev, point.t, point.z, point.d)
+    except SimulationError as exc:
+        raise SimulationError("cannot linearise %s at t=%g: the state selection is singular "
+                              "there; linearise at another point.\n%s"
+                              % (type(compiled.model).__name__, point.t, exc),
+                              time=point.t) from None
     form = compiled.system.formulation(selection)
     return selection, np.array(form.states, dtype=int), np.array(form.state_deriv, dtype=int)
 
@@ -237,20 +247,6 @@ def signal_rows(system, names, dz, dp=None):
             raise Acausal2dError("unknown output %r: outputs are signals of the model, e.g. %s"
                                  % (name, ", ".join(system.node_names[:8])))
     return np.array(rows, dtype=float).reshape(len(names), dz.shape[1])
-
-
-def linearize(compiled, at=None, equilibrium=False, params=None, inputs=(), outputs=None,
-              start=None):
-    """A :class:`Linearization` of ``compiled`` at time ``at`` of a run (the
-    start point by default) or, with ``equilibrium=True``, at the static
-    equilibrium :func:`~acausal2d.analysis.equilibrium.find_equilibrium`
-    finds from the start values (``start``: {name: value} overrides)."""
-    if equilibrium:
-        from .equilibrium import find_equilibrium
-        point = find_equilibrium(compiled, t=at or 0.0, params=params, start=start).point
-    else:
-        point = point_at(compiled, at, params)
-    return linearize_point(compiled, point, inputs, outputs)
 
 
 def linearize_point(compiled, point, inputs=(), outputs=None):

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import Acausal2dError
-from .linearize import linearize, linearize_point, signal_rows
+from .equilibrium import operating_point
+from .linearize import linearize_point, signal_rows
 
 POSITION_SUFFIXES = (".x", ".y", ".phi", ".s")
 """Names of the positions a mode shape is given in."""
@@ -52,7 +52,8 @@ class Modes:
         rows = [("mode", "f [Hz]", "f_d [Hz]", "damping", "largest motion")]
         for k, m in enumerate(self.modes):
             rows.append((str(k + 1), "%.6g" % m["frequency_hz"],
-                         "%.6g" % m["damped_frequency_hz"], "%.4g" % m["damping_ratio"],
+                         "%.6g" % m["damped_frequency_hz"],
+                         "%.4g" % (m["damping_ratio"] if abs(m["damping_ratio"]) > 1e-9 else 0),
                          m["dominant"]))
         widths = [max(len(r[i]) for r in rows) for i in range(5)]
         lines = ["  ".join(c.rjust(w) if i < 4 else c for i, (c, w) in enumerate(zip(r, widths)))
@@ -115,49 +116,19 @@ def modes_of(lin):
     return Modes(modes, _rigid_count(A), lin, V[:, keep])
 
 
-def modes(compiled, at=None, equilibrium=False, params=None, start=None):
+def linearize(compiled, at=None, equilibrium=False, params=None, inputs=(), outputs=None,
+              start=None, rtol=None):
+    """The :class:`~acausal2d.analysis.linearize.Linearization` of
+    ``compiled`` at time ``at`` of a run (the start point by default) or,
+    with ``equilibrium=True``, at its static equilibrium
+    (:func:`~acausal2d.analysis.equilibrium.operating_point`); ``inputs``:
+    parameters taken as inputs, ``outputs``: signals (default the model's
+    outputs)."""
+    point = operating_point(compiled, at, equilibrium, params, start, rtol)
+    return linearize_point(compiled, point, inputs, outputs)
+
+
+def modes(compiled, at=None, equilibrium=False, params=None, start=None, rtol=None):
     """Natural frequencies and mode shapes of ``compiled`` at time ``at`` of
-    a run or at its static equilibrium (see
-    :func:`~acausal2d.analysis.linearize.linearize`)."""
-    return modes_of(linearize(compiled, at, equilibrium, params, start=start))
-
-
-class ModeFrequencies:
-    """A ``metrics`` function for :func:`acausal2d.sweep` (a Campbell
-    diagram): the natural frequencies ``f1 .. fN`` (Hz) of every point's
-    run, at its static equilibrium (``equilibrium=True``) or at the run's
-    end (the sweep's ``at`` time is not seen here: set ``stop_time``)."""
-
-    def __init__(self, count=3, equilibrium=False):
-        self.count, self.equilibrium = int(count), bool(equilibrium)
-
-    def __call__(self, result):
-        from .equilibrium import find_equilibrium
-        from .linearize import OperatingPoint, relation_values
-        cm = result.model
-        s = cm.system
-        p = np.array([result.parameters[n] for n, *_ in s.parameters], dtype=float)
-        if self.equilibrium:
-            params = {n: v for n, v in zip((n for n, *_ in s.parameters), p)}
-            point = find_equilibrium(cm, params=params).point
-        else:
-            t = float(result.time[-1])
-            z = np.array([result[n][-1] for n in s.node_names], dtype=float)
-            point = OperatingPoint(t, z, relation_values(cm, t, z, p), p)
-        f = modes_of(linearize_point(cm, point)).frequencies()
-        return {"f%d" % (k + 1): (float(f[k]) if k < len(f) else float("nan"))
-                for k in range(self.count)}
-
-
-def campbell(model, vary, count=3, equilibrium=False, stop_time=None, **options):
-    """Natural frequencies over swept parameters through
-    :func:`acausal2d.sweep` (``vary`` as there; ``count`` frequencies
-    ``f1..``); returns the :class:`~acausal2d.analysis.sweep.SweepResult`,
-    whose ``plot()`` is the Campbell-like diagram."""
-    from .sweep import sweep
-    if not vary:
-        raise Acausal2dError("campbell needs a parameter to vary, e.g. {'spring.c': '1e3:1e4:10'}")
-    if equilibrium and stop_time is None:
-        stop_time, options["intervals"] = 1e-3, 1
-    return sweep(model, vary=vary, metrics=ModeFrequencies(count, equilibrium),
-                 stop_time=stop_time, **options)
+    a run or at its static equilibrium (see :func:`linearize`)."""
+    return modes_of(linearize(compiled, at, equilibrium, params, start=start, rtol=rtol))
