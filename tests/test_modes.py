@@ -275,3 +275,59 @@ def test_singular_point_is_refused_with_the_reason():
     with pytest.raises(acausal2d.SimulationError, match="cannot linearise Parallelogram") as info:
         modes(_compiled(Parallelogram))
     assert "'jb.phi'" in str(info.value) and "singular position" in str(info.value)
+
+
+def _values(cm, point, names):
+    """Values of nodes and eliminated aliases at an operating point."""
+    s = cm.system
+    aliases = s.alias_values(point.z[None, :], point.p)[0]
+    table = dict(zip(s.node_names, point.z))
+    table.update(zip(s.alias_names + s.alias_der_names, aliases))
+    return {n: float(table[n]) for n in names}
+
+
+def test_cable_crane_hook_returns_to_its_rest_position_and_swings_at_sqrt_g_over_l():
+    from acausal2d.io.loader import load_model
+    cm = acausal2d.compile_model(load_model("models/cable_crane.py"))
+    names = cm.system.node_names
+    rest = cm.initial_point().z        # the model starts in its static equilibrium (static_pose)
+    hx, hy = names.index("hook.x"), names.index("hook.y")
+    # swung aside by 1.5 m on its 6 m rope (rope length kept: the start keeps the
+    # rope's material, an invariant the search holds)
+    lift = 6.0 - math.sqrt(6.0 ** 2 - 1.5 ** 2)
+    eq = find_equilibrium(cm, t=0.5, start={"hook.x": rest[hx] + 1.5, "hook.y": rest[hy] + lift})
+    assert eq.stable and eq.residual < 1e-8
+    res = _values(cm, eq.point, ["hook.x", "C.ctrK2.x", "load6.F"])
+    # the hook hangs vertically below the point K2 where the rope leaves pulley C,
+    # and the last load-rope section carries the hook's weight, 1000 kg * g
+    assert res["hook.x"] == pytest.approx(res["C.ctrK2.x"], abs=1e-9)
+    assert res["load6.F"] == pytest.approx(1000.0 * G, rel=1e-9)
+    # back at the rest pose: the search keeps the rope material of the start, and
+    # the start's swing about K2 ignores the rope wrapping on pulley C, which
+    # leaves its material a fraction of a millimetre off the rest pose's
+    assert eq.point.z[hx] == pytest.approx(rest[hx], abs=1e-3)
+    assert eq.point.z[hy] == pytest.approx(rest[hy], abs=1e-3)
+    l_u0 = [j for j, n in enumerate(names) if n.endswith(".l_u0")]
+    assert len(l_u0) == 12
+    moved = [names[j] for j in l_u0 if abs(eq.point.z[j] - rest[j]) > 1e-3]
+    assert moved == []
+    slowest = modes(cm, at=0.5, equilibrium=True).modes[0]
+    # the hook hangs 6 m below pulley C: a pendulum of about that length (the
+    # carriage and the elastic ropes move a little with it)
+    assert slowest["dominant"] == "hook.x"
+    assert slowest["frequency_hz"] == pytest.approx(math.sqrt(G / 6.0) / (2 * math.pi), rel=0.02)
+
+
+@pytest.mark.parametrize("degrees", [30.0, 60.0, 135.0, 210.0, 300.0])
+def test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia(degrees):
+    import sys
+    sys.path.insert(0, "models")
+    import four_bar_modes as fb
+    cm = acausal2d.compile_model(fb.FourBarOnShaft())
+    phi = math.radians(degrees)
+    result = modes(cm, equilibrium=True, params={"hold.phi0": phi})
+    crank = result.linearization.point.z[cm.system.node_names.index("ja.phi")]
+    assert math.remainder(crank - phi, 2 * math.pi) == pytest.approx(0.0, abs=1e-10)
+    (mode,) = result.modes
+    assert mode["frequency_hz"] == pytest.approx(
+        math.sqrt(fb.C_SHAFT / fb.reduced_inertia(phi)) / (2 * math.pi), rel=1e-9)

@@ -27,8 +27,9 @@ import numpy as np
 from ..errors import Acausal2dError, SimulationError, translated
 
 SINGULAR_GZ = 1e-12
-"""Smallest singular value of the nominal-scaled G_z, relative to the
-largest, below which the state selection is singular at the point."""
+"""Smallest singular value of G_z (columns scaled by the nominal values,
+rows to unit length), relative to the largest, below which the state
+selection is singular at the point."""
 
 
 @dataclass
@@ -179,6 +180,7 @@ def _check_regular(compiled, ev, selection, point, Gz):
         raise SimulationError("the derivatives of the equations are not finite at t=%g "
                               "(inf or NaN): no linearisation there" % point.t, time=point.t)
     scaled = Gz * compiled.system.nominal[None, :]
+    scaled /= np.maximum(np.linalg.norm(scaled, axis=1), 1e-300)[:, None]
     sv = np.linalg.svd(scaled, compute_uv=False)
     if sv[-1] <= SINGULAR_GZ * sv[0]:
         raise SimulationError("the state selection is singular at t=%g: %s; linearise at "

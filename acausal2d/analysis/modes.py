@@ -11,7 +11,8 @@ they are counted, not listed.
 A mode shape is the eigenvector v mapped to every position of the
 mechanism, dP/dx v, with dP/dx the sensitivities of the positions (x, y,
 phi of every frame, node coordinates, 1D flange positions s and angles
-phi) to the states; it is scaled so that its largest entry is 1 + 0j.
+phi) to the states; it is scaled to 1 + 0j at the point that moves most
+(``dominant``; the largest rotation where no point moves).
 """
 from dataclasses import dataclass, field
 
@@ -72,11 +73,12 @@ class Modes:
 
 def position_names(compiled):
     """Level-0 positions of the model: x, y, phi of frames and nodes, s and
-    phi of 1D flanges (nodes and eliminated aliases)."""
+    phi of 1D flanges (nodes and eliminated aliases named so, in m or rad)."""
     s = compiled.system
     names = [n for j, n in enumerate(s.node_names) if s.structure.var_level[j] == 0]
     names += list(s.alias_names)
-    return [n for n in names if n.endswith(POSITION_SUFFIXES)]
+    units = compiled.units
+    return [n for n in names if n.endswith(POSITION_SUFFIXES) and units.get(n) in ("m", "rad")]
 
 
 def _rigid_count(A):
@@ -86,9 +88,20 @@ def _rigid_count(A):
     return int(np.sum(sv <= ZERO_TOL * max(1.0, sv[0])))
 
 
+def _dominant(shape, names):
+    """Index of the largest point motion (x, y in m), or of the largest
+    rotation where no point moves."""
+    a = np.abs(shape)
+    xy = np.array([n.endswith((".x", ".y", ".s")) for n in names], dtype=bool)
+    if np.any(xy) and np.max(a[xy]) > 1e-9 * np.max(a):
+        return int(np.flatnonzero(xy)[np.argmax(a[xy])])
+    return int(np.argmax(a))
+
+
 def _mode(lam, shape, names):
-    """The dict of one mode with its shape normalised to a largest entry of 1."""
-    k = int(np.argmax(np.abs(shape))) if shape.size else 0
+    """The dict of one mode with its shape normalised to 1 + 0j at its
+    dominant entry (:func:`_dominant`)."""
+    k = _dominant(shape, names) if shape.size else 0
     if shape.size and abs(shape[k]) > 0:
         shape = shape / shape[k]
     wn = abs(lam)

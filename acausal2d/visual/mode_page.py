@@ -16,7 +16,7 @@ import json
 
 import numpy as np
 
-from ..analysis.modes import POSITION_SUFFIXES
+from ..analysis.linearize import signal_rows
 from ..io.files import write_text
 from ..result import Result
 from .animation import render_html
@@ -53,10 +53,9 @@ def mode_result(modes, k, frames=FRAMES):
     cm = lin.compiled
     s = cm.system
     dz = lin.dzdx @ modes.vectors[:, k]
-    pos = [j for j, n in enumerate(s.node_names) if s.structure.var_level[j] == 0 and
-           n.endswith(POSITION_SUFFIXES)] or list(range(len(dz)))
-    big = pos[int(np.argmax(np.abs(dz[pos])))]
-    dz = dz / dz[big] if abs(dz[big]) > 0 else dz        # largest position motion real
+    dominant = modes.modes[k]["dominant"]
+    ref = (signal_rows(s, [dominant], lin.dzdx)[0] @ modes.vectors[:, k]) if dominant else 0.0
+    dz = dz / ref if abs(ref) > 0 else dz        # the dominant motion real, as in the shape
     a = _amplitude(cm, lin.point.z, dz)
     theta = np.linspace(0.0, 2 * np.pi, frames + 1)
     Z = lin.point.z[None, :] + a * np.real(np.exp(1j * theta)[:, None] * dz[None, :])
