@@ -50,5 +50,7 @@ def campbell(model, vary, count=3, equilibrium=False, stop_time=None, **options)
                              "{'spring.c': '1e3:1e4:10'}")
     if equilibrium and stop_time is None:
         stop_time, options["intervals"] = 1e-3, 1
-    return sweep(model, vary=vary, metrics=ModeFrequencies(count, equilibrium),
-                 stop_time=stop_time, **options)
+    table = sweep(model, vary=vary, metrics=ModeFrequencies(count, equilibrium),
+                  stop_time=stop_time, **options)
+    table.units.update({"f%d" % (k + 1): "Hz" for k in range(count)})
+    return table

@@ -30,7 +30,9 @@ ZERO_TOL = 1e-9
 @dataclass
 class Modes:
     """``modes``: dicts (frequency_hz, damped_frequency_hz, damping_ratio,
-    eigenvalue [re, im], shape {position: [re, im]}) sorted by frequency;
+    eigenvalue [re, im], shape {position: [re, im]}, dominant: the
+    position that moves most, states: the states taking part most, by
+    their nominal values) sorted by frequency;
     ``rigid_body_modes``: the number of zero eigenvalues' independent
     eigenvectors; ``linearization`` the
     :class:`~acausal2d.analysis.linearize.Linearization`; ``vectors`` the
@@ -49,16 +51,16 @@ class Modes:
 
     def table(self):
         """Fixed-width text table: mode, natural and damped frequency,
-        damping ratio and the position that moves most."""
-        rows = [("mode", "f [Hz]", "f_d [Hz]", "damping", "largest motion")]
+        damping ratio, the position that moves most and the main states."""
+        rows = [("mode", "f [Hz]", "f_d [Hz]", "damping", "largest motion", "main states")]
         for k, m in enumerate(self.modes):
             rows.append((str(k + 1), "%.6g" % m["frequency_hz"],
                          "%.6g" % m["damped_frequency_hz"],
                          "%.4g" % (m["damping_ratio"] if abs(m["damping_ratio"]) > 1e-9 else 0),
-                         m["dominant"]))
-        widths = [max(len(r[i]) for r in rows) for i in range(5)]
-        lines = ["  ".join(c.rjust(w) if i < 4 else c for i, (c, w) in enumerate(zip(r, widths)))
-                 for r in rows]
+                         m["dominant"], ", ".join(m["states"])))
+        widths = [max(len(r[i]) for r in rows) for i in range(6)]
+        lines = ["  ".join(c.rjust(w) if i < 4 else c.ljust(w)
+                           for i, (c, w) in enumerate(zip(r, widths))) for r in rows]
         lines.insert(1, "  ".join("-" * w for w in widths))
         text = "\n".join(line.rstrip() for line in lines)
         if self.rigid_body_modes:
@@ -112,6 +114,15 @@ def _mode(lam, shape, names):
                       if abs(v) > 1e-12}}
 
 
+def main_states(v, states, share=0.3, most=3):
+    """Names of the states taking part most in the eigenvector ``v``
+    (scaled by the states' nominal values): at least ``share`` of the
+    largest, at most ``most``."""
+    a = np.abs(v)
+    order = [i for i in np.argsort(-a) if a[i] >= share * a.max()][:most]
+    return [states[i] for i in order]
+
+
 def modes_of(lin):
     """:class:`Modes` of a :class:`~acausal2d.analysis.linearize.Linearization`."""
     A = lin.A
@@ -123,9 +134,13 @@ def modes_of(lin):
     names = position_names(lin.compiled)
     P = signal_rows(lin.compiled.system, names, lin.dzdx)
     modes = []
+    nominal = lin.compiled.system.nominal[[lin.compiled.system.node_names.index(n)
+                                           for n in lin.states]]
     for i in keep:
         lam_i = complex(lam[i].real, lam[i].imag if abs(lam[i].imag) > ZERO_TOL * top else 0.0)
-        modes.append(_mode(lam_i, P @ V[:, i], names))
+        mode = _mode(lam_i, P @ V[:, i], names)
+        mode["states"] = main_states(V[:, i] / nominal, lin.states)
+        modes.append(mode)
     return Modes(modes, _rigid_count(A), lin, V[:, keep])
 
 
