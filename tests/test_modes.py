@@ -320,8 +320,10 @@ def test_cable_crane_hook_returns_to_its_rest_position_and_swings_at_sqrt_g_over
 
 @pytest.mark.parametrize("degrees", [30.0, 60.0, 135.0, 210.0, 300.0])
 def test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia(degrees):
+    import os
     import sys
-    sys.path.insert(0, "models")
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
+        __file__))), "models"))
     import four_bar_modes as fb
     cm = acausal2d.compile_model(fb.FourBarOnShaft())
     phi = math.radians(degrees)

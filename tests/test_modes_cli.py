@@ -79,3 +79,29 @@ def test_no_equilibrium_exits_3_and_bad_options_2(tmp_path, capsys):
     code = cli.main(["modes", os.path.join(MODELS, "four_link_mechanisms.py"), "--model",
                      "DDDD", "--at", "0.1", "--out", str(tmp_path / "o")])
     assert code == 2 and "kinematically driven" in capsys.readouterr().err
+
+
+def test_modes_campbell_of_the_four_bar_follows_its_reduced_inertia(tmp_path, capsys):
+    import sys
+    sys.path.insert(0, MODELS)
+    import four_bar_modes as fb
+    out = str(tmp_path / "campbell")
+    code = cli.main(["modes", os.path.join(MODELS, "four_bar_modes.py"), "--equilibrium",
+                     "--vary", "hold.phi0=0.5:4.5:3", "--count", "1", "--out", out])
+    assert code == 0, capsys.readouterr()
+    rows = list(csv.DictReader(open(os.path.join(out, "campbell.csv"))))
+    assert [r["status"] for r in rows] == ["ok"] * 3
+    for r in rows:
+        phi = float(r["hold.phi0"])
+        expected = math.sqrt(fb.C_SHAFT / fb.reduced_inertia(phi)) / (2 * math.pi)
+        assert abs(float(r["f1"]) / expected - 1) < 1e-9
+    assert os.path.getsize(os.path.join(out, "campbell.png")) > 5000
+
+
+def test_at_with_equilibrium_and_a_bad_time(tmp_path, capsys):
+    code = cli.main(["modes", os.path.join(MODELS, "pendulum.py"), "--equilibrium", "--at",
+                     "0.5", "--out", str(tmp_path / "o")])
+    assert code == 0 and "static equilibrium" in capsys.readouterr().out
+    code = cli.main(["linearize", os.path.join(MODELS, "pendulum.py"), "--at", "-1", "--out",
+                     str(tmp_path / "o")])
+    assert code == 2 and "--at must be a time >= 0" in capsys.readouterr().err

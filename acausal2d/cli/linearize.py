@@ -29,8 +29,8 @@ def _parse_start(items):
 
 def point_options(args):
     """Keyword arguments of the operating point: at, equilibrium, params, start."""
-    if args.equilibrium and args.start is None and args.at is not None and args.at < 0:
-        raise Acausal2dError("--at must not be negative")
+    if args.at is not None and not args.at >= 0:
+        raise Acausal2dError("--at must be a time >= 0 s, got %g" % args.at)
     if args.start and not args.equilibrium:
         raise Acausal2dError("--start sets start values of the equilibrium search: add "
                              "--equilibrium")
@@ -88,10 +88,9 @@ def add_point_arguments(p):
     """The model and operating-point options shared by linearize and modes."""
     p.add_argument("model_file")
     p.add_argument("--model", help="model class in the file (if it defines several)")
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--at", type=float, metavar="T", help="linearise at time T of the run "
-                   "(default: the start point)")
-    g.add_argument("--equilibrium", action="store_true", help="linearise at the static "
+    p.add_argument("--at", type=float, metavar="T", help="linearise at time T of the run "
+                   "(default: the start point); with --equilibrium: the inputs at time T")
+    p.add_argument("--equilibrium", action="store_true", help="linearise at the static "
                    "equilibrium (all state derivatives zero), searched from the start values")
     p.add_argument("--start", action="append", metavar="NAME=VALUE",
                    help="start value of the equilibrium search; repeatable")

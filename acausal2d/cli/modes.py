@@ -16,7 +16,7 @@ def _campbell(args, options, out):
     from ..analysis.sweep import parse_vary
     if options["at"] is not None:
         raise Acausal2dError("--vary linearises each point at the end of its run "
-                             "(--stop-time) or at --equilibrium, not at --at")
+                             "(--stop-time) or at --equilibrium (of the start time), not at --at")
     table = campbell(args.model_file, parse_vary(args.vary), count=args.count,
                      equilibrium=options["equilibrium"], stop_time=args.stop_time,
                      params=options["params"], scheduler="serial", model_name=args.model)
