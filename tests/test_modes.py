@@ -333,3 +333,34 @@ def test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia(degrees
     (mode,) = result.modes
     assert mode["frequency_hz"] == pytest.approx(
         math.sqrt(fb.C_SHAFT / fb.reduced_inertia(phi)) / (2 * math.pi), rel=1e-9)
+
+
+class ForcedMass(Component):
+    """A top-level input u pushes a mass on a spring: x' = v, v' = (u - c s) / m."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.u = acausal2d.RealInput()
+        self.wall = translational.Fixed()
+        self.spring = translational.Spring(c=100.0)
+        self.mass = translational.Mass(m=4.0, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
+        self.force = translational.Force()
+        self.connect(self.wall.flange, self.spring.flange_a)
+        self.connect(self.spring.flange_b, self.mass.flange_a)
+        self.connect(self.force.flange, self.mass.flange_b)
+        self.connect(self.u, self.force.f_in)
+
+
+def test_top_level_input_becomes_a_parameter_input():
+    from acausal2d.analysis.linearize import bind_inputs
+    model = ForcedMass()
+    assert bind_inputs(model, {"u": 20.0}) == {"u": "u_value.k"}
+    cm = acausal2d.compile_model(model)
+    lin = cm.linearize(equilibrium=True, inputs=["u"], outputs=["mass.s", "spring.f"])
+    i, j = lin.states.index("mass.s"), lin.states.index("mass.v")
+    assert lin.B[j, 0] == pytest.approx(1 / 4.0, rel=1e-12) and lin.B[i, 0] == 0
+    assert lin.A[j, i] == pytest.approx(-100.0 / 4.0, rel=1e-12)
+    # static: s = u / c = 0.2 m; C, D: s and the spring force follow u only through s
+    assert lin.point.z[cm.system.node_names.index("mass.s")] == pytest.approx(0.2, rel=1e-12)
+    assert lin.C[0, i] == 1 and lin.D[0, 0] == 0 and abs(lin.C[1, i]) == pytest.approx(100.0)
+    assert lin.inputs == ["u"]
