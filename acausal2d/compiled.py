@@ -172,7 +172,8 @@ class CompiledModel:
         :class:`~acausal2d.analysis.equilibrium.Equilibrium` (see
         :func:`acausal2d.analysis.equilibrium.find_equilibrium`)."""
         from .analysis.equilibrium import find_equilibrium
-        return find_equilibrium(self, t, params, start)
+        with translated("searching the equilibrium of %s" % type(self.model).__name__):
+            return find_equilibrium(self, t, params, start)
 
     def describe_equation(self, i):
         """Text of index-reduced equation i with its origin and order."""

@@ -105,3 +105,39 @@ def test_at_with_equilibrium_and_a_bad_time(tmp_path, capsys):
     code = cli.main(["linearize", os.path.join(MODELS, "pendulum.py"), "--at", "-1", "--out",
                      str(tmp_path / "o")])
     assert code == 2 and "--at must be a time >= 0" in capsys.readouterr().err
+
+
+FORCED_MASS = '''
+from acausal2d import Component, RealInput, start
+from acausal2d.library import translational
+
+
+class ForcedMass(Component):
+    outputs = ["mass.s"]
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.u = RealInput()
+        self.wall = translational.Fixed()
+        self.spring = translational.Spring(c=100.0)
+        self.mass = translational.Mass(m=4.0, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
+        self.force = translational.Force()
+        self.connect(self.wall.flange, self.spring.flange_a)
+        self.connect(self.spring.flange_b, self.mass.flange_a)
+        self.connect(self.force.flange, self.mass.flange_b)
+        self.connect(self.u, self.force.f_in)
+'''
+
+
+def test_linearize_with_a_top_level_input(tmp_path, capsys):
+    path = tmp_path / "forced_mass.py"
+    path.write_text(FORCED_MASS)
+    out = str(tmp_path / "lin")
+    code = cli.main(["linearize", str(path), "--equilibrium", "--set", "u_value.k=20",
+                     "--inputs", "u", "--out", out])
+    assert code == 0, capsys.readouterr()
+    data = json.load(open(os.path.join(out, "linear.json")))
+    j = data["states"].index("mass.v")
+    assert data["inputs"] == ["u"] and abs(data["B"][j][0] - 0.25) < 1e-12
+    assert abs(data["point"]["values"]["mass.s"] - 0.2) < 1e-12      # u / c
+    assert data["outputs"] == ["mass.s"] and data["D"] == [[0.0]]

@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import translated
 from .equilibrium import operating_point
 from .linearize import linearize_point, signal_rows
 
@@ -152,11 +153,14 @@ def linearize(compiled, at=None, equilibrium=False, params=None, inputs=(), outp
     (:func:`~acausal2d.analysis.equilibrium.operating_point`); ``inputs``:
     parameters taken as inputs, ``outputs``: signals (default the model's
     outputs)."""
-    point = operating_point(compiled, at, equilibrium, params, start, rtol)
-    return linearize_point(compiled, point, inputs, outputs)
+    with translated("linearising %s" % type(compiled.model).__name__):
+        point = operating_point(compiled, at, equilibrium, params, start, rtol)
+        return linearize_point(compiled, point, inputs, outputs)
 
 
 def modes(compiled, at=None, equilibrium=False, params=None, start=None, rtol=None):
     """Natural frequencies and mode shapes of ``compiled`` at time ``at`` of
     a run or at its static equilibrium (see :func:`linearize`)."""
-    return modes_of(linearize(compiled, at, equilibrium, params, start=start, rtol=rtol))
+    lin = linearize(compiled, at, equilibrium, params, start=start, rtol=rtol)
+    with translated("computing the modes of %s" % type(compiled.model).__name__):
+        return modes_of(lin)

@@ -107,8 +107,8 @@ def add_parsers(sub):
     p = sub.add_parser("linearize", help="state-space matrices A, B, C, D at a point of the "
                        "run or at the static equilibrium")
     add_point_arguments(p)
-    p.add_argument("--inputs", metavar="A,B", help="parameters taken as inputs (e.g. the 'k' "
-                   "of a Constant source feeding a RealInput)")
+    p.add_argument("--inputs", metavar="A,B", help="inputs: the model's top-level RealInputs "
+                   "(held at 0) or any parameters (e.g. a Constant source's k)")
     p.add_argument("--outputs", metavar="C,D", help="output signals (default: the model's "
                    "outputs)")
     p.set_defaults(func=cmd_linearize)
