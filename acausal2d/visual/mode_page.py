@@ -8,8 +8,10 @@ animation page's own scene code (:func:`acausal2d.visual.scene.build_scene`,
 animation page per mode and a mode selector (``id="mode"``) that shows the
 chosen one in the frame ``id="mode-view"``; ``window.acausal2dModes``
 exposes ``count``, ``current`` and ``select(k)`` for scripting and tests.
-The amplitude ``a`` moves the largest point by :data:`LENGTH_FRACTION` of
-the mechanism's size, or turns the largest angle by :data:`MAX_ANGLE`.
+The amplitude ``a`` moves the point that moves most by
+:data:`LENGTH_FRACTION` of the mechanism's size (a small pulley may turn
+far then), or, where no point moves, turns the largest angle by
+:data:`MAX_ANGLE`.
 """
 import html
 import json
@@ -26,7 +28,7 @@ FRAMES = 48
 """Frames of one animated oscillation cycle."""
 CYCLE_TIME = 2.0
 """Seconds one cycle takes on the page at 1x speed."""
-LENGTH_FRACTION = 0.12
+LENGTH_FRACTION = 0.06
 MAX_ANGLE = 0.35
 
 
@@ -38,12 +40,11 @@ def _amplitude(compiled, z0, dz):
           s.structure.var_level[j] == 0]
     ang = [j for j, n in enumerate(names) if n.endswith(".phi") and s.structure.var_level[j] == 0]
     size = float(np.ptp(z0[xy])) if xy else 0.0
-    limits = []
     if xy and np.max(np.abs(dz[xy])) > 1e-12:
-        limits.append(LENGTH_FRACTION * (size if size > 0 else 1.0) / np.max(np.abs(dz[xy])))
+        return LENGTH_FRACTION * (size if size > 0 else 1.0) / np.max(np.abs(dz[xy]))
     if ang and np.max(np.abs(dz[ang])) > 1e-12:
-        limits.append(MAX_ANGLE / np.max(np.abs(dz[ang])))
-    return min(limits) if limits else 1.0
+        return MAX_ANGLE / np.max(np.abs(dz[ang]))
+    return 1.0
 
 
 def mode_result(modes, k, frames=FRAMES):
