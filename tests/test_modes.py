@@ -258,11 +258,11 @@ def test_campbell_frequencies_over_a_swept_stiffness():
     assert table.plot() is not None
 
 
-def test_compiled_model_methods_and_singular_point():
+def test_compiled_model_methods_give_a_b_c_d_of_the_damped_oscillator():
     cm = _compiled(DampedOscillator)
     lin = cm.linearize(inputs=["spring.s_rel0"], outputs=["mass.s", "spring.f"])
     c, d, m = 250.0, 3.0, 1.5
-    assert lin.states == ["mass.s", "mass.v"] or set(lin.states) == {"mass.s", "mass.v"}
+    assert set(lin.states) == {"mass.s", "mass.v"}
     i, j = lin.states.index("mass.s"), lin.states.index("mass.v")
     A = np.zeros((2, 2))
     A[i, j], A[j, i], A[j, j] = 1.0, -c / m, -d / m
