@@ -151,6 +151,30 @@ class CompiledModel:
                 point.selection = select(self.system, ev, t0, point.z, point.d)
         return point
 
+    def linearize(self, at=None, equilibrium=False, params=None, inputs=(), outputs=None,
+                  start=None):
+        """State-space matrices A, B, C, D at time ``at`` of a run or at the
+        static equilibrium: a
+        :class:`~acausal2d.analysis.linearize.Linearization` (see
+        :func:`acausal2d.analysis.modes.linearize`)."""
+        from .analysis.modes import linearize
+        return linearize(self, at, equilibrium, params, inputs, outputs, start)
+
+    def modes(self, at=None, equilibrium=False, params=None, start=None):
+        """Natural frequencies, damping ratios and mode shapes: a
+        :class:`~acausal2d.analysis.modes.Modes` (see
+        :func:`acausal2d.analysis.modes.modes`)."""
+        from .analysis.modes import modes
+        return modes(self, at, equilibrium, params, start)
+
+    def equilibrium(self, t=0.0, params=None, start=None):
+        """The static equilibrium (all state derivatives zero) at time t: an
+        :class:`~acausal2d.analysis.equilibrium.Equilibrium` (see
+        :func:`acausal2d.analysis.equilibrium.find_equilibrium`)."""
+        from .analysis.equilibrium import find_equilibrium
+        with translated("searching the equilibrium of %s" % type(self.model).__name__):
+            return find_equilibrium(self, t, params, start)
+
     def describe_equation(self, i):
         """Text of index-reduced equation i with its origin and order."""
         return self.system.describe_equation(i)
