@@ -22,9 +22,9 @@ boundary) and reports three scale-free numbers:
 
 * ``stationarity``: ||residual||_inf / gradient scale, the gradient scale
   being the largest of ||grad f||_inf, the largest single term |multiplier|
-  ||row||_inf, and ``|f| / x_scale`` when the objective value is given (a
+  ||row||_inf, ``|f| / x_scale`` when the objective value is given (a
   function of size |f| that varies over lengths x_scale has gradients of
-  that size);
+  that size) and ``gradient_scale`` when given;
 * ``feasibility``: the largest violation as a distance in x (violation /
   ||row||_2) over ``x_scale``;
 * ``complementarity``: the largest |multiplier * constraint value| over
@@ -155,8 +155,8 @@ def _point(gradient, x, x_scale):
     return grad, x, (xs if xs > 0 else 1.0)
 
 
-def _gradient_scale(grad, mults, rows, objective, xs):
-    terms = [np.max(np.abs(grad))]
+def _gradient_scale(grad, mults, rows, objective, xs, floor):
+    terms = [np.max(np.abs(grad)), floor or 0.0]
     terms += [abs(m) * np.max(np.abs(row)) for m, row in zip(mults, rows)]
     if objective is not None:
         terms.append(abs(float(objective)) / xs)
@@ -176,7 +176,7 @@ def _sorted(act, ng, kinds, bidx, mu, lam, n):
 
 def kkt_check(gradient, x=None, *, objective=None, eq_values=None, eq_jacobian=None,
               ineq_values=None, ineq_jacobian=None, lower=None, upper=None, hessian=None,
-              x_scale=None, tol=1e-8, active_tol=None):
+              x_scale=None, tol=1e-8, active_tol=None, gradient_scale=None):
     """KKT check of the point ``x`` (module docstring).
 
     ``gradient`` of f at x (length n); ``eq_values``/``eq_jacobian`` c(x)
@@ -186,7 +186,10 @@ def kkt_check(gradient, x=None, *, objective=None, eq_values=None, eq_jacobian=N
     gradient scale; ``hessian`` of the Lagrangian for the second-order
     test; ``x_scale`` the length scale of x; ``tol`` the pass level of the
     scaled measures; ``active_tol`` (default ``sqrt(tol)``) the scaled
-    distance below which an inequality or bound counts as active.
+    distance below which an inequality or bound counts as active;
+    ``gradient_scale`` a further term of the gradient scale where the
+    others may vanish (a least-squares fit that matches exactly: ||J||
+    times the residual norm, floored at round-off).
     Returns a :class:`KKTResult`."""
     grad, x, xs = _point(gradient, x, x_scale)
     n = grad.size
@@ -202,7 +205,7 @@ def kkt_check(gradient, x=None, *, objective=None, eq_values=None, eq_jacobian=N
     mu = np.zeros(len(g_all))
     mu[act] = mu_a
     gscale = _gradient_scale(grad, np.concatenate([lam, mu]), np.vstack([Je, J_all]),
-                             objective, xs)
+                             objective, xs, gradient_scale)
     feas = np.concatenate([np.abs(_distance(ce, Je)), np.maximum(d_all, 0.0), [0.0]])
     comp = np.abs(mu * g_all)
     curv = None if hessian is None else _curvature(hessian, np.vstack([Je, J_all[act]]),
