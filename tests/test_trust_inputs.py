@@ -80,3 +80,116 @@ def test_seen_7_stop_time_that_cannot_advance_the_clock(stop, tmp_path, capfd):
 def test_seen_7_a_short_run_above_the_resolution_still_runs(compiled):
     res = acausal2d.simulate(compiled, stop_time=1e-6, intervals=10)
     assert len(res.time) == 11 and res.time[-1] == pytest.approx(1e-6, rel=1e-12)
+
+
+# ------------------------------------------------ Seen 6: contradicted fixed starts
+class _Constant(acausal2d.Component):
+    """x = 2 by its equation; y follows x."""
+    experiment = {"stop_time": 1.0, "intervals": 10}
+    x = acausal2d.Variable()
+    y = acausal2d.Variable()
+
+    def equations(self):
+        return [self.x == 2.0, acausal2d.der(self.y) == self.x - self.y]
+
+
+class _Twice(acausal2d.Component):
+    """x = 2 y with y a fixed state: x is determined by the equations."""
+    experiment = {"stop_time": 1.0, "intervals": 10}
+    x = acausal2d.Variable()
+    y = acausal2d.Variable()
+
+    def equations(self):
+        return [self.x == 2 * self.y, acausal2d.der(self.y) == -self.y]
+
+
+class _Shifted(acausal2d.Component):
+    """x = y + 1: one alias set with two fixed members."""
+    experiment = {"stop_time": 1.0, "intervals": 10}
+    x = acausal2d.Variable()
+    y = acausal2d.Variable()
+
+    def equations(self):
+        return [self.x == self.y + 1, acausal2d.der(self.y) == -self.y]
+
+
+@pytest.mark.parametrize("make, name, given, by_eq", [
+    (lambda: _Constant(x=acausal2d.start(1.0, fixed=True)), "x", "1", "2"),
+    (lambda: _Twice(x=acausal2d.start(1.0, fixed=True), y=acausal2d.start(1.0, fixed=True)),
+     "x", "1", "2"),
+    (lambda: _Shifted(x=acausal2d.start(3.0, fixed=True), y=acausal2d.start(1.0, fixed=True)),
+     "y", "1", "2"),
+])
+def test_seen_6_contradicted_fixed_start_names_variable_and_both_values(make, name, given,
+                                                                        by_eq):
+    with pytest.raises(acausal2d.InitializationError) as exc:
+        acausal2d.simulate(make())
+    msg = str(exc.value)
+    assert "%s has the fixed start value %s" % (name, given) in msg
+    assert "equations give %s = %s" % (name, by_eq) in msg
+
+
+@pytest.mark.parametrize("make", [
+    lambda: _Constant(x=acausal2d.start(2.0, fixed=True)),
+    lambda: _Twice(x=acausal2d.start(2.0, fixed=True), y=acausal2d.start(1.0, fixed=True)),
+    lambda: _Shifted(x=acausal2d.start(2.0, fixed=True), y=acausal2d.start(1.0, fixed=True)),
+])
+def test_seen_6_agreeing_fixed_start_is_accepted(make):
+    res = acausal2d.simulate(make())
+    assert res["x"][0] == pytest.approx(2.0, abs=1e-12)
+    if "y" in res.names and not isinstance(make(), _Constant):
+        assert res["y"][0] == pytest.approx(1.0, abs=1e-12)
+        assert res["y"][-1] == pytest.approx(np.exp(-1.0), rel=1e-4)   # der(y) = -y
+
+
+def test_seen_6_cli_exit_code(tmp_path, capfd):
+    path = tmp_path / "m.py"
+    path.write_text(
+        "from acausal2d import Component, Variable, der, start\n\n"
+        "class M(Component):\n    experiment = {'stop_time': 1.0, 'intervals': 10}\n"
+        "    x = Variable()\n    y = Variable()\n\n    def __init__(self, **kw):\n"
+        "        super().__init__(x=start(1.0, fixed=True), **kw)\n\n"
+        "    def equations(self):\n        return [self.x == 2.0, der(self.y) == self.x - self.y]\n",
+        encoding="utf-8")
+    assert main(["simulate", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = "".join(capfd.readouterr())
+    assert "fixed start value 1" in err and "x = 2" in err and "Traceback" not in err
+
+
+# ------------------------------------------------ Seen 8: stale outputs
+STAGES = {
+    "load": ("class Model(Component):\n    experiment = {'stop_time': 0.5, 'intervals': 10}\n"
+             "    def __init__(self, **kw):\n        super().__init__(**kw)\n"
+             "        self.b = Body(m=float('nan'))\n"),
+    "compile": ("class Model(Component):\n    experiment = {'stop_time': 0.5, 'intervals': 10}\n"
+                "    x = Variable()\n    y = Variable()\n"
+                "    def equations(self):\n        return [self.x == 1]\n"),
+    "init": ("class Model(Component):\n    experiment = {'stop_time': 0.5, 'intervals': 10}\n"
+             "    x = Variable()\n    y = Variable()\n    def __init__(self, **kw):\n"
+             "        super().__init__(x=start(1.0, fixed=True), **kw)\n"
+             "    def equations(self):\n        return [self.x == 2.0, der(self.y) == -self.y]\n"),
+    "run": ("class Model(Component):\n    experiment = {'stop_time': 2.0, 'intervals': 10}\n"
+            "    x = Variable(start=1.0)\n    def __init__(self, **kw):\n"
+            "        super().__init__(x=start(1.0, fixed=True), **kw)\n"
+            "    def equations(self):\n        return [der(self.x) == self.x ** 2]\n"),
+}
+
+
+@pytest.mark.parametrize("stage", sorted(STAGES))
+def test_seen_8_every_failure_removes_the_previous_outputs(stage, tmp_path, capfd):
+    """A good run writes result.csv, plots, the page and the manifest; a
+    failing run into the same folder (at load, compile, init or run time)
+    exits 2 and leaves none of them."""
+    out = tmp_path / "out"
+    assert main(["simulate", PENDULUM, "--out", str(out)]) == 0
+    before = set(os.listdir(out))
+    assert {"result.csv", "animation.html"} <= before
+    path = tmp_path / "bad.py"
+    path.write_text("from acausal2d import Component, Variable, der, start\n"
+                    "from acausal2d.library.planar import Body\n\n" + STAGES[stage],
+                    encoding="utf-8")
+    code = main(["simulate", str(path), "--out", str(out)])
+    err = "".join(capfd.readouterr())
+    assert code == 2 and "Traceback" not in err and "error" in err
+    left = set(os.listdir(out))
+    assert not left & before, left & before
