@@ -1,5 +1,5 @@
 """Type checks of the public API's arguments (``simulate``, ``sweep``,
-``load_model``, ``compile_model``; ``compare`` checks its own in
+``load_model``, ``compile_model``, ``check``; ``compare`` checks its own in
 :mod:`acausal2d.analysis.compare_inputs`): an argument of the wrong type is
 an :class:`~acausal2d.errors.Acausal2dError` that names the argument and
 says what it takes, never a raw Python or numpy error from deep inside."""
@@ -13,12 +13,13 @@ __all__ = ["check_model", "check_simulate_options", "check_load", "check_sweep"]
 
 
 def check_model(model, function):
-    """``model`` must be a Component instance (or, for ``simulate``, a
-    CompiledModel); a path or a class gets a hint how to make one."""
+    """``model`` must be a Component instance (or, for ``simulate`` and
+    ``check``, a CompiledModel); a path or a class gets a hint how to make
+    one."""
     from .compiled import CompiledModel
     from .language.dsl import Component
-    if isinstance(model, Component) or (function == "simulate"
-                                        and isinstance(model, CompiledModel)):
+    takes_compiled = function in ("simulate", "check")
+    if isinstance(model, Component) or (takes_compiled and isinstance(model, CompiledModel)):
         return
     if isinstance(model, (str, os.PathLike)):
         hint = "; for a model file use %s(acausal2d.load_model(%r))" % (function,
@@ -28,7 +29,7 @@ def check_model(model, function):
     else:
         hint = ""
     raise Acausal2dError("%s: model must be a Component instance%s, not %s%s"
-                         % (function, " or a CompiledModel" if function == "simulate" else "",
+                         % (function, " or a CompiledModel" if takes_compiled else "",
                             type(model).__name__, hint))
 
 

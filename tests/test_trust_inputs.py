@@ -48,6 +48,7 @@ def test_seen_5_atol_one_per_unknown_is_accepted(compiled):
     (lambda: acausal2d.compile_model("models/pendulum.py"), "load_model"),
     (lambda: acausal2d.compile_model(acausal2d.Component), "instantiate"),
     (lambda: acausal2d.compile_model(None), "model"),
+    (lambda: acausal2d.check(5), "check: model must be a Component instance"),
     (lambda: acausal2d.load_model(5), "path"),
     (lambda: acausal2d.load_model(PENDULUM, 5), "name"),
     (lambda: acausal2d.sweep(PENDULUM, vary=[1, 2]), "vary"),
