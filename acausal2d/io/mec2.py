@@ -270,7 +270,7 @@ class Mec2Model(NodeModel):
             views, shapes, text = check_cosmetics(data)
             warn_once(text)
         self.__dict__.update(mec2_traces=[], mec2_views_not_drawn=[], _grounds=[],
-                             mec2_arrows=[])
+                             mec2_arrows=[], pole_views=[])
         coords = {n["id"]: [float(n.get("x", 0.0)), float(n.get("y", 0.0))]
                   for n in data.get("nodes") or ()}
         cstrs = _order(_items(data, "constraints"))
@@ -308,6 +308,10 @@ class Mec2Model(NodeModel):
             if kind == "trace" and v.get("show") == "pos" and node in self._nodes \
                     and "ref" not in v:
                 self.mec2_traces.append(node)
+                continue
+            if v.get("show") == "pole" and node in self._cstrs and "ref" not in v:
+                self.pole_views.append({"link": node, "text": "P(%s)" % node,
+                                        "trace": kind == "trace"})
                 continue
             if kind == "vector":
                 arrows = vector_arrows(v, self._nodes, loads, self.gravity)
