@@ -35,6 +35,8 @@ def compile_model(model):
     :class:`~acausal2d.compiled.CompiledModel` that simulates many
     times with different parameter values without recompiling."""
     from .compiled import compile_model as _compile
+    from .arguments import check_model
+    check_model(model, "compile_model")
     return _compile(model)
 
 
@@ -43,6 +45,9 @@ def simulate(model, stop_time=None, **options):
     :class:`~acausal2d.result.Result`.  See
     :meth:`~acausal2d.compiled.CompiledModel.simulate`."""
     from .compiled import CompiledModel
+    from .arguments import check_model, check_simulate_options
+    check_model(model, "simulate")
+    check_simulate_options(options)
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
 
@@ -52,10 +57,14 @@ def sweep(model, vary=None, points=None, **options):
     combination of the ``vary`` values (or every dict of ``points``) and
     return the table (see :func:`acausal2d.analysis.sweep.sweep`)."""
     from .analysis.sweep import sweep as _sweep
+    from .arguments import check_sweep
+    check_sweep(vary, points, options)
     return _sweep(model, vary=vary, points=points, **options)
 
 
 def load_model(path, name=None, **kwargs):
     """Instantiate the model of a model file (see :func:`acausal2d.io.loader.load_model`)."""
     from .io.loader import load_model as _load
+    from .arguments import check_load
+    check_load(path, name, kwargs)
     return _load(path, name, **kwargs)

@@ -12,7 +12,7 @@ from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, Stru
 from .runtime.evaluator import Evaluator
 from .runtime.initialize import initial_point
 from .runtime.selection import select
-from .runtime.simulation import Simulation
+from .runtime.simulation import Simulation, time_resolution
 from .result import Result
 
 
@@ -184,8 +184,8 @@ class CompiledModel:
         """(output times, rtol) from the arguments and the model's
         ``experiment``, checked."""
         exp = _experiment(self.model)
-        rtol = float(rtol if rtol is not None else exp.get("rtol", 1e-6))
-        _check_tolerances(rtol, atol)
+        rtol = float(_number("rtol", rtol if rtol is not None else exp.get("rtol", 1e-6)))
+        atol = _check_tolerances(rtol, atol, self.system.node_names)
         if output_times is None:
             stop = _number("stop_time", stop_time if stop_time is not None
                            else exp.get("stop_time", 1.0))
@@ -193,11 +193,9 @@ class CompiledModel:
                                 else exp.get("intervals", 500))
             output_times = _output_grid(_number("start_time", start_time), stop, intervals,
                                         len(self.names))
-        output_times = np.asarray(output_times, dtype=float)
-        if output_times.ndim != 1 or len(output_times) < 2 or \
-                not np.all(np.isfinite(output_times)) or np.any(np.diff(output_times) <= 0):
-            raise Acausal2dError("output_times must be at least two finite, increasing times")
-        return output_times, rtol
+        output_times = _times(output_times)
+        _check_clock(output_times)
+        return output_times, rtol, atol
 
     def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
                  start_time=0.0, output_times=None, progress=None, max_steps=MAX_STEPS,
@@ -214,7 +212,11 @@ class CompiledModel:
         run stops early with the data so far (``result.stopped`` says why;
         default: 1,000,000 steps, no time limit).
         """
-        times, rtol = self._settings(stop_time, rtol, atol, intervals, start_time, output_times)
+        times, rtol, atol = self._settings(stop_time, rtol, atol, intervals, start_time,
+                                           output_times)
+        if progress is not None and not callable(progress):
+            raise Acausal2dError("progress must be a function progress(t, t_end) or None, got %r"
+                                 % (progress,))
         p = self.parameter_values(params)
         self.system.check_fixed_values(p)
         try:
@@ -251,14 +253,58 @@ def _budget(value, name):
     return value
 
 
-def _check_tolerances(rtol, atol):
+def _check_tolerances(rtol, atol, names):
+    """rtol checked; atol as None, a positive number or an array of one
+    positive number per unknown (``names``, in that order)."""
     if not rtol > 0:
         raise Acausal2dError("rtol must be positive, got %g" % rtol)
     if not rtol < 0.1:
         raise Acausal2dError("rtol must be below 0.1 (a relative tolerance, e.g. 1e-6), got %g"
                              % rtol)
-    if atol is not None and not atol > 0:
-        raise Acausal2dError("atol must be positive, got %g" % atol)
+    if atol is None:
+        return None
+    if isinstance(atol, (bool, str, bytes)):
+        raise Acausal2dError("atol must be a positive number or one per unknown, got %r" % (atol,))
+    try:
+        a = np.asarray(atol, dtype=float)
+    except (TypeError, ValueError):
+        raise Acausal2dError("atol must be a positive number or one per unknown, got %r"
+                             % (atol,)) from None
+    if a.ndim > 1 or (a.ndim == 1 and a.size != len(names)):
+        raise Acausal2dError("atol has %s values; give one number, or one per unknown (%d: %s)"
+                             % (a.size if a.ndim == 1 else "shape %s of" % (a.shape,),
+                                len(names), ", ".join(list(names)[:6])
+                                + (", ..." if len(names) > 6 else "")))
+    if not np.all(np.isfinite(a)) or not np.all(a > 0):
+        raise Acausal2dError("atol must be positive and finite, got %r" % (atol,))
+    return float(a) if a.ndim == 0 else a
+
+
+def _times(output_times):
+    """output_times as a float array of at least two finite, increasing times."""
+    bad = "output_times must be at least two finite, increasing times (a list of numbers)"
+    if isinstance(output_times, (str, bytes, dict)):
+        raise Acausal2dError("%s, got %r" % (bad, output_times))
+    try:
+        t = np.asarray(output_times, dtype=float)
+    except (TypeError, ValueError):
+        raise Acausal2dError("%s, got %r" % (bad, output_times)) from None
+    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+        raise Acausal2dError(bad)
+    return t
+
+
+def _check_clock(times):
+    """Refuse output times the run cannot tell apart (closer than its time
+    resolution): the clock would not advance, and the run would write one
+    row and call it done."""
+    gap = float(np.min(np.diff(times)))
+    res = time_resolution(times[-1])
+    if gap <= res:
+        raise Acausal2dError(
+            "the run cannot advance the clock: its output times lie %.3g s apart (stop time "
+            "%.6g s), below the integrator's time resolution of %.3g s at that time; give a "
+            "later stop_time or fewer intervals" % (gap, times[-1], res))
 
 
 MAX_RESULT_BYTES = 4e9

@@ -278,8 +278,10 @@ def static_pose(x_O, drop, F_sky=None, sky_material=None, guess=None):
 
     z0 = list(guess[:3]) + ([] if F_sky is not None else [guess[3]])
     z, info, ok, msg = fsolve(residual, z0, full_output=True, xtol=1e-13)
-    if ok != 1 or max(abs(np.asarray(residual(z)))) > 1e-9:
-        raise RuntimeError("static_pose(%g, %g) did not converge: %s" % (x_O, drop, msg))
+    worst = max(abs(np.asarray(residual(z))))
+    if not worst <= 1e-9:      # solved when the force balance holds, whatever fsolve's flag
+        raise RuntimeError("static_pose(%g, %g): force balance residual %.3g (of m g) after "
+                           "fsolve (%s)" % (x_O, drop, worst, msg))
     pose, F_haul, Fs = unknowns(z)
     load, _ = rope_geometry("load", pose)
     c = load[5]["p1"]

@@ -203,6 +203,10 @@ def design(a=A_DIST, r1_mean=R1_MEAN, lam=LAM, bet=BET, K=24, M=256):
         prev = _unpack(sol.x, Kc)
     p1c, p2m, p2c, nu0, nuc, mu0, muc = prev
     res = float(np.max(np.abs(fit(sol.x, K, False))))
+    # the collocation is solved when its residual vanishes, not by LM's exit flag
+    if not res <= 1e-9:
+        raise RuntimeError("noncircular pulley design: the collocation residual stays "
+                           "%.3g m (> 1e-9 m); change K or M" % res)
     # coefficients below 1e-14 m (the sine terms vanish by the symmetry of
     # the design about the centre line) are dropped from the contours
     p1c = np.where(np.abs(p1c) < 1e-14, 0.0, p1c)

@@ -8,7 +8,10 @@ A case is a dict: ``id``, ``category``, ``model`` (source text of a model
 file, or None), ``filename``, ``args`` (extra command-line arguments of
 ``simulate``), ``params`` (the API's params=, or None), ``command``
 ('simulate', 'check' or 'compare') and for compare ``csv`` (the two files'
-texts).
+texts); ``codes`` the exit codes the case may end with when only some are
+right (e.g. (1,) for a reference signal the result lacks: never 0 -- no
+silent acceptance), ``kwargs`` further arguments of the API's simulate
+(API-only cases).
 """
 import math
 import random
@@ -38,9 +41,10 @@ def _model(body, cls="Model", extra=""):
 
 
 def _case(cid, category, model=None, args=(), params=None, command="simulate",
-          filename="model.py", csv=None):
+          filename="model.py", csv=None, codes=None, kwargs=None):
     return {"id": cid, "category": category, "model": model, "args": list(args),
-            "params": params, "command": command, "filename": filename, "csv": csv}
+            "params": params, "command": command, "filename": filename, "csv": csv,
+            "codes": codes, "kwargs": kwargs}
 
 
 # ------------------------------------------------------------------ structure
@@ -292,7 +296,86 @@ def compare_cases(seed=5):
     return cases
 
 
+# ------------------------------------------------------------------ trust (issue 18)
+_FIXED = HEADER + """
+class Model(Component):
+    experiment = {'stop_time': 0.2, 'intervals': 20}
+    x = Variable()
+    y = Variable()
+
+    def __init__(self, **kw):
+        super().__init__(x=start(%r, fixed=True), **kw)
+
+    def equations(self):
+        return [self.x == %s, der(self.y) == self.x - self.y]
+"""
+_MEC2 = {"nodes": [{"id": "A0", "x": 0, "y": 0, "base": True}, {"id": "A", "x": 50, "y": 0}],
+         "constraints": [{"id": "a", "p1": "A0", "p2": "A", "len": {"type": "const"},
+                          "ori": {"type": "drive", "Dt": 0.2}}]}
+_VIEWS = [{"type": "vector", "p": "A", "value": "vel"}, {"as": "vector", "show": "acc", "of": "A"},
+          {"type": "trace", "p": "A"}, {"as": "trace", "show": "pos", "of": "A"},
+          {"type": "info", "elem": "a", "value": "w"}, {"as": "chart", "show": "wt", "of": "a"},
+          {"as": "point", "show": "pos", "of": "A"}, {"as": "vector", "show": "force", "of": "A"}]
+_JUNK = [("glow", 1), ("as", "hologram"), ("Dt", "long"), ("of", 3), ("type", "movie"),
+         ("p", None), ("extra", {"a": [1]})]
+
+
+def _mec2(data):
+    import json
+    return json.dumps(data)
+
+
+def trust_cases(seed=6):
+    """Issue 18's classes: stop times that cannot advance the clock, fixed
+    starts against equations, compare with signals the result lacks or
+    Modelica names, API arguments of the wrong type, mec2 views and shapes
+    in both spellings and with unknown fields (load with one warning) and
+    unknown fields where the motion depends on them (errors)."""
+    import copy
+    rng = random.Random(seed)
+    good = pendulum()
+    stops = ("1e-300", "1e-320", "5e-324", "1e-13", "1e-11")
+    cases = [_case("trust-stop-%s" % st, "trust", good, args=["--stop-time", st], codes=(2,))
+             for st in stops]
+    cases += [_case("trust-stop-api-%s" % st, "trust", good, codes=(2,),
+                    kwargs={"stop_time": float(st)}) for st in stops]
+    for k in range(8):
+        given, eq = rng.choice([1.0, 2.0, -3.5, 0.0]), rng.choice(["2.0", "2.0 + 0 * time"])
+        cases.append(_case("trust-fixed-%d" % k, "trust", _FIXED % (given, eq),
+                           codes=(0,) if given == 2.0 else (2,)))
+    t = [i * 0.1 for i in range(11)]
+    res = _csv(["time", "a", "body.x"], [[x, math.sin(x), math.cos(x)] for x in t])
+    refs = {"extra-column": (_csv(["time", "a", "b"], [[x, math.sin(x), 0] for x in t]), (1,)),
+            "modelica-ok": (_csv(["time", "body.r[1]"], [[x, math.cos(x)] for x in t]), (0,)),
+            "modelica-off": (_csv(["time", "body.r[1]"], [[x, math.cos(x) + .5] for x in t]), (1,)),
+            "modelica-unknown": (_csv(["time", "body.a[1]", "a"], [[x, 0, math.sin(x)]
+                                                                    for x in t]), (1,)),
+            "nan-middle": (_csv(["time", "a"], [[x, "nan" if x == 0.5 else 0] for x in t]), (2,))}
+    for name, (ref, codes) in refs.items():
+        cases.append(_case("trust-compare-%s" % name, "trust", command="compare", csv=(res, ref),
+                           codes=codes))
+    for k, kw in enumerate([{"rtol": "tight"}, {"atol": [1e-6, 1e-6]}, {"output_times": "0,1"},
+                            {"progress": 3}, {"atol": "x"}, {"output_times": [[0, 1]]},
+                            {"stop_time": 1e-300}, {"bogus": 1}]):
+        cases.append(_case("trust-api-%d" % k, "trust", good, codes=(2,), kwargs=kw))
+    for k in range(24):
+        data = copy.deepcopy(_MEC2)
+        data["views"] = [dict(v) for v in rng.sample(_VIEWS, rng.randint(1, 4))]
+        codes = (0,)
+        if k % 3 == 1:
+            key, value = rng.choice(_JUNK)
+            rng.choice(data["views"])[key] = value
+        elif k % 3 == 2:
+            target = rng.choice([data["nodes"][1], data["constraints"][0],
+                                 data["constraints"][0]["ori"]])
+            target["glow"] = 1
+            codes = (2,)
+        cases.append(_case("trust-mec2-%d" % k, "trust", _mec2(data), filename="model.json",
+                           codes=codes))
+    return cases
+
+
 def all_cases():
     """Every fuzz case, in a fixed order."""
     return (structure_cases() + connection_cases() + parameter_cases() + geometry_cases()
-            + numeric_cases() + file_cases() + compare_cases())
+            + numeric_cases() + file_cases() + compare_cases() + trust_cases())

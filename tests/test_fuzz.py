@@ -1,6 +1,6 @@
 """Fuzz suite: several hundred malformed or borderline inputs
 (tests/fuzz_cases.py: structure, connections, parameters, impossible
-geometry, numerics, files, compare inputs) through the Python API and the
+geometry, numerics, files, compare inputs, and issue 18's trust classes) through the Python API and the
 command-line entry point.  Every input ends within its time limit in a
 correct result or in the project's error: exit code 2 (input/model error),
 3 (run stopped early) or, for compare, 1 (outside the tube) - never a
@@ -78,7 +78,8 @@ def _api(case, paths):
     model = acausal2d.load_model(paths[0], model_name)
     if case["command"] == "check":
         return acausal2d.check(model)
-    res = acausal2d.simulate(model, params=case["params"], max_steps=50000)
+    res = acausal2d.simulate(model, params=case["params"], max_steps=50000,
+                             **(case["kwargs"] or {}))
     if res.stopped is None:
         _finite_result(res)
         if case["category"] == "geometry":
@@ -89,12 +90,19 @@ def _api(case, paths):
 @pytest.mark.parametrize("case", CASES, ids=[c["id"] for c in CASES])
 def test_api_gives_a_result_or_the_projects_error(case, tmp_path, capfd):
     paths = _files(case, tmp_path)
+    refused = False
     with time_limit(LIMIT):
         try:
-            _api(case, paths)
+            got = _api(case, paths)
         except Acausal2dError as exc:
+            refused = True
             assert str(exc).strip(), "an error without a message"
             assert "Traceback" not in str(exc)
+    if case["codes"] is not None and 0 not in case["codes"] and not case["args"]:
+        # no silent acceptance (command-line arguments are the CLI test's)
+        assert refused or (case["command"] == "compare" and not got.passed), "accepted"
+    if case["codes"] == (0,):
+        assert not refused, "refused a good input"
     out = capfd.readouterr()
     for noise in NOISE:
         assert noise not in out.out + out.err
@@ -121,8 +129,10 @@ def _check_written_result(out):
         assert len(row) == len(rows[0]) and all(math.isfinite(float(v)) for v in row)
 
 
-@pytest.mark.parametrize("case", [c for c in CASES if c["params"] is None],
-                         ids=[c["id"] for c in CASES if c["params"] is None])
+CLI_CASES = [c for c in CASES if c["params"] is None and c["kwargs"] is None]
+
+
+@pytest.mark.parametrize("case", CLI_CASES, ids=[c["id"] for c in CLI_CASES])
 def test_cli_exits_with_a_documented_code_and_no_traceback(case, tmp_path, capfd):
     paths = _files(case, tmp_path)
     out = tmp_path / "out"
@@ -131,7 +141,7 @@ def test_cli_exits_with_a_documented_code_and_no_traceback(case, tmp_path, capfd
     text = "".join(capfd.readouterr())
     for noise in NOISE:
         assert noise not in text
-    allowed = (0, 1, 2) if case["command"] == "compare" else (0, 2, 3)
+    allowed = case["codes"] or ((0, 1, 2) if case["command"] == "compare" else (0, 2, 3))
     assert code in allowed, "exit %r: %s" % (code, text[-400:])
     if code != 0:
         assert "error" in text.lower() or "stopped" in text.lower() or "FAIL" in text

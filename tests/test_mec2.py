@@ -1,6 +1,6 @@
 """mec2 JSON import (acausal2d/tools/mec2.py): the verbatim examples of
 goessner/mec2 (MIT, copied with their attribution into
-tests/data/mec2_examples, see SOURCE.md there), the project's own models in models/mec2/ covering every constraint kind,
+tests/data/mec2, see SOURCE.md there), the project's own models in models/mec2/ covering every constraint kind,
 and errors naming the JSON path."""
 import json
 import math
@@ -20,7 +20,7 @@ from acausal2d.visual.scene import build_scene
 from conftest import ROOT
 from vdi2729_reference import vdi_ddd
 
-EXAMPLES = os.path.join(ROOT, "tests", "data", "mec2_examples")
+EXAMPLES = os.path.join(ROOT, "tests", "data", "mec2")
 OWN = os.path.join(ROOT, "models", "mec2")
 U = 0.01        # m per mec2 unit
 
@@ -56,7 +56,8 @@ def _views_1_coupler(w):
 
 def test_views_1_coupler_trace_closes_after_one_drive_period():
     model = example("views_1.json")
-    assert model.mec2_traces == ["C"] and len(model.mec2_views_not_drawn) == 2
+    assert model.mec2_traces == ["C"] and len(model.mec2_views_not_drawn) == 1   # the chart
+    assert [a["fx"] for a in model.mec2_arrows] == ["der(C.x)"]           # the vel vector
     cm = acausal2d.compile_model(model)
     res = cm.simulate(rtol=1e-10)
     assert res.time[-1] == 2.0                        # the drive's Dt
@@ -109,7 +110,10 @@ def test_loads_3_lever_balanced_by_the_zero_length_spring():
 # ------------------------------------------------------------ the project's models
 def test_slider_crank_harmonic_bounce_repeat_and_rigid_coupler_point():
     model = own("slider_crank.json")
-    assert sorted(model.mec2_views_not_drawn)[0].startswith("$.views[1] (vector of vel)")
+    assert model.mec2_views_not_drawn == [                 # trace and vel vector drawn
+        "$.views[2] (chart of r): no counterpart in the animation"]
+    assert [(a["x"], a["fx"], a["unit"]) for a in model.mec2_arrows] == [
+        ("B.x", "der(B.x)", "m/s")]
     res = acausal2d.simulate(model, rtol=1e-10)
     t = res.time
     assert t[-1] == 4.0                               # Dt 1, bounce (x2), repeat 2
@@ -289,7 +293,7 @@ def _broken(change):
      r"\$\.constraints\[0\]\.ori\.type: unknown constraint type 'spin'"),
     (lambda d: d["nodes"][1].update(z=3), r"\$\.nodes\[1\]\.z: unknown field"),
     (lambda d: d["nodes"][1].update(x="1"), r"\$\.nodes\[1\]\.x: must be a number"),
-    (lambda d: d["nodes"][1].pop("y"), r"\$\.nodes\[1\]: the required field 'y' is missing"),
+    (lambda d: d["nodes"][1].pop("id"), r"\$\.nodes\[1\]: the required field 'id' is missing"),
     (lambda d: d["nodes"][1].update(m=0), r"\$\.nodes\[1\]\.m: the mass must be > 0"),
     (lambda d: d["constraints"][0].update(p2="Z"), r"\$\.constraints\[0\]\.p2: 'Z' is no node"),
     (lambda d: d["constraints"][0]["len"].update(ref="x"),
@@ -300,8 +304,6 @@ def _broken(change):
     (lambda d: d["constraints"][0]["ori"].update(repeat=1.5), r"\.ori\.repeat: must be a whole"),
     (lambda d: d.update(loads=[{"id": "L", "type": "torque"}]),
      r"\$\.loads\[0\]\.type: unknown load type 'torque'"),
-    (lambda d: d.update(views=[{"as": "movie"}]), r"\$\.views\[0\]\.as: unknown view kind"),
-    (lambda d: d.update(shapes=[{"type": "cloud"}]), r"\$\.shapes\[0\]\.type: unknown shape"),
     (lambda d: d.update(tolerance="tight"), r"\$\.tolerance: must be one of low, medium, high"),
     (lambda d: d.update(gravity={"x": 0, "y": -10, "on": True}), r"\$\.gravity\.on: unknown"),
     (lambda d: d.update(speed=3), r"\$\.speed: unknown field"),

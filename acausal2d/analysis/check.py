@@ -144,7 +144,9 @@ def _index(structure, states):
 def check(model):
     """Compile ``model`` (a Component instance or a CompiledModel) and return a
     :class:`CheckReport`; raises the project's errors for a broken model."""
+    from ..arguments import check_model
     from ..compiled import CompiledModel
+    check_model(model, "check")
     cm = model if isinstance(model, CompiledModel) else CompiledModel(model)
     root, system = cm.model, cm.system
     s = system.structure

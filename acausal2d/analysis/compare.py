@@ -61,7 +61,6 @@ curve from the reference's time window (0 inside it).  A step or an event
 shifted by less than ``time_tol`` therefore passes, a wrong level does not.
 ``until`` compares the reference points up to that time only.
 """
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -69,6 +68,7 @@ import numpy as np
 from ..errors import Acausal2dError
 from ..io.files import safe_filename  # noqa: F401  (public here since 0.1)
 from ..io.tables import CELL_LIMIT, _check_time, _few, read_csv  # noqa: F401  (public here too)
+from .compare_inputs import check_options, load_table, select_signals
 
 DEFAULT_ABS_TOL = 2e-3
 """Absolute tolerance used when neither ``abs_tol`` nor ``rel_tol`` is given."""
@@ -79,31 +79,6 @@ of our event times is taken to be the same event as a reference time."""
 
 _RANGE_EPS = 1e-9
 """Relative slack when checking that our result covers the reference times."""
-
-
-def _load(source, role):
-    """``(time, columns)`` from a CSV path or a ``(time, columns)`` tuple."""
-    if isinstance(source, (str, os.PathLike)):
-        return read_csv(source)
-    if hasattr(source, "names") and hasattr(source, "time") and role == "result":
-        return np.asarray(source.time, dtype=float), {n: np.asarray(source[n], dtype=float)
-                                                      for n in source.names}
-    if isinstance(source, tuple) and len(source) == 2:
-        t = np.asarray(source[0], dtype=float).ravel()
-        if t.size == 0:
-            raise Acausal2dError("the %s has no time points" % role)
-        columns = {}
-        for name, values in dict(source[1]).items():
-            v = np.asarray(values, dtype=float).ravel()
-            if v.shape != t.shape:
-                raise Acausal2dError("the %s column %r has %d values but there are %d time points"
-                                     % (role, name, v.size, t.size))
-            columns[str(name)] = v
-        _check_time(t, "the %s" % role)
-        return t, columns
-    raise Acausal2dError("the %s must be a %sCSV file path or a (time, columns) tuple, not %s"
-                         % (role, "Result, a " if role == "result" else "",
-                            type(source).__name__))
 
 
 # ---------------------------------------------------------------------------
@@ -293,11 +268,15 @@ class Comparison:
     rows: list
     plots: list = field(default_factory=list)
     time_tol: float = None
+    unmatched: list = field(default_factory=list)
+    only_common: bool = False
 
     @property
     def passed(self):
-        """True if there is at least one signal and all of them passed."""
-        return bool(self.rows) and all(r.passed for r in self.rows)
+        """True if there is at least one signal, all of them passed, and
+        every reference signal was compared (or ``only_common`` was set)."""
+        return bool(self.rows) and all(r.passed for r in self.rows) \
+            and (self.only_common or not self.unmatched)
 
     @property
     def failed(self):
@@ -336,56 +315,24 @@ class Comparison:
         if self.time_tol is not None:
             lines.append("tube with time tolerance %.6g s (deviation: distance from the "
                          "reference within that time)" % self.time_tol)
+        lines += self._unmatched_lines()
         lines.append("%d of %d signals passed%s" % (
             len(self.rows) - n_fail, len(self.rows),
             "" if not n_fail else "; FAILED: " + ", ".join(r.name for r in self.failed)))
         return "\n".join(lines)
 
+    def _unmatched_lines(self):
+        if not self.unmatched:
+            return []
+        n = len(self.unmatched)
+        return ["%d reference signal%s not compared (no counterpart in the result): %s"
+                % (n, "" if n == 1 else "s", ", ".join(self.unmatched)),
+                "accepted by --only-common (only_common=True)" if self.only_common else
+                "FAILED: every reference signal must be compared; pair them with --map "
+                "REF=OURS or accept the common ones with --only-common (only_common=True)"]
+
     def __str__(self):
         return self.table()
-
-
-def _select_signals(ref_cols, our_cols, signals, mapping):
-    """(reference name, our name) pairs to compare: ``signals`` (default:
-    every reference column with a counterpart), renamed by ``mapping``."""
-    mapping = dict(mapping or {})
-    if signals is None:
-        _require(list(mapping), ref_cols, "mapped signal", "reference")
-        pairs = [(n, mapping.get(n, n)) for n in ref_cols if mapping.get(n, n) in our_cols]
-        missing = [(k, v) for k, v in mapping.items() if v not in our_cols]
-        _require_ours(missing, our_cols, "mapped signal", "%s -> %s")
-        if not pairs:
-            raise Acausal2dError(
-                "the result and the reference have no signal in common; the reference has: "
-                "%s; the result has: %s (pair differently named signals with --map REF=OURS, or "
-                "mapping= in Python)" % (_few(ref_cols), _few(our_cols)))
-        return pairs
-    signals = [signals] if isinstance(signals, str) else list(signals)
-    _require(signals, ref_cols, "signal", "reference")
-    pairs = [(s, mapping.get(s, s)) for s in signals]
-    missing = [(s, o) for s, o in pairs if o not in our_cols]
-    _require_ours(missing, our_cols, "signal",
-                  lambda s, o: o if o == s else "%s (mapped from %s)" % (o, s))
-    return pairs
-
-
-def _require(names, columns, what, role):
-    """Refuse ``names`` missing from ``columns`` (of the ``role`` file)."""
-    missing = [n for n in names if n not in columns]
-    if missing:
-        raise Acausal2dError("%s%s not in the %s: %s; the %s has: %s" % (
-            what, "s" if len(missing) > 1 else "", role, ", ".join(missing), role,
-            _few(columns, missing[0])))
-
-
-def _require_ours(missing, our_cols, what, show):
-    """Refuse (reference, our name) pairs whose name is not in the result;
-    ``show`` formats a pair (a %-format or a function)."""
-    if missing:
-        fmt = show if callable(show) else (lambda s, o: show % (s, o))
-        raise Acausal2dError("%s%s not in the result: %s; the result has: %s" % (
-            what, "s" if len(missing) > 1 else "", ", ".join(fmt(s, o) for s, o in missing),
-            _few(our_cols, missing[0][1])))
 
 
 def _tolerance(y_ref, abs_tol, rel_tol):
@@ -495,14 +442,6 @@ def _range_message(plan, t_ref, t_ours):
                                                 n_out, "" if n_out == 1 else "s"))
 
 
-def _check_options(abs_tol, rel_tol, time_tol, until):
-    for name, v in (("abs_tol", abs_tol), ("rel_tol", rel_tol), ("time_tol", time_tol)):
-        if v is not None and not (np.isfinite(v) and v >= 0):
-            raise Acausal2dError("%s must be a non-negative number, not %r" % (name, v))
-    if until is not None and not np.isfinite(until):
-        raise Acausal2dError("until must be a finite time, not %r" % (until,))
-
-
 def _cut(t_ref, ref_cols, until):
     """The reference rows up to time ``until``."""
     if until is None:
@@ -515,16 +454,20 @@ def _cut(t_ref, ref_cols, until):
 
 
 def compare(result, reference, signals=None, mapping=None, abs_tol=None, rel_tol=None,
-            plot_dir=None, event_tol=None, time_tol=None, until=None):
+            plot_dir=None, event_tol=None, time_tol=None, until=None, only_common=False):
     """Compare our ``result`` with a ``reference`` signal by signal.
 
     ``result`` is a :class:`~acausal2d.result.Result`, a CSV file path
     (see :func:`read_csv`) or a ``(time, columns)`` tuple; ``reference`` a
     CSV path or a tuple.  ``signals`` lists the reference columns to check
-    (default: every reference column that also exists in the result, after
-    ``mapping``).  ``mapping`` maps reference names to our names, for
-    signals named differently.  ``until`` compares the reference points up
-    to that time only.
+    (default: every reference column).  A reference column is matched by
+    its name, by ``mapping`` (reference name: our name) or by the Modelica
+    array names the library declares (``body.r[1]`` is our ``body.x``, see
+    :mod:`acausal2d.analysis.compare_inputs`).  Reference columns without
+    a counterpart are listed in the table and in ``Comparison.unmatched``
+    and make the comparison fail unless ``only_common=True``.  NaN or
+    infinite values are an error naming the file, signal and row.
+    ``until`` compares the reference points up to that time only.
 
     Our curve is evaluated at the reference times with a cubic interpolant
     per event-free piece (Hermite where the result holds ``der(name)``),
@@ -553,19 +496,20 @@ def compare(result, reference, signals=None, mapping=None, abs_tol=None, rel_tol
 
     Returns a :class:`Comparison`.
     """
+    check_options(abs_tol, rel_tol, time_tol, until, event_tol, signals, mapping, plot_dir,
+                  only_common)
     if abs_tol is None and rel_tol is None:
         abs_tol = DEFAULT_ABS_TOL
-    _check_options(abs_tol, rel_tol, time_tol, until)
-    t_ours, our_cols = _load(result, "result")
-    t_ref, ref_cols = _cut(*_load(reference, "reference"), until)
-    pairs = _select_signals(ref_cols, our_cols, signals, mapping)
+    t_ours, our_cols = load_table(result, "result")
+    t_ref, ref_cols = _cut(*load_table(reference, "reference"), until)
+    pairs, unmatched = select_signals(ref_cols, our_cols, signals, mapping)
     plan = _Plan(t_ours, t_ref, event_tol)
     range_msg = _range_message(plan, t_ref, t_ours)
     rows = [_compare_signal(plan, t_ours, our_cols, t_ref, ref_cols[ref_name],
                             (ref_name, our_name), _tolerance(ref_cols[ref_name], abs_tol, rel_tol),
                             time_tol, range_msg)
             for ref_name, our_name in pairs]
-    cmp = Comparison(rows=rows, time_tol=time_tol)
+    cmp = Comparison(rows=rows, time_tol=time_tol, unmatched=unmatched, only_common=only_common)
     if plot_dir is not None:
         cmp.plots = plot_comparison(cmp, plot_dir)
     return cmp

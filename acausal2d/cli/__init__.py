@@ -13,6 +13,7 @@ so a failed run never leaves earlier results that look like its own.
 import argparse
 import sys
 import time
+import warnings
 
 from ..errors import Acausal2dError
 
@@ -81,6 +82,11 @@ def run_model_file(path, model=None, out="out"):
     return code
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """Warnings on the command line: one line ``warning: ...`` on stderr."""
+    print("warning: %s" % message, file=sys.stderr)
+
+
 def main(argv=None):
     """Entry point of the ``acausal2d`` command; returns the exit code (see
     the module docstring)."""
@@ -89,7 +95,9 @@ def main(argv=None):
     except SystemExit as exc:        # argparse: --help, --version, or a usage error (2)
         return exc.code if isinstance(exc.code, int) else 2
     try:
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return args.func(args)
     except Acausal2dError as exc:
         print("error: %s" % exc, file=sys.stderr)
         return 2

@@ -17,7 +17,8 @@ def cmd_compare(args):
     signals = [s.strip() for s in args.signals.split(",")] if args.signals else None
     return run_compare_cli(args.result, args.reference, signals=signals, mapping=mapping or None,
                            abs_tol=args.abs_tol, rel_tol=args.rel_tol, out_dir=args.out,
-                           time_tol=args.time_tol, until=args.until)
+                           time_tol=args.time_tol, until=args.until,
+                           only_common=args.only_common)
 
 
 def add_parsers(sub):
@@ -35,12 +36,16 @@ def add_parsers(sub):
                    "widened by this in time (steps may be shifted by up to this much)")
     m.add_argument("--until", type=float, metavar="T",
                    help="compare reference points up to time T only")
+    m.add_argument("--only-common", action="store_true",
+                   help="pass on the signals both files have; reference signals without a "
+                   "counterpart in the result are still listed (without this they fail)")
     m.add_argument("--out", help="directory for the comparison plots")
     m.set_defaults(func=cmd_compare)
 
 
 def run_compare_cli(result_csv, reference_csv, signals=None, mapping=None, abs_tol=None,
-                    rel_tol=None, out_dir=None, stream=None, time_tol=None, until=None):
+                    rel_tol=None, out_dir=None, stream=None, time_tol=None, until=None,
+                    only_common=False):
     """Compare two CSV files, print the table to ``stream`` (default: the
     current ``sys.stdout``, looked up at call time) (and write plots
     into ``out_dir`` if given); return 0 if every signal passed, else 1.
@@ -50,7 +55,7 @@ def run_compare_cli(result_csv, reference_csv, signals=None, mapping=None, abs_t
     from ..analysis.compare import compare
     cmp = compare(result_csv, reference_csv, signals=signals, mapping=mapping,
                   abs_tol=abs_tol, rel_tol=rel_tol, plot_dir=out_dir, time_tol=time_tol,
-                  until=until)
+                  until=until, only_common=only_common)
     print(cmp.table(), file=stream)
     if cmp.plots:
         print("%d plot%s written to %s" % (len(cmp.plots), "" if len(cmp.plots) == 1 else "s",

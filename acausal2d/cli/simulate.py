@@ -66,10 +66,10 @@ def cmd_simulate(args):
     from ..compiled import compile_model
     from ..io.files import clear_previous_run
     from ..io.loader import load_model
-    model = load_model(args.model_file, args.model)
     out = args.out
     os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
-    clear_previous_run(out)
+    clear_previous_run(out)                # first: a failure at any stage leaves nothing old
+    model = load_model(args.model_file, args.model)
     cm = compile_model(model)
     settings = _simulate_settings(args, cm)
     progress = _Progress()

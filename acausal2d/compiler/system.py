@@ -12,7 +12,7 @@ generates code again).  Parameters stay symbolic inputs of every function.
 import casadi as ca
 import numpy as np
 
-from ..errors import ModelDefinitionError
+from ..errors import InitializationError, ModelDefinitionError
 
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import time
@@ -170,6 +170,18 @@ class System:
         self.alias_der_names = tuple(names)
         self.alias_der_node = np.array(nodes, dtype=int)
         self.alias_der_sign = np.array(signs)
+        self._fixed_aliases()
+
+    def _fixed_aliases(self):
+        """Eliminated variables with a fixed start whose value the equations
+        set: by parameters alone, or through a representative that is fixed
+        too; (fixed value, value by the equations) as a function of p."""
+        fixed = [a for a in self.aliases if a.var.fixed and (a.rep is None or a.rep.fixed)]
+        self.fixed_alias_names = tuple(a.var.name for a in fixed)
+        self.fixed_alias_fn = _param_function(
+            [e for a in fixed for e in (a.var.start, a.offset if a.rep is None
+                                        else a.sign * a.rep.start + a.offset)],
+            self.p, "fixed_aliases")
 
     # ------------------------------------------------------------ queries
     @property
@@ -227,7 +239,11 @@ class System:
     def check_fixed_values(self, p):
         """Raise ModelDefinitionError if a variable fixed by parameters alone
         (an eliminated alias with no remaining unknown) is inf or NaN for the
-        parameter values ``p``, naming it and the equations that fix it."""
+        parameter values ``p``, naming it and the equations that fix it; and
+        InitializationError if an eliminated variable's fixed start value
+        differs from the value its equations give (over-determined
+        initialization: the fixed value would be dropped)."""
+        self._check_fixed_starts(p)
         offsets = self.alias_offset_fn(p).full().ravel()
         bad = [k for k in range(len(self.aliases))
                if self.alias_node[k] < 0 and not np.isfinite(offsets[k])]
@@ -241,6 +257,21 @@ class System:
             "%s would be inf or NaN with these parameter values (a division by zero, the "
             "square root or logarithm of a negative number):\n%s\nChange the parameters of "
             "these equations." % (", ".join(names), "\n".join("  - " + e for e in eqs)))
+
+    def _check_fixed_starts(self, p):
+        if not self.fixed_alias_names:
+            return
+        v = self.fixed_alias_fn(p).full().ravel().reshape(-1, 2)
+        for name, (given, by_eq) in zip(self.fixed_alias_names, v):
+            if np.isfinite(by_eq) and abs(given - by_eq) > 1e-10 * max(1.0, abs(by_eq)):
+                eqs = [eq.describe() for eq in self.flat_equations
+                       if any(str(x) == name for x in ca.symvar(eq.expr))][:4]
+                raise InitializationError(
+                    "%s has the fixed start value %.10g, but the equations give %s = %.10g "
+                    "(the initialization is over-determined):\n%s\nDrop fixed=True from %s "
+                    "or change its start value to %.10g." % (
+                        name, given, name, by_eq, "\n".join("  - " + e for e in eqs), name,
+                        by_eq))
 
     def alias_values(self, Z, p):
         """Values of the eliminated variables and their derivatives for node

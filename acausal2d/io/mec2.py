@@ -29,15 +29,14 @@ Mapping (mec2 -> acausal2d):
   ``ref`` a drive relative to the reference).  ``input: true`` (a slider on
   mec2's page) drives over time like any drive.
 * loads: ``force {p, value, w0, wref}``, ``spring {p1, p2, k, len0}``.
-* views: ``{"as": "trace", "show": "pos", "of": node}`` (or the older
-  ``"p": node``) become traces of the animation; ``{"show": "pole", "of":
-  constraint}`` (as point or trace) the constraint's instantaneous pole on
-  the page's "poles" layer (``pole_views``, drawn by
-  :func:`acausal2d.visual.scene.declared_pole_views`); the other views
-  (vectors, charts, infos, relative traces and moving centrodes) have no
-  counterpart and are listed in the model's ``mec2_views_not_drawn``.  Shapes ``fix``
-  and ``flt`` draw ground symbols; the other shapes are cosmetic and not
-  drawn.
+* views (both spellings, :mod:`acausal2d.io.mec2_views`): traces of
+  node positions and vectors of a node's vel/acc/force become traces and
+  arrows of the animation; the other views (points, charts, infos,
+  relative and pole traces) have no counterpart and are listed in the
+  model's ``mec2_views_not_drawn``.  Shapes ``fix`` and ``flt`` draw
+  ground symbols; the other shapes are cosmetic and not drawn.  Unknown
+  view or shape fields give one warning and are left out: they never stop
+  a model from loading.
 
 The experiment runs until the last drive ends (mec2 drives stop after
 ``t0 + Dt`` times bounce and repeat), else for the longest view duration,
@@ -49,17 +48,18 @@ import re
 
 from ..errors import ModelDefinitionError
 from ..language.nodes import NodeModel, mec2_drive, ref
+from .mec2_views import check_cosmetics, vector_arrows, warn_once
 
 __all__ = ["load_mec2", "model_from_mec2", "Mec2Model"]
 
 _NUM, _STR, _BOOL = "number", "string", "boolean"
 _TOP = {"id": _STR, "title": _STR, "gravity": "gravity", "tolerance": _STR, "labels": "object",
-        "nodes": "list", "constraints": "list", "loads": "list", "shapes": "list",
-        "views": "list"}
+        "nodes": "list", "constraints": "list", "loads": "list", "shapes": "any",
+        "views": "any"}                  # views and shapes: checked by mec2_views
 _NODE = {"id": _STR, "x": _NUM, "y": _NUM, "m": _NUM, "base": _BOOL, "idloc": "any",
          "label": "any"}
 _CSTR = {"id": _STR, "p1": _STR, "p2": _STR, "ori": "object", "len": "object", "idloc": "any",
-         "label": "any"}
+         "label": "any", "lw": "any", "ls": "any", "ld": "any"}    # lw, ls, ld: line style
 _SUB = {"type": _STR, "ref": _STR, "reftype": _STR, "ratio": _NUM, "passive": _BOOL,
         "func": _STR, "args": "list", "t0": _NUM, "Dt": _NUM, "bounce": _BOOL,
         "repeat": _NUM, "input": _BOOL}
@@ -67,15 +67,6 @@ _LOADS = {"force": {"type": _STR, "id": _STR, "p": _STR, "value": _NUM, "w0": _N
                     "wref": _STR, "mode": _STR},
           "spring": {"type": _STR, "id": _STR, "p1": _STR, "p2": _STR, "k": _NUM,
                      "len0": _NUM}}
-_SHAPES = {"fix", "flt", "slider", "bar", "beam", "wheel", "poly", "img"}
-_SHAPE_FIELDS = {"type": _STR, "p": _STR, "p1": _STR, "p2": _STR, "w0": _NUM, "wref": _STR,
-                 "len": _NUM, "r": _NUM, "pts": "list", "fill": _STR, "stroke": _STR,
-                 "uri": _STR, "xoff": _NUM, "yoff": _NUM, "scl": _NUM}
-_VIEW_FIELDS = {"as": _STR, "type": _STR, "show": _STR, "of": _STR, "ref": _STR, "mode": _STR,
-                "t0": _NUM, "Dt": _NUM, "stroke": _STR, "fill": _STR, "at": _STR,
-                "p": _STR, "id": _STR, "x": _NUM, "y": _NUM, "h": _NUM, "b": _NUM,
-                "canvas": "any", "against": "object", "cnv": "any"}
-_VIEW_KINDS = ("point", "vector", "trace", "info", "chart")
 _TOLERANCE = {"low": 1e-5, "medium": 1e-3, "high": 0.1}
 _UNIT = 0.01            # m per mec2 user unit (mec.m_u)
 
@@ -146,7 +137,7 @@ def validate_mec2(data):
         _fields(data["gravity"], {"x": _NUM, "y": _NUM, "active": _BOOL}, "$.gravity")
     nodes = _items(data, "nodes")
     for path, node in nodes:
-        _fields(node, _NODE, path, ("id", "x", "y"))
+        _fields(node, _NODE, path, ("id",))          # x, y default to 0 (mec.node.js)
         if "m" in node and not node["m"] > 0:
             raise _error(path + ".m", "the mass must be > 0 (a base node is fixed by "
                          "\"base\": true)")
@@ -160,23 +151,7 @@ def validate_mec2(data):
         _check_load(load, path, node_ids, cstr_ids)
     _ids([(p, x) for p, x in nodes + cstrs + [(p, l) for p, l in _items(data, "loads")]
           if "id" in x], "element")
-    _check_cosmetics(data)
     return data
-
-
-def _check_cosmetics(data):
-    """Shapes and views: known kinds and fields."""
-    for path, shape in _items(data, "shapes"):
-        _fields(shape, _SHAPE_FIELDS, path, ("type",))
-        if shape["type"] not in _SHAPES:
-            raise _error(path + ".type", "unknown shape type %r (known: %s)"
-                         % (shape["type"], ", ".join(sorted(_SHAPES))))
-    for path, view in _items(data, "views"):
-        _fields(view, _VIEW_FIELDS, path)
-        kind = view.get("as", view.get("type"))
-        if kind not in _VIEW_KINDS:
-            raise _error(path + ".as", "unknown view kind %r (known: %s)"
-                         % (kind, ", ".join(_VIEW_KINDS)))
 
 
 def _check_constraint(c, path, node_ids):
@@ -273,11 +248,11 @@ def _drive_end(sub):
         * sub.get("repeat", 1)
 
 
-def _experiment(data):
+def _experiment(data, views):
     ends = [_drive_end(c.get(s) or {}) for c in data.get("constraints") or () for s in ("ori", "len")]
     stop = max(ends, default=0.0)
     if stop <= 0:
-        stop = max([v.get("t0", 0.0) + v.get("Dt", 0.0) for v in data.get("views") or ()],
+        stop = max([v.get("t0", 0.0) + v.get("Dt", 0.0) for _, v in views],
                    default=0.0) or 1.0
     return {"stop_time": stop, "intervals": max(100, int(round(60 * stop))), "rtol": 1e-8}
 
@@ -289,11 +264,15 @@ class Mec2Model(NodeModel):
     ``mec2_views_not_drawn``: the views without counterpart, with why."""
     length_unit = _UNIT
 
-    def __init__(self, data, **kw):
+    def __init__(self, data, views=None, shapes=None, **kw):
         super().__init__(**kw)
+        if views is None:
+            views, shapes, text = check_cosmetics(data)
+            warn_once(text)
         self.__dict__.update(mec2_traces=[], mec2_views_not_drawn=[], _grounds=[],
-                             pole_views=[])
-        coords = {n["id"]: [float(n["x"]), float(n["y"])] for n in data.get("nodes") or ()}
+                             mec2_arrows=[], pole_views=[])
+        coords = {n["id"]: [float(n.get("x", 0.0)), float(n.get("y", 0.0))]
+                  for n in data.get("nodes") or ()}
         cstrs = _order(_items(data, "constraints"))
         _initial_vectors(cstrs, coords)
         for n in data.get("nodes") or ():
@@ -302,8 +281,8 @@ class Mec2Model(NodeModel):
             self._constraint(path, c)
         for path, load in _items(data, "loads"):
             self._load(load)
-        self._views(_items(data, "views"))
-        self._grounds.extend(s["p"] for s in data.get("shapes") or ()
+        self._views(views, data.get("loads") or [])
+        self._grounds.extend(s["p"] for _, s in shapes
                              if s["type"] in ("fix", "flt") and "p" in s)
 
     def _constraint(self, path, c):
@@ -320,24 +299,33 @@ class Mec2Model(NodeModel):
             self.spring(load["id"], load["p1"], load["p2"], load.get("k", 0.01),
                         load.get("len0"))
 
-    def _views(self, views):
+    def _views(self, views, loads):
+        """Traces and vector arrows of the views (both spellings, already
+        normalized by :func:`~acausal2d.io.mec2_views.normalized_view`)."""
         for path, v in views:
-            kind = v.get("as", v.get("type"))
-            node = v.get("of") if v.get("show", "pos") == "pos" else None
-            node = v.get("p", node)
-            if kind == "trace" and node in self._nodes and "ref" not in v:
+            kind, node = v["as"], v.get("of")
+            why = "no counterpart in the animation"
+            if kind == "trace" and v.get("show") == "pos" and node in self._nodes \
+                    and "ref" not in v:
                 self.mec2_traces.append(node)
-            elif v.get("show") == "pole" and v.get("of") in self._cstrs and "ref" not in v:
-                self.pole_views.append({"link": v["of"], "text": "P(%s)" % v["of"],
+                continue
+            if v.get("show") == "pole" and node in self._cstrs and "ref" not in v:
+                self.pole_views.append({"link": node, "text": "P(%s)" % node,
                                         "trace": kind == "trace"})
-            else:
-                self.mec2_views_not_drawn.append(
-                    "%s (%s of %s): no counterpart in the animation"
-                    % (path, kind, v.get("show", v.get("p", "?"))))
+                continue
+            if kind == "vector":
+                arrows = vector_arrows(v, self._nodes, loads, self.gravity)
+                if not isinstance(arrows, str):
+                    self.mec2_arrows.extend(dict(a, optional=True) for a in arrows)
+                    continue
+                why = arrows
+            self.mec2_views_not_drawn.append("%s (%s of %s): %s"
+                                             % (path, kind, v.get("show") or "?", why))
 
     def shapes(self):
         out = super().shapes()
         out += [{"type": "trace", "x": n + ".x", "y": n + ".y"} for n in self.mec2_traces]
+        out += [dict(a) for a in self.mec2_arrows]
         out += [{"type": "ground", "x": n + ".x", "y": n + ".y"} for n in self._grounds
                 if n in self._nodes and not self._nodes[n].base]
         return out
@@ -390,15 +378,17 @@ def model_from_mec2(data, name="Mec2Model", source=None):
     ``name`` becomes the model's class name, ``source`` (a file name) its
     documentation.  Raises errors naming the JSON path."""
     validate_mec2(data)
+    views, shapes, text = check_cosmetics(data)
+    warn_once(text)
     cls_name = re.sub(r"\W", "_", name) or "Mec2Model"
     doc = "mec2 model %s%s." % (data.get("title") or data.get("id") or cls_name,
                                " (from %s)" % source if source else "")
-    attrs = {"__doc__": doc, "gravity": _gravity(data), "experiment": _experiment(data),
+    attrs = {"__doc__": doc, "gravity": _gravity(data), "experiment": _experiment(data, views),
              "lentol": _TOLERANCE[data.get("tolerance", "medium")],
              "outputs": [n["id"] + "." + xy for n in data.get("nodes") or ()
                          if not n.get("base") for xy in ("x", "y")][:8]}
     cls = type(cls_name, (Mec2Model,), attrs)
-    return cls(data)
+    return cls(data, views, shapes)
 
 
 def load_mec2(path):

@@ -66,8 +66,9 @@ def read_csv(path):
     other column name to a float array of the same length.
 
     Raises :class:`~acausal2d.errors.Acausal2dError` if the file is missing,
-    has no time column, contains a cell that is not a number (the message
-    gives the line), or its time decreases.
+    has no time column, contains a cell that is not a number or is NaN or
+    infinite (the message gives the signal and the line), or its time
+    decreases.
     """
     fname = os.fspath(path)
     if not os.path.isfile(fname):
@@ -103,7 +104,24 @@ def _parse_rows(fname, text, first):
     t = data[:, itime].copy()
     _check_time(t, "%s" % fname, lines)
     columns = {name: data[:, i].copy() for i, name in enumerate(header) if i != itime}
+    check_finite(columns, t, fname, lines)
     return t, columns
+
+
+def check_finite(columns, t, what, lines=None):
+    """Refuse a NaN or infinite value: the error names ``what`` (the file),
+    the signal, the row (the file's line when ``lines`` is given) and its
+    time.  A comparison against a NaN says nothing, so it is an input
+    error, not a failed signal."""
+    for name, v in columns.items():
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            i = bad[0]
+            where = "line %d" % lines[i] if lines is not None else "row %d" % (i + 1)
+            raise Acausal2dError("%s: signal %r is %s at %s (time %.10g)%s; a comparison needs "
+                                 "finite numbers" % (what, name, v[i], where, t[i],
+                                                     "" if bad.size == 1 else
+                                                     " and at %d more rows" % (bad.size - 1)))
 
 
 def _split_rows(fname, reader):

@@ -157,6 +157,29 @@ def initial_point(system, ev, t0, p):
     return InitialPoint(z, d, sel)
 
 
+def _contradicted_fixed(system, ev, t0, z, d, held):
+    """For an over-determined start (more values held than the system has
+    freedom): the first fixed value the equations contradict, found by
+    releasing each fixed node in turn, as an InitializationError naming
+    the variable, its fixed value and the value the equations give; or None."""
+    s = system.structure
+    if len(held) <= s.n_var - s.n_eq:
+        return None
+    for j in [j for j in held if j in set(system.fixed_nodes)]:
+        rest = [k for k in held if k != j]
+        try:
+            zj = solve_consistent(ev, t0, z, d, rest, z[rest])
+        except NoConvergence:
+            continue
+        name = system.node_name(j)
+        return InitializationError(
+            "%s has the fixed start value %.10g, but the equations give %s = %.10g with the "
+            "other start values held (the initialization is over-determined); drop "
+            "fixed=True from %s or change its start value to %.10g"
+            % (name, z[j], name, zj[j], name, zj[j]))
+    return None
+
+
 def _first_consistent(system, ev, t0, z, d, held, p):
     """Newton from the start guess; if it fails, the relations may be the
     wrong ones: retry with those found where Newton ended."""
@@ -166,7 +189,8 @@ def _first_consistent(system, ev, t0, z, d, held, p):
         except NoConvergence as exc:
             dn = values_from(system, ev.crossings(t0, exc.z, d))
             if np.array_equal(dn, d):
-                raise initialization_error(system, held, exc, p, ev) from None
+                raise (_contradicted_fixed(system, ev, t0, z, d, held)
+                       or initialization_error(system, held, exc, p, ev)) from None
             d = dn
     raise initialization_error(system, held, NoConvergence(z, ev.residual(t0, z, d), t0, d), p,
                                ev)

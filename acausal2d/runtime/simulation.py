@@ -73,6 +73,13 @@ class RunLog:
     states: list = field(default_factory=list)
 
 
+def time_resolution(t_end):
+    """The smallest time step a run resolves: times closer than this
+    (1e-12 s, relative to |t_end| above 1 s) are one time to the run, so
+    output times must lie further apart."""
+    return 1e-12 * max(1.0, abs(float(t_end)))
+
+
 class Simulation:
     """One run of ``system`` with parameter vector ``p`` over ``times``
     (the first is the start time); see module docstring."""
@@ -93,7 +100,7 @@ class Simulation:
         self.solvers = {}
         self.n_singular, self.watch = 0, True
         self.chatter = ChatterWatch(system, self.t_end - float(self.times[0]))
-        self.eps = 1e-12 * max(1.0, abs(self.t_end))
+        self.eps = time_resolution(self.t_end)
 
     # ------------------------------------------------------------ run
     def run(self):

@@ -59,13 +59,15 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
 ``{"type": "sensor", "points": [[X, Y], ...]}``
     a sensor: a small square mark at each point, a dotted line between
     them (one point: an absolute sensor, two: a relative one).
-``{"type": "arrow", "x": X, "y": Y, "fx": FX, "fy": FY, "phi": P, "angle": A, "scale": S, "label": "..."}``
+``{"type": "arrow", "x": X, "y": Y, "fx": FX, "fy": FY, "phi": P, "angle": A, "scale": S, "label": "...", "unit": "N"}``
     a force arrow whose head touches the point (x, y) where it pushes; the
     vector is (fx, fy) turned by ``phi + angle`` (both optional, default
     0: world components).  Its length is ``scale`` world units per unit of
     force, or, without ``scale``, 60 pixels for the largest force of the
     run.  A zero force draws nothing.  With ``label`` the arrow shows the
-    label and the force's magnitude in N.
+    label and the force's magnitude in N (in ``unit`` when given: a
+    velocity or acceleration vector); ``anchor: "tail"`` starts the arrow
+    at the point instead (a vector drawn from where it is measured).
 ``{"type": "torque", "x": X, "y": Y, "t": T, "scale": S, "label": "..."}``
     a torque as a curved arrow around the point, counter-clockwise for
     t > 0; its sweep grows with |t| up to 300 degrees at the largest
@@ -163,7 +165,8 @@ SHAPE_TYPES = {
     "sensor": (("points", "points:1", True),),
     "arrow": (("x", "value", True), ("y", "value", True), ("fx", "value", True),
               ("fy", "value", True), ("phi", "value", False), ("angle", "value", False),
-              ("scale", "value", False), ("label", "text", False)),
+              ("scale", "value", False), ("label", "text", False), ("unit", "text", False),
+              ("anchor", "text", False)),
     "torque": (("x", "value", True), ("y", "value", True), ("t", "value", True),
                ("scale", "value", False), ("label", "text", False)),
 }

@@ -230,7 +230,7 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
     ``autoplay`` starts the page playing; ``poles`` ({label: link}) draws
     the instantaneous poles of those links on a layer (:func:`pole_shapes`)."""
     model = result.model.model if result.model is not None else None
-    shapes = model_shapes(model) if model is not None else []
+    shapes = _available(model_shapes(model) if model is not None else [], result.names)
     for x, y in trace_signals(traces, result.names):
         shapes.append({"type": "trace", "x": x, "y": y})
     shapes += arrow_signals(arrows, result.names)
@@ -256,6 +256,20 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
     if nodes is not None:
         scene["nodes"] = nodes
     return scene
+
+
+def _available(shapes, names):
+    """The shapes, without those marked ``optional`` whose signals the
+    result does not hold (a mec2 acceleration arrow of a node whose
+    acceleration was eliminated); the mark itself is dropped."""
+    names, out = set(names), []
+    for shape in shapes:
+        if shape.get("optional"):
+            shape = {k: v for k, v in shape.items() if k != "optional"}
+            if not all(n in names for n in _signal_names(shape)):
+                continue
+        out.append(shape)
+    return out
 
 
 def _drag_system(model):

@@ -18,5 +18,24 @@ from .base import PlanarWorld, is_connected, resolve, rotate
 from .parts import Body, BodyShape, Fixed, FixedRotation, FixedTranslation, fixed_of
 from .joints import IdealRolling, Prismatic, Revolute
 
-__all__ = ["PlanarWorld", "fixed_of", "is_connected", "resolve", "rotate", "Body", "BodyShape",
+
+
+def modelica_names():
+    """The Modelica array-name aliases the planar components declare (class
+    attribute ``modelica_names``, e.g. Body's ``r[1]`` -> ``x``): a dict
+    from the Modelica name of a component's variable to the list of our
+    names it may stand for.  :func:`acausal2d.compare` matches reference
+    columns such as ``body.r[1]`` by it."""
+    from . import forces, joints, parts, sensors
+    table = {}
+    for module in (parts, joints, forces, sensors):
+        for obj in vars(module).values():
+            for key, ours in (getattr(obj, "modelica_names", None) or {}).items() \
+                    if isinstance(obj, type) else ():
+                if ours not in table.setdefault(key, []):
+                    table[key].append(ours)
+    return table
+
+
+__all__ = ["modelica_names", "PlanarWorld", "fixed_of", "is_connected", "resolve", "rotate", "Body", "BodyShape",
            "Fixed", "FixedRotation", "FixedTranslation", "IdealRolling", "Prismatic", "Revolute"]

@@ -53,6 +53,10 @@ class Body(Component):
     vx = Variable(unit="m/s", doc="x velocity der(x)")
     vy = Variable(unit="m/s", doc="y velocity der(y)")
     w = Variable(unit="rad/s", doc="angular velocity der(phi)")
+    modelica_names = {"r[1]": "x", "r[2]": "y", "v[1]": "vx", "v[2]": "vy"}
+    """PlanarMechanics' array names of the variables (read by ``compare``);
+    its acceleration ``a`` has no variable here (measure it with
+    AbsoluteAcceleration)."""
 
     def __init__(self, **kw):
         super().__init__(**kw)

@@ -38,11 +38,30 @@ def _mark(*frames):
     return [{"type": "sensor", "points": [[f + ".x", f + ".y"] for f in frames]}]
 
 
+def _modelica_names(outputs):
+    """PlanarMechanics names of the outputs: a vector ``r`` is the array
+    ``r[2]`` there (``r[1]`` -> ``r_x.u``, ``r[2]`` -> ``r_y.u``), a scalar
+    ``phi`` is ``phi`` (-> ``phi.u``)."""
+    names = {}
+    for o in outputs:
+        for axis, k in (("_x", 1), ("_y", 2)):
+            if o.endswith(axis):
+                names["%s[%d]" % (o[:-2], k)] = o + ".u"
+        names.setdefault(o, o + ".u")
+    return names
+
+
 class _Sensor(Component):
-    """Frames, outputs and the resolve option of a sensor."""
+    """Frames, outputs and the resolve option of a sensor.  Subclasses
+    declare ``modelica_names`` (PlanarMechanics array names of their
+    outputs, read by ``compare``) from their ``OUTPUTS``."""
     FRAMES = ("frame_a",)
     OUTPUTS = ()
     CHOICES = _ABSOLUTE
+
+    def __init_subclass__(cls, **kw):
+        super().__init_subclass__(**kw)
+        cls.modelica_names = _modelica_names(cls.OUTPUTS)
 
     def __init__(self, resolve_in_frame="frame_a", **kw):
         super().__init__(**kw)

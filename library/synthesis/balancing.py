@@ -16,9 +16,10 @@ see models/cabinet_door.py.)
 
 - :func:`spring_band_transfer` -- the seed's method: least squares (6.6)
   over a polynomial (6.7) or Fourier (6.8) ansatz x_A, with side constraints
-  ``h_min <= x_A' <= h_max`` (SLSQP) and a fixed start travel, by
-  ``scipy.optimize``; the spring rate fixed or free (run 1 of example
-  7.2.1).
+  ``h_min <= x_A' <= h_max`` and a fixed start travel, solved by IPOPT
+  (CasADi) and accepted by its KKT conditions
+  (:mod:`acausal2d.analysis.optimality`), never by an exit flag; the spring
+  rate fixed or free (run 1 of example 7.2.1).
 - :func:`exact_spring_travel` -- the exact solution of 6.5 (derived here;
   the seed calls 6.5 closed-form solvable only for few T): since T =
   (c_S/2) d(x_S^2)/dphi,
@@ -38,10 +39,10 @@ import math
 
 import casadi as ca
 import numpy as np
-from scipy import optimize
 from scipy.integrate import quad
 from scipy.interpolate import CubicSpline
 
+from acausal2d.analysis.optimality import kkt_check
 from acausal2d.errors import ModelDefinitionError
 
 __all__ = ["spring_band_transfer", "exact_spring_travel", "softest_spring", "SpringBandFit",
@@ -220,40 +221,93 @@ def _start_coefficients(B, D, x_target, eq):
     return np.linalg.lstsq(A, np.concatenate([x_target, [1e6 * eq[1]]]), rcond=None)[0]
 
 
+def _nlp(B, D, T, c, ap, N):
+    """The fit (6.6) as a CasADi problem in the free coefficients z (a = ap
+    + N z): residual r (scaled by max |T|), objective 0.5 |r|^2, and a
+    function giving f, grad f, Hessian and the residual Jacobian."""
+    scale = max(np.max(np.abs(T)), 1e-300)
+    z = ca.SX.sym("z", N.shape[1])
+    a = ca.DM(ap) + ca.DM(N) @ z
+    r = (ca.DM(T) - c * (ca.DM(B) @ a) * (ca.DM(D) @ a)) / scale
+    f = 0.5 * ca.dot(r, r)
+    H = ca.hessian(f, z)[0]
+    return z, f, ca.Function("fgh", [z], [f, ca.gradient(f, z), H, ca.jacobian(r, z), r])
+
+
+def _polish(fgh, z, A, b):
+    """Newton on the KKT system of the fit with the active lever-arm bounds
+    A z = b as equalities: from IPOPT's interior point to the vertex of the
+    active set, where the bounds hold to round-off."""
+    n = len(z)
+    for _ in range(30):
+        _, g, H = (np.asarray(v, dtype=float) for v in fgh(z)[:3])
+        K = np.block([[H, A.T], [A, np.zeros((len(A), len(A)))]])
+        step = np.linalg.lstsq(K, np.concatenate([-g.ravel(), b - A @ z]), rcond=None)[0][:n]
+        z = z + step
+        if np.linalg.norm(step) <= 1e-15 * (1.0 + np.linalg.norm(z)):
+            break
+    return z
+
+
+def _optimality(fgh, z, DN, Dap, bounds):
+    """KKT check (acausal2d.analysis.optimality) of the fit at z: the
+    lever-arm bounds as inequalities, the exact Hessian for the
+    second-order test, the gradient scale ||J|| |r| of a least-squares
+    problem (floored at round-off for an exact fit)."""
+    f, g, H, J, r = (np.asarray(v, dtype=float) for v in fgh(z))
+    rows, vals = [], []
+    lo, hi = bounds
+    h = Dap + DN @ z
+    if hi is not None:
+        rows.append(DN)
+        vals.append(h - hi)
+    if lo is not None:
+        rows.append(-DN)
+        vals.append(lo - h)
+    gs = np.linalg.norm(J, 2) * max(np.linalg.norm(r), 1e-13 * math.sqrt(len(r)))
+    return kkt_check(g.ravel(), z, objective=f.item(), hessian=H, gradient_scale=gs,
+                     ineq_values=np.concatenate(vals) if vals else None,
+                     ineq_jacobian=np.vstack(rows) if rows else None)
+
+
+def _active_rows(z, DN, Dap, bounds):
+    """Lever-arm bounds within 1e-7 (relative) of IPOPT's point, as rows A z = b."""
+    h = Dap + DN @ z
+    lo, hi = bounds
+    size = max(np.max(np.abs(h)), abs(hi or 0.0), abs(lo or 0.0), 1e-300)
+    A, b = [], []
+    for bound in (hi, lo):
+        if bound is not None:
+            near = np.abs(h - bound) <= 1e-7 * size
+            A.append(DN[near])
+            b.append(bound - Dap[near])
+    return (np.vstack(A), np.concatenate(b)) if A else (np.zeros((0, len(z))), np.zeros(0))
+
+
 def _solve(B, D, T, c, a0, eq, bounds):
     """Minimise sum (T - c (B a)(D a))^2 (6.6) from a0; equality eq (linear
-    start value), inequality bounds (lo, hi) on D a (SLSQP when present)."""
-    scale = max(np.max(np.abs(T)), 1e-300)
+    start value, eliminated), inequality bounds (lo, hi) on D a.  IPOPT
+    (shipped with CasADi) finds the minimum, Newton on the active set makes
+    the bounds hold to round-off, and success is decided by the KKT check,
+    not by an optimiser's exit flag.  Returns (a, KKTResult)."""
     if eq is not None:                     # eliminate the start value: a = ap + N z
         row, val = eq
         ap = row * val / (row @ row)
         N = np.linalg.svd(row[None, :])[2][1:].T
     else:
         ap, N = np.zeros(B.shape[1]), np.eye(B.shape[1])
-
-    def res(z):
-        a = ap + N @ z
-        return (T - c * (B @ a) * (D @ a)) / scale
-
-    def jac(z):
-        a = ap + N @ z
-        return -c * ((D @ a)[:, None] * B + (B @ a)[:, None] * D) @ N / scale
-    z0 = np.linalg.lstsq(N, a0 - ap, rcond=None)[0]
-    lo, hi = bounds
-    if lo is None and hi is None:
-        sol = optimize.least_squares(res, z0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15,
-                                     gtol=1e-15, max_nfev=20000)
-        return ap + N @ sol.x, (bool(sol.success), sol.message)
-    cons = []
+    z, f, fgh = _nlp(B, D, T, c, ap, N)
     DN, Dap = D @ N, D @ ap
-    if hi is not None:
-        cons.append({"type": "ineq", "fun": lambda z: hi - (Dap + DN @ z), "jac": lambda z: -DN})
-    if lo is not None:
-        cons.append({"type": "ineq", "fun": lambda z: (Dap + DN @ z) - lo, "jac": lambda z: DN})
-    sol = optimize.minimize(lambda z: 0.5 * np.sum(res(z) ** 2), z0,
-                            jac=lambda z: jac(z).T @ res(z), constraints=cons, method="SLSQP",
-                            options={"ftol": 1e-16, "maxiter": 2000})
-    return ap + N @ sol.x, (bool(sol.success), sol.message)
+    lo, hi = bounds
+    nlp = {"x": z, "f": f, "g": ca.DM(DN) @ z + ca.DM(Dap)}
+    opts = {"print_time": False, "ipopt.print_level": 0, "ipopt.sb": "yes",
+            "ipopt.tol": 1e-14, "ipopt.max_iter": 3000, "ipopt.bound_relax_factor": 0.0}
+    solver = ca.nlpsol("spring_band_fit", "ipopt", nlp, opts)
+    z0 = np.linalg.lstsq(N, a0 - ap, rcond=None)[0]
+    sol = solver(x0=z0, lbg=-np.inf if lo is None else lo, ubg=np.inf if hi is None else hi)
+    zs = np.asarray(sol["x"], dtype=float).ravel()
+    zs = _polish(fgh, zs, *_active_rows(zs, DN, Dap, bounds))
+    return ap + N @ zs, _optimality(fgh, zs, DN, Dap, bounds)
 
 
 def spring_band_transfer(phi, T, c_S=None, ansatz=("poly", 3), x_start=None, h_max=None,
@@ -267,9 +321,10 @@ def spring_band_transfer(phi, T, c_S=None, ansatz=("poly", 3), x_start=None, h_m
     h_max, :func:`softest_spring`; the fit then runs at that rate),
     ``ansatz`` ``("poly", n)`` (6.7) or ``("fourier", n)`` (6.8), ``x_start``
     the spring travel at phi[0] (a side constraint; None leaves it free),
-    ``h_max``/``h_min`` bounds on the lever arm x_A' at the samples (SLSQP).
+    ``h_max``/``h_min`` bounds on the lever arm x_A' at the samples.
     The optimisation starts from the exact solution projected on the ansatz.
-    Returns a :class:`SpringBandFit`."""
+    Returns a :class:`SpringBandFit`; its ``success`` is the KKT check's
+    verdict (``fit.kkt``, :func:`acausal2d.analysis.optimality.kkt_check`)."""
     phi = np.asarray(phi, dtype=float)
     if phi.ndim != 1 or len(phi) < 3 or np.any(np.diff(phi) <= 0):
         raise ModelDefinitionError("spring_band_transfer: phi must be an increasing grid")
@@ -289,5 +344,7 @@ def spring_band_transfer(phi, T, c_S=None, ansatz=("poly", 3), x_start=None, h_m
     x_ref = np.sqrt(np.maximum(x0 ** 2 + 2.0 * W / c_S, 1e-300))
     eq = None if x_start is None else (basis.matrices([phi[0]])[0][0], float(x_start))
     a0 = _start_coefficients(B, D, x_ref, eq)
-    coef, status = _solve(B, D, Tv, c_S, a0, eq, (h_min, h_max))
-    return SpringBandFit(phi, Tv, c_S, basis, coef, status, T)
+    coef, kkt = _solve(B, D, Tv, c_S, a0, eq, (h_min, h_max))
+    fit = SpringBandFit(phi, Tv, c_S, basis, coef, (kkt.ok, kkt.message()), T)
+    fit.kkt = kkt
+    return fit

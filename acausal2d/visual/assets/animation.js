@@ -314,6 +314,7 @@
     }
     if (!(len > 0.5)) return;
     var ux = f[0] / mag, uy = -f[1] / mag, head = Math.min(10, 0.5 * len + 3);
+    if (sh.anchor === "tail") p = [p[0] + ux * len, p[1] + uy * len];   // vectors: from the point
     var tail = [p[0] - ux * len, p[1] - uy * len], base = [p[0] - ux * head, p[1] - uy * head];
     var c = sh.color || ELEMENT_COLORS.arrow;
     polyline([tail, base]); ctx.strokeStyle = c; ctx.lineWidth = 2.5; ctx.lineCap = "round"; ctx.stroke();
@@ -321,7 +322,7 @@
     ctx.lineTo(base[0] + uy * 0.45 * head, base[1] - ux * 0.45 * head);
     ctx.lineTo(base[0] - uy * 0.45 * head, base[1] + ux * 0.45 * head);
     ctx.closePath(); ctx.fillStyle = c; ctx.fill();
-    if (sh.label !== undefined) arrowText(sh.label + " " + (+mag.toPrecision(3)) + " N",
+    if (sh.label !== undefined) arrowText(sh.label + " " + (+mag.toPrecision(3)) + " " + (sh.unit || "N"),
                                           tail[0] + 6, tail[1]);
   }
   function drawTorque(sh, k) {

@@ -7,7 +7,7 @@ import os
 import sys
 
 FILES = ("Pendulum.csv", "DoublePendulum.csv", "CraneCrab.csv", "PistonEngine.csv",
-         "PistonEngine_DynamicStateSelection.csv")
+         "PistonEngine_DynamicStateSelection.csv", "SpringDamperDemo.csv")
 EVERY = 7
 
 
