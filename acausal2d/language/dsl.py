@@ -297,8 +297,14 @@ class Component:
     def topology(self):
         """Planar topology for the degree-of-freedom count (seed eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames
-        of one link) and ``("joint", frame_a, frame_b, f)`` (a joint with f
-        degrees of freedom).  Default: nothing."""
+        of one link), ``("joint", frame_a, frame_b, f)`` (a joint with f
+        degrees of freedom), ``("band", link, frame, band_port)`` (a band
+        span's end: a band joint with the f its wheel declares by
+        ``("contact", band_port, f)`` -- 1 rolling, 2 sliding -- or a pin
+        with f = 1 where no wheel is connected), ``("coupling", k)`` (k
+        constraints coupling band joints wrapped on one contour, Bild 2.1 b),
+        ``("identical", k)`` (identical freedoms f_id) and ``("passive",
+        k)`` (passive constraints s).  Default: nothing."""
         return []
 
     # ----------------------------------------------------------- tree

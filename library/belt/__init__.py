@@ -85,6 +85,8 @@ regularised by 1e-6 N so that the torque stays differentiable at zero load.
 """
 from .spans import Belt, NozzleBelt, SpringBelt
 from .pulley import Pulley
+from .spans import Band
+from .pulley import GuideContour
 from .drum import Drum
 from .rope_drive import RopeDrive
 from .layout import (Layout, belt_layout, connect_band, open_belt_closed_form, tangent,
@@ -97,3 +99,4 @@ __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
            "connect_band", "belt_layout", "Layout", "tangent", "tangent_any", "open_belt_closed_form",
            "Contour", "SupportContour", "CurvedPulley", "CurvedDrum",
            "Carriage", "Hook", "cycloid", "move", "span_geometry"]
+__all__ += ["Band", "GuideContour"]
