@@ -110,3 +110,12 @@ def test_same_start_ratio_in_a_and_b():
 def test_guide_contour_is_massless():
     with pytest.raises(acausal2d.errors.ModelDefinitionError, match="GuideContour.*massless"):
         GuideContour(m=1.0)
+
+
+def test_check_and_simulate_from_the_cli(tmp_path, capsys):
+    from acausal2d import cli
+    path = os.path.join(os.path.dirname(__file__), os.pardir, "models", "dof_bild_2_1.py")
+    assert cli.main(["check", path, "--model", "Bild21c"]) == 0
+    assert "degree of freedom: 2 by seed eq. 2.1" in capsys.readouterr().out
+    assert cli.main(["simulate", path, "--model", "Bild21b", "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "transfer.png").exists()
