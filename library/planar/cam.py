@@ -1,0 +1,153 @@
+"""Cam joint "Kurvengelenk" K (seed Tab. 2.1): a follower in contact with a
+cam contour, f = 2 (rolling-sliding) or f = 1 (rolling without slip).
+
+The cam contour is given in the forms of the curved pulley
+(:mod:`acausal2d.library.belt.contour`): a polar
+:class:`~acausal2d.library.belt.Contour` (circle, function, Fourier series,
+table, support-function conversion, or a synthesised cam from
+:func:`acausal2d.library.synthesis.contour_export.analysis_contour`) or a
+:class:`~acausal2d.library.belt.SupportContour`.  The contact parameter
+``q`` is the polar angle kappa of the contact point (polar contour) or the
+angle psi of the outward normal there (support contour), both in the cam
+frame and unwrapped.  The outward normal angle of a polar contour is
+``psi = kappa - atan(r'/r)`` (continuous: r > 0), so no atan2 appears.
+"""
+import math
+
+import casadi as ca
+
+from acausal2d import Component, der, Frame, Parameter, Variable
+from acausal2d.errors import ModelDefinitionError
+
+_FOLLOWERS = ("roller", "flat")
+
+
+def _cross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def contact_geometry(contour, q):
+    """(point (x, y), outward normal angle psi, arc length s) of the contour
+    at contact parameter ``q``, CasADi expressions in the cam frame."""
+    from acausal2d.library.belt.contour import Contour, SupportContour
+    if isinstance(contour, SupportContour):
+        p, dp = contour._sym(q)
+        c, s = ca.cos(q), ca.sin(q)
+        return (p * c - dp * s, p * s + dp * c), q, contour.s_sym(q)
+    if isinstance(contour, Contour):
+        r, dr = contour.r_dr_sym(q)
+        return (r * ca.cos(q), r * ca.sin(q)), q - ca.atan(dr / r), contour.s_sym(q)
+    raise ModelDefinitionError("CamFollower: contour must be a Contour or a SupportContour "
+                               "(acausal2d.library.belt), got %r" % (contour,))
+
+
+class CamFollower(Component):
+    """Cam joint K (seed Tab. 2.1) between the cam (``frame_a``, the frame
+    the contour is given in) and the follower (``frame_b``).
+
+    ``CamFollower(contour, follower="roller"|"flat", rolling=False,
+    closure="force"|"form", r_roller=..., q=start(...))``.
+
+    - ``follower="roller"``: ``frame_b`` is the roller centre, at the
+      distance ``r_roller`` from the contour along its outward normal (a
+      knife edge with ``r_roller = 0``).  f = 2: the roller slides and
+      rolls (its spin does not matter: frame_b's angle is free); with
+      ``rolling=True`` (f = 1) frame_b is the roller itself and rolls
+      without slip: ``s(q) + r_roller (phi_a + psi - phi_b) = s0``.
+    - ``follower="flat"``: ``frame_b`` lies on the flat face, whose line has
+      the direction angle ``phi_b``; the cam touches it from the left
+      (the cam's outward normal at the contact is ``phi_b - pi/2``).  f = 2;
+      ``rolling=True``: ``s(q) - (K - B).e_b = s0``.
+
+    Position equations only: the contact point ``K`` (``xK, yK``), the
+    normal angle ``psi`` (world ``phi_a + psi``) and the constant ``s0``
+    (rolling; found at initialization).  Forces: the normal force ``Fn``
+    (compression positive, pushing the follower away from the cam) and the
+    tangential force ``Ft`` (rolling only) act at K; the element is massless.
+
+    ``closure="force"`` (kraftschluessig: a spring or gravity holds the
+    follower on the cam): ``lifted`` becomes 1 when Fn turns negative, an
+    event reported in the result's events, and the run continues as if the
+    cam were form-closed (the motion after that time is not the force-closed
+    one; see :meth:`lift_off`).  ``closure="form"`` (a groove): the contact
+    takes both signs, no event.
+    """
+    r_roller = Parameter(0.0, "m", "roller radius (0: knife edge)", min=0.0)
+
+    q = Variable(unit="rad", doc="contact parameter (polar or normal angle in the cam frame)")
+    psi = Variable(unit="rad", doc="outward normal angle of the contour at K (cam frame)")
+    xK = Variable(unit="m", doc="contact point K, x")
+    yK = Variable(unit="m", doc="contact point K, y")
+    Fn = Variable(unit="N", doc="normal contact force (compression positive)")
+    Ft = Variable(unit="N", doc="tangential contact force (rolling; 0 otherwise)")
+    s0 = Variable(unit="m", state_select="avoid", doc="rolling constant (found at start)")
+    lifted = Variable(unit="1", doc="1 after the contact force turned negative (force closure)")
+
+    def __init__(self, contour, follower="roller", rolling=False, closure="force", **kw):
+        if follower not in _FOLLOWERS:
+            raise ModelDefinitionError("CamFollower: follower must be one of %s, not %r"
+                                       % (", ".join(_FOLLOWERS), follower))
+        if closure not in ("force", "form"):
+            raise ModelDefinitionError("CamFollower: closure must be 'force' or 'form', not %r"
+                                       % (closure,))
+        super().__init__(**kw)
+        contact_geometry(contour, ca.SX.sym("q"))       # refuses other contours early
+        self.contour, self.follower = contour, follower
+        self.rolling, self.closure = bool(rolling), closure
+        self.frame_a = Frame(doc="cam frame (the contour's frame)")
+        self.frame_b = Frame(doc="follower: roller centre or a point of the flat face")
+
+    def _world(self):
+        """Contact point K, outward unit normal u and its angle (world)."""
+        a = self.frame_a
+        (px, py), psi, s = contact_geometry(self.contour, self.q)
+        c, sn = ca.cos(a.phi), ca.sin(a.phi)
+        K = (a.x + c * px - sn * py, a.y + sn * px + c * py)
+        ang = a.phi + self.psi
+        return K, (ca.cos(ang), ca.sin(ang)), ang, psi, s
+
+    def equations(self):
+        a, b = self.frame_a, self.frame_b
+        K, u, ang, psi, s = self._world()
+        t = (-u[1], u[0])
+        eqs = [self.psi == psi, self.xK == K[0], self.yK == K[1]]
+        if self.follower == "roller":
+            eqs += [b.x == K[0] + self.r_roller * u[0], b.y == K[1] + self.r_roller * u[1]]
+            roll = s + self.r_roller * (ang - b.phi)
+        else:
+            eqs += [ang == b.phi - math.pi / 2,
+                    (K[0] - b.x) * u[0] + (K[1] - b.y) * u[1] == 0]
+            roll = s - ((K[0] - b.x) * ca.cos(b.phi) + (K[1] - b.y) * ca.sin(b.phi))
+        if self.rolling:
+            eqs += [roll == self.s0, der(self.s0) == 0]
+        else:
+            eqs += [self.Ft == 0, self.s0 == 0]
+        fB = (-(self.Fn * u[0] + self.Ft * t[0]), -(self.Fn * u[1] + self.Ft * t[1]))
+        tB = _cross((K[0] - b.x, K[1] - b.y), fB)
+        eqs += [b.fx == fB[0], b.fy == fB[1], b.t == tB,
+                a.fx + b.fx == 0, a.fy + b.fy == 0,
+                a.t + b.t + _cross((b.x - a.x, b.y - a.y), fB) == 0]
+        if self.closure == "force":
+            eqs.append(self.lifted == ca.if_else(self.Fn < 0, 1.0, 0.0))
+        else:
+            eqs.append(self.lifted == 0)
+        return eqs
+
+    def topology(self):
+        """A joint of f = 2 (rolling-sliding) or 1 (rolling) between cam and
+        follower (seed Tab. 2.1, eq. 2.1)."""
+        return [("joint", self.frame_a, self.frame_b, 1 if self.rolling else 2)]
+
+    def shapes(self):
+        """The contact point as a joint and the contact line to the follower."""
+        return [{"type": "link", "points": [["xK", "yK"], ["frame_b.x", "frame_b.y"]],
+                 "width": 0.01},
+                {"type": "joint", "x": "xK", "y": "yK"}]
+
+    def lift_off(self, res):
+        """Time of the first lift-off in the result ``res`` (the first
+        output time with ``lifted = 1``), or None."""
+        import numpy as np
+        flag = np.asarray(res[self.path + ".lifted"])
+        idx = np.nonzero(flag > 0.5)[0]
+        return float(res.time[idx[0]]) if len(idx) else None

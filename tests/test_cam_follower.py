@@ -1,0 +1,135 @@
+"""Cam joint K (seed Tab. 2.1): the follower's lift against the cam's design
+law (knife edge on a polar Fourier contour, flat face on a support function,
+roller on an eccentric circle, knife edge on a band-synthesised cam), the
+contact force against m (y'' + g) + spring, the lift-off time against its
+closed form, rolling (f = 1) against the epicycloid's ratio, and the joint
+DOF in eq. 2.1."""
+import math
+import os
+import sys
+
+import casadi as ca
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d import Component, ModelDefinitionError, cli, start
+from acausal2d.analysis.check import check
+from acausal2d.library.belt import Contour, SupportContour
+from acausal2d.library.planar import Body, Fixed
+from acausal2d.library.planar.cam import CamFollower
+
+ROOT = os.path.join(os.path.dirname(__file__), os.pardir)
+sys.path.insert(0, os.path.join(ROOT, "models"))
+import cam_follower as cf  # noqa: E402
+
+G = 9.81
+
+
+@pytest.mark.parametrize("cls, law", [
+    (cf.CamKnifeEdge, cf.harmonic_lift), (cf.CamFlatFollower, cf.harmonic_lift),
+    (cf.CamRollerFollower, cf.eccentric_lift)], ids=lambda v: getattr(v, "__name__", None))
+def test_follower_motion_matches_the_design_law(cls, law):
+    res = acausal2d.simulate(cls(), stop_time=1.0, intervals=100, rtol=1e-10)
+    theta = res["drive.phi"]
+    lift = np.array([law(t) for t in theta])
+    assert np.max(np.abs(res["guide.s"] - lift)) < 1e-8
+    # vertical contact force = m (y'' + g) + spring preload and rate
+    # (closed form for the harmonic law; the knife edge's normal is tilted)
+    if law is cf.harmonic_lift:
+        acc = cf.H / 2 * cf.OM ** 2 * np.cos(theta)
+        F_y = cf.M * (acc + G) + cf.F0 + cf.K_SPRING * (lift - cf.R0)
+        Fn_y = res["cam.Fn"] * np.sin(theta + res["cam.psi"])
+        assert np.max(np.abs(Fn_y - F_y)) < 1e-6
+    assert np.min(res["cam.Fn"]) > 0 and res.events == []
+    assert np.all(res["cam.lifted"] == 0)
+
+
+def test_lift_off_is_an_event_at_the_closed_form_time():
+    """Fn = M (H/2 om^2 cos th + g) + F0 + K H/2 (1 - cos th) turns negative
+    at cos th* = -(K H/2 + F0 + M g) / (M H/2 om^2 - K H/2)."""
+    compiled = acausal2d.compile_model(cf.CamFlatFollower())
+    om = 100.0
+    res = compiled.simulate(stop_time=0.03, intervals=30, rtol=1e-10, params={"drive.om": om})
+    c = -(cf.K_SPRING * cf.H / 2 + cf.F0 + cf.M * G) / (cf.M * cf.H / 2 * om ** 2
+                                                       - cf.K_SPRING * cf.H / 2)
+    t_star = math.acos(c) / om
+    assert res.events and res.events[0][1] == "cam.Fn < 0"
+    assert abs(res.events[0][0] - t_star) < 1e-9
+    assert abs(compiled.model.cam.lift_off(res) - t_star) < 1e-9
+    assert res["cam.lifted"][-1] == 1
+
+
+def test_knife_edge_on_a_band_synthesised_cam():
+    """The analysis contour of a DB~SD synthesis (contour_export) as a cam:
+    the knife edge on the y axis rises to r(pi/2 - theta) of that contour."""
+    from acausal2d.library.synthesis.functional import BandStructure, synthesize
+    from acausal2d.library.synthesis.contour_export import analysis_contour
+    s = BandStructure.dbsd((0, 0), (-0.296, 0), lambda p: 0.05 * p + 0.02 * (1 - ca.cos(p)),
+                           -1, 0.25)
+    contour = analysis_contour(synthesize(s, np.linspace(0.0, 2.5, 251)), n_harm=200).contour
+
+    class SynthCam(cf._Cam):
+        y0 = float(contour.r(math.pi / 2))
+
+        def __init__(self, **kw):
+            super().__init__(**kw)
+            self._build(CamFollower(contour, r_roller=0.0, q=start(math.pi / 2)))
+
+    res = acausal2d.simulate(SynthCam(), stop_time=0.25, intervals=25, rtol=1e-10)
+    expect = contour.r(math.pi / 2 - res["drive.phi"])
+    assert np.ptp(expect) > 1e-3                           # the follower moves
+    assert np.max(np.abs(res["guide.s"] - expect)) < 1e-8
+
+
+class RollingRoller(Component):
+    """A free roller (radius rr) rolling without slip on a fixed circular
+    cam (radius R) under gravity, held on it by a groove (form closure)."""
+    R, rr, alpha0 = 0.05, 0.02, math.pi / 2 - 0.1
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.base = Fixed()
+        self.roller = Body(m=0.1, I=1e-4, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.cam = CamFollower(SupportContour(self.R), rolling=True, r_roller=self.rr,
+                               closure="form", q=start(self.alpha0, fixed=True))
+        self.connect(self.base.frame, self.cam.frame_a)
+        self.connect(self.roller.frame_a, self.cam.frame_b)
+
+
+def test_rolling_roller_turns_as_the_epicycloid():
+    """Rolling without slip on a circle: the roller's absolute angle grows by
+    (R + rr)/rr times the polar angle of its centre (epicycloid); eq. 2.1
+    counts the joint with f = 1: F = 3(2-1) - (3-1) = 1."""
+    res = acausal2d.simulate(RollingRoller(), stop_time=0.5, intervals=50, rtol=1e-10)
+    ratio = (RollingRoller.R + RollingRoller.rr) / RollingRoller.rr
+    alpha = np.unwrap(np.arctan2(res["roller.y"], res["roller.x"]))
+    assert alpha[0] - alpha[-1] > 0.5                       # it rolled off the top
+    assert np.max(np.abs(res["roller.phi"] - ratio * (alpha - alpha[0]))) < 1e-8
+    assert np.max(np.abs(np.hypot(res["roller.x"], res["roller.y"])
+                         - RollingRoller.R - RollingRoller.rr)) < 1e-10
+    report = check(RollingRoller())
+    assert (report.links, report.joints, report.grubler) == (2, 1, 1)
+
+
+def test_cam_joint_dof_in_eq_2_1():
+    """Cam, follower and ground: revolute (f = 1), prismatic (f = 1), cam
+    joint (f = 2): F = 3(3-1) - 2 - 2 - 1 = 1."""
+    report = check(cf.CamRollerFollower())
+    assert (report.links, report.joints, report.grubler) == (3, 3, 1)
+
+
+def test_bad_arguments_name_the_element():
+    with pytest.raises(ModelDefinitionError, match="follower must be one of"):
+        CamFollower(Contour.circle(0.05), follower="needle")
+    with pytest.raises(ModelDefinitionError, match="contour must be a Contour"):
+        CamFollower(0.05)
+    with pytest.raises(ModelDefinitionError, match="closure must be"):
+        CamFollower(Contour.circle(0.05), closure="glue")
+
+
+def test_cam_model_from_the_cli_writes_figures(tmp_path):
+    code = cli.main(["simulate", os.path.join(ROOT, "models", "cam_follower.py"),
+                     "--model", "CamRollerFollower", "--out", str(tmp_path)])
+    assert code == 0
+    assert (tmp_path / "lift.png").exists() and (tmp_path / "contact_force.png").exists()
