@@ -133,3 +133,16 @@ def test_cam_model_from_the_cli_writes_figures(tmp_path):
                      "--model", "CamRollerFollower", "--out", str(tmp_path)])
     assert code == 0
     assert (tmp_path / "lift.png").exists() and (tmp_path / "contact_force.png").exists()
+
+
+def test_cam_is_drawn_with_its_contour():
+    from acausal2d.visual.animation import validate_scene
+    from acausal2d.visual.scene import build_scene
+    res = acausal2d.simulate(cf.CamFlatFollower(), stop_time=0.1, intervals=5)
+    scene = build_scene(res)
+    validate_scene(scene)
+    cams = [s for s in scene["shapes"] if s["type"] == "pulley" and "contour" in s]
+    assert len(cams) == 1 and len(cams[0]["contour"]) == 240
+    # the outline is the support function's contour: radius between R0 and R0 + H
+    r = np.hypot(*np.array(cams[0]["contour"]).T)
+    assert cf.R0 - 1e-12 <= r.min() and r.max() <= cf.R0 + cf.H + 1e-12

@@ -53,9 +53,10 @@ def _terms(t):
     """The further terms of eq. 2.1 that are present: band joints (among the
     g joints), the coupling of band joints wrapped on one contour, identical
     freedoms f_id and passive constraints s."""
-    names = (("band_joints", "%d band joints"), ("coupling", "%d coupling"),
+    names = (("band_joints", "%d band joint"), ("coupling", "%d coupling"),
              ("identical", "f_id = %d"), ("passive", "s = %d"))
-    return "".join(", " + fmt % t[k] for k, fmt in names if t.get(k))
+    return "".join(", " + fmt % t[k] + ("s" if k == "band_joints" and t[k] > 1 else "")
+                   for k, fmt in names if t.get(k))
 
 
 def _node_lines(c):

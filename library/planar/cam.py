@@ -139,8 +139,14 @@ class CamFollower(Component):
         return [("joint", self.frame_a, self.frame_b, 1 if self.rolling else 2)]
 
     def shapes(self):
-        """The contact point as a joint and the contact line to the follower."""
-        return [{"type": "link", "points": [["xK", "yK"], ["frame_b.x", "frame_b.y"]],
+        """The cam contour (sampled, turned with frame_a, drawn as a pulley
+        of that outline), the contact point and the line to the follower."""
+        import numpy as np
+        x, y = self.contour.point(np.linspace(0.0, 2 * math.pi, 240, endpoint=False))
+        pts = [[float(a), float(b)] for a, b in zip(x, y)]
+        return [{"type": "pulley", "x": "frame_a.x", "y": "frame_a.y",
+                 "r": float(np.max(np.hypot(x, y))), "phi": "frame_a.phi", "contour": pts},
+                {"type": "link", "points": [["xK", "yK"], ["frame_b.x", "frame_b.y"]],
                  "width": 0.01},
                 {"type": "joint", "x": "xK", "y": "yK"}]
 
