@@ -27,14 +27,14 @@ from acausal2d.library.linkage import DAN, DDD, FGP
 from acausal2d.library.linkage.drives import Preset, TorqueSource
 from acausal2d.library.planar import Body, Revolute
 
-A0, C0, B0 = (0.0, 0.0), (0.3, 0.4), (0.6, 0.0)
-R_ROCKER, R_CONTOUR = 0.15, 0.08
+A0, C0, B0 = (0.0, 0.0), (0.3, 0.4), (0.62, 0.03)
+R_ROCKER, R_ROCKER6, R_CONTOUR = 0.15, 0.12, 0.08
 PHI2, PHI6 = 0.3, math.pi - 0.3         # start angles of rockers 2 and 6
 
 
-def rocker_tip(pivot, phi):
-    """Tip of a rocker of length R_ROCKER at ``pivot`` turned to ``phi``."""
-    return (pivot[0] + R_ROCKER * math.cos(phi), pivot[1] + R_ROCKER * math.sin(phi))
+def rocker_tip(pivot, phi, length=R_ROCKER):
+    """Tip of a rocker of ``length`` at ``pivot`` turned to ``phi``."""
+    return (pivot[0] + length * math.cos(phi), pivot[1] + length * math.sin(phi))
 
 
 def contact_angle(tip, side):
@@ -74,14 +74,14 @@ class Bild21a(_Rockers):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        a, b = rocker_tip(A0, PHI2), rocker_tip(B0, PHI6)
+        a, b = rocker_tip(A0, PHI2), rocker_tip(B0, PHI6, R_ROCKER6)
         th_c, th_d = contact_angle(a, -1), contact_angle(b, +1)
         c = (C0[0] + R_CONTOUR * math.cos(th_c), C0[1] + R_CONTOUR * math.sin(th_c))
         d = (C0[0] + R_CONTOUR * math.cos(th_d), C0[1] + R_CONTOUR * math.sin(th_d))
         self.dyad1 = DDD(lL1=math.dist(a, c), lL2=R_CONTOUR, x20=C0[0], y20=C0[1], K=1,
                          mL1=0.1, JL1=1e-3, mL2=0.1, JL2=1e-4)
         self.arm = FGP(lL=R_CONTOUR, phi10=th_d - th_c, mL=0.1, JL=1e-4)
-        self.dyad2 = DDD(lL1=math.dist(d, b), lL2=R_ROCKER, x20=B0[0], y20=B0[1], K=-1,
+        self.dyad2 = DDD(lL1=math.dist(d, b), lL2=R_ROCKER6, x20=B0[0], y20=B0[1], K=-1,
                          mL1=0.1, JL1=1e-3, mL2=0.2, JL2=1e-3)
         self.connect(self.rocker2.ctr2D2, self.dyad1.ctr2D1)
         self.connect(self.dyad1.ctr2D4, self.arm.ctr2D1)
@@ -95,11 +95,11 @@ class _Banded(_Rockers):
     """Rocker 6 and the two band sections over the contour at C0."""
 
     def _band(self, contour):
-        self.rocker6 = DAN(lL=R_ROCKER, x10=B0[0], y10=B0[1], mL=0.2, JL=1e-3,
+        self.rocker6 = DAN(lL=R_ROCKER6, x10=B0[0], y10=B0[1], mL=0.2, JL=1e-3,
                            phiL0=PHI6, phiL=start(PHI6, fixed=True))
         self.load = TorqueSource(tau=1.0)
         self.connect(self.load.flange, self.rocker6.ctrR2)
-        tip2, tip6 = rocker_tip(A0, PHI2), rocker_tip(B0, PHI6)
+        tip2, tip6 = rocker_tip(A0, PHI2), rocker_tip(B0, PHI6, R_ROCKER6)
         # contour on the right of band 3 (rho = w r) and of band 4 (-w r), w = -1
         self.band3 = Band(**band_start((*tip2, 0.0), (*C0, -R_CONTOUR)))
         self.band4 = Band(**band_start((*C0, R_CONTOUR), (*tip6, 0.0)))

@@ -68,7 +68,7 @@ def _band_length(phi2, phi6):
     out = []
     for p2, p6 in zip(phi2, phi6):
         a = (b21.A0[0] + b21.R_ROCKER * math.cos(p2), b21.A0[1] + b21.R_ROCKER * math.sin(p2))
-        b = (b21.B0[0] + b21.R_ROCKER * math.cos(p6), b21.B0[1] + b21.R_ROCKER * math.sin(p6))
+        b = (b21.B0[0] + b21.R_ROCKER6 * math.cos(p6), b21.B0[1] + b21.R_ROCKER6 * math.sin(p6))
         da, db = math.dist(a, C), math.dist(b, C)
         th1 = math.atan2(a[1] - C[1], a[0] - C[0]) - math.acos(r / da)
         th2 = math.atan2(b[1] - C[1], b[0] - C[0]) + math.acos(r / db)
