@@ -9,8 +9,14 @@ model       structure (seed)                             output load
 ==========  ===========================================  ==================
 DBDD        DB~DD (Bild 2.6, four-bar chain): band from  torque on the
             the drum to the tip of a rocker at B0         rocker
+DBDDInv.    DB~DD with the rocker as ground (Bild    torque between
+            2.6, change of the ground link): the drum on  crank and drum
+            a driven crank, the band to a ground pin
 DBDS        DB~DS (Bild 2.7, slider-crank chain): band   force on the
             from the drum to a slider on a ground guide   slider
+SBDS        SB~DS (Bild 2.8, cross-slider chain): the   force on the
+            band cam on a driven carriage, the band to    slider
+            a slider on a vertical guide
 Nozzle3     three-link band mechanism with a draw-off    the elastic band
             nozzle (Bild 2.9 left): the band runs from    (spring) behind
             the drum through a ground nozzle to an        the nozzle
@@ -29,6 +35,7 @@ the geometry of the result.  Lengths in metres.
 import math
 
 from acausal2d import Component, start
+from acausal2d.library import rotational
 from acausal2d.library.belt import (Band, CurvedDrum, NozzleBelt, SpringBelt, SupportContour,
                                     connect_band, tangent)
 from acausal2d.library.linkage import DAN, SAN
@@ -87,6 +94,30 @@ class DBDD(_Drum):
         self._band_to(self.band, self.rocker.ctr2D2)
 
 
+class DBDDInverted(_Drum):
+    """A neighbour of DB~DD in Bild 2.6 (change of the ground link): the
+    rocker is the ground.  The former ground is a crank (0.15 at the origin,
+    driven at OM from 90 degrees) carrying the drum's pivot; the band runs
+    from the drum to the ground pin G = (0.25, 0.1); a torque of 1 N m
+    between crank and drum keeps it taut."""
+    outputs = ["drive.tau", "band.F", "drum.phi_rel"]
+    G = (0.25, 0.1)
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.drive = Preset(kind="speed", om=OM, phi0=math.pi / 2)
+        self.crank = DAN(lL=0.15, mL=0.0, JL=0.0)
+        self.connect(self.drive.flange, self.crank.ctrR2)
+        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w=1, n_wound=2.0,
+                               x0=0.0, y0=0.15)
+        self.connect(self.crank.ctr2D2, self.drum.ctr2D1)
+        self.load = TorqueSource(tau=1.0)
+        self.connect(self.load.flange, self.drum.ctrR)
+        self.pin = Fixed(r=self.G)
+        self.band = Band(**band_start((*self.G, 0.0), (E, 0.15, RC)))
+        self._band_to(self.band, self.pin.frame)
+
+
 class DBDS(_Drum):
     """DB~DS: the band pulls a slider on a horizontal ground guide at y =
     -0.1 away from the drum; a force of 20 N pulls the slider back."""
@@ -100,6 +131,30 @@ class DBDS(_Drum):
         self.load = ForceSource(f=20.0)
         self.connect(self.load.flange, self.slider.ctrT2)
         self.band = Band(**band_start((0.2, -0.1, 0.0), cam))
+        self._band_to(self.band, self.slider.ctr2D2)
+
+
+class SBDS(_Drum):
+    """A structure of the cross-slider chain (Bild 2.8, two prismatic
+    joints): the band cam is a plate on a carriage driven along the ground
+    x axis at 0.05 m/s (to the right) (no rotation: its flange is held), and the band pulls
+    a slider on the vertical ground guide x = 0.15 against a force of 10 N."""
+    outputs = ["drive.tau", "band.F", "slider.xG"]
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.drive = Preset(kind="speed", translational=True, om=0.05, phi0=0.0)
+        self.carriage = SAN(mS=0.0, JS=0.0, xS0=0.0)
+        self.connect(self.drive.flange, self.carriage.ctrT2)
+        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w=-1, n_wound=2.0)
+        self.hold = rotational.Fixed()
+        self.connect(self.hold.flange, self.drum.ctrR)
+        self.connect(self.carriage.ctr2D2, self.drum.ctr2D1)
+        self.slider = SAN(x10=0.15, y10=-0.4, phi10=math.pi / 2, mS=0.0, JS=0.0, xS0=0.2,
+                          xG=start(0.2))
+        self.load = ForceSource(f=-10.0)
+        self.connect(self.load.flange, self.slider.ctrT2)
+        self.band = Band(**band_start((0.15, -0.2, 0.0), (E, 0.0, -RC)))
         self._band_to(self.band, self.slider.ctr2D2)
 
 
@@ -137,4 +192,4 @@ class Spring3(_Drum):
         self.connect(self.band.ctr2D2, self.anchor.frame)
 
 
-MODELS = [DBDD, DBDS, Nozzle3, Spring3]
+MODELS = [DBDD, DBDDInverted, DBDS, SBDS, Nozzle3, Spring3]

@@ -49,11 +49,38 @@ def test_dbdd_balance_and_ratio():
     assert np.ptp(ratio) > 0.05                # a non-constant ratio
 
 
+def test_dbdd_with_the_rocker_as_ground():
+    """The neighbour of DB~DD by a change of the ground link: the band's
+    moment about the moving drum pivot balances the 1 N m between crank and
+    drum, and the power of the crank drive is the power of that torque."""
+    res = _run(bm.DBDDInverted)
+    g = res["band.gamma"]
+    K = res["drum.ctrK1.x"], res["drum.ctrK1.y"]
+    P = res["crank.ctr2D2.x"], res["crank.ctr2D2.y"]
+    h_D = _cross(K[0] - P[0], K[1] - P[1], np.cos(g), np.sin(g))
+    assert np.max(np.abs(res["band.F"] * np.abs(h_D) - 1.0)) < 1e-8
+    power = res["drive.tau"] * bm.OM + 1.0 * res["drum.w_rel"]
+    assert np.max(np.abs(power)) < 1e-7 * np.max(np.abs(res["drive.tau"]))
+    assert np.ptp(res["drive.tau"]) > 1.0
+
+
 def test_dbds_balance():
     res = _run(bm.DBDS)
     g = res["band.gamma"]
     _drum_balance(res, -np.cos(g), -np.sin(g))
     assert np.max(np.abs(res["band.F"] * np.abs(np.cos(g)) - 20.0)) < 1e-8
+
+
+def test_sbds_cross_slider_balance():
+    """SB~DS: the band's vertical component carries the 10 N slider load, and
+    the carriage drive's power is the load's (massless, no losses)."""
+    res = _run(bm.SBDS)
+    g = res["band.gamma"]
+    assert np.max(np.abs(res["band.F"] * np.abs(np.sin(g)) - 10.0)) < 1e-8
+    power = res["drive.tau"] * 0.05 - 10.0 * res["der(slider.xG)"]
+    assert np.max(np.abs(power)) < 1e-8 * np.max(np.abs(res["drive.tau"]))
+    assert np.ptp(res["drive.tau"]) > 1.0           # a non-constant ratio
+    assert np.all(res["drum.phi"] == 0.0)           # the plate does not turn
 
 
 def _wound_off(res):
