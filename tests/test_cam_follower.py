@@ -146,3 +146,12 @@ def test_cam_is_drawn_with_its_contour():
     # the outline is the support function's contour: radius between R0 and R0 + H
     r = np.hypot(*np.array(cams[0]["contour"]).T)
     assert cf.R0 - 1e-12 <= r.min() and r.max() <= cf.R0 + cf.H + 1e-12
+
+
+def test_lift_off_is_reported_by_simulate(tmp_path, capsys):
+    code = cli.main(["simulate", os.path.join(ROOT, "models", "cam_follower.py"),
+                     "--model", "CamFlatFollower", "--set", "drive.om=100", "--stop-time",
+                     "0.03", "--out", str(tmp_path)])
+    assert code == 0
+    out = capsys.readouterr().out
+    assert "event at t=0.0190839495: cam.Fn < 0" in out
