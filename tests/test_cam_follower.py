@@ -155,3 +155,37 @@ def test_lift_off_is_reported_by_simulate(tmp_path, capsys):
     assert code == 0
     out = capsys.readouterr().out
     assert "event at t=0.0190839495: cam.Fn < 0" in out
+
+
+class WheelOnIncline(Component):
+    """A disc (a circular cam of radius R, the moving part) rolling without
+    slip on a flat face inclined by alpha (the ground as a flat follower)."""
+    R, alpha, m, I = 0.1, 0.3, 2.0, 0.004
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        a, R = self.alpha, self.R
+        self.slope = Fixed(phi=-a)
+        self.wheel = Body(m=self.m, I=self.I, x=start(R * math.sin(a), fixed=True),
+                          y=start(R * math.cos(a)), phi=start(0.0, fixed=True),
+                          w=start(0.0, fixed=True))
+        self.contact = CamFollower(SupportContour(R), follower="flat", rolling=True,
+                                   q=start(-math.pi / 2 - a))
+        self.connect(self.wheel.frame_a, self.contact.frame_a)
+        self.connect(self.slope.frame, self.contact.frame_b)
+
+
+def test_disc_rolls_down_a_flat_face_with_the_closed_form_acceleration():
+    """Flat face, rolling (f = 1): the centre runs down the slope by
+    s = a t^2/2 with a = g sin(alpha) / (1 + I/(m R^2)), and the disc turns
+    by -s/R; the normal force is m g cos(alpha)."""
+    W = WheelOnIncline
+    res = acausal2d.simulate(W(), stop_time=1.0, intervals=20, rtol=1e-10)
+    t = res.time
+    acc = G * math.sin(W.alpha) / (1 + W.I / (W.m * W.R ** 2))
+    s = (res["wheel.x"] - res["wheel.x"][0]) * math.cos(W.alpha) \
+        - (res["wheel.y"] - res["wheel.y"][0]) * math.sin(W.alpha)
+    assert np.max(np.abs(s - acc * t ** 2 / 2)) < 1e-8
+    assert np.max(np.abs(res["wheel.phi"] + s / W.R)) < 1e-8
+    assert np.max(np.abs(res["contact.Fn"] - W.m * G * math.cos(W.alpha))) < 1e-7
+    assert check(W()).grubler == 1
