@@ -132,9 +132,8 @@ class _Topology:
             self.used += [("c", id(item[1])), ("c", id(item[2]))]
         elif kind == "contact":
             self.contacts[self.conn_sets.find(id(item[1]))] = item[2]
-        else:
-            attr = {"coupling": "coupling", "identical": "identical", "passive": "passive"}[kind]
-            setattr(self, attr, getattr(self, attr) + item[1])
+        elif kind in ("coupling", "identical", "passive"):
+            setattr(self, kind, getattr(self, kind) + item[1])
 
     def all_joints(self):
         """Joints with their f; a span end on a wheel contact is a band joint
