@@ -10,6 +10,10 @@ Elements and ports (seed names)
   damper (eq. 4.78-4.86), same ports.
 - :class:`NozzleBelt` -- elastic belt through a frictionless draw-off nozzle
   at ``ctr2D3`` (eq. 4.67-4.77).
+- :class:`Band` -- inextensible band or rope section (the rigid limit of
+  Belt); a link of seed eq. 2.1 with pins or band joints at its ends.
+- :class:`GuideContour` -- circular contour over which a band slides
+  without friction (seed Bild 2.1 b/c; band joints with f = 2).
 - :class:`Pulley` -- circular pulley "Bandrolle" (eq. 4.87-4.99): housing
   frame ``ctr2D1`` (axis P1), contact frames ``ctrK1``, ``ctrK2``, band ports
   ``ctrB1``, ``ctrB2``, rotational flange ``ctrR`` (pulley angle relative to
