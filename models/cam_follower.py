@@ -58,7 +58,7 @@ class _Cam(Component):
     y0 = R0
     flat = False
 
-    def _build(self, cam):
+    def _build(self, cam, s_start=None):
         self.drive = Preset(kind="speed", om=OM, phi0=0.0)
         self.base = Fixed()
         self.shaft = Revolute(use_flange=True)
@@ -70,7 +70,7 @@ class _Cam(Component):
         phi = math.pi if self.flat else 0.0
         self.top = Fixed(phi=phi)
         self.guide = Prismatic(r=(0.0, -1.0) if self.flat else (0.0, 1.0), use_flange=True,
-                               s=start(self.y0))
+                               s=start(self.y0 if s_start is None else s_start))
         self.follower = Body(m=M, I=1e-4)
         self.connect(self.top.frame, self.guide.frame_a)
         self.connect(self.guide.frame_b, self.follower.frame_a)
@@ -113,4 +113,18 @@ class CamRollerFollower(_Cam):
                                 q=start(math.pi / 2)))
 
 
-MODELS = [CamKnifeEdge, CamFlatFollower, CamRollerFollower]
+class CamFlatCompliant(_Cam):
+    """CamFlatFollower with the compliant contact (k_contact = 1e7 N/m,
+    d_contact = 300 N s/m, the defaults): the follower may lift off.  It
+    starts pressed in by the static penetration (M (H/2 OM^2 + g) + F0)/k."""
+    flat = True
+    outputs = ["guide.s", "cam.Fn", "cam.delta", "cam.lifted"]
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        cam = CamFollower(SupportContour(R0 + H / 2, a=(0.0,), b=(-H / 2,)), follower="flat",
+                          contact="compliant", q=start(math.pi / 2))
+        self._build(cam, s_start=R0 - (M * (H / 2 * OM ** 2 + 9.81) + F0) / cam.k_contact)
+
+
+MODELS = [CamKnifeEdge, CamFlatFollower, CamRollerFollower, CamFlatCompliant]

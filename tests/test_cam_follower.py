@@ -45,19 +45,29 @@ def test_follower_motion_matches_the_design_law(cls, law):
     assert np.all(res["cam.lifted"] == 0)
 
 
-def test_lift_off_is_an_event_at_the_closed_form_time():
-    """Fn = M (H/2 om^2 cos th + g) + F0 + K H/2 (1 - cos th) turns negative
-    at cos th* = -(K H/2 + F0 + M g) / (M H/2 om^2 - K H/2)."""
-    compiled = acausal2d.compile_model(cf.CamFlatFollower())
-    om = 100.0
-    res = compiled.simulate(stop_time=0.03, intervals=30, rtol=1e-10, params={"drive.om": om})
+def _t_star(om):
+    """Rigid flat follower: Fn = M (H/2 om^2 cos th + g) + F0 + K H/2 (1 - cos th)
+    turns negative at cos th* = -(K H/2 + F0 + M g) / (M H/2 om^2 - K H/2)."""
     c = -(cf.K_SPRING * cf.H / 2 + cf.F0 + cf.M * G) / (cf.M * cf.H / 2 * om ** 2
                                                        - cf.K_SPRING * cf.H / 2)
-    t_star = math.acos(c) / om
-    assert res.events and res.events[0][1] == "cam.Fn < 0"
-    assert abs(res.events[0][0] - t_star) < 1e-9
-    assert abs(compiled.model.cam.lift_off(res) - t_star) < 1e-9
-    assert res["cam.lifted"][-1] == 1
+    return math.acos(c) / om
+
+
+def test_rigid_force_closure_ends_the_run_at_the_closed_form_lift_off():
+    """The rigid contact cannot follow a lift-off: the run ends with an
+    error naming the element, the time t* (closed form) and the way out;
+    the motion up to t* comes with it and its force is >= 0."""
+    compiled = acausal2d.compile_model(cf.CamFlatFollower())
+    with pytest.raises(acausal2d.SimulationError) as info:
+        compiled.simulate(stop_time=0.03, intervals=30, rtol=1e-10, params={"drive.om": 100.0})
+    exc, t_star = info.value, _t_star(100.0)
+    assert "CamFollower 'cam'" in str(exc) and "use contact='compliant'" in str(exc)
+    assert "At t=0.0190839495" in str(exc) and abs(exc.time - t_star) < 1e-9
+    part = exc.result
+    assert abs(part.time[-1] - t_star) < 1e-9 and part.events[-1][1] == "cam.Fn < 0"
+    before = part.time < part.time[-1]
+    assert np.min(part["cam.Fn"][before]) > 0
+    assert np.max(np.abs(part["cam.Fn"][~before])) < 1e-9
 
 
 def test_knife_edge_on_a_band_synthesised_cam():
@@ -126,6 +136,15 @@ def test_bad_arguments_name_the_element():
         CamFollower(0.05)
     with pytest.raises(ModelDefinitionError, match="closure must be"):
         CamFollower(Contour.circle(0.05), closure="glue")
+    with pytest.raises(ModelDefinitionError, match="contact must be one of rigid, compliant"):
+        CamFollower(Contour.circle(0.05), contact="soft")
+    for bad in ({"closure": "form"}, {"rolling": True}):
+        with pytest.raises(ModelDefinitionError, match="contact='compliant' is the force-closed"):
+            CamFollower(Contour.circle(0.05), contact="compliant", **bad)
+    with pytest.raises(ModelDefinitionError, match="k_contact"):
+        CamFollower(Contour.circle(0.05), contact="compliant", k_contact=0.0)
+    with pytest.raises(ModelDefinitionError, match="d_contact"):
+        CamFollower(Contour.circle(0.05), contact="compliant", d_contact=-1.0)
 
 
 def test_cam_model_from_the_cli_writes_figures(tmp_path):
@@ -148,13 +167,18 @@ def test_cam_is_drawn_with_its_contour():
     assert cf.R0 - 1e-12 <= r.min() and r.max() <= cf.R0 + cf.H + 1e-12
 
 
-def test_lift_off_is_reported_by_simulate(tmp_path, capsys):
-    code = cli.main(["simulate", os.path.join(ROOT, "models", "cam_follower.py"),
-                     "--model", "CamFlatFollower", "--set", "drive.om=100", "--stop-time",
-                     "0.03", "--out", str(tmp_path)])
-    assert code == 0
-    out = capsys.readouterr().out
-    assert "event at t=0.0190839495: cam.Fn < 0" in out
+def test_rigid_lift_off_from_the_cli_exits_2_and_leaves_no_results(tmp_path, capsys):
+    model = os.path.join(ROOT, "models", "cam_follower.py")
+    args = ["simulate", model, "--model", "CamFlatFollower", "--intervals", "10",
+            "--out", str(tmp_path)]
+    assert cli.main(args + ["--stop-time", "0.03"]) == 0
+    assert (tmp_path / "result.csv").exists()
+    code = cli.main(args + ["--set", "drive.om=100", "--stop-time", "0.03"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert "At t=0.0190839495 in CamFollower 'cam'" in err and "contact='compliant'" in err
+    assert "Traceback" not in err
+    assert not (tmp_path / "result.csv").exists() and not (tmp_path / "lift.png").exists()
 
 
 class WheelOnIncline(Component):

@@ -294,6 +294,16 @@ class Component:
         "y": "frame_a.y"}``.  Default: nothing."""
         return []
 
+    def assertions(self):
+        """Hook: conditions that end the run with an error, as a list of
+        ``(name, message)``: ``name`` is a 0/1 variable of this component
+        set by a relation in its equations (e.g. ``lifted == if_else(Fn <
+        0, 1, 0)``); when it is 1 at the start or after an event, the run
+        stops with a :class:`~acausal2d.errors.SimulationError` giving the
+        time, this component and ``message`` (what to change).  Default:
+        none."""
+        return []
+
     def topology(self):
         """Planar topology for the degree-of-freedom count (seed eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames

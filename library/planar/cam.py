@@ -26,6 +26,21 @@ def _cross(a, b):
     return a[0] * b[1] - a[1] * b[0]
 
 
+def _check_choices(follower, closure, contact, rolling):
+    """ModelDefinitionError naming the argument of CamFollower that is wrong."""
+    for name, value, allowed in (("follower", follower, _FOLLOWERS),
+                                 ("closure", closure, ("force", "form")),
+                                 ("contact", contact, ("rigid", "compliant"))):
+        if value not in allowed:
+            raise ModelDefinitionError("CamFollower: %s must be one of %s, not %r"
+                                       % (name, ", ".join(allowed), value))
+    if contact == "compliant" and (closure == "form" or rolling):
+        raise ModelDefinitionError(
+            "CamFollower: contact='compliant' is the force-closed sliding contact (a follower "
+            "that can lift off); use it with closure='force' and rolling=False, or "
+            "contact='rigid' for a grooved cam or rolling without slip")
+
+
 def contact_geometry(contour, q):
     """(point (x, y), outward normal angle psi, arc length s) of the contour
     at contact parameter ``q``, CasADi expressions in the cam frame."""
@@ -41,12 +56,18 @@ def contact_geometry(contour, q):
                                "(acausal2d.library.belt), got %r" % (contour,))
 
 
+_TENSILE = ("the contact force turned tensile (Fn < 0): the follower lifts off the cam, "
+            "which the rigid contact cannot follow; use contact='compliant' to follow the free "
+            "flight (or closure='form' for a grooved cam)")
+
+
 class CamFollower(Component):
     """Cam joint K (seed Tab. 2.1) between the cam (``frame_a``, the frame
     the contour is given in) and the follower (``frame_b``).
 
     ``CamFollower(contour, follower="roller"|"flat", rolling=False,
-    closure="force"|"form", r_roller=..., q=start(...))``.
+    closure="force"|"form", contact="rigid"|"compliant", r_roller=...,
+    q=start(...))``.
 
     - ``follower="roller"``: ``frame_b`` is the roller centre, at the
       distance ``r_roller`` from the contour along its outward normal (a
@@ -65,14 +86,27 @@ class CamFollower(Component):
     (compression positive, pushing the follower away from the cam) and the
     tangential force ``Ft`` (rolling only) act at K; the element is massless.
 
+    ``contact="rigid"`` (default): a bilateral constraint.  With
+    ``closure="form"`` (a groove) the contact force takes both signs.  With
     ``closure="force"`` (kraftschluessig: a spring or gravity holds the
-    follower on the cam): ``lifted`` becomes 1 when Fn turns negative, an
-    event reported in the result's events, and the run continues as if the
-    cam were form-closed (the motion after that time is not the force-closed
-    one; see :meth:`lift_off`).  ``closure="form"`` (a groove): the contact
-    takes both signs, no event.
+    follower on the cam) the run ends with an error naming this element and
+    the time when ``Fn`` turns negative (``lifted`` becomes 1 at that event).
+
+    ``contact="compliant"`` (force closure, sliding): the follower keeps its
+    freedom along the normal; ``delta`` is the penetration from the geometry
+    (roller: ``r_roller - (B - K).u`` with K the contour point whose normal
+    passes through B; flat: ``(K - B).u`` with K the contour point whose
+    normal is the face's) and the normal force is the compression-only law
+    ``Fn = k_contact delta + d_contact der(delta)`` while ``delta > 0`` and
+    that is positive, else 0 (``Fs`` is the linear law, ``lifted`` = 1
+    while ``delta <= 0``).  Lift-off and re-contact are the events
+    ``cam.delta <= 0`` and ``max(cam.Fs, 0)``.  The element is then a
+    force element (no joint in eq. 2.1).
     """
     r_roller = Parameter(0.0, "m", "roller radius (0: knife edge)", min=0.0)
+    k_contact = Parameter(1e7, "N/m", "normal contact stiffness (compliant contact)",
+                          positive=True)
+    d_contact = Parameter(300.0, "N*s/m", "normal contact damping (compliant contact)", min=0.0)
 
     q = Variable(unit="rad", doc="contact parameter (polar or normal angle in the cam frame)")
     psi = Variable(unit="rad", doc="outward normal angle of the contour at K (cam frame)")
@@ -81,19 +115,17 @@ class CamFollower(Component):
     Fn = Variable(unit="N", doc="normal contact force (compression positive)")
     Ft = Variable(unit="N", doc="tangential contact force (rolling; 0 otherwise)")
     s0 = Variable(unit="m", state_select="avoid", doc="rolling constant (found at start)")
-    lifted = Variable(unit="1", doc="1 after the contact force turned negative (force closure)")
+    lifted = Variable(unit="1", doc="1 when the follower is off the cam (or Fn < 0, rigid)")
+    delta = Variable(unit="m", doc="penetration (compliant contact; 0 rigid)")
+    Fs = Variable(unit="N", doc="linear law k delta + d der(delta) (compliant; Fn rigid)")
 
-    def __init__(self, contour, follower="roller", rolling=False, closure="force", **kw):
-        if follower not in _FOLLOWERS:
-            raise ModelDefinitionError("CamFollower: follower must be one of %s, not %r"
-                                       % (", ".join(_FOLLOWERS), follower))
-        if closure not in ("force", "form"):
-            raise ModelDefinitionError("CamFollower: closure must be 'force' or 'form', not %r"
-                                       % (closure,))
+    def __init__(self, contour, follower="roller", rolling=False, closure="force",
+                 contact="rigid", **kw):
+        _check_choices(follower, closure, contact, rolling)
         super().__init__(**kw)
         contact_geometry(contour, ca.SX.sym("q"))       # refuses other contours early
         self.contour, self.follower = contour, follower
-        self.rolling, self.closure = bool(rolling), closure
+        self.rolling, self.closure, self.contact = bool(rolling), closure, contact
         self.frame_a = Frame(doc="cam frame (the contour's frame)")
         self.frame_b = Frame(doc="follower: roller centre or a point of the flat face")
 
@@ -106,36 +138,65 @@ class CamFollower(Component):
         ang = a.phi + self.psi
         return K, (ca.cos(ang), ca.sin(ang)), ang, psi, s
 
+    def _placement(self, K, u, ang, s):
+        """Where the follower is against the contact point: (equations,
+        penetration or None for the rigid contact, rolling expression)."""
+        b = self.frame_b
+        BK = (K[0] - b.x, K[1] - b.y)
+        if self.follower == "roller":
+            roll = s + self.r_roller * (ang - b.phi)
+            if self.contact == "compliant":
+                return [_cross(BK, u) == 0], self.r_roller + BK[0] * u[0] + BK[1] * u[1], roll
+            return [b.x == K[0] + self.r_roller * u[0],
+                    b.y == K[1] + self.r_roller * u[1]], None, roll
+        roll = s - (BK[0] * ca.cos(b.phi) + BK[1] * ca.sin(b.phi))
+        pen = BK[0] * u[0] + BK[1] * u[1]
+        if self.contact == "compliant":
+            return [ang == b.phi - math.pi / 2], pen, roll
+        return [ang == b.phi - math.pi / 2, pen == 0], None, roll
+
+    def _normal_force(self, pen):
+        """Closure and contact law: Fn, delta, Fs and lifted."""
+        if pen is None:
+            eqs = [self.delta == 0, self.Fs == self.Fn]
+            if self.closure == "force":
+                return eqs + [self.lifted == ca.if_else(self.Fn < 0, 1.0, 0.0)]
+            return eqs + [self.lifted == 0]
+        off = self.delta <= 0
+        return [self.delta == pen,
+                self.Fs == self.k_contact * self.delta + self.d_contact * der(self.delta),
+                self.Fn == ca.if_else(off, 0.0, ca.fmax(self.Fs, 0.0)),
+                self.lifted == ca.if_else(off, 1.0, 0.0)]
+
     def equations(self):
         a, b = self.frame_a, self.frame_b
         K, u, ang, psi, s = self._world()
         t = (-u[1], u[0])
         eqs = [self.psi == psi, self.xK == K[0], self.yK == K[1]]
-        if self.follower == "roller":
-            eqs += [b.x == K[0] + self.r_roller * u[0], b.y == K[1] + self.r_roller * u[1]]
-            roll = s + self.r_roller * (ang - b.phi)
-        else:
-            eqs += [ang == b.phi - math.pi / 2,
-                    (K[0] - b.x) * u[0] + (K[1] - b.y) * u[1] == 0]
-            roll = s - ((K[0] - b.x) * ca.cos(b.phi) + (K[1] - b.y) * ca.sin(b.phi))
+        place, pen, roll = self._placement(K, u, ang, s)
+        eqs += place + self._normal_force(pen)
         if self.rolling:
             eqs += [roll == self.s0, der(self.s0) == 0]
         else:
             eqs += [self.Ft == 0, self.s0 == 0]
         fB = (-(self.Fn * u[0] + self.Ft * t[0]), -(self.Fn * u[1] + self.Ft * t[1]))
         tB = _cross((K[0] - b.x, K[1] - b.y), fB)
-        eqs += [b.fx == fB[0], b.fy == fB[1], b.t == tB,
-                a.fx + b.fx == 0, a.fy + b.fy == 0,
-                a.t + b.t + _cross((b.x - a.x, b.y - a.y), fB) == 0]
-        if self.closure == "force":
-            eqs.append(self.lifted == ca.if_else(self.Fn < 0, 1.0, 0.0))
-        else:
-            eqs.append(self.lifted == 0)
-        return eqs
+        return eqs + [b.fx == fB[0], b.fy == fB[1], b.t == tB,
+                      a.fx + b.fx == 0, a.fy + b.fy == 0,
+                      a.t + b.t + _cross((b.x - a.x, b.y - a.y), fB) == 0]
+
+    def assertions(self):
+        """A rigid force-closed contact ends the run when Fn turns tensile."""
+        if self.contact == "rigid" and self.closure == "force":
+            return [("lifted", _TENSILE)]
+        return []
 
     def topology(self):
         """A joint of f = 2 (rolling-sliding) or 1 (rolling) between cam and
-        follower (seed Tab. 2.1, eq. 2.1)."""
+        follower (seed Tab. 2.1, eq. 2.1); none for the compliant contact
+        (a force element: the follower keeps its freedom)."""
+        if self.contact == "compliant":
+            return []
         return [("joint", self.frame_a, self.frame_b, 1 if self.rolling else 2)]
 
     def shapes(self):
@@ -153,7 +214,13 @@ class CamFollower(Component):
     def lift_off(self, res):
         """Time of the first lift-off in the result ``res`` (the first
         output time with ``lifted = 1``), or None."""
+        changes = self.contact_changes(res)
+        return changes[0][0] if changes and changes[0][1] == "lift-off" else None
+
+    def contact_changes(self, res):
+        """[(t, "lift-off" | "re-contact")] of the result ``res``: the
+        switches of ``lifted`` (at the event times, which are output rows)."""
         import numpy as np
-        flag = np.asarray(res[self.path + ".lifted"])
-        idx = np.nonzero(flag > 0.5)[0]
-        return float(res.time[idx[0]]) if len(idx) else None
+        flag = np.asarray(res[self.path + ".lifted"]) > 0.5
+        idx = np.nonzero(flag[1:] != flag[:-1])[0] + 1
+        return [(float(res.time[k]), "lift-off" if flag[k] else "re-contact") for k in idx]
