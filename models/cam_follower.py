@@ -119,6 +119,8 @@ class CamFlatCompliant(_Cam):
     starts pressed in by the static penetration (M (H/2 OM^2 + g) + F0)/k."""
     flat = True
     outputs = ["guide.s", "cam.Fn", "cam.delta", "cam.lifted"]
+    figures = _Cam.figures + [{"name": "penetration", "signals": ["cam.delta"], "x": "time",
+                               "title": "penetration (negative: lifted off)"}]
 
     def __init__(self, **kw):
         super().__init__(**kw)

@@ -96,3 +96,15 @@ def test_compliant_contact_is_a_force_element_in_eq_2_1():
     """The follower keeps its freedom: F = 3(3-1) - 2 - 2 = 2."""
     from acausal2d.analysis.check import check
     assert check(cf.CamFlatCompliant()).grubler == 2
+
+
+def test_lift_off_and_re_contact_from_the_cli(tmp_path, capsys):
+    from acausal2d import cli
+    code = cli.main(["simulate", os.path.join(ROOT, "models", "cam_follower.py"), "--model",
+                     "CamFlatCompliant", "--set", "drive.om=100", "--stop-time", "0.08",
+                     "--out", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "event at t=0.0191445246: cam.delta <= 0" in out          # lift-off
+    assert "event at t=0.0732978896: cam.delta <= 0" in out          # re-contact
+    assert (tmp_path / "penetration.png").exists() and (tmp_path / "lift.png").exists()
