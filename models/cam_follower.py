@@ -58,7 +58,7 @@ class _Cam(Component):
     y0 = R0
     flat = False
 
-    def _build(self, cam, s_start=None):
+    def _build(self, cam, s_start=None, v_start=0.0):
         self.drive = Preset(kind="speed", om=OM, phi0=0.0)
         self.base = Fixed()
         self.shaft = Revolute(use_flange=True)
@@ -70,7 +70,8 @@ class _Cam(Component):
         phi = math.pi if self.flat else 0.0
         self.top = Fixed(phi=phi)
         self.guide = Prismatic(r=(0.0, -1.0) if self.flat else (0.0, 1.0), use_flange=True,
-                               s=start(self.y0 if s_start is None else s_start))
+                               s=start(self.y0 if s_start is None else s_start),
+                               v=start(v_start, fixed=v_start != 0.0))
         self.follower = Body(m=M, I=1e-4)
         self.connect(self.top.frame, self.guide.frame_a)
         self.connect(self.guide.frame_b, self.follower.frame_a)

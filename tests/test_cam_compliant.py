@@ -108,3 +108,30 @@ def test_lift_off_and_re_contact_from_the_cli(tmp_path, capsys):
     assert "event at t=0.0191445246: cam.delta <= 0" in out          # lift-off
     assert "event at t=0.0732978896: cam.delta <= 0" in out          # re-contact
     assert (tmp_path / "penetration.png").exists() and (tmp_path / "lift.png").exists()
+
+
+def test_compliant_roller_penetration_is_the_distance_to_the_eccentric_circle():
+    """Roller (radius RR) on the eccentric circle (radius RC, centre C at E
+    on the cam's x axis), started pressed in and moving with the cam (no
+    impact): delta = RC + RR - |B - C| from the positions alone (1e-12 m);
+    it stays on the cam (0 < delta < 2e-6 m)."""
+    from acausal2d import start
+    from acausal2d.library.belt import SupportContour
+    from acausal2d.library.planar.cam import CamFollower
+
+    class RollerCompliant(cf._Cam):
+        y0 = cf.eccentric_lift(0.0)
+
+        def __init__(self, **kw):
+            super().__init__(**kw)
+            self._build(CamFollower(SupportContour(cf.RC, a=(cf.E,), b=(0.0,)), r_roller=cf.RR,
+                                    contact="compliant", q=start(math.pi / 2)),
+                        s_start=self.y0 - 1e-6, v_start=cf.E * cf.OM)
+
+    res = acausal2d.simulate(RollerCompliant(), stop_time=0.5, intervals=50, rtol=1e-10)
+    th = res["drive.phi"]
+    gap = np.hypot(0.0 - cf.E * np.cos(th), res["guide.s"] - cf.E * np.sin(th))
+    assert np.max(np.abs(res["cam.delta"] - (cf.RC + cf.RR - gap))) < 1e-12
+    assert 0 < np.min(res["cam.delta"]) and np.max(res["cam.delta"]) < 2e-6
+    law = np.array([cf.eccentric_lift(x) for x in th])
+    assert np.max(np.abs(res["guide.s"] - law)) < 2e-6

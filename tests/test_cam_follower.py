@@ -141,10 +141,12 @@ def test_bad_arguments_name_the_element():
     for bad in ({"closure": "form"}, {"rolling": True}):
         with pytest.raises(ModelDefinitionError, match="contact='compliant' is the force-closed"):
             CamFollower(Contour.circle(0.05), contact="compliant", **bad)
+    with pytest.raises(ModelDefinitionError, match="compliant knife edge"):
+        CamFollower(Contour.circle(0.05), contact="compliant")
     with pytest.raises(ModelDefinitionError, match="k_contact"):
-        CamFollower(Contour.circle(0.05), contact="compliant", k_contact=0.0)
+        CamFollower(Contour.circle(0.05), contact="compliant", follower="flat", k_contact=0.0)
     with pytest.raises(ModelDefinitionError, match="d_contact"):
-        CamFollower(Contour.circle(0.05), contact="compliant", d_contact=-1.0)
+        CamFollower(Contour.circle(0.05), contact="compliant", follower="flat", d_contact=-1.0)
 
 
 def test_cam_model_from_the_cli_writes_figures(tmp_path):

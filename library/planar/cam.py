@@ -123,6 +123,10 @@ class CamFollower(Component):
                  contact="rigid", **kw):
         _check_choices(follower, closure, contact, rolling)
         super().__init__(**kw)
+        if contact == "compliant" and follower == "roller" and not self.r_roller > 0:
+            raise ModelDefinitionError(
+                "CamFollower: a compliant knife edge (r_roller = 0) has no contact normal when "
+                "its tip touches the contour; give r_roller > 0 (e.g. 1e-4 m)")
         contact_geometry(contour, ca.SX.sym("q"))       # refuses other contours early
         self.contour, self.follower = contour, follower
         self.rolling, self.closure, self.contact = bool(rolling), closure, contact
