@@ -17,8 +17,12 @@ CamRollerFollower     eccentric circle (support    e sin theta + sqrt((Rc +
 theta = om t is the cam angle; the follower is on the y axis, so the cam
 point under it has the polar angle pi/2 - theta (normal angle pi/2 - theta
 for the flat face).  The contact force is the follower's m (y'' + g) plus
-the spring force; a fast cam makes it negative: the lift-off is an event
-(``CamFollower.lift_off``).  ``acausal2d simulate models/cam_follower.py
+the spring force; a fast cam makes it negative: the rigid contact cannot
+follow that lift-off and the run ends there with an error (``acausal2d
+simulate models/cam_follower.py --model CamFlatFollower --set drive.om=100``).
+``CamFlatCompliant`` has the compliant (unilateral) contact: at 100 rad/s
+the follower lifts off, flies on its spring and lands again (events, see
+``CamFollower.contact_changes``).  ``acausal2d simulate models/cam_follower.py
 --model CamFlatFollower`` plots the lift and the contact force.
 """
 import math
