@@ -32,8 +32,9 @@ class CheckReport:
             lines += _node_lines(self.nodes)
         if self.grubler is not None:
             lines.append("  degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, "
-                         "g = %d joints), %d structural (position states)"
-                         % (self.grubler, self.links, self.joints, self.structural_dof))
+                         "g = %d joints%s), %d structural (position states)"
+                         % (self.grubler, self.links, self.joints, _terms(self.dof_terms),
+                            self.structural_dof))
             if self.structural_dof < self.grubler:
                 lines.append("                     (%d prescribed: drives that give the motion "
                              "as a function of time, or constraints eq. 2.1 does not see)"
@@ -46,6 +47,16 @@ class CheckReport:
             lines.append("  degree of freedom: %d structural (position states); no planar "
                          "joints declared for eq. 2.1" % self.structural_dof)
         return "\n".join(lines)
+
+
+def _terms(t):
+    """The further terms of eq. 2.1 that are present: band joints (among the
+    g joints), the coupling of band joints wrapped on one contour, identical
+    freedoms f_id and passive constraints s."""
+    names = (("band_joints", "%d band joint"), ("coupling", "%d coupling"),
+             ("identical", "f_id = %d"), ("passive", "s = %d"))
+    return "".join(", " + fmt % t[k] + ("s" if k == "band_joints" and t[k] > 1 else "")
+                   for k, fmt in names if t.get(k))
 
 
 def _node_lines(c):
@@ -82,43 +93,72 @@ def _loops(topo, nodes):
     return max(nodes["m"], 0) if nodes else 0
 
 
+class _Topology:
+    """Collects the topology() items of all components for seed eq. 2.1:
+    links (union of frames), joints (f each), band joints (a span end on a
+    wheel contact, f from the contact), coupling constraints of band joints
+    wrapped on one contour, identical freedoms f_id and passive constraints s."""
+
+    def __init__(self, model):
+        self.conn_sets, _ = connector_sets(model)
+        self.links = UnionFind()
+        self.ground = ("ground",)
+        self.find(self.ground)
+        self.used = [self.ground]
+        self.joints, self.bands, self.contacts = [], [], {}
+        self.coupling = self.identical = self.passive = 0
+        self.any_item = False
+        for comp in model.components():
+            for item in comp.topology():
+                self.any_item = True
+                self._add(item)
+
+    def find(self, k):
+        return self.links.find(self.conn_sets.find(k[1]) if k[0] == "c" else k)
+
+    def _add(self, item):
+        kind = item[0]
+        if kind in ("ground", "rigid"):
+            frames = item[1]
+            first = ("c", id(frames[0])) if kind == "rigid" and frames else self.ground
+            for f in frames:
+                self.links.union(self.find(("c", id(f))), self.find(first))
+            self.used += [("c", id(f)) for f in frames]
+        elif kind == "joint":
+            self.joints.append((item[1], item[2], item[3]))
+            self.used += [("c", id(item[1])), ("c", id(item[2]))]
+        elif kind == "band":
+            self.bands.append(item[1:])
+            self.used += [("c", id(item[1])), ("c", id(item[2]))]
+        elif kind == "contact":
+            self.contacts[self.conn_sets.find(id(item[1]))] = item[2]
+        elif kind in ("coupling", "identical", "passive"):
+            setattr(self, kind, getattr(self, kind) + item[1])
+
+    def all_joints(self):
+        """Joints with their f; a span end on a wheel contact is a band joint
+        with the contact's f (1 rolling, 2 sliding), else a pin (f = 1)."""
+        out = list(self.joints)
+        n_band = 0
+        for link, end, port in self.bands:
+            f = self.contacts.get(self.conn_sets.find(id(port)))
+            n_band += f is not None
+            out.append((link, end, 1 if f is None else f))
+        return out, n_band
+
+
 def _planar_topology(model):
-    """Links, joints and loops from the components' topology() declarations."""
-    conn_sets, _ = connector_sets(model)
-    links = UnionFind()
-
-    def find(k):
-        return links.find(conn_sets.find(k[1]) if k[0] == "c" else k)
-
-    def union(a, b):
-        links.union(find(a), find(b))
-
-    joints, any_item = [], False
-    ground = ("ground",)
-    find(ground)
-    used = [ground]
-    for comp in model.components():
-        for item in comp.topology():
-            any_item = True
-            kind = item[0]
-            if kind == "ground":
-                for f in item[1]:
-                    union(("c", id(f)), ground)
-                    used.append(("c", id(f)))
-            elif kind == "rigid":
-                frames = item[1]
-                for f in frames[1:]:
-                    union(("c", id(frames[0])), ("c", id(f)))
-                used += [("c", id(f)) for f in frames]
-            elif kind == "joint":
-                joints.append((item[1], item[2], item[3]))
-                used += [("c", id(item[1])), ("c", id(item[2]))]
-    if not any_item:
+    """Links, joints, F and loops by seed eq. 2.1 from the components'
+    topology() declarations (None when nothing is declared)."""
+    topo = _Topology(model)
+    if not topo.any_item:
         return None
-    groups = {find(k) for k in used}
-    n = len(groups)
-    g = len(joints)
-    F = 3 * (n - 1) - sum(3 - f for _, _, f in joints)
+    find = topo.find
+    joints, n_band = topo.all_joints()
+    groups = {find(k) for k in topo.used}
+    n, g = len(groups), len(joints)
+    F = (3 * (n - 1) - sum(3 - f for _, _, f in joints)
+         - topo.coupling - topo.identical + topo.passive)
     # loops: edges - vertices + connected components of the link graph
     graph = UnionFind()
     for grp in groups:
@@ -127,7 +167,9 @@ def _planar_topology(model):
         graph.union(find(("c", id(a))), find(("c", id(b))))
     n_components = len({graph.find(grp) for grp in groups})
     loops = g - n + n_components
-    return n, g, F, max(loops, 0)
+    extra = {"band_joints": n_band, "coupling": topo.coupling,
+             "identical": topo.identical, "passive": topo.passive}
+    return n, g, F, max(loops, 0), extra
 
 
 def _index(structure, states):
@@ -172,4 +214,5 @@ def check(model):
         states=states, structural_dof=len(position_states),
         loops=_loops(topo, nodes), nodes=nodes,
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
-        joints=topo[1] if topo else 0)
+        joints=topo[1] if topo else 0,
+        dof_terms=topo[4] if topo else {})

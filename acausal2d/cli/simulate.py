@@ -59,6 +59,16 @@ def _print_summary(model, res, out, pngs, extra=()):
               "".join(", " + os.path.basename(f) for f in extra)))
     states = getattr(res, "states", None) or []
     print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
+    _print_events(res.events)
+
+
+def _print_events(events, first=5):
+    """The first events (time and the relations that switched, e.g. a cam's
+    lift-off ``cam.Fn < 0``) and how many more there were."""
+    for t, text in events[:first]:
+        print("  event at t=%.9g: %s" % (t, text))
+    if len(events) > first:
+        print("  ... and %d more events" % (len(events) - first))
 
 
 def cmd_simulate(args):

@@ -57,6 +57,7 @@ class System:
         self._functions()
         self._alias_maps()
         self.outputs = declared_outputs(model)
+        self.assertions = self._assertions(model)
         self._formulations = {}
 
     # ------------------------------------------------------------ setup
@@ -182,6 +183,29 @@ class System:
             [e for a in fixed for e in (a.var.start, a.offset if a.rep is None
                                         else a.sign * a.rep.start + a.offset)],
             self.p, "fixed_aliases")
+
+    def _assertions(self, model):
+        """(component, variable name, message) of the components'
+        ``assertions()`` (see :meth:`~acausal2d.language.dsl.Component.assertions`)."""
+        out = []
+        for comp in model.components():
+            for name, message in comp.assertions():
+                full = "%s.%s" % (comp.path, name) if comp.path else name
+                if full not in self.node_names and full not in self.alias_names:
+                    raise ModelDefinitionError("%s: assertions() names '%s', which is not a "
+                                               "variable of it" % (comp.describe(), name))
+                out.append((comp, full, message))
+        return tuple(out)
+
+    def value(self, name, z, p):
+        """Value of the variable ``name`` (a node or an eliminated alias)
+        at the node values ``z``."""
+        if name in self.node_names:
+            return float(z[self.node_names.index(name)])
+        k = self.alias_names.index(name)
+        v = float(self.alias_offset_fn(p).full().ravel()[k])
+        j = self.alias_node[k]
+        return v + (float(z[j]) * self.alias_sign[k] if j >= 0 else 0.0)
 
     # ------------------------------------------------------------ queries
     @property

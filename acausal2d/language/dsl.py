@@ -294,11 +294,27 @@ class Component:
         "y": "frame_a.y"}``.  Default: nothing."""
         return []
 
+    def assertions(self):
+        """Hook: conditions that end the run with an error, as a list of
+        ``(name, message)``: ``name`` is a 0/1 variable of this component
+        set by a relation in its equations (e.g. ``lifted == if_else(Fn <
+        0, 1, 0)``); when it is 1 at the start or after an event, the run
+        stops with a :class:`~acausal2d.errors.SimulationError` giving the
+        time, this component and ``message`` (what to change).  Default:
+        none."""
+        return []
+
     def topology(self):
         """Planar topology for the degree-of-freedom count (seed eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames
-        of one link) and ``("joint", frame_a, frame_b, f)`` (a joint with f
-        degrees of freedom).  Default: nothing."""
+        of one link), ``("joint", frame_a, frame_b, f)`` (a joint with f
+        degrees of freedom), ``("band", link, frame, band_port)`` (a band
+        span's end: a band joint with the f its wheel declares by
+        ``("contact", band_port, f)`` -- 1 rolling, 2 sliding -- or a pin
+        with f = 1 where no wheel is connected), ``("coupling", k)`` (k
+        constraints coupling band joints wrapped on one contour, Bild 2.1 b),
+        ``("identical", k)`` (identical freedoms f_id) and ``("passive",
+        k)`` (passive constraints s).  Default: nothing."""
         return []
 
     # ----------------------------------------------------------- tree

@@ -157,6 +157,15 @@ class ChatterWatch:
                    ", ".join(relation_text(self.system, k) for k in worst)), time=t)
 
 
+def check_assertions(system, p, t, z):
+    """Raise an :class:`EventError` if a component's assertion variable
+    (``Component.assertions()``) is 1 at the consistent point (t, z)."""
+    for comp, name, message in system.assertions:
+        if system.value(name, z, p) > 0.5:
+            raise EventError("At t=%.9g in %s: %s" % (t, comp.describe(), message),
+                             time=t, variable=name)
+
+
 def position_nodes(s):
     """Mask of the variables that are positions of a motion: level 0 with a
     velocity and an acceleration among the nodes (an angle or a

@@ -19,7 +19,8 @@ import numpy as np
 from ..errors import SimulationError
 from . import singularities as sing
 from .evaluator import Evaluator
-from .events import ChatterWatch, EventIteration, check_jumps, relation_text
+from .events import (ChatterWatch, EventIteration, check_assertions, check_jumps,
+                     relation_text)
 from .failure import Approach
 from .ida import (Problem, Reached, RootFound, SundialsMessages, advance, make_solver,
                   start_solver)
@@ -113,6 +114,7 @@ class Simulation:
         with SundialsMessages() as self.messages:
             self._start()
             try:
+                check_assertions(self.system, self.p, self.t, self.z)
                 while self.t < self.t_end - self.eps and self._step():
                     if self._over_budget(wall):
                         self._keep_last_point()
@@ -325,11 +327,13 @@ class Simulation:
         check_jumps(self.system, self.t, z_left, z, changed)
         self.z, self.d = z, d
         self.out.append((self.t, z.copy()))
-        self.stats.events += 1
         self.chatter.record(self.t, changed or flipped)
-        text = "; ".join(self.system.relations[k].text for k in (changed or flipped))
-        self.events.append((self.t, text))
+        if changed:      # else a root IDA found again just past one settled by its rate
+            self.stats.events += 1
+            text = "; ".join(self.system.relations[k].text for k in changed)
+            self.events.append((self.t, text))
         self.stats.event_time += _time.perf_counter() - wall
+        check_assertions(self.system, self.p, self.t, z)
 
     def _reinit_failure(self, t, exc):
         text = "; ".join(relation_text(self.system, k) for k in range(len(self.system.relations)))

@@ -10,6 +10,10 @@ Elements and ports (seed names)
   damper (eq. 4.78-4.86), same ports.
 - :class:`NozzleBelt` -- elastic belt through a frictionless draw-off nozzle
   at ``ctr2D3`` (eq. 4.67-4.77).
+- :class:`Band` -- inextensible band or rope section (the rigid limit of
+  Belt); a link of seed eq. 2.1 with pins or band joints at its ends.
+- :class:`GuideContour` -- circular contour over which a band slides
+  without friction (seed Bild 2.1 b/c; band joints with f = 2).
 - :class:`Pulley` -- circular pulley "Bandrolle" (eq. 4.87-4.99): housing
   frame ``ctr2D1`` (axis P1), contact frames ``ctrK1``, ``ctrK2``, band ports
   ``ctrB1``, ``ctrB2``, rotational flange ``ctrR`` (pulley angle relative to
@@ -85,6 +89,8 @@ regularised by 1e-6 N so that the torque stays differentiable at zero load.
 """
 from .spans import Belt, NozzleBelt, SpringBelt
 from .pulley import Pulley
+from .spans import Band
+from .pulley import GuideContour
 from .drum import Drum
 from .rope_drive import RopeDrive
 from .layout import (Layout, belt_layout, connect_band, open_belt_closed_form, tangent,
@@ -97,3 +103,4 @@ __all__ = ["Belt", "SpringBelt", "NozzleBelt", "Pulley", "Drum", "RopeDrive",
            "connect_band", "belt_layout", "Layout", "tangent", "tangent_any", "open_belt_closed_form",
            "Contour", "SupportContour", "CurvedPulley", "CurvedDrum",
            "Carriage", "Hook", "cycloid", "move", "span_geometry"]
+__all__ += ["Band", "GuideContour"]

@@ -125,7 +125,15 @@ class _Wheel(_BandElement):
         otherwise it belongs to the link it is connected to."""
         contacts = [self._connectors[n] for n in ("ctrK1", "ctrK2") if n in self._connectors]
         items = [] if is_connected(self.ctr2D1) else [("ground", [self.ctr2D1])]
-        return items + [("rigid", contacts), ("joint", self.ctr2D1, contacts[0], 1)]
+        return items + [("rigid", contacts), ("joint", self.ctr2D1, contacts[0], 1)] \
+            + self._contacts(1)
+
+    def _contacts(self, f):
+        """``("contact", band_port, f)`` of each band port: the band joints
+        of inextensible spans ending here (seed Tab. 2.1: f = 1 rolling, 2
+        sliding)."""
+        return [("contact", self._connectors[n], f) for n in ("ctrB1", "ctrB2")
+                if n in self._connectors]
 
 
 class Pulley(_Wheel):
@@ -200,3 +208,33 @@ class Pulley(_Wheel):
                self.ctrB1.L == -w * self.r * (self.phi - self.kappa1),
                self.ctrB2.L == w * self.r * (self.phi - self.kappa2)]
         return eqs + self._balance([(K1, x1, y1), (K2, x2, y2)])
+
+
+class GuideContour(Pulley):
+    """Circular contour over which a band slides without friction (the
+    "Kurvenkontur" of seed Bild 2.1 b/c): the equations of a massless
+    :class:`Pulley` (``m = J = 0`` are required), whose angle ``phi`` is here
+    the slip coordinate of the band over the contour (the moment balance
+    makes both span forces equal).  Fixed in the ground while ``ctr2D1`` is
+    unconnected, or carried by a turning wheel (Bild 2.1 c) connected there.
+
+    Topology (seed eq. 2.1): the contour belongs to the link of its housing;
+    the two band joints slide (f = 2) and are coupled by the wrapped band
+    (one more constraint), so that Bild 2.1 b counts F = 3(5-1) - [4(3-1) +
+    2(3-2) + 1] = 1.
+    """
+
+    def __init__(self, w=1, **kw):
+        super().__init__(w=w, **kw)
+        for name in ("m", "J"):
+            if float(np.asarray(self.parameter_value(name))) != 0.0:
+                raise ModelDefinitionError("%s: a GuideContour is massless; leave %s at 0 "
+                                           "(put the mass on the body that carries it)"
+                                           % (type(self).__name__, name))
+
+    def topology(self):
+        """Contour and contacts rigid with the housing, two sliding band
+        joints (f = 2) and their coupling (seed Bild 2.1 b)."""
+        items = [] if is_connected(self.ctr2D1) else [("ground", [self.ctr2D1])]
+        return items + [("rigid", [self.ctr2D1, self.ctrK1, self.ctrK2]),
+                        ("coupling", 1)] + self._contacts(2)

@@ -1,5 +1,5 @@
 """Belt spans (seed ch. 4.4.1-4.4.3): the elastic belt or rope span (eq.
-4.52-4.66), the inextensible band with a tension spring and damper (eq.
+4.52-4.66), the inextensible band (its rigid limit), the inextensible band with a tension spring and damper (eq.
 4.78-4.86) and the elastic belt through a draw-off nozzle (eq. 4.67-4.77).
 Slack spans carry no force (events).
 """
@@ -130,6 +130,42 @@ class SpringBelt(_Span):
         ends = [["ctr2D1.x", "ctr2D1.y"], ["ctr2D2.x", "ctr2D2.y"]]
         return [{"type": "belt", "points": ends},
                 {"type": "spring", "a": ends[0], "b": ends[1]}]
+
+
+class Band(_Span):
+    """Inextensible band or rope span between P1 and P2 (the rigid limit of
+    seed 4.4.1, eq. 4.52-4.58: strain zero).
+
+    The free length equals the band material in the span, ``l = l_x0 +
+    ctrB1.L + ctrB2.L`` with the constant ``l_x0`` (``der(l_x0) = 0``, found
+    at initialization), so ``F`` is a constraint force.  The span is
+    bilateral: it carries compression too, so a model with it must keep it
+    taut (check ``F > 0``).  Unlike the elastic spans (force elements), a
+    band is a link of seed eq. 2.1 (Bild 2.1 b/c: "das Band in zwei
+    Abschnitte aufgeteilt"): each end is a pin (f = 1) where it is fastened
+    to a frame, or a band joint where it lies on a wheel contact (f = 1
+    rolling, 2 sliding, as the wheel declares).
+    """
+    l_x = Variable(start=1.0, unit="m", state_select="avoid", doc="band material in the span")
+    l_x0 = Variable(start=1.0, unit="m", state_select="avoid",
+                    doc="constant part of l_x, found at initialization")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.__dict__["_link"] = Frame()     # the band section as a link (not a port)
+
+    def equations(self):
+        return self._geometry() + [
+            self.l_x == self.l_x0 + self.ctrB1.L + self.ctrB2.L,
+            der(self.l_x0) == 0,
+            self.l == self.l_x]
+
+    def topology(self):
+        """The band section is a link with a joint at each end (seed eq. 2.1,
+        Bild 2.1 b/c): ``("band", ...)`` items, a band joint on a wheel
+        contact or a pin on a frame."""
+        return [("band", self._link, self.ctr2D1, self.ctrB1),
+                ("band", self._link, self.ctr2D2, self.ctrB2)]
 
 
 class NozzleBelt(_BandElement):

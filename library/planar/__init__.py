@@ -6,6 +6,7 @@ counter-clockwise positive), one concern per module:
   :class:`PlanarWorld`, connection queries.
 - :mod:`.parts`: Fixed, Body, FixedTranslation, FixedRotation, BodyShape.
 - :mod:`.joints`: Revolute, Prismatic, IdealRolling.
+- :mod:`.cam`: CamFollower, the cam joint K of seed Tab. 2.1.
 - :mod:`.forces`: Spring, Damper, SpringDamper, WorldForce, WorldTorque,
   RelativeForce.
 - :mod:`.sensors`: absolute and relative position/velocity/acceleration
@@ -39,3 +40,5 @@ def modelica_names():
 
 __all__ = ["modelica_names", "PlanarWorld", "fixed_of", "is_connected", "resolve", "rotate", "Body", "BodyShape",
            "Fixed", "FixedRotation", "FixedTranslation", "IdealRolling", "Prismatic", "Revolute"]
+from .cam import CamFollower  # noqa: E402
+__all__ += ["CamFollower"]
