@@ -348,7 +348,7 @@ def test_mec2_pole_view_is_the_intersection_of_crank_and_rocker_lines():
     the lines A0A and B0B cross.  The moving centrode (``ref``) stays
     listed as not drawn."""
     from acausal2d.visual.scene import build_scene
-    model = acausal2d.load_model(os.path.join(ROOT, "tests", "data", "mec2_examples",
+    model = acausal2d.load_model(os.path.join(ROOT, "tests", "data", "mec2",
                                               "views_2.json"))
     assert [v["link"] for v in model.pole_views] == ["b"]
     assert model.mec2_views_not_drawn == ["$.views[1] (trace of pole): no counterpart in the "
