@@ -39,13 +39,11 @@ cannot separate those parameters (e.g. two that enter only as their
 product): they are named in ``warnings`` and their intervals are not
 meaningful.
 
-Success is decided by the optimality check (first-order conditions at the
-reported point, :func:`stationarity`), never by the optimiser's exit flag
+Success is decided by the optimality check (first-order KKT conditions at
+the reported point, :func:`~acausal2d.analysis.optimality.kkt_check`), never by the optimiser's exit flag
 alone; an optimiser stopped by its evaluation budget is reported with
 ``budget_exhausted``.
 """
-import json
-
 import numpy as np
 
 from ..errors import Acausal2dError
@@ -58,6 +56,17 @@ CORRELATION_LIMIT = 0.99
 CONDITION_LIMIT = 1e6
 """Condition number of the relatively scaled Jacobian above which the fit
 is reported as rank-deficient."""
+
+POLISH_STEPS = 3
+"""Gauss-Newton steps after the optimiser at most (see :func:`_polish`)."""
+
+POLISH_TOL = 1e-8
+"""Stationarity up to which :func:`_polish` improves the point (100 times
+below ``KKT_TOL``, so that the verdict has a margin)."""
+
+KKT_TOL = 1e-6
+"""Tolerance of the scaled KKT measures that decide a fit's success (the
+finite-difference gradient is accurate to about 1e-6 relative)."""
 
 
 class _Problem:
@@ -135,29 +144,6 @@ def _check_free(cm, names):
                     name.strip(), "; similar: " + ", ".join(close) if close else ""))
 
 
-def stationarity(x, g, lo, hi, step, sigma):
-    """First-order optimality of a bound-constrained least-squares point
-    (KKT): the gradient ``g = J^T r`` must vanish in the free parameters,
-    and at an active bound point outwards (a non-negative multiplier).
-    ``step`` is the Gauss-Newton step ``(J^T J)^+ g`` in the free
-    parameters: the point is stationary if it moves every estimate by less
-    than 1 % of its standard error ``sigma`` (or 1e-9 relative where the
-    residual is zero).  Returns (ok, message)."""
-    at_lo = (x <= lo) & (g > 0)
-    at_hi = (x >= hi) & (g < 0)
-    free = ~(at_lo | at_hi)
-    tol = np.maximum(0.01 * sigma, 1e-9 * np.maximum(np.abs(x), 1e-12))
-    bad = free & ~(np.abs(step) <= tol)
-    if bad.any():
-        return False, "not stationary: a Gauss-Newton step would still move %s by %s" % (
-            ", ".join("p%d" % j for j in np.flatnonzero(bad)),
-            ", ".join("%.3g" % s for s in step[bad]))
-    active = np.flatnonzero(~free)
-    return True, "first-order conditions hold%s" % (
-        "" if not active.size else " (%d bound%s active)" % (active.size,
-                                                           "" if active.size == 1 else "s"))
-
-
 def statistics(J, r, x, names):
     """Standard errors, 95 % intervals, correlations and warnings at the
     optimum (module documentation).  The Jacobian is scaled by
@@ -232,15 +218,43 @@ def _solve(problem, x0, lo, hi, loss, f_scale, max_evaluations):
         raise Acausal2dError("the fit cannot start: %s" % exc) from None
 
 
-def _optimality(J, r, x, lo, hi, sigma, loss, f_scale):
-    """(ok, message) of :func:`stationarity` with the (robustly weighted)
-    Gauss-Newton step at ``x``."""
+def _optimality(J, r, x, lo, hi, loss, f_scale, cost_start):
+    """The KKT check (:func:`~acausal2d.analysis.optimality.kkt_check`)
+    of the bound-constrained fit at ``x``: gradient ``J^T (rho' r)``, in
+    relative variables ``x / max(|x|, 1e-12)`` so that the measures do not
+    depend on the parameters' units, the objective's scale the start cost
+    (a zero-residual fit is stationary when its gradient is small against
+    the cost it started from), tolerance ``KKT_TOL``."""
+    from .optimality import kkt_check
     w = _LOSS_WEIGHT[loss]((r / f_scale) ** 2)
-    sw = np.sqrt(w)
     d = np.maximum(np.abs(x), 1e-12)
-    g = J.T @ (w * r)
-    step = np.linalg.lstsq((J * d) * sw[:, None], sw * r, rcond=1.0 / CONDITION_LIMIT)[0] * d
-    return stationarity(x, g, lo, hi, step, sigma)
+    g = (J.T @ (w * r)) * d
+    return kkt_check(g, x / d, objective=max(cost_start, 0.5 * float(r @ r)), lower=lo / d,
+                     upper=hi / d, x_scale=1.0, tol=KKT_TOL)
+
+
+def _polish(problem, x, lo, hi, loss, f_scale, cost_start):
+    """Up to ``POLISH_STEPS`` (robustly weighted) Gauss-Newton steps from
+    the optimiser's point while the KKT stationarity is above ``POLISH_TOL``
+    and the cost drops
+    (the optimiser stops on its own tolerances, the check decides).
+    Returns (x, J, r, ok, message)."""
+    trials = problem.trials
+    r = problem.vector(trials.run([x])[0][0])
+    for k in range(POLISH_STEPS + 1):
+        J, _ = trials.jacobian(x, problem.vector, lo, hi)
+        kkt = _optimality(J, r, x, lo, hi, loss, f_scale, cost_start)
+        if kkt.stationarity <= POLISH_TOL or k == POLISH_STEPS:
+            break
+        sw = np.sqrt(_LOSS_WEIGHT[loss]((r / f_scale) ** 2))
+        step = np.linalg.lstsq(J * sw[:, None], sw * r, rcond=1.0 / CONDITION_LIMIT)[0]
+        x_new = np.clip(x - step, lo, hi)
+        values = trials.run([x_new])[0][0]
+        r_new = None if values is None else problem.vector(values)
+        if r_new is None or r_new @ r_new > (r @ r) * (1.0 + 1e-8):   # 1e-8: the runs' noise
+            break
+        x, r = x_new, r_new
+    return x, J, r, kkt.ok, kkt.message()
 
 
 def _final_run(cm, trials, x, times, rtol):
@@ -287,12 +301,10 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
         problem = _Problem(trials, pairs, cols, _weights(pairs, weights))
         r0 = problem.residuals(x0)
         sol = _solve(problem, x0, lo, hi, loss, f_scale, max_evaluations)
-        J, _ = trials.jacobian(sol.x, problem.vector, lo, hi)
-        r = problem.vector(trials.run([sol.x])[0][0])
-        stats = statistics(J, r, sol.x, names)
-        ok, why = _optimality(J, r, sol.x, lo, hi, stats["std"], loss, f_scale)
-        res = _final_run(cm, trials, sol.x, t, rtol)
-        return FitResult(names=names, start=x0, estimate=sol.x, stats=stats, pairs=pairs,
+        x, J, r, ok, why = _polish(problem, sol.x, lo, hi, loss, f_scale, 0.5 * float(r0 @ r0))
+        stats = statistics(J, r, x, names)
+        res = _final_run(cm, trials, x, t, rtol)
+        return FitResult(names=names, start=x0, estimate=x, stats=stats, pairs=pairs,
                          data=(t, cols), residuals=r, cost=0.5 * float(r @ r),
                          cost_start=0.5 * float(r0 @ r0), success=ok,
                          message=why if ok or sol.status != 0 else "the optimiser's budget of "
