@@ -77,6 +77,7 @@ class _Problem:
         self.weights = weights
         self.penalty = None
         self.evaluations = 0
+        self._last = (None, None)
 
     def vector(self, values):
         """Weighted residuals of one run's values."""
@@ -85,6 +86,9 @@ class _Problem:
 
     def residuals(self, x):
         """r(x); a failed run gives the penalty vector (worse than the start)."""
+        key = tuple(np.asarray(x, dtype=float))
+        if self._last[0] == key:
+            return self._last[1]
         self.evaluations += 1
         values, err = self.trials.run([x])[0]
         if values is None:
@@ -94,6 +98,7 @@ class _Problem:
         r = self.vector(values)
         if self.penalty is None:
             self.penalty = np.full(r.size, 10.0 * (np.sqrt(np.mean(r ** 2)) + 1.0))
+        self._last = (key, r)
         return r
 
 
@@ -159,9 +164,12 @@ def statistics(J, r, x, names):
     cov = (s2 * (vt.T * inv) @ vt) * np.outer(d, d)
     std = np.sqrt(np.maximum(np.diag(cov), 0.0))
     warnings = []
+    corr_null = []
     for v in vt[~good]:
         involved = [names[j] for j in np.flatnonzero(np.abs(v) > 0.1)]
         std[np.abs(v) > 0.1] = np.inf
+        corr_null.append(np.where(np.outer(np.abs(v) > 0.1, np.abs(v) > 0.1),
+                                  np.sign(np.outer(v, v)), np.nan))
         warnings.append("the data cannot identify %s: the Jacobian is rank-deficient "
                         "(condition > %.0e); only a combination of them is determined; fix "
                         "one of them (--set) or add data that separates them"
@@ -169,6 +177,8 @@ def statistics(J, r, x, names):
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(std, std)
     corr[~np.isfinite(corr)] = np.nan
+    for c in corr_null:            # along a null direction the estimates move together
+        corr = np.where(np.isfinite(c), c, corr)
     np.fill_diagonal(corr, 1.0)
     warnings += _correlation_warnings(corr, names, warnings)
     half = _t_quantile(dof) * std
@@ -233,7 +243,7 @@ def _optimality(J, r, x, lo, hi, loss, f_scale, cost_start):
                      upper=hi / d, x_scale=1.0, tol=KKT_TOL)
 
 
-def _polish(problem, x, lo, hi, loss, f_scale, cost_start):
+def _polish(problem, x, lo, hi, loss, f_scale, cost_start, steps=POLISH_STEPS):
     """Up to ``POLISH_STEPS`` (robustly weighted) Gauss-Newton steps from
     the optimiser's point while the KKT stationarity is above ``POLISH_TOL``
     and the cost drops
@@ -241,10 +251,10 @@ def _polish(problem, x, lo, hi, loss, f_scale, cost_start):
     Returns (x, J, r, ok, message)."""
     trials = problem.trials
     r = problem.vector(trials.run([x])[0][0])
-    for k in range(POLISH_STEPS + 1):
+    for k in range(steps + 1):
         J, _ = trials.jacobian(x, problem.vector, lo, hi)
         kkt = _optimality(J, r, x, lo, hi, loss, f_scale, cost_start)
-        if kkt.stationarity <= POLISH_TOL or k == POLISH_STEPS:
+        if kkt.stationarity <= POLISH_TOL or k == steps:
             break
         sw = np.sqrt(_LOSS_WEIGHT[loss]((r / f_scale) ** 2))
         step = np.linalg.lstsq(J * sw[:, None], sw * r, rcond=1.0 / CONDITION_LIMIT)[0]
@@ -301,7 +311,8 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
         problem = _Problem(trials, pairs, cols, _weights(pairs, weights))
         r0 = problem.residuals(x0)
         sol = _solve(problem, x0, lo, hi, loss, f_scale, max_evaluations)
-        x, J, r, ok, why = _polish(problem, sol.x, lo, hi, loss, f_scale, 0.5 * float(r0 @ r0))
+        x, J, r, ok, why = _polish(problem, sol.x, lo, hi, loss, f_scale, 0.5 * float(r0 @ r0),
+                                   POLISH_STEPS if sol.status != 0 else 0)   # 0: budget spent
         stats = statistics(J, r, x, names)
         res = _final_run(cm, trials, x, t, rtol)
         return FitResult(names=names, start=x0, estimate=x, stats=stats, pairs=pairs,

@@ -76,9 +76,9 @@ class FitResult:
         head = "%-24s %12s %12s %12s %26s" % ("parameter", "start", "estimate", "std",
                                               "95% interval")
         lines = [head, "-" * len(head)]
-        for n, p in self.parameters.items():
-            lines.append("%-24s %12.6g %12.6g %12.4g   [%11.6g, %11.6g]" % (
-                n, p["start"], p["estimate"], p["std"], p["ci95"][0], p["ci95"][1]))
+        for n, x0, x, s, (a, b) in zip(self.names, self.start, self.estimate, self.std,
+                                       self.ci95):
+            lines.append("%-24s %12.6g %12.6g %12.4g   [%11.6g, %11.6g]" % (n, x0, x, s, a, b))
         lines.append("cost %.6g -> %.6g (1/2 sum of squared residuals), residual std %.4g, "
                      "%d model runs, %.2f s%s" % (
                          self.cost_start, self.cost, self.residual_std, self.evaluations,

@@ -90,7 +90,7 @@ def run_trial(model, params, settings):
                 return None, "signal %s is not finite" % name
         return out, ""
     except Exception as exc:                    # noqa: BLE001 - a failed trial is data
-        return None, "%s: %s" % (type(exc).__name__, str(exc).splitlines()[0] if str(exc) else "")
+        return None, "%s: %s" % (type(exc).__name__, " ".join(str(exc).split())[:300])
 
 
 class Trials:
