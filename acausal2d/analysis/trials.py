@@ -69,6 +69,12 @@ def _parse_item(item, option):
     return name.strip(), vals if len(vals) == 3 else vals[0]
 
 
+def _check_fixed(fixed):
+    for name, value in fixed.items():
+        if not np.all(np.isfinite(np.asarray(value, dtype=float))):
+            raise Acausal2dError("fixed value of %s must be finite, got %r" % (name, value))
+
+
 def run_trial(model, params, settings):
     """Simulate one trial on this process; returns ({signal: values at
     ``settings['times']``}, "") or (None, error text).  ``model``: a
@@ -88,6 +94,9 @@ def run_trial(model, params, settings):
             out[name] = np.interp(times, t, y)
             if not np.all(np.isfinite(out[name])):
                 return None, "signal %s is not finite" % name
+        for k, func in enumerate(settings.get("functions") or ()):
+            if func is not None:
+                out["__f%d" % k] = np.array([float(func(res))])
         return out, ""
     except Exception as exc:                    # noqa: BLE001 - a failed trial is data
         return None, "%s: %s" % (type(exc).__name__, " ".join(str(exc).split())[:300])
@@ -109,6 +118,7 @@ class Trials:
                  workers=None, client=None, model_name=None):
         from ..compiled import CompiledModel
         self.names, self.fixed = list(names), dict(fixed or {})
+        _check_fixed(self.fixed)
         self.settings = {"signals": list(signals), "times": np.asarray(times, dtype=float),
                          "rtol": rtol}
         self.count, self.failures, self.client = 0, [], client
@@ -159,14 +169,26 @@ class Trials:
         if self.client is None:
             out = [run_trial(self.model, p, self.settings) for p in points]
         else:
-            futures = self.client.map(run_trial, [self.model] * len(points), points,
-                                      [self.settings] * len(points), pure=False)
-            out = self.client.gather(futures, errors="skip")
-            out = [o if o is not None else (None, "the Dask worker failed") for o in out]
+            out = self._run_dask(points)
         self.count += len(points)
         for p, (values, err) in zip(points, out):
             if values is None:
                 self.failures.append(({n: p[n] for n in self.names}, err))
+        return out
+
+    def _run_dask(self, points):
+        from .sweep import _picklable_metrics
+        settings = dict(self.settings, functions=[
+            None if f is None else _picklable_metrics(f) for f in
+            self.settings.get("functions") or ()])
+        futures = self.client.map(run_trial, [self.model] * len(points), points,
+                                  [settings] * len(points), pure=False)
+        out = []
+        for fut in futures:
+            try:
+                out.append(fut.result())
+            except Exception as exc:            # noqa: BLE001 - e.g. a worker that died
+                out.append((None, "the Dask worker failed: %s" % exc))
         return out
 
     def jacobian(self, x, vector, lo, hi, scale=None):
