@@ -181,7 +181,7 @@ class _Problem:
             return np.ones(sum(self.sizes) - (0 if self.epigraph else self.sizes[0]))
         f, gs = parts
         out = [f / self.f0 - z[-1]] if self.epigraph else []
-        return np.concatenate(out + [g / s for g, s in zip(gs, self.g_scale)])
+        return np.concatenate(out + [g / s for g, s in zip(gs, self.g_scale)] + [np.zeros(0)])
 
     def g_jacobian(self, z):
         J = self.jacobian(z)
@@ -222,7 +222,10 @@ def _kkt(problem, z):
         z = np.r_[z[:-1], float(np.max(f)) / problem.f0]       # the bound made tight
     g = problem.g_values(z)
     J = problem.g_jacobian(z) if g.size else None
-    return z, kkt_check(problem.objective_grad(z), z, objective=problem.objective(z),
+    # objective scale: the start's (1 after scaling), so that a zero minimum is judged
+    # by its gradient against the objective's size over the search, not against 0
+    return z, kkt_check(problem.objective_grad(z), z,
+                        objective=max(abs(problem.objective(z)), 1.0),
                         ineq_values=g if g.size else None, ineq_jacobian=J, lower=lo, upper=hi,
                         x_scale=1.0, tol=KKT_TOL, active_tol=ACTIVE_TOL)
 
