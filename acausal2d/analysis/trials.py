@@ -12,10 +12,12 @@ the caller decides (a fit takes them as infeasible and backtracks).
 Jacobians are central differences (error O(h^2), step ``h = 1e-3 *
 max(|x|, scale)``; one-sided next to a bound or where one side fails), all
 2n runs of one Jacobian dispatched at once, so on a Dask cluster they run
-in parallel.  Measured against CasADi forward sensitivities of the index-1
-system this is the simpler choice: the compiled model is warm, a run of
-the example models takes 5-100 ms, and the runs of one Jacobian are
-independent (see docs/readme_fit.md for the timing table).
+in parallel.  Finite differences were chosen over CasADi forward
+sensitivities because they need nothing from the runtime beyond a run
+(events, state re-selection and limit stops are handled as in any run),
+the compiled model is warm (a run of the examples takes 10-500 ms) and
+the runs of one Jacobian are independent; exact sensitivities are not
+implemented (benchmarks/bench_fit.py times the runs and the Jacobians).
 """
 import os
 
@@ -82,7 +84,9 @@ def run_trial(model, params, settings):
     try:
         cm = model if not isinstance(model, ModelSpec) else compiled_model(model)
         times = np.asarray(settings["times"], dtype=float)
-        grid = np.union1d([0.0], times)
+        # a regular grid under the requested times: runs with long stretches without
+        # output points were several times slower (measured on the pulley block)
+        grid = np.union1d(np.linspace(0.0, times[-1], 101), times)
         res = cm.simulate(params=expand_params(params), rtol=settings.get("rtol"),
                           output_times=grid)
         if res.stopped:
