@@ -37,7 +37,9 @@ correlation matrix is ``C_ij / (std_i std_j)``; a pair with ``|corr| >
 0.99``, or a Jacobian of (relative) condition above 1e6, means the data
 cannot separate those parameters (e.g. two that enter only as their
 product): they are named in ``warnings`` and their intervals are not
-meaningful.
+meaningful.  With a robust loss the same formulas are applied to the
+plain residuals at the robust estimate: an approximation (outliers widen
+the intervals instead of being down-weighted).
 
 Success is decided by the optimality check (first-order KKT conditions at
 the reported point, :func:`~acausal2d.analysis.optimality.kkt_check`), never by the optimiser's exit flag
