@@ -134,3 +134,30 @@ def test_four_bar_passes_its_precision_points():
                     np.interp(t, res.time, res["coupler.ctr2D2.y"]) - cols["coupler.ctr2D2.y"])
     assert np.max(dist) < 1e-6
     assert np.allclose(fr.estimate, [0.10, 0.35, 0.30], atol=1e-6)   # the points' four-bar
+
+
+class DecayBand(Component):
+    """x' = -a x; no real z (the initialization fails) for lo < a < hi."""
+    a = Parameter(1.0, "1/s", "rate")
+    lo = Parameter(2.0, "1/s", "lower end of the failing band")
+    hi = Parameter(2.3, "1/s", "upper end of the failing band")
+    x = Variable(start=1.0, fixed=True, unit="m")
+    z = Variable(start=1.0, unit="")
+
+    def equations(self):
+        c, h = (self.lo + self.hi) / 2, (self.hi - self.lo) / 2
+        return [der(self.x) == -self.a * self.x, self.z ** 2 == (self.a - c) ** 2 - h ** 2]
+
+
+def test_optimize_reports_a_failing_trial_point_and_goes_on():
+    cm = acausal2d.compile_model(DecayBand())
+    cm.model.experiment = {"stop_time": 1.0, "intervals": 20}
+    # (x(1) - e^-1.5)^2 is smallest at a = 1.5; SLSQP's first step from a = 1 lands at
+    # a = 2.89, inside the failing band 2.6 < a < 4
+    opt = optimize(cm, {"a": (1.0, 0.1, 5.0)}, "(final(x) - %r) ** 2" % math.exp(-1.5),
+                   fixed={"lo": 2.6, "hi": 4.0})
+    assert opt.success, opt.message
+    assert opt.optimum[0] == pytest.approx(1.5, abs=1e-4)
+    assert opt.infeasible and 2.6 < opt.infeasible[0][0]["a"] < 4.0
+    assert "Initialization" in opt.infeasible[0][1]
+    assert "infeasible trial point a=" in opt.report()
