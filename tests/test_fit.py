@@ -133,6 +133,10 @@ def test_signals_that_do_not_match_are_named(decay):
         fit(cm, (t, cols), free={"c": 1.0})
     with pytest.raises(acausal2d.Acausal2dError, match="start 9 must lie between"):
         fit(cm, (t, cols), free={"a": (9.0, 0.0, 5.0)})
+    y = cols["x"].copy()
+    y[5] = np.nan
+    with pytest.raises(acausal2d.Acausal2dError, match="column x has 1 values that are not"):
+        fit(cm, (t, {"x": y}), free={"a": 1.0})
 
 
 def test_the_budget_is_reported(pulley):

@@ -122,6 +122,12 @@ def _load_data(data, t_range):
     if t[0] < 0:
         raise Acausal2dError("the measured times start at %g < 0; the model runs from t = 0"
                              % t[0])
+    for name, v in cols.items():
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise Acausal2dError("measured column %s has %d values that are not numbers (first "
+                                 "at t = %g); remove those rows or use --t-range"
+                                 % (name, bad.size, t[bad[0]]))
     return t, cols
 
 
