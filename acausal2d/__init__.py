@@ -68,3 +68,18 @@ def load_model(path, name=None, **kwargs):
     from .arguments import check_load
     check_load(path, name, kwargs)
     return _load(path, name, **kwargs)
+
+
+def fit(model, data, free, **options):
+    """Fit the parameters ``free`` of ``model`` to measured curves ``data``
+    (see :func:`acausal2d.analysis.fit.fit`); returns a FitResult."""
+    from .analysis.fit import fit as _fit
+    return _fit(model, data, free, **options)
+
+
+def optimize(model, vary, objective, **options):
+    """Minimise a run metric ``objective`` over the parameters ``vary``
+    (see :func:`acausal2d.analysis.optimize.optimize`); returns an
+    OptimizeResult."""
+    from .analysis.optimize import optimize as _optimize
+    return _optimize(model, vary, objective, **options)

@@ -52,7 +52,7 @@ class _Progress:
         self.stream.flush()
 
 
-COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "linearize", "modes")
+COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes")
 """The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
 
 

@@ -1,0 +1,102 @@
+"""``acausal2d fit``: calibrate a model's parameters against measured
+curves (see :mod:`acausal2d.analysis.fit`); writes fit.json, fit.csv,
+fit.png and the comparison plots.  Exit 0 when the fit converged (KKT
+check), 2 for bad input, 3 when the optimiser's budget ran out or the
+optimality check fails."""
+import sys
+
+from ..errors import Acausal2dError
+from .args import _parse_set, _positive_float, _positive_int
+
+
+def parse_mapping(items, option="--map"):
+    """``REF=OURS`` items -> {ref: ours}."""
+    mapping = {}
+    for item in items or ():
+        if "=" not in item:
+            raise Acausal2dError("%s takes REF=OURS, got %r" % (option, item))
+        a, b = item.split("=", 1)
+        mapping[a.strip()] = b.strip()
+    return mapping
+
+
+def parse_weights(text):
+    """``a=1,b=0.1`` -> {a: 1.0, b: 0.1}."""
+    weights = {}
+    for item in (text or "").split(","):
+        if not item.strip():
+            continue
+        name, _, value = item.partition("=")
+        try:
+            weights[name.strip()] = float(value)
+        except ValueError:
+            raise Acausal2dError("--weights takes signal=weight,... (e.g. rope1.F=1,rope5.F=0.1),"
+                                 " got %r" % item) from None
+    return weights
+
+
+def parse_range(text, option="--t-range"):
+    """``T0:T1`` -> (t0, t1)."""
+    if text is None:
+        return None
+    try:
+        t0, t1 = (float(v) for v in text.split(":"))
+    except ValueError:
+        raise Acausal2dError("%s takes T0:T1 (e.g. 2:4), got %r" % (option, text)) from None
+    if not t0 < t1:
+        raise Acausal2dError("%s %s: T0 must be smaller than T1" % (option, text))
+    return t0, t1
+
+
+def cmd_fit(args):
+    """``acausal2d fit``: fit, print the report and the compare table, write the files."""
+    from ..analysis.fit import fit
+    signals = [s.strip() for s in args.signals.split(",") if s.strip()] if args.signals else None
+    fr = fit(args.model_file, args.data, free=args.free, signals=signals,
+             mapping=parse_mapping(args.map) or None, weights=parse_weights(args.weights),
+             t_range=parse_range(args.t_range), fixed=_parse_set(args.set), loss=args.loss,
+             f_scale=args.f_scale, rtol=args.rtol, max_evaluations=args.max_evaluations,
+             scheduler=args.scheduler, workers=args.workers, model_name=args.model)
+    files = fr.write(args.out)
+    print(fr.report())
+    print()
+    print(fr.compare().table())
+    print("%d files written to %s (fit.json, fit.csv, fit.png, compare/)" % (len(files), args.out))
+    if not fr.success:
+        print("error: the fit did not converge: %s" % fr.message, file=sys.stderr)
+        return 3
+    return 0
+
+
+def add_parsers(sub):
+    """``acausal2d fit``."""
+    f = sub.add_parser("fit", help="fit model parameters to measured curves (least squares "
+                       "with standard errors, 95%% intervals and correlations)")
+    f.add_argument("model_file")
+    f.add_argument("--model", help="model class in the file (default: the file's model)")
+    f.add_argument("--data", required=True, help="measured CSV (time column + signals)")
+    f.add_argument("--free", action="append", required=True, metavar="NAME=START[:LO:HI]",
+                   help="a parameter to fit with its start value and bounds; tie parameters "
+                   "with a.p,b.p=...; repeatable")
+    f.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="a parameter value held fixed; repeatable")
+    f.add_argument("--signals", help="comma-separated measured columns to fit (default: "
+                   "every column the model also has)")
+    f.add_argument("--map", action="append", metavar="REF=OURS",
+                   help="measured column = model signal; repeatable")
+    f.add_argument("--weights", metavar="a=1,b=0.1", help="weights of the signals' residuals")
+    f.add_argument("--t-range", metavar="T0:T1", help="use the measured times in T0..T1 only")
+    f.add_argument("--loss", default="linear", choices=["linear", "soft_l1", "huber", "cauchy",
+                                                         "arctan"],
+                   help="robust loss for data with outliers (default: least squares)")
+    f.add_argument("--f-scale", type=_positive_float, default=1.0,
+                   help="residual size where the robust loss sets in (default 1)")
+    f.add_argument("--rtol", type=float)
+    f.add_argument("--max-evaluations", type=_positive_int, default=100,
+                   help="optimiser's budget of steps (default 100); exit 3 when used up")
+    f.add_argument("--scheduler", help="run the Jacobian's simulations on Dask: 'local' (a "
+                   "local cluster) or a scheduler address tcp://host:8786 (default: serial)")
+    f.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                   "cluster (default: one per core)")
+    f.add_argument("--out", default="out", help="output directory (default: out)")
+    f.set_defaults(func=cmd_fit)

@@ -1,0 +1,80 @@
+"""``acausal2d optimize``: choose parameter values that minimise a run
+metric (see :mod:`acausal2d.analysis.optimize`); writes optimize.json,
+optimize.csv and optimize.png.  Exit 0 at a KKT point, 2 for bad input, 3
+when the optimiser stops elsewhere (its budget, a failed line search)."""
+import os
+import sys
+
+from .args import _parse_set, _positive_float, _positive_int
+
+
+def cmd_optimize(args):
+    """``acausal2d optimize``: optimise, print the report, write the files."""
+    from ..analysis.optimize import optimize
+    opt = optimize(args.model_file, vary=args.vary, objective=args.objective,
+                   constraints=args.constraint or (), fixed=_parse_set(args.set),
+                   stop_time=args.stop_time, intervals=args.intervals, rtol=args.rtol,
+                   max_iterations=args.max_iterations, scheduler=args.scheduler,
+                   workers=args.workers, model_name=args.model)
+    files = opt.write(args.out)
+    print(opt.report())
+    if args.grid:
+        files.append(_grid_check(opt, args))
+    print("%d files written to %s" % (len(files), args.out))
+    if not opt.success:
+        print("error: no optimum found: %s (optimiser: %s)" % (opt.message, opt.optimizer_message),
+              file=sys.stderr)
+        return 3
+    return 0
+
+
+def _grid_check(opt, args):
+    """Objective on a grid around the optimum (--grid POINTS, --grid-span);
+    prints the smallest value found and writes grid.csv."""
+    import numpy as np
+    xs, values = opt.grid(rel=args.grid_span, points=args.grid)
+    path = os.path.join(args.out, "grid.csv")
+    np.savetxt(path, np.column_stack([xs, values]), delimiter=",", comments="",
+               header=",".join(opt.names + ["objective"]), fmt="%.12g")
+    k = int(np.nanargmin(values))
+    print("grid of %d points within +-%g around the optimum: smallest objective %.8g%s" % (
+        len(values), args.grid_span, values[k],
+        " (the optimum's)" if values[k] >= opt.objective else
+        " at %s, BELOW the optimum" % ", ".join("%s=%.6g" % kv
+                                                for kv in zip(opt.names, xs[k]))))
+    return path
+
+
+def add_parsers(sub):
+    """``acausal2d optimize``."""
+    o = sub.add_parser("optimize", help="choose parameter values that minimise a run metric "
+                       "(e.g. max(abs(drive.tau))) subject to bounds and constraints")
+    o.add_argument("model_file")
+    o.add_argument("--model", help="model class in the file (default: the file's model)")
+    o.add_argument("--vary", action="append", required=True, metavar="NAME=START:LO:HI",
+                   help="a design parameter with start value and bounds; repeatable")
+    o.add_argument("--objective", required=True, metavar="EXPR",
+                   help="metric to minimise: signals, + - * / **, abs, max, min, mean, rms, "
+                   "integral (optionally over T0, T1), final, at(EXPR, T)")
+    o.add_argument("--constraint", action="append", metavar="EXPR<=VALUE",
+                   help="EXPR<=VALUE or EXPR>=VALUE; repeatable")
+    o.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
+                   help="a parameter value held fixed; repeatable")
+    o.add_argument("--stop-time", type=_positive_float)
+    o.add_argument("--intervals", type=_positive_int, help="output intervals of every run "
+                   "(the metrics are taken at the output points)")
+    o.add_argument("--rtol", type=float)
+    o.add_argument("--max-iterations", type=_positive_int, default=60,
+                   help="optimiser's budget of iterations (default 60); exit 3 when used up")
+    o.add_argument("--grid", type=_positive_int, metavar="POINTS",
+                   help="confirm the optimum on a grid of POINTS values per parameter around "
+                   "it (writes grid.csv)")
+    o.add_argument("--grid-span", type=_positive_float, default=0.01,
+                   help="half-width of the grid relative to each parameter's scale "
+                   "(default 0.01)")
+    o.add_argument("--scheduler", help="run the Jacobians' simulations on Dask: 'local' or a "
+                   "scheduler address (default: serial)")
+    o.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                   "cluster (default: one per core)")
+    o.add_argument("--out", default="out", help="output directory (default: out)")
+    o.set_defaults(func=cmd_optimize)
