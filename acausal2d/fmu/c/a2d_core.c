@@ -1,0 +1,314 @@
+/* acausal2d FMU core (see a2d_core.h): Newton solves of the index-reduced
+ * equations with linear side conditions, consistent initialization and the
+ * event iteration with Modelica semantics (acausal2d/runtime/events.py). */
+#include <math.h>
+#include <string.h>
+#include <stdio.h>
+
+#include "a2d_core.h"
+#include "a2d_casadi.h"
+
+#define NEAR_ZERO 1e-6
+#define MAX_EVENT_ITERATIONS 20
+
+typedef int (*a2d_fn)(const casadi_real**, casadi_real**, casadi_int*, casadi_real*, int);
+
+static void call(a2d_core* c, a2d_fn f, double t, const double* z, const double* d, double* out)
+{
+    double tt = t;
+    c->arg[0] = &tt;
+    c->arg[1] = z;
+    c->arg[2] = c->p;
+    c->arg[3] = d;
+    c->res[0] = out;
+    f(c->arg, c->res, c->iw, c->w, 0);
+}
+
+void a2d_residual(a2d_core* c, double t, const double* z, double* out)
+{
+    call(c, a2d_fE, t, z, c->d, out);
+}
+
+void a2d_crossings(a2d_core* c, double t, const double* z, double* out)
+{
+#if A2D_NREL > 0
+    call(c, a2d_fG, t, z, c->d, out);
+#else
+    (void)c; (void)t; (void)z; (void)out;
+#endif
+}
+
+void a2d_update_offsets(a2d_core* c)
+{
+#if A2D_NALIAS > 0
+    c->arg[0] = c->p;
+    c->res[0] = c->offsets;
+    a2d_fO(c->arg, c->res, c->iw, c->w, 0);
+#endif
+}
+
+/* Dense LU with partial pivoting of the n x n row-major M; solves M x = b
+ * in place of b.  Returns -1 if M is singular. */
+static int lu_solve(double* M, int n, int* piv, double* b)
+{
+    int i, j, k;
+    for (k = 0; k < n; k++) {
+        int p = k;
+        double big = fabs(M[k * n + k]);
+        for (i = k + 1; i < n; i++)
+            if (fabs(M[i * n + k]) > big) { big = fabs(M[i * n + k]); p = i; }
+        if (!(big > 1e-300)) return -1;
+        piv[k] = p;
+        if (p != k) {
+            for (j = 0; j < n; j++) { double s = M[k * n + j]; M[k * n + j] = M[p * n + j]; M[p * n + j] = s; }
+            { double s = b[k]; b[k] = b[p]; b[p] = s; }
+        }
+        for (i = k + 1; i < n; i++) {
+            double f = M[i * n + k] / M[k * n + k];
+            if (f == 0.0) continue;
+            for (j = k + 1; j < n; j++) M[i * n + j] -= f * M[k * n + j];
+            b[i] -= f * b[k];
+        }
+    }
+    for (k = n - 1; k >= 0; k--) {
+        double s = b[k];
+        for (j = k + 1; j < n; j++) s -= M[k * n + j] * b[j];
+        b[k] = s / M[k * n + k];
+    }
+    return 0;
+}
+
+/* Residuals of E(t, z) = 0 and the side conditions z[a] - s z[b] = rhs. */
+static double full_residual(a2d_core* c, double t, const double* z, const a2d_rows* rows,
+                            double* r)
+{
+    int i;
+    double norm = 0.0;
+    a2d_residual(c, t, z, r);
+    for (i = 0; i < rows->n; i++) {
+        double v = z[rows->a[i]] - rows->rhs[i];
+        if (rows->b && rows->b[i] >= 0) v -= rows->s * z[rows->b[i]];
+        r[A2D_NEQ + i] = v;
+    }
+    for (i = 0; i < A2D_NEQ + rows->n; i++) {
+        double v = fabs(r[i]);
+        if (!(v <= norm)) norm = v;     /* NaN propagates as a large norm */
+    }
+    return norm;
+}
+
+static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_rows* rows)
+{
+    int k, n = A2D_N;
+    memset(c->M, 0, sizeof(double) * n * n);
+    call(c, a2d_fJ, t, z, c->d, c->jnz);
+    for (k = 0; k < A2D_NNZ; k++) c->M[a2d_jrow[k] * n + a2d_jcol[k]] += c->jnz[k];
+    for (k = 0; k < rows->n; k++) {
+        c->M[(A2D_NEQ + k) * n + rows->a[k]] += 1.0;
+        if (rows->b && rows->b[k] >= 0) c->M[(A2D_NEQ + k) * n + rows->b[k]] -= rows->s;
+    }
+}
+
+int a2d_newton(a2d_core* c, double t, const a2d_rows* rows, double* z)
+{
+    int it, j, n = A2D_N;
+    double norm;
+    if (A2D_NEQ + rows->n != n) return -2;
+    norm = full_residual(c, t, z, rows, c->r);
+    for (it = 0; it < 60; it++) {
+        double step = 1.0;
+        int accepted = 0;
+        if (norm < 1e-13) return 0;
+        iteration_matrix(c, t, z, rows);
+        for (j = 0; j < n; j++) c->dz[j] = -c->r[j];
+        if (lu_solve(c->M, n, c->piv, c->dz)) break;
+        while (step > 1e-8) {
+            double nn;
+            for (j = 0; j < n; j++) c->ztry[j] = z[j] + step * c->dz[j];
+            nn = full_residual(c, t, c->ztry, rows, c->rtry);
+            if ((nn == nn && nn < (1 - 1e-4 * step) * norm)
+                || (step == 1.0 && it < 3 && nn == nn && nn < 1e6 * (norm > 1 ? norm : 1))) {
+                memcpy(z, c->ztry, sizeof(double) * n);
+                memcpy(c->r, c->rtry, sizeof(double) * n);
+                norm = nn;
+                accepted = 1;
+                break;
+            }
+            step *= 0.5;
+        }
+        if (!accepted) break;
+    }
+    return norm < 1e-9 ? 0 : -1;
+}
+
+int a2d_solve_held(a2d_core* c, double t, const int* held, int n_held, const double* values,
+                   double* z)
+{
+    a2d_rows rows;
+    rows.n = n_held;
+    rows.a = held;
+    rows.b = 0;
+    rows.s = 0.0;
+    rows.rhs = values;
+    return a2d_newton(c, t, &rows, z);
+}
+
+int a2d_solve_states(a2d_core* c)
+{
+    int rc;
+    if (!c->dirty) return 0;
+    rc = a2d_solve_held(c, c->t, a2d_states, A2D_NX, c->x, c->z);
+    if (rc) {
+        snprintf(c->message, sizeof(c->message),
+                 "no consistent algebraic values for the states at t = %.9g (Newton did not "
+                 "converge): the mechanism may be at a singular position", c->t);
+        return rc;
+    }
+    c->dirty = 0;
+    return 0;
+}
+
+static double relation_value(int k, double g)
+{
+    return (a2d_strict[k] ? g > 0 : g >= 0) ? 1.0 : 0.0;
+}
+
+/* Crossing functions g and their rates at the consistent point z, with the
+ * nodes ``held`` moving with their derivative nodes (a re-solve at t + h). */
+static void crossing_rates(a2d_core* c, const int* held, int n_held, double* g, double* gdot)
+{
+    double hv[A2D_NZ], zh[A2D_NZ], g2[A2D_NR], vmax = 1.0, h;
+    int k, near = 0;
+    a2d_crossings(c, c->t, c->z, g);
+    for (k = 0; k < A2D_NREL; k++) { gdot[k] = 0.0; if (fabs(g[k]) <= NEAR_ZERO) near = 1; }
+    if (!near) return;
+    for (k = 0; k < n_held; k++) {
+        int dn = a2d_diff[held[k]];
+        double v = dn >= 0 ? c->z[dn] : 0.0;
+        if (fabs(v) > vmax) vmax = fabs(v);
+    }
+    h = 1e-7 * (fabs(c->t) > 1 ? fabs(c->t) : 1.0) / vmax;
+    for (k = 0; k < n_held; k++) {
+        int dn = a2d_diff[held[k]];
+        hv[k] = c->z[held[k]] + h * (dn >= 0 ? c->z[dn] : 0.0);
+    }
+    memcpy(zh, c->z, sizeof(double) * A2D_N);
+    if (a2d_solve_held(c, c->t + h, held, n_held, hv, zh)) return;
+    a2d_crossings(c, c->t + h, zh, g2);
+    for (k = 0; k < A2D_NREL; k++) gdot[k] = (g2[k] - g[k]) / h;
+}
+
+/* Event iteration: relation values from the crossing functions (near zero:
+ * from their rates) until they agree with the point they give. */
+int a2d_settle(a2d_core* c, const int* held, int n_held, const double* values, int* changed)
+{
+    double g[A2D_NR], gdot[A2D_NR];
+    int it, k;
+    for (it = 0; it < MAX_EVENT_ITERATIONS; it++) {
+        int differ = 0;
+        crossing_rates(c, held, n_held, g, gdot);
+        for (k = 0; k < A2D_NREL; k++) {
+            double v = relation_value(k, g[k]);
+            if (fabs(g[k]) <= NEAR_ZERO && gdot[k] != 0.0) v = gdot[k] > 0 ? 1.0 : 0.0;
+            if (v != c->d[k]) { c->d[k] = v; differ = 1; }
+        }
+        if (!differ) return 0;
+        *changed = 1;
+        if (a2d_solve_held(c, c->t, held, n_held, values, c->z)) {
+            snprintf(c->message, sizeof(c->message), "no consistent values after an event at "
+                     "t = %.9g", c->t);
+            return -1;
+        }
+    }
+    snprintf(c->message, sizeof(c->message), "the event iteration at t = %.9g found no relation "
+             "values that agree with the motion (a sliding mode or chattering)", c->t);
+    return -3;
+}
+
+int a2d_event_iteration(a2d_core* c, int* changed)
+{
+    *changed = 0;
+    if (a2d_solve_states(c)) return -1;
+    return a2d_settle(c, a2d_states, A2D_NX, c->x, changed);
+}
+
+int a2d_initialize(a2d_core* c)
+{
+    double start[A2D_NL0 > 0 ? A2D_NL0 : 1], z0[A2D_NZ], held[A2D_NZ], g[A2D_NR];
+    int k, tries, changed = 0;
+    memset(c->z, 0, sizeof(c->z));
+    memset(c->d, 0, sizeof(c->d));
+    a2d_update_offsets(c);
+#if A2D_NL0 > 0
+    c->arg[0] = c->p;
+    c->res[0] = start;
+    a2d_fS(c->arg, c->res, c->iw, c->w, 0);
+    for (k = 0; k < A2D_NL0; k++) c->z[a2d_level0[k]] = start[k];
+#endif
+    memcpy(z0, c->z, sizeof(z0));
+    for (k = 0; k < A2D_NHELD0; k++) held[k] = z0[a2d_held0[k]];
+    a2d_crossings(c, c->t, c->z, g);
+    for (k = 0; k < A2D_NREL; k++) c->d[k] = relation_value(k, g[k]);
+    for (tries = 0; tries < 10; tries++) {
+        int differ = 0;
+        memcpy(c->z, z0, sizeof(z0));
+        if (!a2d_solve_held(c, c->t, a2d_held0, A2D_NHELD0, held, c->z)) break;
+        a2d_crossings(c, c->t, c->z, g);
+        for (k = 0; k < A2D_NREL; k++)
+            if (relation_value(k, g[k]) != c->d[k]) { c->d[k] = relation_value(k, g[k]); differ = 1; }
+        if (!differ) tries = 10;
+    }
+    if (tries >= 10) {
+        snprintf(c->message, sizeof(c->message), "no consistent initial values at t = %.9g "
+                 "(Newton did not converge): check the parameter values", c->t);
+        return -1;
+    }
+    if (a2d_settle(c, a2d_held0, A2D_NHELD0, held, &changed)) return -1;
+    for (k = 0; k < A2D_NX; k++) c->x[k] = c->z[a2d_states[k]];
+    c->dirty = 0;
+    return 0;
+}
+
+double a2d_value(a2d_core* c, unsigned int vr)
+{
+    if (vr < A2D_NP) return c->p[vr];
+    vr -= A2D_NP;
+    if (vr < A2D_N) return c->z[vr];
+    vr -= A2D_N;
+#if A2D_NALIAS > 0
+    if (vr < A2D_NALIAS) {
+        int j = a2d_alias_node[vr];
+        return (j >= 0 ? a2d_alias_sign[vr] * c->z[j] : 0.0) + c->offsets[vr];
+    }
+    vr -= A2D_NALIAS;
+#endif
+#if A2D_NADER > 0
+    if (vr < A2D_NADER) return a2d_alias_der_sign[vr] * c->z[a2d_alias_der_node[vr]];
+#endif
+    return 0.0;
+}
+
+/* The next time event after t (relations of time alone whose crossing
+ * function is affine in time), or -1 if there is none. */
+double a2d_next_time_event(a2d_core* c, double t)
+{
+    double next = -1.0;
+#if A2D_NTIME > 0
+    double gr[2 * A2D_NTIME];
+    int k;
+    double tt = t;
+    c->arg[0] = &tt;
+    c->arg[1] = c->p;
+    c->res[0] = gr;
+    a2d_fT(c->arg, c->res, c->iw, c->w, 0);
+    for (k = 0; k < A2D_NTIME; k++) {
+        double rate = gr[A2D_NTIME + k], te;
+        if (rate == 0.0) continue;
+        te = t - gr[k] / rate;
+        if (te > t + 1e-13 * (fabs(t) > 1 ? fabs(t) : 1.0) && (next < 0 || te < next)) next = te;
+    }
+#else
+    (void)c; (void)t;
+#endif
+    return next;
+}
