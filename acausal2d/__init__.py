@@ -59,3 +59,13 @@ def load_model(path, name=None, **kwargs):
     """Instantiate the model of a model file (see :func:`acausal2d.io.loader.load_model`)."""
     from .io.loader import load_model as _load
     return _load(path, name, **kwargs)
+
+
+def export_fmu(model, kind="me", out=None, inputs=None):
+    """Export a model (an instance, or the path of a model file) as an FMI
+    2.0 FMU with native binaries; kind ``"me"`` (Model Exchange) or ``"cs"``
+    (Co-Simulation); see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
+    from .fmu import export_fmu as _export
+    if isinstance(model, str):
+        model = load_model(model)
+    return _export(model, kind=kind, out=out, inputs=inputs)

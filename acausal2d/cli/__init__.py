@@ -51,7 +51,7 @@ class _Progress:
         self.stream.flush()
 
 
-COMMAND_MODULES = ("simulate", "model_info", "compare", "studies")
+COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "export_fmu")
 """The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
 
 
