@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ModelDefinitionError, translated
-from . import _cbuild_shim as cbuild
+from ..runtime import cbuild
 from .description import model_description
 from .generate import casadi_sources, model_data_header
 from .inputs import bind_inputs
@@ -133,12 +133,20 @@ def _platform_folder():
 
 
 def build_binary(data, folder, src):
-    """Compile the sources into binaries/<platform>/<identifier>.<so|dylib|dll>."""
+    """Compile the sources into binaries/<platform>/<identifier>.<so|dylib|dll>
+    (with :mod:`acausal2d.runtime.cbuild`: the compiler found at export time,
+    builds cached by content)."""
     plat, ext = _platform_folder()
     out = os.path.join(folder, "binaries", plat)
     os.makedirs(out, exist_ok=True)
-    c_files = [os.path.join(src, f) for f in sorted(os.listdir(src)) if f.endswith(".c")]
-    return cbuild.build_shared(c_files, os.path.join(out, data.identifier + ext), [src])
+    sources = {}
+    for f in sorted(os.listdir(src)):
+        if f.endswith((".c", ".h")):
+            with open(os.path.join(src, f), encoding="utf-8") as fh:
+                sources[f] = fh.read()
+    target = os.path.join(out, data.identifier + ext)
+    shutil.copy(cbuild.build(sources, libraries=("m",), name="fmu-" + data.identifier), target)
+    return target
 
 
 def export_fmu(model, kind="me", out=None, inputs=None):
