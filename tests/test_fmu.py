@@ -9,6 +9,7 @@ refused with the documented error."""
 import os
 import shutil
 import subprocess
+import sys
 import xml.etree.ElementTree as ET
 import zipfile
 
@@ -23,19 +24,9 @@ fmpy = pytest.importorskip("fmpy")
 from fmpy.validation import validate_fmu  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-STEP = 1e-3
-
-CASES = {   # model file, class, stop time, input values
-    "pendulum": ("models/pendulum.py", None, 3.0, {}),
-    "piston": ("models/piston_engine.py", None, 10.0, {}),
-    "clutch": ("models/clutch_motor.py", "ClutchMotor", 1.5, {"load": -10.0}),
-    "fourbar": ("models/four_bar_torque.py", "FourBarTorque", 2.0, {"tau": 0.2}),
-}
-
-
-def _load(case):
-    path, name, _, _ = CASES[case]
-    return acausal2d.load_model(os.path.join(ROOT, path), name)
+sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
+import bench_fmu  # noqa: E402
+from bench_fmu import CASES, STEP, fmu_run, load, max_relative_errors, reference  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -45,46 +36,10 @@ def fmus(tmp_path_factory):
 
     def get(case, kind):
         if (case, kind) not in cache:
-            cache[case, kind] = export_fmu(_load(case), kind, str(folder / ("%s_%s.fmu"
-                                                                            % (case, kind))))
+            cache[case, kind] = export_fmu(load(case), kind, str(folder / ("%s_%s.fmu"
+                                                                           % (case, kind))))
         return cache[case, kind]
     return get
-
-
-def _reference(case, params=None):
-    """acausal2d's own run of the bound model on the 1 ms grid."""
-    model = _load(case)
-    names = bind_inputs(model)
-    stop, inputs = CASES[case][2], CASES[case][3]
-    p = {names[k]: v for k, v in inputs.items()}
-    p.update(params or {})
-    grid = np.linspace(0.0, stop, int(round(stop / STEP)) + 1)
-    compiled = acausal2d.compile_model(model)
-    return compiled.simulate(params=p, rtol=1e-8, output_times=grid), grid, compiled.outputs
-
-
-def _on_grid(times, values, grid):
-    """Values at the grid times (the last row at a time recorded twice at an event)."""
-    return values[np.searchsorted(times, grid + 1e-12, side="right") - 1]
-
-
-def _simulate(fmu, kind, case, start_values=None):
-    stop, inputs = CASES[case][2], CASES[case][3]
-    sv = dict(inputs, **(start_values or {}))
-    if kind == "me":
-        return fmpy.simulate_fmu(fmu, stop_time=stop, solver="CVode", relative_tolerance=1e-8,
-                                 output_interval=STEP, start_values=sv)
-    return fmpy.simulate_fmu(fmu, stop_time=stop, step_size=STEP, output_interval=STEP,
-                             start_values=sv)
-
-
-def _max_relative_errors(res, grid, outputs, r):
-    errs = {}
-    for o in outputs:
-        ref = _on_grid(res.time, res[o], grid)
-        got = _on_grid(r["time"], r[o], grid)
-        errs[o] = float(np.max(np.abs(got - ref)) / max(np.ptp(ref), 1e-12))
-    return errs
 
 
 @pytest.mark.parametrize("kind", ["me", "cs"])
@@ -96,9 +51,9 @@ def test_fmu_validates_and_matches_acausal2d(fmus, case, kind):
         names = z.namelist()
     assert any(n.startswith("binaries/linux64/") and n.endswith(".so") for n in names)
     assert "sources/a2d_casadi.c" in names and "sources/a2d_core.c" in names
-    res, grid, outputs = _reference(case)
-    r = _simulate(fmu, kind, case)
-    errs = _max_relative_errors(res, grid, outputs, r)
+    res, grid, outputs = reference(case)
+    r = fmu_run(fmu, kind, case)
+    errs = max_relative_errors(res, grid, outputs, r)
     assert max(errs.values()) < 1e-4, errs
 
 
@@ -113,12 +68,12 @@ def _clutch_switches(times, w_rel, w_s=0.01):
 
 @pytest.mark.parametrize("kind", ["me", "cs"])
 def test_clutch_lock_and_unlock_times(fmus, kind):
-    res, grid, _ = _reference("clutch")
+    res, grid, _ = reference("clutch")
     ev = [t for t, text in res.events if "clutch.w_rel" in text]
     lock_ref = min(t for t in ev if t > 0.35)
     unlock_ref = min(t for t in ev if t > 1.0)
     assert 0.4 < lock_ref < 0.45 and 1.0 < unlock_ref < 1.05
-    r = _simulate(fmus("clutch", kind), kind, "clutch")
+    r = fmu_run(fmus("clutch", kind), kind, "clutch")
     lock, unlock = _clutch_switches(r["time"], r["clutch.w_rel"])
     assert abs(lock - lock_ref) <= STEP
     assert abs(unlock - unlock_ref) <= STEP
@@ -126,11 +81,11 @@ def test_clutch_lock_and_unlock_times(fmus, kind):
 
 def test_parameter_set_before_initialization_acts_as_set(fmus):
     fmu = fmus("pendulum", "me")
-    base, grid, outputs = _reference("pendulum")
-    res, _, _ = _reference("pendulum", {"rod.r": (0.5, 0.0)})
-    r = _simulate(fmu, "me", "pendulum", {"rod.r[0]": 0.5})
+    base, grid, outputs = reference("pendulum")
+    res, _, _ = reference("pendulum", {"rod.r": (0.5, 0.0)})
+    r = fmu_run(fmu, "me", "pendulum", {"rod.r[0]": 0.5})
     assert np.max(np.abs(res["revolute.w"] - base["revolute.w"])) > 1.0   # really changed
-    errs = _max_relative_errors(res, grid, outputs, r)
+    errs = max_relative_errors(res, grid, outputs, r)
     assert max(errs.values()) < 1e-4, errs
 
 
@@ -152,7 +107,7 @@ def test_model_exchange_binary_runs_without_python(fmus, tmp_path):
                          env={}, capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     t, phi = map(float, out.stdout.split())
-    res, _, _ = _reference("pendulum")
+    res, _, _ = reference("pendulum")
     assert t == pytest.approx(1.0)
     assert phi == pytest.approx(res.at("body.phi", 1.0), abs=1e-7)
 
@@ -174,3 +129,24 @@ def test_cli_export(tmp_path, capsys):
                  "--out", out]) == 0
     assert "Co-Simulation FMU" in capsys.readouterr().out
     assert validate_fmu(out) == []
+
+
+def test_missing_compiler_is_named(tmp_path, monkeypatch, capsys):
+    from acausal2d.runtime import cbuild
+    monkeypatch.setattr(cbuild, "find_compiler", lambda: None)
+    monkeypatch.setenv("ACAUSAL2D_CACHE_DIR", str(tmp_path / "cache"))
+    code = main(["export-fmu", os.path.join(ROOT, "models/pendulum.py"),
+                 "--out", str(tmp_path / "p.fmu")])
+    assert code == 2
+    assert "No C compiler found" in capsys.readouterr().err
+    assert not os.path.exists(tmp_path / "p.fmu")
+
+
+def test_benchmark_small_mode_prints_its_table(capsys):
+    bench_fmu.main(small=True)
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].split() == ["model", "kind", "export", "s", "fmpy", "s", "acausal2d", "s",
+                                "max", "rel", "dev"]
+    rows = [line.split() for line in lines[1:]]
+    assert [r[:2] for r in rows] == [["pendulum", "me"], ["pendulum", "cs"]]
+    assert all(float(r[-1]) < 1e-4 for r in rows)

@@ -22,7 +22,8 @@ def variables(data):
         real = {"start": repr(float(data.p0[k]))}
         if name in inputs:
             attrs = {"name": inputs[name], "valueReference": k, "causality": "input",
-                     "variability": "continuous", "description": "input"}
+                     "variability": "continuous",
+                     "description": "input (top-level RealInput %s)" % inputs[name]}
         else:
             attrs = {"name": name, "valueReference": k, "causality": "parameter",
                      "variability": "fixed", "description": decl.doc or ""}
@@ -30,16 +31,27 @@ def variables(data):
             real["unit"] = decl.unit
         out.append({"name": attrs["name"], "attrs": attrs, "real": real})
     taken = {v["name"] for v in out}
-    outputs = set(s.outputs)
+    outputs, docs = set(s.outputs), _docs(s)
     for vr, name in enumerate(s.names, start=len(s.parameters)):
         if name in taken:
             continue
         attrs = {"name": name, "valueReference": vr,
                  "causality": "output" if name in outputs else "local",
                  "variability": "continuous"}
+        if docs.get(name):
+            attrs["description"] = docs[name]
         out.append({"name": name, "attrs": attrs,
                     "real": {"unit": units[name]} if units.get(name) else {}})
     return out
+
+
+def _docs(s):
+    """{column name: description} of the declared variables (not derivatives)."""
+    level = s.structure.var_level
+    docs = {name: getattr(info, "doc", "") for name, info, lv in
+            zip(s.node_names, s.node_info, level) if lv == 0}
+    docs.update((a.var.name, getattr(a.var, "doc", "")) for a in s.aliases)
+    return docs
 
 
 def _structure(data, vars_):

@@ -161,6 +161,9 @@ def export_fmu(model, kind="me", out=None, inputs=None):
                                    "got %r" % (kind,))
     data = export_data(model, inputs)
     out = out or data.identifier + ".fmu"
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        raise ModelDefinitionError("cannot write %s: the folder %s does not exist" % (out, folder))
     with tempfile.TemporaryDirectory() as tmp:
         src = write_sources(data, tmp, kind)
         build_binary(data, tmp, src)

@@ -18,7 +18,16 @@ typedef struct {
     fmi2Type kind;
     int mode;
     int logging;
+    int initialized;          /* consistent values for the current parameters */
 } a2d_instance;
+
+static int ensure_initialized(a2d_instance* m)
+{
+    if (m->initialized) return 0;
+    if (a2d_initialize(&m->core)) return -1;
+    m->initialized = 1;
+    return 0;
+}
 
 static fmi2Status fail(a2d_instance* m, const char* what)
 {
@@ -84,7 +93,7 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
     a2d_instance* m = (a2d_instance*)c;
-    if (a2d_initialize(&m->core)) return fail(m, "initialization");
+    if (ensure_initialized(m)) return fail(m, "initialization");
     m->mode = m->kind == fmi2CoSimulation ? STEPPING : EVENT;
     return fmi2OK;
 }
@@ -97,6 +106,7 @@ fmi2Status fmi2Reset(fmi2Component c)
     memcpy(m->core.p, a2d_p0, sizeof(double) * A2D_NP);
     a2d_update_offsets(&m->core);
     m->core.dirty = 1;
+    m->initialized = 0;
     m->mode = INSTANTIATED;
     return fmi2OK;
 }
@@ -105,6 +115,7 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
 {
     a2d_instance* m = (a2d_instance*)c;
     size_t i;
+    if (m->mode == INITIALIZATION && ensure_initialized(m)) return fail(m, "initialization");
     if (m->mode != INSTANTIATED && m->mode != INITIALIZATION && a2d_solve_states(&m->core))
         return fail(m, "fmi2GetReal");
     for (i = 0; i < n; i++) v[i] = a2d_value(&m->core, vr[i]);
@@ -127,6 +138,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
             return fail(m, "fmi2SetReal");
         }
         m->core.p[vr[i]] = v[i];
+        if (!a2d_is_input[vr[i]]) m->initialized = 0;
     }
     a2d_update_offsets(&m->core);
     m->core.dirty = 1;
