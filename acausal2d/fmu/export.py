@@ -29,6 +29,9 @@ C_FILES = ("a2d_core.c", "a2d_core.h", "a2d_fmi2.c", "a2d_cs.c", "a2d_cs.h",
            "fmi2Functions.h", "fmi2FunctionTypes.h", "fmi2TypesPlatform.h",
            "LICENSE_fmi2_headers.txt")
 KINDS = ("me", "cs")
+HIDDEN = ("-fvisibility=hidden", "-DCASADI_SYMBOL_EXPORT=")
+"""Compiler flags: only the fmi2 functions are exported from the binary, so
+that two FMUs of acausal2d models load into one process side by side."""
 
 
 class DynamicStateSelectionError(ModelDefinitionError):
@@ -145,7 +148,8 @@ def build_binary(data, folder, src):
             with open(os.path.join(src, f), encoding="utf-8") as fh:
                 sources[f] = fh.read()
     target = os.path.join(out, data.identifier + ext)
-    shutil.copy(cbuild.build(sources, libraries=("m",), name="fmu-" + data.identifier), target)
+    shutil.copy(cbuild.build(sources, flags=HIDDEN, libraries=("m",),
+                             name="fmu-" + data.identifier), target)
     return target
 
 
