@@ -25,6 +25,7 @@ CASES = {   # model file, class, stop time, input values
     "piston": ("models/piston_engine.py", None, 10.0, {}),
     "clutch": ("models/clutch_motor.py", "ClutchMotor", 1.5, {"load": -10.0}),
     "fourbar": ("models/four_bar_torque.py", "FourBarTorque", 2.0, {"tau": 0.2}),
+    "double": ("models/double_pendulum.py", None, 3.0, {}),   # a choice, never singular
 }
 
 

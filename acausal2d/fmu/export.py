@@ -16,6 +16,7 @@ import tempfile
 import zipfile
 from dataclasses import dataclass, field
 
+import casadi as ca
 import numpy as np
 
 from ..errors import ModelDefinitionError, translated
@@ -77,9 +78,9 @@ def _static_states(compiled, name):
     if a level of it had a real choice (the states may have to change)."""
     point = compiled.initial_point()
     s = compiled.system
-    dynamic = [lv for lv in point.selection.levels if lv.dynamic]
+    dynamic = [lv for lv in point.selection.levels if lv.dynamic and _may_turn_singular(s, lv)]
     if dynamic:
-        cands = sorted({s.node_names[j] for lv in dynamic for j in lv.cands})[:8]
+        cands = sorted({s.node_info[j].name for lv in dynamic for j in lv.cands})[:8]
         raise DynamicStateSelectionError(
             "%s needs dynamic state selection (the states are chosen among %s at run time and "
             "may change during a run), which an FMU with fixed states cannot follow. Give "
@@ -87,6 +88,18 @@ def _static_states(compiled, name):
             "joint whose angle or travel should be the state (as PistonEngine does on "
             "revoluteDrive), then export again." % (name, ", ".join(cands)))
     return s.structure.state_nodes(point.selection)
+
+
+def _may_turn_singular(system, level):
+    """Can the chosen dummy block of a level with a choice become singular
+    during a run?  Not if its Jacobian does not depend on the unknowns (a
+    chain whose dummies are explicit functions of the states, like the
+    double pendulum's body coordinates): the states chosen at the start
+    then serve the whole run."""
+    st = system.structure
+    eqs = ca.vertcat(*[st.eq_expr[i] for i in level.eqs])
+    J = ca.jacobian(eqs, ca.vertcat(*[st.var_sym[j] for j in level.chosen]))
+    return bool(ca.depends_on(J, ca.vertcat(*st.var_sym)))
 
 
 def export_data(model, inputs=None):
