@@ -18,6 +18,7 @@ import pytest
 
 import acausal2d
 from acausal2d.cli import main
+import acausal2d.fmu  # noqa: E402,F401
 from acausal2d.fmu import DynamicStateSelectionError, export_fmu
 
 fmpy = pytest.importorskip("fmpy")
@@ -245,3 +246,26 @@ def test_time_varying_input_drives_the_model_exchange_fmu(fmus, tmp_path):
         ref = res["bar." + name]
         assert np.max(np.abs(got - ref)) < 1e-6 * np.ptp(ref)
         assert np.max(np.abs(const[name][::10] - ref)) > 1e-2 * np.ptp(ref)   # input mattered
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_singular_position_stops_the_fmu_with_a_named_element(fmus):
+    """A coupler of 0.05 m lets the four-bar assemble at the start but not
+    turn through: acausal2d passes the singular position (the crank turns
+    back); the FMU stops there with an error naming the element."""
+    model = load("fourbar")
+    names = acausal2d.fmu.bind_inputs(model, {"tau": 0.2})
+    res = acausal2d.compile_model(model).simulate(params={"dyad.lL1": 0.05}, stop_time=0.6)
+    t_sing = res.singularities[0]["time"]
+    messages = []
+    try:   # FMPy raises, or (inside its CVode callback) only prints the error
+        fmpy.simulate_fmu(fmus("fourbar", "me"), stop_time=0.6,
+                          start_values={"dyad.lL1": 0.05, "tau": 0.2},
+                          logger=lambda *a: messages.append(a[-1].decode()))
+    except Exception as exc:
+        assert "fmi2GetDerivatives" in str(exc)
+    assert names == {"tau": "tau_source.k"}
+    text = " ".join(messages)
+    assert "DDD 'dyad'" in text and "singular position" in text
+    t_fail = float(text.split("t = ")[1].split()[0])
+    assert abs(t_fail - t_sing) < 1e-3

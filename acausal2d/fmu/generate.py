@@ -6,6 +6,8 @@ import os
 import casadi as ca
 import numpy as np
 
+from ..runtime.events import relation_text
+
 def _renamed(name, f, outputs=None):
     """``f`` as a CasADi function called ``name`` (outputs stacked if more than one)."""
     ins = f.sx_in()
@@ -74,6 +76,20 @@ def model_data_header(data, sizes):
               _array("double", "a2d_nominal_x", s.nominal[list(data.states)], "%.17g"),
               _array("int", "a2d_is_input", [int(name in inputs) for name, *_ in s.parameters],
                      "%d"),
+              _strings("a2d_equation_text", [s.describe_equation(i) for i in range(st.n_eq)]),
+              _strings("a2d_relation_text", [relation_text(s, k)
+                                             for k in range(len(s.relations))]),
               "#endif", ""]
     return "\n".join(lines)
+
+
+def _strings(name, texts, limit=160):
+    """A C array of (shortened, escaped) strings."""
+    def c(text):
+        text = " ".join(text.split())
+        text = text if len(text) <= limit else text[:limit - 3] + "..."
+        return '"%s"' % text.replace("\\", "\\\\").replace('"', '\\"')
+    vals = [c(t) for t in texts] or ['""']
+    return "static const char* const %s[%d] = {\n    %s};" % (name, len(vals),
+                                                           ",\n    ".join(vals))
 

@@ -141,6 +141,19 @@ int a2d_newton(a2d_core* c, double t, const a2d_rows* rows, double* z)
     return norm < 1e-9 ? 0 : -1;
 }
 
+/* Text of the equation with the largest residual of E at (t, z). */
+static const char* worst_equation(a2d_core* c, double t, const double* z)
+{
+    int i, worst = 0;
+    double big = -1.0;
+    a2d_residual(c, t, z, c->r);
+    for (i = 0; i < A2D_NEQ; i++) {
+        double v = c->r[i] == c->r[i] ? fabs(c->r[i]) : 1e300;
+        if (v > big) { big = v; worst = i; }
+    }
+    return A2D_NEQ > 0 ? a2d_equation_text[worst] : "";
+}
+
 int a2d_solve_held(a2d_core* c, double t, const int* held, int n_held, const double* values,
                    double* z)
 {
@@ -161,7 +174,8 @@ int a2d_solve_states(a2d_core* c)
     if (rc) {
         snprintf(c->message, sizeof(c->message),
                  "no consistent algebraic values for the states at t = %.9g (Newton did not "
-                 "converge): the mechanism may be at a singular position", c->t);
+                 "converge; largest residual: %s): the mechanism may be at a singular position",
+                 c->t, worst_equation(c, c->t, c->z));
         return rc;
     }
     c->dirty = 0;
@@ -220,8 +234,12 @@ int a2d_settle(a2d_core* c, const int* held, int n_held, const double* values, i
             return -1;
         }
     }
+    for (k = 0; k < A2D_NREL; k++)
+        if (relation_value(k, g[k]) != c->d[k] || fabs(g[k]) <= NEAR_ZERO) break;
     snprintf(c->message, sizeof(c->message), "the event iteration at t = %.9g found no relation "
-             "values that agree with the motion (a sliding mode or chattering)", c->t);
+             "values that agree with the motion (a sliding mode or chattering) at %s: model "
+             "sticking in the element or smooth the relation", c->t,
+             k < A2D_NREL ? a2d_relation_text[k] : "a relation");
     return -3;
 }
 
@@ -260,7 +278,8 @@ int a2d_initialize(a2d_core* c)
     }
     if (tries >= 10) {
         snprintf(c->message, sizeof(c->message), "no consistent initial values at t = %.9g "
-                 "(Newton did not converge): check the parameter values", c->t);
+                 "(Newton did not converge; largest residual: %s): check the geometry and "
+                 "the parameter values set", c->t, worst_equation(c, c->t, c->z));
         return -1;
     }
     if (a2d_settle(c, a2d_held0, A2D_NHELD0, held, &changed)) return -1;
