@@ -132,6 +132,7 @@ def write_sources(data, folder, kind):
         with open(os.path.join(src, f), "rb") as fh:
             digest.update(fh.read())
     digest.update(kind.encode())
+    digest.update(model_data_header(data, sizes).encode())     # numbers, with guid ""
     h = digest.hexdigest()
     data.guid = "{%s-%s-%s-%s-%s}" % (h[:8], h[8:12], h[12:16], h[16:20], h[20:32])
     with open(os.path.join(src, "a2d_model_data.h"), "w") as fh:
