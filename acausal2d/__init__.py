@@ -61,11 +61,11 @@ def load_model(path, name=None, **kwargs):
     return _load(path, name, **kwargs)
 
 
-def export_fmu(model, kind="me", out=None, inputs=None):
+def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
     """Export a model (an instance, or the path of a model file) as an FMI
     2.0 FMU with native binaries; kind ``"me"`` (Model Exchange) or ``"cs"``
     (Co-Simulation); see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
     from .fmu import export_fmu as _export
     if isinstance(model, str):
         model = load_model(model)
-    return _export(model, kind=kind, out=out, inputs=inputs)
+    return _export(model, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states)

@@ -262,8 +262,8 @@ def test_singular_position_stops_the_fmu_with_a_named_element(fmus):
         fmpy.simulate_fmu(fmus("fourbar", "me"), stop_time=0.6,
                           start_values={"dyad.lL1": 0.05, "tau": 0.2},
                           logger=lambda *a: messages.append(a[-1].decode()))
-    except Exception as exc:
-        assert "fmi2GetDerivatives" in str(exc)
+    except Exception as exc:    # FMPy's own wording; the FMU's message is in the log
+        assert "fmi2GetDerivatives" in str(exc) or "right-hand side" in str(exc)
     assert names == {"tau": "tau_source.k"}
     text = " ".join(messages)
     assert "DDD 'dyad'" in text and "singular position" in text

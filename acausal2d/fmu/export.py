@@ -73,20 +73,24 @@ def _held_at_start(compiled, p):
     return choose_initial_conditions(st, s.fixed_nodes, s.priority_names, s.has_start, states)
 
 
-def _static_states(compiled, name):
+def _static_states(compiled, name, fixed_states=False):
     """States of the selection made at the start; DynamicStateSelectionError
-    if a level of it had a real choice (the states may have to change)."""
+    if a level of it had a real choice whose block may turn singular (the
+    states may have to change), unless ``fixed_states``."""
     point = compiled.initial_point()
     s = compiled.system
     dynamic = [lv for lv in point.selection.levels if lv.dynamic and _may_turn_singular(s, lv)]
-    if dynamic:
+    if dynamic and not fixed_states:
         cands = sorted({s.node_info[j].name for lv in dynamic for j in lv.cands})[:8]
         raise DynamicStateSelectionError(
             "%s needs dynamic state selection (the states are chosen among %s at run time and "
             "may change during a run), which an FMU with fixed states cannot follow. Give "
             "state priorities so that the states are fixed: state_select='always' on the "
             "joint whose angle or travel should be the state (as PistonEngine does on "
-            "revoluteDrive), then export again." % (name, ", ".join(cands)))
+            "revoluteDrive), then export again; or, if the states chosen at the start serve "
+            "your runs (acausal2d simulate reports 0 state re-selections), export with "
+            "--fixed-states (fixed_states=True): the FMU then stops with an error where that "
+            "choice turns singular." % (name, ", ".join(cands)))
     return s.structure.state_nodes(point.selection)
 
 
@@ -102,7 +106,7 @@ def _may_turn_singular(system, level):
     return bool(ca.depends_on(J, ca.vertcat(*st.var_sym)))
 
 
-def export_data(model, inputs=None):
+def export_data(model, inputs=None, fixed_states=False):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
     :func:`~acausal2d.fmu.inputs.bind_inputs`)."""
     from .. import __version__
@@ -112,7 +116,7 @@ def export_data(model, inputs=None):
     compiled = compile_model(model)
     p = compiled.parameter_values()
     with translated("preparing %s for export" % name):
-        states = _static_states(compiled, name)
+        states = _static_states(compiled, name, fixed_states)
         held0 = _held_at_start(compiled, p)
     doc = (type(model).__doc__ or name).strip().splitlines()[0]
     return ExportData(compiled.system, name, name, doc, list(states), list(held0), p,
@@ -167,17 +171,20 @@ def build_binary(data, folder, src):
     return target
 
 
-def export_fmu(model, kind="me", out=None, inputs=None):
+def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
     """Export ``model`` (a model instance) as an FMI 2.0 FMU file.
 
     kind: ``"me"`` (Model Exchange) or ``"cs"`` (Co-Simulation); out: the
     .fmu path (default ``<ModelName>.fmu``); inputs: {RealInput name: start
-    value}.  Returns the path.  Raises :class:`DynamicStateSelectionError`
-    for a model whose states must change during a run."""
+    value}; fixed_states: export a model with dynamic state selection with
+    the states chosen at the start (the FMU stops with an error where they
+    no longer serve).  Returns the path.  Raises
+    :class:`DynamicStateSelectionError` for a model whose states may have to
+    change during a run (unless ``fixed_states``)."""
     if kind not in KINDS:
         raise ModelDefinitionError("kind must be 'me' (Model Exchange) or 'cs' (Co-Simulation), "
                                    "got %r" % (kind,))
-    data = export_data(model, inputs)
+    data = export_data(model, inputs, fixed_states)
     out = out or data.identifier + ".fmu"
     folder = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(folder):

@@ -47,9 +47,11 @@ void a2d_update_offsets(a2d_core* c)
 #endif
 }
 
-/* Dense LU with partial pivoting of the n x n row-major M; solves M x = b
- * in place of b.  Returns -1 if M is singular. */
-static int lu_solve(double* M, int n, int* piv, double* b)
+static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_rows* rows);
+
+/* Dense LU with partial pivoting of the n x n row-major M, in place.
+ * Returns -1 if M is singular. */
+static int lu_factor(double* M, int n, int* piv)
 {
     int i, j, k;
     for (k = 0; k < n; k++) {
@@ -59,22 +61,47 @@ static int lu_solve(double* M, int n, int* piv, double* b)
             if (fabs(M[i * n + k]) > big) { big = fabs(M[i * n + k]); p = i; }
         if (!(big > 1e-300)) return -1;
         piv[k] = p;
-        if (p != k) {
+        if (p != k)
             for (j = 0; j < n; j++) { double s = M[k * n + j]; M[k * n + j] = M[p * n + j]; M[p * n + j] = s; }
-            { double s = b[k]; b[k] = b[p]; b[p] = s; }
-        }
         for (i = k + 1; i < n; i++) {
             double f = M[i * n + k] / M[k * n + k];
+            M[i * n + k] = f;
             if (f == 0.0) continue;
             for (j = k + 1; j < n; j++) M[i * n + j] -= f * M[k * n + j];
-            b[i] -= f * b[k];
         }
+    }
+    return 0;
+}
+
+/* Solve with the factors of lu_factor, in place of b. */
+static void lu_back(const double* M, int n, const int* piv, double* b)
+{
+    int i, k;
+    for (k = 0; k < n; k++)
+        if (piv[k] != k) { double s = b[k]; b[k] = b[piv[k]]; b[piv[k]] = s; }
+    for (k = 0; k < n; k++) {
+        double s = b[k];
+        if (s != 0.0) for (i = k + 1; i < n; i++) b[i] -= M[i * n + k] * s;
     }
     for (k = n - 1; k >= 0; k--) {
         double s = b[k];
-        for (j = k + 1; j < n; j++) s -= M[k * n + j] * b[j];
+        for (i = k + 1; i < n; i++) s -= M[k * n + i] * b[i];
         b[k] = s / M[k * n + k];
     }
+}
+
+/* Newton step dz = -M^-1 r with a fresh iteration matrix at z (kept
+ * factored for rows that allow reuse). */
+static int fresh_step(a2d_core* c, double t, const double* z, const a2d_rows* rows)
+{
+    int j;
+    iteration_matrix(c, t, z, rows);
+    c->lu_valid = 0;
+    if (lu_factor(c->M, A2D_N, c->piv)) return -1;
+    c->lu_valid = rows->reuse;
+    c->lu_s = rows->s;
+    for (j = 0; j < A2D_N; j++) c->dz[j] = -c->r[j];
+    lu_back(c->M, A2D_N, c->piv, c->dz);
     return 0;
 }
 
@@ -109,19 +136,64 @@ static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_r
     }
 }
 
+/* Simplified Newton with the kept factors of an earlier iteration matrix
+ * (SDIRK stages share it): 0 when converged; otherwise z is left where the
+ * iteration stopped contracting, for the full Newton iteration to go on. */
+static int reused_newton(a2d_core* c, double t, const a2d_rows* rows, double* z, double* norm)
+{
+    int it, j, n = A2D_N;
+    for (it = 0; it < 8; it++) {
+        double nn;
+        if (*norm < 1e-10) return 0;
+        for (j = 0; j < n; j++) c->dz[j] = -c->r[j];
+        lu_back(c->M, n, c->piv, c->dz);
+        for (j = 0; j < n; j++) c->ztry[j] = z[j] + c->dz[j];
+        nn = full_residual(c, t, c->ztry, rows, c->rtry);
+        if (!(nn < 0.5 * *norm)) return -1;
+        memcpy(z, c->ztry, sizeof(double) * n);
+        memcpy(c->r, c->rtry, sizeof(double) * n);
+        *norm = nn;
+    }
+    return *norm < 1e-10 ? 0 : -1;
+}
+
+/* Full Newton steps from a converged point until the steps reach rounding
+ * (the solution then hardly depends on the warm start, so that derivatives
+ * handed to an importer's integrator are smooth in the states). */
+static int polish(a2d_core* c, double t, const a2d_rows* rows, double* z, double norm)
+{
+    int it, j, n = A2D_N;
+    for (it = 0; it < 4; it++) {
+        double size = 0.0, nn;
+        if (fresh_step(c, t, z, rows)) break;
+        for (j = 0; j < n; j++) {
+            double v = fabs(c->dz[j]) / (1.0 + fabs(z[j]));
+            if (v > size) size = v;
+            c->ztry[j] = z[j] + c->dz[j];
+        }
+        nn = full_residual(c, t, c->ztry, rows, c->rtry);
+        if (!(nn <= 2.0 * norm + 1e-300)) break;
+        memcpy(z, c->ztry, sizeof(double) * n);
+        memcpy(c->r, c->rtry, sizeof(double) * n);
+        norm = nn;
+        if (size < 1e-14) break;
+    }
+    return 0;
+}
+
 int a2d_newton(a2d_core* c, double t, const a2d_rows* rows, double* z)
 {
     int it, j, n = A2D_N;
     double norm;
     if (A2D_NEQ + rows->n != n) return -2;
     norm = full_residual(c, t, z, rows, c->r);
+    if (rows->reuse && c->lu_valid && c->lu_s == rows->s && !reused_newton(c, t, rows, z, &norm))
+        return 0;
     for (it = 0; it < 60; it++) {
         double step = 1.0;
         int accepted = 0;
-        if (norm < 1e-13) return 0;
-        iteration_matrix(c, t, z, rows);
-        for (j = 0; j < n; j++) c->dz[j] = -c->r[j];
-        if (lu_solve(c->M, n, c->piv, c->dz)) break;
+        if (norm < 1e-10) return rows->polish ? polish(c, t, rows, z, norm) : 0;
+        if (fresh_step(c, t, z, rows)) break;
         while (step > 1e-8) {
             double nn;
             for (j = 0; j < n; j++) c->ztry[j] = z[j] + step * c->dz[j];
@@ -138,7 +210,8 @@ int a2d_newton(a2d_core* c, double t, const a2d_rows* rows, double* z)
         }
         if (!accepted) break;
     }
-    return norm < 1e-9 ? 0 : -1;
+    if (norm >= 1e-9) return -1;
+    return rows->polish ? polish(c, t, rows, z, norm) : 0;
 }
 
 /* Text of the equation with the largest residual of E at (t, z). */
@@ -163,6 +236,8 @@ int a2d_solve_held(a2d_core* c, double t, const int* held, int n_held, const dou
     rows.b = 0;
     rows.s = 0.0;
     rows.rhs = values;
+    rows.reuse = 0;
+    rows.polish = 1;
     return a2d_newton(c, t, &rows, z);
 }
 

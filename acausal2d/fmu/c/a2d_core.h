@@ -25,6 +25,8 @@ typedef struct {
     const int* b;
     double s;
     const double* rhs;
+    int reuse;     /* keep and reuse the factored iteration matrix (same s) */
+    int polish;    /* Newton steps down to rounding after convergence */
 } a2d_rows;
 
 typedef struct {
@@ -35,6 +37,8 @@ typedef struct {
     double x[A2D_NXX];
     double offsets[A2D_NA];
     int dirty;                /* z must be solved again for (t, x) */
+    int lu_valid;             /* M holds reusable LU factors for lu_s */
+    double lu_s;
     /* work */
     const double* arg[A2D_SZ_ARG + 1];
     double* res[A2D_SZ_RES + 1];

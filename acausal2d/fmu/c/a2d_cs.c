@@ -39,6 +39,8 @@ static int sdirk_step(a2d_core* c, const double* z0, double h, double* z1)
     rows.b = der;
     rows.s = h * GAMMA;
     rows.rhs = rhs;
+    rows.reuse = 1;       /* all stages share the iteration matrix */
+    rows.polish = 0;
     memcpy(z1, z0, sizeof(double) * A2D_N);
     for (i = 0; i < 3; i++) {
         for (k = 0; k < A2D_NX; k++) {
