@@ -14,7 +14,7 @@ import platform
 import shutil
 import tempfile
 import zipfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import casadi as ca
 import numpy as np
@@ -54,7 +54,6 @@ class ExportData:
     experiment: dict
     version: str
     guid: str = ""
-    extra: dict = field(default_factory=dict)
 
 
 def _held_at_start(compiled, p):
