@@ -6,6 +6,9 @@ their derivatives, in the order of the generated C data.
 """
 from xml.sax.saxutils import quoteattr
 
+SOURCE_FILES = ("a2d_casadi.c", "a2d_core.c", "a2d_cs.c", "a2d_fmi2.c")
+"""The C files in the FMU's sources/ (listed in modelDescription.xml)."""
+
 
 def _variable(var):
     attrs = " ".join("%s=%s" % (k, quoteattr(str(v))) for k, v in var["attrs"].items())
@@ -80,10 +83,13 @@ def model_description(data, kind):
     vars_ = variables(data)
     outputs, ders, initial = _structure(data, vars_)
     ident = data.identifier
-    kind_elem = ('  <ModelExchange modelIdentifier="%s" canNotUseMemoryManagementFunctions="true"/>'
+    kind_elem = ('  <ModelExchange modelIdentifier="%s" canNotUseMemoryManagementFunctions="true">'
                  % ident if kind == "me" else
                  '  <CoSimulation modelIdentifier="%s" canHandleVariableCommunicationStepSize="true"'
-                 ' canNotUseMemoryManagementFunctions="true"/>' % ident)
+                 ' canNotUseMemoryManagementFunctions="true">' % ident)
+    kind_elem += "\n    <SourceFiles>\n%s\n    </SourceFiles>\n  </%s>" % (
+        "\n".join('      <File name="%s"/>' % f for f in SOURCE_FILES),
+        "ModelExchange" if kind == "me" else "CoSimulation")
     exp = data.experiment
 
     def unknowns(tag, idx):
