@@ -47,7 +47,8 @@ void a2d_update_offsets(a2d_core* c)
 #endif
 }
 
-static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_rows* rows);
+static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_rows* rows,
+                             double* M);
 
 /* Dense LU with partial pivoting of the n x n row-major M, in place.
  * Returns -1 if M is singular. */
@@ -90,18 +91,40 @@ static void lu_back(const double* M, int n, const int* piv, double* b)
     }
 }
 
-/* Newton step dz = -M^-1 r with a fresh iteration matrix at z (kept
- * factored for rows that allow reuse). */
-static int fresh_step(a2d_core* c, double t, const double* z, const a2d_rows* rows)
+/* The slot holding factors for ``rows`` (its kind, s within 20 %), or -1.
+ * Factors for a nearby s only precondition the simplified Newton iteration,
+ * whose fixed point is the exact solution; it must contract (reused_newton). */
+static int kept_slot(const a2d_core* c, const a2d_rows* rows)
+{
+    int k;
+    if (!rows->reuse) return -1;
+    for (k = 0; k < 2; k++)
+        if (c->lu_valid[k] == rows->reuse && fabs(c->lu_s[k] - rows->s) <= 0.2 * fabs(rows->s))
+            return k;
+    return -1;
+}
+
+/* dz = -M^-1 r with the factors kept in slot k. */
+static void kept_step(a2d_core* c, int k)
 {
     int j;
-    iteration_matrix(c, t, z, rows);
-    c->lu_valid = 0;
-    if (lu_factor(c->M, A2D_N, c->piv)) return -1;
-    c->lu_valid = rows->reuse;
-    c->lu_s = rows->s;
     for (j = 0; j < A2D_N; j++) c->dz[j] = -c->r[j];
-    lu_back(c->M, A2D_N, c->piv, c->dz);
+    lu_back(c->M[k], A2D_N, c->piv[k], c->dz);
+    c->cur = k;
+}
+
+/* Newton step dz = -M^-1 r with a fresh iteration matrix at z, factored
+ * into the slot of ``rows`` (or the one not used last) and kept there. */
+static int fresh_step(a2d_core* c, double t, const double* z, const a2d_rows* rows)
+{
+    int k = kept_slot(c, rows);
+    if (k < 0) k = 1 - c->cur;
+    iteration_matrix(c, t, z, rows, c->M[k]);
+    c->lu_valid[k] = 0;
+    if (lu_factor(c->M[k], A2D_N, c->piv[k])) return -1;
+    c->lu_valid[k] = rows->reuse;
+    c->lu_s[k] = rows->s;
+    kept_step(c, k);
     return 0;
 }
 
@@ -124,15 +147,16 @@ static double full_residual(a2d_core* c, double t, const double* z, const a2d_ro
     return norm;
 }
 
-static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_rows* rows)
+static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_rows* rows,
+                             double* M)
 {
     int k, n = A2D_N;
-    memset(c->M, 0, sizeof(double) * n * n);
+    memset(M, 0, sizeof(double) * n * n);
     call(c, a2d_fJ, t, z, c->d, c->jnz);
-    for (k = 0; k < A2D_NNZ; k++) c->M[a2d_jrow[k] * n + a2d_jcol[k]] += c->jnz[k];
+    for (k = 0; k < A2D_NNZ; k++) M[a2d_jrow[k] * n + a2d_jcol[k]] += c->jnz[k];
     for (k = 0; k < rows->n; k++) {
-        c->M[(A2D_NEQ + k) * n + rows->a[k]] += 1.0;
-        if (rows->b && rows->b[k] >= 0) c->M[(A2D_NEQ + k) * n + rows->b[k]] -= rows->s;
+        M[(A2D_NEQ + k) * n + rows->a[k]] += 1.0;
+        if (rows->b && rows->b[k] >= 0) M[(A2D_NEQ + k) * n + rows->b[k]] -= rows->s;
     }
 }
 
@@ -141,12 +165,12 @@ static void iteration_matrix(a2d_core* c, double t, const double* z, const a2d_r
  * iteration stopped contracting, for the full Newton iteration to go on. */
 static int reused_newton(a2d_core* c, double t, const a2d_rows* rows, double* z, double* norm)
 {
-    int it, j, n = A2D_N;
+    int it, j, n = A2D_N, slot = kept_slot(c, rows);
+    if (slot < 0) return -1;
     for (it = 0; it < 8; it++) {
         double nn;
         if (*norm < 1e-10) return 0;
-        for (j = 0; j < n; j++) c->dz[j] = -c->r[j];
-        lu_back(c->M, n, c->piv, c->dz);
+        kept_step(c, slot);
         for (j = 0; j < n; j++) c->ztry[j] = z[j] + c->dz[j];
         nn = full_residual(c, t, c->ztry, rows, c->rtry);
         if (!(nn < 0.5 * *norm)) return -1;
@@ -157,26 +181,42 @@ static int reused_newton(a2d_core* c, double t, const a2d_rows* rows, double* z,
     return *norm < 1e-10 ? 0 : -1;
 }
 
-/* Full Newton steps from a converged point until the steps reach rounding
- * (the solution then hardly depends on the warm start, so that derivatives
- * handed to an importer's integrator are smooth in the states). */
+/* Newton steps from a converged point until the steps reach rounding (the
+ * solution then hardly depends on the warm start, so that derivatives handed
+ * to an importer's integrator are smooth in the states).  Kept factors of an
+ * earlier iteration matrix serve while they contract fast; fresh ones else. */
 static int polish(a2d_core* c, double t, const a2d_rows* rows, double* z, double norm)
 {
     int it, j, n = A2D_N;
-    for (it = 0; it < 4; it++) {
+    int slot = kept_slot(c, rows), fresh = slot < 0;
+    double last = 1e300;
+    for (it = 0; it < 8; it++) {
         double size = 0.0, nn;
-        if (fresh_step(c, t, z, rows)) break;
+        int was_fresh = fresh;
+        if (fresh) {
+            if (fresh_step(c, t, z, rows)) break;
+            slot = c->cur;
+            fresh = 0;
+        } else {
+            kept_step(c, slot);
+        }
         for (j = 0; j < n; j++) {
             double v = fabs(c->dz[j]) / (1.0 + fabs(z[j]));
             if (v > size) size = v;
             c->ztry[j] = z[j] + c->dz[j];
         }
         nn = full_residual(c, t, c->ztry, rows, c->rtry);
-        if (!(nn <= 2.0 * norm + 1e-300)) break;
+        if (!(nn <= 2.0 * norm + 1e-300)) {
+            if (was_fresh) break;
+            fresh = 1;
+            continue;
+        }
         memcpy(z, c->ztry, sizeof(double) * n);
         memcpy(c->r, c->rtry, sizeof(double) * n);
         norm = nn;
         if (size < 1e-14) break;
+        if (size > 0.1 * last) fresh = 1;     /* slow contraction: refresh */
+        last = size;
     }
     return 0;
 }
@@ -187,8 +227,8 @@ int a2d_newton(a2d_core* c, double t, const a2d_rows* rows, double* z)
     double norm;
     if (A2D_NEQ + rows->n != n) return -2;
     norm = full_residual(c, t, z, rows, c->r);
-    if (rows->reuse && c->lu_valid && c->lu_s == rows->s && !reused_newton(c, t, rows, z, &norm))
-        return 0;
+    if (kept_slot(c, rows) >= 0 && !reused_newton(c, t, rows, z, &norm))
+        return rows->polish ? polish(c, t, rows, z, norm) : 0;
     for (it = 0; it < 60; it++) {
         double step = 1.0;
         int accepted = 0;
@@ -236,7 +276,7 @@ int a2d_solve_held(a2d_core* c, double t, const int* held, int n_held, const dou
     rows.b = 0;
     rows.s = 0.0;
     rows.rhs = values;
-    rows.reuse = 0;
+    rows.reuse = held == a2d_states ? 1 : 0;   /* kept factors for the states held */
     rows.polish = 1;
     return a2d_newton(c, t, &rows, z);
 }

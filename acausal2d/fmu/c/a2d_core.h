@@ -25,7 +25,7 @@ typedef struct {
     const int* b;
     double s;
     const double* rhs;
-    int reuse;     /* keep and reuse the factored iteration matrix (same s) */
+    int reuse;     /* kind of system (0: none) whose factored matrix is kept and reused */
     int polish;    /* Newton steps down to rounding after convergence */
 } a2d_rows;
 
@@ -37,17 +37,21 @@ typedef struct {
     double x[A2D_NXX];
     double offsets[A2D_NA];
     int dirty;                /* z must be solved again for (t, x) */
-    int lu_valid;             /* M holds reusable LU factors for lu_s */
-    double lu_s;
+    /* two slots of LU factors of iteration matrices, each for the kind of
+     * system lu_valid[k] (0: none) and side-condition coefficient lu_s[k]
+     * (the step-doubling integrator alternates two step sizes) */
+    int lu_valid[2];
+    double lu_s[2];
+    int cur;                  /* the slot used last */
     /* work */
     const double* arg[A2D_SZ_ARG + 1];
     double* res[A2D_SZ_RES + 1];
     long long iw[A2D_SZ_IW + 1];
     double w[A2D_SZ_W + 1];
     double jnz[A2D_NNZ + 1];
-    double M[A2D_NZ * A2D_NZ];
+    double M[2][A2D_NZ * A2D_NZ];
     double r[A2D_NZ], rtry[A2D_NZ], dz[A2D_NZ], ztry[A2D_NZ];
-    int piv[A2D_NZ];
+    int piv[2][A2D_NZ];
     char message[512];
 } a2d_core;
 

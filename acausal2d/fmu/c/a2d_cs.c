@@ -39,7 +39,7 @@ static int sdirk_step(a2d_core* c, const double* z0, double h, double* z1)
     rows.b = der;
     rows.s = h * GAMMA;
     rows.rhs = rhs;
-    rows.reuse = 1;       /* all stages share the iteration matrix */
+    rows.reuse = 2;       /* all stages share the iteration matrix */
     rows.polish = 0;
     memcpy(z1, z0, sizeof(double) * A2D_N);
     for (i = 0; i < 3; i++) {
