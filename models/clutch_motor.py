@@ -11,7 +11,8 @@ falling capacity and the clutch slips again (the unlock event).
 
 ``load`` is a top-level ``RealInput`` (the FMU's input when exported with
 ``acausal2d export-fmu models/clutch_motor.py --model ClutchMotor``);
-``ClutchMotorConstantLoad`` closes it with -10 N m for a run of its own.
+``ClutchMotorConstantLoad`` closes it with -10 N m for a run of its own
+(``acausal2d simulate models/clutch_motor.py --model ClutchMotorConstantLoad``).
 """
 from acausal2d import Component, RealInput, if_else, start
 from acausal2d.library import rotational
@@ -62,4 +63,4 @@ if __name__ == "__main__":
     import sys
 
     from acausal2d.cli import run_model_file
-    sys.exit(run_model_file(__file__))
+    sys.exit(run_model_file(__file__, "ClutchMotorConstantLoad"))

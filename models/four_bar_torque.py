@@ -6,7 +6,8 @@ rotational damper (0.02 N m s/rad) at the crank bearing; gravity acts.
 ``tau`` is a top-level ``RealInput``: exported as an FMU (``acausal2d
 export-fmu models/four_bar_torque.py --model FourBarTorque``) it becomes
 the FMU's input.  ``FourBarTorqueConstant`` closes it with a constant
-0.2 N m for a run of its own (``acausal2d simulate``).
+0.2 N m for a run of its own (``acausal2d simulate
+models/four_bar_torque.py --model FourBarTorqueConstant``).
 """
 from acausal2d import Component, RealInput, start
 from acausal2d.library import rotational
@@ -51,4 +52,4 @@ if __name__ == "__main__":
     import sys
 
     from acausal2d.cli import run_model_file
-    sys.exit(run_model_file(__file__))
+    sys.exit(run_model_file(__file__, "FourBarTorqueConstant"))
