@@ -83,3 +83,13 @@ def optimize(model, vary, objective, **options):
     OptimizeResult."""
     from .analysis.optimize import optimize as _optimize
     return _optimize(model, vary, objective, **options)
+
+
+def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
+    """Export a model (an instance, or the path of a model file) as an FMI
+    2.0 FMU with native binaries; kind ``"me"`` (Model Exchange) or ``"cs"``
+    (Co-Simulation); see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
+    from .fmu import export_fmu as _export
+    if isinstance(model, str):
+        model = load_model(model)
+    return _export(model, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states)

@@ -52,7 +52,8 @@ class _Progress:
         self.stream.flush()
 
 
-COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes")
+COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",
+                   "export_fmu")
 """The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
 
 

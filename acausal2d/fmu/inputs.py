@@ -1,0 +1,37 @@
+"""Top-level ``RealInput`` connectors of a model become FMU inputs.
+
+:func:`bind_inputs` gives every such connector a value source: a
+``Constant`` named ``<connector>_source`` takes the connector's place in the
+model's connections, and its parameter ``k`` is the input (a parameter of
+the compiled functions, so an importer may change it at any time without
+recompiling).  The same bound model is what acausal2d itself simulates to
+compare with the FMU (the input set through ``params``).
+"""
+from ..errors import ModelDefinitionError
+from ..language.connectors import RealInput
+
+
+def bind_inputs(model, values=None):
+    """Replace the model's own ``RealInput`` connectors by constant sources
+    (in place); returns {input name: parameter name of its value}.
+    ``values``: {input name: start value} (default 0)."""
+    from acausal2d.library.signals import Constant
+    values = dict(values or {})
+    inputs = {}
+    for name, conn in list(model._connectors.items()):
+        if not isinstance(conn, RealInput):
+            continue
+        src = Constant(k=float(values.pop(name, 0.0)))
+        setattr(model, name + "_source", src)
+        pairs = model._connections
+        for i, (a, b) in enumerate(pairs):
+            if a is conn or b is conn:
+                pairs[i] = (src.y if a is conn else a, src.y if b is conn else b)
+        del model._connectors[name]
+        inputs[name] = name + "_source.k"
+    if values:
+        raise ModelDefinitionError("%s has no input %s; its inputs (top-level RealInput "
+                                   "connectors): %s" % (type(model).__name__,
+                                                        ", ".join(sorted(values)),
+                                                        ", ".join(inputs) or "none"))
+    return inputs
