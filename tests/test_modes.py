@@ -355,9 +355,9 @@ class ForcedMass(Component):
 
 
 def test_top_level_input_becomes_a_parameter_input():
-    from acausal2d.analysis.linearize import bind_inputs
+    from acausal2d.language.inputs import bind_inputs
     model = ForcedMass()
-    assert bind_inputs(model, {"u": 20.0}) == {"u": "u_value.k"}
+    assert bind_inputs(model, {"u": 20.0}) == {"u": "u_source.k"}
     cm = acausal2d.compile_model(model)
     lin = cm.linearize(equilibrium=True, inputs=["u"], outputs=["mass.s", "spring.f"])
     i, j = lin.states.index("mass.s"), lin.states.index("mass.v")

@@ -133,7 +133,7 @@ def test_linearize_with_a_top_level_input(tmp_path, capsys):
     path = tmp_path / "forced_mass.py"
     path.write_text(FORCED_MASS)
     out = str(tmp_path / "lin")
-    code = cli.main(["linearize", str(path), "--equilibrium", "--set", "u_value.k=20",
+    code = cli.main(["linearize", str(path), "--equilibrium", "--set", "u_source.k=20",
                      "--inputs", "u", "--out", out])
     assert code == 0, capsys.readouterr()
     data = json.load(open(os.path.join(out, "linear.json")))

@@ -17,9 +17,10 @@ the state derivatives: A = dz/dx[der(x)], B = dz/du[der(x)]; an output y
 Inputs u are parameters (a ``Constant`` source's ``k`` feeding a
 ``RealInput``, a force or torque value, a preload).  The model's top-level
 ``RealInput``s that nothing inside drives become such parameters with
-:func:`bind_inputs` before compiling: each gets a ``Constant`` source
-``<input>_value`` (``k`` its value, default 0), and the input is named by
-its connector (``u``) or by the parameter (``u_value.k``).
+:func:`acausal2d.language.inputs.bind_inputs` before compiling: each gets
+a ``Constant`` source ``<input>_source`` (``k`` its value, default 0), and
+the input is named by its connector (``u``) or by the parameter
+(``u_source.k``).
 """
 from dataclasses import dataclass, field
 
@@ -80,39 +81,6 @@ class Linearization:
         """d(name)/dx (a row over the states) of any node, eliminated alias
         or alias derivative of the model."""
         return signal_rows(self.compiled.system, [name], self.dzdx)[0]
-
-
-# ------------------------------------------------------------ top-level inputs
-INPUT_SOURCE = "%s_value"
-"""Name of the Constant source :func:`bind_inputs` gives a top-level input."""
-
-
-def bind_inputs(model, values=None):
-    """Give every top-level ``RealInput`` of ``model`` (a source inside the
-    model that nothing drives) the value of a ``Constant`` source
-    ``<name>_value`` (``k`` from ``values`` {input name: value}, default
-    0): the model's class is extended by the equations ``u = <name>_value.k``,
-    so that it compiles and its inputs are parameters.  Returns {input
-    name: parameter name} (also kept as ``model.input_parameters``).  Call
-    before compiling."""
-    from ..language.connectors import RealInput
-    from ..library.signals import Constant
-    bound = {}
-    for name, conn in list(model._connectors.items()):
-        if isinstance(conn, RealInput) and not hasattr(model, INPUT_SOURCE % name):
-            setattr(model, INPUT_SOURCE % name, Constant(k=float((values or {}).get(name, 0.0))))
-            bound[name] = INPUT_SOURCE % name + ".k"
-    if bound:
-        cls = type(model)
-
-        def equations(self, _base=cls.equations, _bound=tuple(bound)):
-            return list(_base(self)) + [getattr(self, n).u == getattr(self, INPUT_SOURCE % n).k
-                                        for n in _bound]
-        model.__class__ = type(cls.__name__, (cls,), {"equations": equations,
-                                                      "__module__": cls.__module__,
-                                                      "__doc__": cls.__doc__})
-    model.input_parameters = dict(getattr(model, "input_parameters", {}), **bound)
-    return bound
 
 
 # ------------------------------------------------------------ the point

@@ -66,7 +66,7 @@ def cmd_linearize(args):
     from ..analysis.equilibrium import NoEquilibrium
     from ..compiled import compile_model
     from ..io.loader import load_model
-    from ..analysis.linearize import bind_inputs
+    from ..language.inputs import bind_inputs
     model = load_model(args.model_file, args.model)
     bind_inputs(model)                  # top-level RealInputs become parameters
     cm = compile_model(model)

@@ -35,7 +35,7 @@ def cmd_modes(args):
     from ..io.files import write_text
     from ..io.loader import load_model
     from ..visual.mode_page import write_mode_page
-    from ..analysis.linearize import bind_inputs
+    from ..language.inputs import bind_inputs
     model = load_model(args.model_file, args.model)
     bind_inputs(model)                  # top-level RealInputs held at 0
     cm = compile_model(model)

@@ -23,7 +23,7 @@ from ..errors import ModelDefinitionError, translated
 from ..runtime import cbuild
 from .description import model_description
 from .generate import casadi_sources, model_data_header
-from .inputs import bind_inputs
+from ..language.inputs import bind_inputs
 
 C_DIR = os.path.join(os.path.dirname(__file__), "c")
 C_FILES = ("a2d_core.c", "a2d_core.h", "a2d_fmi2.c", "a2d_cs.c", "a2d_cs.h",
@@ -107,7 +107,7 @@ def _may_turn_singular(system, level):
 
 def export_data(model, inputs=None, fixed_states=False):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
-    :func:`~acausal2d.fmu.inputs.bind_inputs`)."""
+    :func:`~acausal2d.language.inputs.bind_inputs`)."""
     from .. import __version__
     from ..compiled import compile_model, _experiment
     name = type(model).__name__

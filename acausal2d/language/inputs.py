@@ -1,11 +1,13 @@
-"""Top-level ``RealInput`` connectors of a model become FMU inputs.
+"""Top-level ``RealInput`` connectors of a model as parameters.
 
-:func:`bind_inputs` gives every such connector a value source: a
-``Constant`` named ``<connector>_source`` takes the connector's place in the
-model's connections, and its parameter ``k`` is the input (a parameter of
-the compiled functions, so an importer may change it at any time without
-recompiling).  The same bound model is what acausal2d itself simulates to
-compare with the FMU (the input set through ``params``).
+A model's own ``RealInput`` connectors that nothing inside drives are the
+inputs of the model as a whole (FMU inputs, the inputs u of a
+linearisation).  :func:`bind_inputs` gives every such connector a value
+source: a ``Constant`` named ``<connector>_source`` takes the connector's
+place in the model's connections, and its parameter ``k`` is the input (a
+parameter of the compiled functions, so it changes without recompiling:
+``--set <connector>_source.k=...``, ``params``, ``fmi2SetReal``).  Used by
+the FMU export and by ``linearize``/``modes``.
 """
 from ..errors import ModelDefinitionError
 from ..language.connectors import RealInput
@@ -14,7 +16,8 @@ from ..language.connectors import RealInput
 def bind_inputs(model, values=None):
     """Replace the model's own ``RealInput`` connectors by constant sources
     (in place); returns {input name: parameter name of its value}.
-    ``values``: {input name: start value} (default 0)."""
+    ``values``: {input name: start value} (default 0).  The mapping is also
+    kept as ``model.input_parameters``."""
     from acausal2d.library.signals import Constant
     values = dict(values or {})
     inputs = {}
@@ -34,4 +37,5 @@ def bind_inputs(model, values=None):
                                    "connectors): %s" % (type(model).__name__,
                                                         ", ".join(sorted(values)),
                                                         ", ".join(inputs) or "none"))
+    model.input_parameters = dict(getattr(model, "input_parameters", {}), **inputs)
     return inputs
