@@ -54,20 +54,29 @@ empty package through which the old submodule names of :data:`MOVED` import."""
 
 
 class _Alias(importlib.abc.Loader):
-    """Loader that hands out an already imported module under another name."""
+    """Loader that hands out an already imported module under another name.
+
+    The import system stamps the alias's spec on the module it gets back;
+    :meth:`exec_module` puts the module's own spec back, or its relative
+    imports would resolve against the old package (and Python warns
+    ``__package__ != __spec__.parent``)."""
 
     def __init__(self, target):
         self.target = target
+        self.own_spec = None
 
     def create_module(self, spec):
         if self.target is None:
             module = types.ModuleType(spec.name, OLD_PACKAGES[spec.name])
             module.__path__ = []
             return module
-        return importlib.import_module(self.target)
+        module = importlib.import_module(self.target)
+        self.own_spec = module.__spec__
+        return module
 
     def exec_module(self, module):
-        pass
+        if self.own_spec is not None:
+            module.__spec__ = self.own_spec
 
 
 class _MovedFinder(importlib.abc.MetaPathFinder):

@@ -180,3 +180,19 @@ def test_no_import_circles_between_modules():
     cycles = [c for c in nx.simple_cycles(graph)
               if not any(n.rsplit(".", 1)[0] in c or n in ("acausal2d",) for n in c)]
     assert not cycles, cycles
+
+
+def test_old_name_leaves_the_module_its_own_spec():
+    """Importing a module by its old name must not re-stamp it with the old
+    package: its relative imports would then warn (__package__ !=
+    __spec__.parent) and resolve against a package that no longer exists."""
+    import importlib
+    import warnings
+    import acausal2d.io.loader as loader
+    importlib.import_module("acausal2d.tools.loader")
+    assert loader.__spec__.name == "acausal2d.io.loader"
+    assert loader.__spec__.parent == loader.__package__ == "acausal2d.io"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        from acausal2d.io.mec2 import load_mec2  # noqa: F401  (a relative import inside)
+        importlib.reload(importlib.import_module("acausal2d.io.files"))
