@@ -7,6 +7,8 @@ import inspect
 import numbers
 import os
 
+import numpy as np
+
 from .errors import Acausal2dError
 
 __all__ = ["check_model", "check_simulate_options", "check_load", "check_sweep"]
@@ -73,7 +75,7 @@ def _check_vary(vary):
         if isinstance(vals, str):
             continue
         try:
-            [float(v) for v in (vals if isinstance(vals, (list, tuple)) else [vals])]
+            np.asarray(vals, dtype=float)          # numbers, a list, an array, vector values
         except (TypeError, ValueError):
             raise Acausal2dError("sweep: vary[%r] must be numbers or 'start:stop:count', not %r"
                                  % (column, vals)) from None

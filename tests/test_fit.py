@@ -135,7 +135,7 @@ def test_signals_that_do_not_match_are_named(decay):
         fit(cm, (t, cols), free={"a": (9.0, 0.0, 5.0)})
     y = cols["x"].copy()
     y[5] = np.nan
-    with pytest.raises(acausal2d.Acausal2dError, match="column x has 1 values that are not"):
+    with pytest.raises(acausal2d.Acausal2dError, match="measured data: signal 'x' is nan at row 6"):
         fit(cm, (t, {"x": y}), free={"a": 1.0})
 
 

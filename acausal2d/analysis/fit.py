@@ -110,8 +110,8 @@ class _Problem:
 
 def _load_data(data, t_range):
     """(times, {column: values}) of the measured data inside ``t_range``."""
-    from .compare import _load
-    t, cols = _load(data, "reference")
+    from .compare_inputs import load_table
+    t, cols = load_table(data, "measured data")
     if t_range is not None:
         t0, t1 = (float(v) for v in t_range)
         keep = (t >= t0) & (t <= t1)
@@ -133,9 +133,16 @@ def _load_data(data, t_range):
 
 def _pairs(cm, cols, signals, mapping):
     """(measured column, our signal) pairs, checked as compare does."""
-    from .compare import _select_signals
+    from .compare_inputs import select_signals
     ours = {n: None for n in cm.names}
-    return _select_signals(cols, ours, signals, mapping)
+    pairs, unmatched = select_signals(cols, ours, signals, mapping)
+    if unmatched:
+        raise Acausal2dError(
+            "measured column%s %s ha%s no counterpart in %s; name the fitted columns with "
+            "--signals (signals=) or pair them with --map MEASURED=OURS (mapping=)"
+            % ("s" if len(unmatched) > 1 else "", ", ".join(unmatched),
+               "ve" if len(unmatched) > 1 else "s", type(cm.model).__name__))
+    return pairs
 
 
 def _weights(pairs, weights):
