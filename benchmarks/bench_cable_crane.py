@@ -31,7 +31,7 @@ def one_cycle():
     res = cm.simulate()
     t3 = time.perf_counter()
     assert abs(res.time[-1] - T_STOP) < 1e-9
-    return t1 - t0, t2 - t1, t3 - t2, cm.n_flat_equations, res
+    return t1 - t0, t2 - t1, t3 - t2, cm.system.n_flat_equations, res
 
 
 def main(repeats=3):
