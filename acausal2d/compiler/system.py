@@ -220,7 +220,9 @@ class System:
         """The semi-explicit index-1 formulation of a dummy selection (cached)."""
         f = self._formulations.get(selection.dummies)
         if f is None:
-            f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
+            from .pipeline import cyclic_gc_paused
+            with cyclic_gc_paused():
+                f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
             self._formulations[selection.dummies] = f
         return f
 
