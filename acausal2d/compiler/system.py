@@ -17,6 +17,7 @@ from ..errors import ModelDefinitionError
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import time
 from .aliases import substitution
+from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
 from .structure import column
 
@@ -220,7 +221,6 @@ class System:
         """The semi-explicit index-1 formulation of a dummy selection (cached)."""
         f = self._formulations.get(selection.dummies)
         if f is None:
-            from .pipeline import cyclic_gc_paused
             with cyclic_gc_paused():
                 f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
             self._formulations[selection.dummies] = f
