@@ -1,6 +1,7 @@
 """Runtime start-up and event costs.  Prints a table.
 
     python benchmarks/bench_runtime.py [repeats]
+    python benchmarks/bench_runtime.py --small     (1 repeat, for the test suite)
 
 - piston engine, first compile + simulate in a fresh process (10 s, rtol
   1e-8, 5000 output points), imports excluded: a new Python process imports
@@ -68,14 +69,14 @@ def pendulum_cli():
         return time.perf_counter() - t
 
 
-def compressor():
+def compressor(runs=3):
     """(simulate s, events, event handling s) of the compressor run."""
     sys.path.insert(0, MODELS)
     import acausal2d
     from compressor import Compressor
     cm = acausal2d.compile_model(Compressor())
     best = None
-    for _ in range(3):
+    for _ in range(runs):
         res = cm.simulate()
         st = res.stats
         row = (st["wall_time"], st["events"] + st["time_events"], st["event_time"])
@@ -83,11 +84,11 @@ def compressor():
     return best
 
 
-def main(repeats):
+def main(repeats, compressor_runs=3):
     first = min(first_run() for _ in range(repeats))
     warm = warm_run()
     cli = min(pendulum_cli() for _ in range(repeats))
-    sim, n_events, t_events = compressor()
+    sim, n_events, t_events = compressor(compressor_runs)
     rows = [("piston engine, first compile + simulate (fresh process, imports excluded)",
              "%.3f s" % first),
             ("piston engine, warm compile + simulate", "%.3f s" % warm),
@@ -100,4 +101,7 @@ def main(repeats):
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)
+    if sys.argv[1:] == ["--small"]:
+        main(1, compressor_runs=1)
+    else:
+        main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)
