@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import ModelDefinitionError
 
 from ..language.dsl import STATE_SELECT
-from ..language.symbols import time
+from ..language.symbols import as_sx, time
 from .aliases import substitution
 from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
@@ -66,7 +66,7 @@ class System:
         if not relations or not self.aliases:
             return relations
         src, dst = substitution(self.aliases, self.table)
-        gs = ca.substitute([r.g for r in relations], src, [ca.SX(x) for x in dst])
+        gs = ca.substitute([r.g for r in relations], src, [as_sx(x) for x in dst])
         return [r.with_g(g) for r, g in zip(relations, gs)]
 
     def _nodes(self, variables):
