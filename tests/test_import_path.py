@@ -14,7 +14,7 @@ import acausal2d
 res = acausal2d.simulate(acausal2d.load_model(%r), stop_time=1.0)
 with tempfile.TemporaryDirectory() as d:
     res.to_csv(os.path.join(d, "result.csv"))
-    res.animate(os.path.join(d, "animation.html"))
+    res.animate(os.path.join(d, "animation.html"), signal="revolute.w")
     print(os.path.getsize(os.path.join(d, "animation.html")) > 1000)
 print(sorted(m for m in sys.modules if m.startswith(("scipy.optimize", "matplotlib"))))
 print(len(res.time))
