@@ -16,10 +16,12 @@ warm          = compile + simulate in this process after a first run
 first         = the first compile + simulate in a fresh process, after
                 ``import acausal2d`` only (lazy imports of the runtime
                 included), against the warm figure
-Ratios are rumoca / acausal2d (> 1: acausal2d is faster).  Without rumoca
+CPU rows: user + system time of the same runs (robust against other load
+on the machine).  Ratios are rumoca / acausal2d (> 1: acausal2d is faster).  Without rumoca
 the acausal2d side runs and the table says rumoca is missing.
 """
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -67,25 +69,32 @@ def _code(tool):
     return RUMOCA_RUN.format(path=MODEL_MO, cls=CLASS_MO, stop=STOP, rtol=RTOL, n=INTERVALS)
 
 
+def _children_cpu():
+    use = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return use.ru_utime + use.ru_stime
+
+
 def whole_process(tool):
-    """(wall s of the whole process, compile + simulate s inside it)."""
-    t0 = time.perf_counter()
+    """(wall s of the whole process, compile + simulate s inside it, CPU s
+    of the whole process: user + system)."""
+    c0, t0 = _children_cpu(), time.perf_counter()
     out = subprocess.run([sys.executable, "-c", _code(tool)], capture_output=True, text=True,
                          check=True, cwd=ROOT)
     wall = time.perf_counter() - t0
-    return wall, float(out.stdout.split()[0])
+    return wall, float(out.stdout.split()[0]), _children_cpu() - c0
 
 
 def warm(tool, runs):
-    """Median compile + simulate seconds in this process, after one run."""
+    """Median (wall, CPU) seconds of compile + simulate in this process,
+    after one run."""
     scope = {}
     code = compile(_code(tool).replace("print(", "_out = ("), "<warm>", "exec")
     times = []
     for _ in range(runs + 1):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         exec(code, scope)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times[1:])
+        times.append((time.perf_counter() - t0, time.process_time() - c0))
+    return tuple(statistics.median(t[k] for t in times[1:]) for k in (0, 1))
 
 
 def main(pairs=5):
@@ -94,14 +103,19 @@ def main(pairs=5):
     for _ in range(pairs):
         for t in tools:                       # alternating: acausal2d, rumoca, acausal2d, ...
             whole[t].append(whole_process(t))
-    hot = {t: warm(t, max(pairs, 2)) for t in tools}
-    med = {t: statistics.median(w for w, _ in whole[t]) for t in tools}
-    first = {t: statistics.median(i for _, i in whole[t]) for t in tools}
+    hot_both = {t: warm(t, max(pairs, 2)) for t in tools}
+    hot = {t: hot_both[t][0] for t in tools}
+    hot_cpu = {t: hot_both[t][1] for t in tools}
+    med = {t: statistics.median(w[0] for w in whole[t]) for t in tools}
+    med_cpu = {t: statistics.median(w[2] for w in whole[t]) for t in tools}
+    first = {t: statistics.median(w[1] for w in whole[t]) for t in tools}
     print("Slider crank (piston engine), %g s, rtol %g, %d output intervals; %d pairs"
           % (STOP, RTOL, INTERVALS, pairs))
     print("%-44s %10s %10s %10s" % ("", "acausal2d", "rumoca", "ratio"))
     _row("whole process [s] (median)", med)
+    _row("whole process CPU [s] (median)", med_cpu)
     _row("warm compile + simulate [s] (median)", hot)
+    _row("warm compile + simulate CPU [s] (median)", hot_cpu)
     _row("first compile + simulate in a process [s]", first)
     print("%-44s %10.2f" % ("acausal2d first / warm", first["acausal2d"] / hot["acausal2d"]))
     if "rumoca" not in tools:
