@@ -11,6 +11,12 @@ never does.  So for the duration of the one import a stand-in module
 removed afterwards, so a later ``import scipy.optimize`` loads the real
 modules as usual.  Import ``sksundae`` from here (``from .sundae import
 sksundae``), never directly, so the first import is this one.
+
+Not guarded against another thread importing ``scipy.optimize`` during
+these ~0.1 s (it would find the stand-in): holding the interpreter's import
+lock across the import deadlocks against such a thread's module locks.  The
+first import happens when the runtime is first used, in practice on the
+main thread before any worker threads.
 """
 import sys
 import types
