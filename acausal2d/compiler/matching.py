@@ -38,9 +38,9 @@ class Matching:
 
     def augment(self, r0, seen=None):
         """Find an augmenting path from the unmatched row ``r0``; True if the
-        matching grew.  ``seen``: columns searched before in this pass
-        (shared only while no search in between succeeded or failed on
-        another matching; None for a search of its own)."""
+        matching grew.  ``seen``: the columns already visited by the searches
+        of this pass of :meth:`match_all` (they share them; a pass that finds
+        no path proves the matching maximum), or None for a search of its own."""
         seen = set() if seen is None else seen
         rows, row_of = self.rows, self.row_of
         path = []      # (row, column it takes) from r0 down to the row being searched
