@@ -232,8 +232,17 @@ def synthesise(a=A_DIST, r1_mean=R1_MEAN, lam=LAM, bet=BET, K=24, M=256):
             "residual": np.array(np.max(np.abs(fit(z, K, False))))}
 
 
-_SOURCE = hashlib.sha256(open(__file__, "rb").read()).hexdigest() if "__file__" in globals() \
-    else None
+def _source_hash():
+    """sha256 of this file (part of the disk-cache key of the design), or
+    None when the module has no file (then the design is not cached)."""
+    try:
+        with open(__file__, "rb") as fh:
+            return hashlib.sha256(fh.read()).hexdigest()
+    except (NameError, OSError):
+        return None
+
+
+_SOURCE = _source_hash()
 
 
 @functools.lru_cache(maxsize=4)
