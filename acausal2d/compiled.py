@@ -6,6 +6,7 @@ import time as _time
 
 import numpy as np
 
+from .compiler.gc_pause import cyclic_gc_paused
 from .compiler.pipeline import compile_system
 from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
                       translated)
@@ -144,7 +145,7 @@ class CompiledModel:
         :class:`~acausal2d.runtime.initialize.InitialPoint` with the
         selection made there."""
         p = self.parameter_values(params)
-        with translated("initializing %s" % type(self.model).__name__):
+        with translated("initializing %s" % type(self.model).__name__), cyclic_gc_paused():
             ev = Evaluator(self.system, p)
             point = initial_point(self.system, ev, t0, p)
             if point.selection is None:

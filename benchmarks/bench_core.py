@@ -2,6 +2,7 @@
 pendulum links.  Prints a table.
 
     python benchmarks/bench_core.py [N ...]
+    python benchmarks/bench_core.py --small     (small sizes, for the test suite)
 
 compile = flatten, aliases, balance, Pantelides (compile_model) plus the
 consistent initialization, state selection and generation of the index-1
@@ -9,6 +10,11 @@ functions; simulate = the IDA run.  Columns: equations after flattening,
 after alias elimination, and unknowns of the semi-explicit index-1 system
 handed to IDA.  Each
 figure is the best of a few runs (one for the large chains).
+
+The second table compiles chains of about 10k, 20k and 50k flattened
+equations (compile as above, no simulation) and prints the growth exponent
+of the CPU time between the sizes (issue 17: 50k in <= 30 s, exponent
+<= 1.2 between 10k and 50k).
 """
 import math
 import os
@@ -54,6 +60,23 @@ def measure(make, stop_time, rtol, intervals, repeat=3):
     return cm, res, best_c, best_s
 
 
+def compile_only(n):
+    """(flattened equations, wall s, CPU s) of compiling a chain of n links:
+    compile_model, the initial point with its state selection and the
+    index-1 formulation of that selection."""
+    model = PendulumChain(n)
+    w0, c0 = time.perf_counter(), time.process_time()
+    cm = acausal2d.compile_model(model)
+    cm.system.formulation(cm.initial_point().selection)
+    return cm.system.n_flat_equations, time.perf_counter() - w0, time.process_time() - c0
+
+
+def links_for(n_flat):
+    """Links of a chain with about ``n_flat`` flattened equations (38 per
+    link plus 6)."""
+    return max(1, round((n_flat - 6) / 38))
+
+
 def _sizes(cm):
     """Equations after flattening, after alias elimination, unknowns of the
     semi-explicit index-1 system."""
@@ -61,7 +84,7 @@ def _sizes(cm):
     return s.n_flat_equations, len(s.equations), s.structure.n_var
 
 
-def main(sizes):
+def main(sizes, scale):
     from piston_engine import PistonEngine
     rows = []
     cm, res, c, s = measure(PistonEngine, 10.0, 1e-8, 5000)
@@ -74,7 +97,37 @@ def main(sizes):
                                                  "compile s", "simulate s", "total s"))
     for name, n_flat, n_eq, n_red, c, s in rows:
         print("%-44s %8d %8d %9d %10.3f %10.3f %10.3f" % (name, n_flat, n_eq, n_red, c, s, c + s))
+    if scale:
+        print_scale(scale)
+
+
+def print_scale(targets):
+    """Compile time of chains of about ``targets`` flattened equations and
+    the growth exponent log(t2/t1)/log(n2/n1) between consecutive sizes and
+    between the first and the last (CPU time: the machine is shared)."""
+    print()
+    print("%-30s %8s %10s %10s %12s" % ("compile only (chain)", "flat", "wall s", "CPU s",
+                                        "exponent"))
+    got = []
+    for target in targets:
+        n = links_for(target)
+        got.append((n,) + compile_only(n))
+        n_flat, wall, cpu = got[-1][1:]
+        exp = "" if len(got) == 1 else "%.2f" % _exponent(got[-2], got[-1])
+        print("%-30s %8d %10.2f %10.2f %12s" % ("%d links" % n, n_flat, wall, cpu, exp))
+    if len(got) > 2:
+        print("%-30s %8s %10s %10s %12.2f" % ("exponent first -> last", "", "", "",
+                                              _exponent(got[0], got[-1])))
+
+
+def _exponent(a, b):
+    """Growth exponent of CPU time between two (links, flat, wall, cpu) rows."""
+    return math.log(b[3] / a[3]) / math.log(b[1] / a[1])
 
 
 if __name__ == "__main__":
-    main([int(a) for a in sys.argv[1:]] or [5, 20, 80, 200])
+    args = sys.argv[1:]
+    if args == ["--small"]:
+        main([5, 20], [800, 1600, 3200])
+    else:
+        main([int(a) for a in args] or [5, 20, 80, 200], [10000, 20000, 50000])

@@ -12,7 +12,7 @@ import casadi as ca
 import copy
 
 from ..language.dsl import STATE_SELECT
-from ..language.symbols import PARAM
+from ..language.symbols import PARAM, as_sx
 
 _MAX_NODES = 12
 
@@ -162,7 +162,7 @@ def _substitute(kept, aliases, table):
                                    ca.vertcat(*src)).get_triplet()[0]
     rows = sorted(set(touched))
     if rows:
-        exprs = ca.substitute([kept[i].expr for i in rows], src, [ca.SX(x) for x in dst])
+        exprs = ca.substitute([kept[i].expr for i in rows], src, [as_sx(x) for x in dst])
         for i, e in zip(rows, exprs):
             kept[i] = kept[i].with_expr(e)
             changed.add(id(kept[i]))

@@ -26,6 +26,7 @@ from ..language.unionfind import UnionFind
 from .structure import Level, Selection
 
 _ALWAYS = STATE_SELECT.index("always")
+LARGE_BLOCK = 400     # equations of a block above which the sparse choice is tried first
 
 
 def _pick(H, prio, need):
@@ -49,8 +50,43 @@ def _pick(H, prio, need):
             continue
         choice = choice or len(idx) > k
         chosen.extend(idx[p] for p in piv[:k])
-        Q, _ = np.linalg.qr(H[:, chosen])
+        if len(chosen) < need:
+            Q, _ = np.linalg.qr(H[:, chosen])
     return (chosen, choice) if len(chosen) == need else None
+
+
+def _pick_large(H, prio, need):
+    """:func:`_pick` for a large block (more than ``LARGE_BLOCK`` equations,
+    e.g. the 2n equations of a chain of n links), where dense QR would cost
+    O(n^3): a transversal of H with lexicographically fewest high-priority
+    columns and, among those, the largest product of scaled magnitudes
+    (minimum-weight bipartite matching, as in MC64), accepted if its square
+    block factors (sparse LU) with all pivots above 1e-9 of H's largest
+    entry.  Returns what :func:`_pick` returns, or None to fall back to it."""
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import min_weight_full_bipartite_matching
+    from scipy.sparse.linalg import splu
+    A = sp.csc_matrix(H)
+    A.eliminate_zeros()
+    if A.nnz == 0:
+        return None
+    mag = np.abs(A.data)
+    scale = float(mag.max())
+    logw = np.log(scale) - np.log(mag) + 1.0                  # >= 1, small = large entry
+    big = (need + 1) * float(logw.max())
+    cls = np.asarray(prio, dtype=float)[np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))]
+    W = sp.csc_matrix((logw + big * cls, A.indices, A.indptr), shape=A.shape)
+    try:
+        rows, cols = min_weight_full_bipartite_matching(W.tocsr())
+        lu = splu(sp.csc_matrix(A[:, cols[np.argsort(rows)]]), permc_spec="COLAMD")
+    except (ValueError, RuntimeError):
+        return None
+    if len(cols) != need or np.min(np.abs(lu.U.diagonal())) <= 1e-9 * scale:
+        return None
+    chosen = [int(c) for c in cols]
+    counts = np.bincount(np.asarray(prio)[chosen], minlength=len(STATE_SELECT))
+    offered = np.bincount(np.asarray(prio), minlength=len(STATE_SELECT))
+    return chosen, bool(np.any((counts > 0) & (offered > counts)))
 
 
 def _blocks(s, eqs, cands):
@@ -78,7 +114,9 @@ def _choose_level(s, eqs, cands, priority, nominal, jacobian):
     chosen, dynamic = [], False
     for beqs, bcands in _blocks(s, eqs, cands):
         H = jacobian(beqs, bcands) * np.array([nominal[j] for j in bcands])[None, :]
-        picked = _pick(H, [priority[j] for j in bcands], len(beqs))
+        prio = [priority[j] for j in bcands]
+        picked = _pick_large(H, prio, len(beqs)) if len(beqs) > LARGE_BLOCK else None
+        picked = picked or _pick(H, prio, len(beqs))
         if picked is None:
             what = ", ".join(sorted({"'%s'" % s.var_sym[s.var_base[j]].name()
                                      for j in bcands})[:6])

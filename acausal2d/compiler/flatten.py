@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import Acausal2dError, ModelDefinitionError
 from ..language.context import ModelContext
+from ..language.symbols import as_sx
 from ..language.unionfind import UnionFind
 
 
@@ -248,4 +249,4 @@ def _connection_equations(model, comps):
 
 
 def _conn_eq(expr, origin, text):
-    return Equation(ca.SX(expr), origin, text)
+    return Equation(as_sx(expr), origin, text)

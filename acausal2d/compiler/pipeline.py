@@ -14,6 +14,7 @@ from .always_states import differentiate_for_always
 from .balance import check_balance
 from .diagnosis import loose_parts
 from .flatten import flatten
+from .gc_pause import cyclic_gc_paused
 from .pantelides import pantelides
 from .relations import extract_relations
 from .structure import initial_structure
@@ -32,7 +33,13 @@ def _balanced(model, equations, variables, table):
 
 
 def compile_system(model):
-    """Compile a model instance into a :class:`System`."""
+    """Compile a model instance into a :class:`System` (see the module
+    docstring; the cyclic garbage collector is paused meanwhile)."""
+    with cyclic_gc_paused():
+        return _compile(model)
+
+
+def _compile(model):
     table = SymbolTable()
     flat = flatten(model, table)
     if not flat.variables and not flat.equations:

@@ -80,7 +80,10 @@ class _Scan:
 
 def extract_relations(exprs, table):
     """Replace relations in the list of scalar SX ``exprs``; returns
-    (new_exprs, relations).  ``table``: the compilation's symbol table."""
+    (new_exprs, relations).  ``table``: the compilation's symbol table.
+    Only the equations that contain a relation are rebuilt, and of their
+    expression graphs only the instructions they need (:func:`_needed`);
+    the others are returned as they are."""
     if not exprs:
         return list(exprs), []
     allexpr = ca.vertcat(*exprs)
@@ -89,11 +92,12 @@ def extract_relations(exprs, table):
     ops = [f.instruction_id(k) for k in range(f.n_instructions())]
     if not any(op in _REL_OPS for op in ops):
         return list(exprs), []
+    args = [(f.instruction_input(k), f.instruction_output(k)) for k in range(len(ops))]
     dynamic = [s for s in syms if table.kind(s) in (VAR, TIME)]
     scan = _Scan(table, ca.vertcat(*dynamic) if dynamic else None)
-    work, out = {}, [None] * len(exprs)
-    for k, op in enumerate(ops):
-        ins, outs = f.instruction_input(k), f.instruction_output(k)
+    work, out = {}, list(exprs)
+    for k in _needed(ops, args):
+        op, (ins, outs) = ops[k], args[k]
         if op == ca.OP_INPUT:
             work[outs[0]] = syms[ins[1]]
         elif op == ca.OP_OUTPUT:
@@ -103,6 +107,35 @@ def extract_relations(exprs, table):
         else:
             work[outs[0]] = scan.op(op, [work[i] for i in ins])
     return out, _with_equations(scan.found, out)
+
+
+def _needed(ops, args):
+    """Indices (in order) of the instructions of the scan function that the
+    outputs containing a relation depend on, those outputs included.  A
+    forward pass marks the work slots whose value contains a relation and
+    records which instruction last wrote each slot; a backward search from
+    the marked outputs collects their instructions.  Running the subsequence
+    in order is safe: no instruction left out writes a slot between its
+    writer and its reader, since the full sequence does not either."""
+    marked, writer, sources, starts = {}, {}, [], []
+    for k, op in enumerate(ops):
+        ins, outs = args[k]
+        if op == ca.OP_OUTPUT:
+            sources.append([writer[ins[0]]])
+            if marked[ins[0]]:
+                starts.append(k)
+            continue
+        leaf = op in (ca.OP_INPUT, ca.OP_CONST)
+        sources.append([] if leaf else [writer[i] for i in ins])
+        marked[outs[0]] = op in _REL_OPS or (not leaf and any(marked[i] for i in ins))
+        writer[outs[0]] = k
+    need, stack = set(), starts
+    while stack:
+        k = stack.pop()
+        if k not in need:
+            need.add(k)
+            stack.extend(sources[k])
+    return sorted(need)
 
 
 def _with_equations(found, exprs):

@@ -15,8 +15,9 @@ import numpy as np
 from ..errors import InitializationError, ModelDefinitionError
 
 from ..language.dsl import STATE_SELECT
-from ..language.symbols import time
+from ..language.symbols import as_sx, time
 from .aliases import substitution
+from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
 from .structure import column
 
@@ -66,7 +67,7 @@ class System:
         if not relations or not self.aliases:
             return relations
         src, dst = substitution(self.aliases, self.table)
-        gs = ca.substitute([r.g for r in relations], src, [ca.SX(x) for x in dst])
+        gs = ca.substitute([r.g for r in relations], src, [as_sx(x) for x in dst])
         return [r.with_g(g) for r, g in zip(relations, gs)]
 
     def _nodes(self, variables):
@@ -256,7 +257,8 @@ class System:
         """The semi-explicit index-1 formulation of a dummy selection (cached)."""
         f = self._formulations.get(selection.dummies)
         if f is None:
-            f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
+            with cyclic_gc_paused():
+                f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
             self._formulations[selection.dummies] = f
         return f
 

@@ -26,6 +26,13 @@ time = ca.SX.sym("time")
 _active = []        # stack of tables of flattenings in progress
 
 
+def as_sx(expr):
+    """``expr`` as a CasADi SX: itself if it is one already (``SX(sx)``
+    costs ~60 us of SWIG overload resolution per call, which adds up to
+    seconds in a large model), else converted (numbers, DM)."""
+    return expr if isinstance(expr, ca.SX) else ca.SX(expr)
+
+
 def key(s):
     """Hashable identity of a scalar CasADi symbol."""
     return s.element_hash()
@@ -106,7 +113,7 @@ class SymbolTable:
         """Total time derivative of a CasADi expression: variables map to
         their derivative symbols, parameters and discrete relation values
         are constant, ``time`` has derivative one."""
-        expr = ca.SX(expr)
+        expr = as_sx(expr)
         src, dst = [], []
         for s in ca.symvar(expr):
             k = self._kind.get(key(s))
@@ -127,7 +134,7 @@ class SymbolTable:
     def der(self, expr):
         """``der(x)``: the derivative symbol of a variable, or the chain rule
         applied to an expression."""
-        expr = ca.SX(expr)
+        expr = as_sx(expr)
         if expr.is_scalar() and expr.is_symbolic() and self.kind(expr) == VAR:
             return self.derivative_symbol(expr)
         return self.time_derivative(expr)

@@ -24,7 +24,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")     # before scikit-sundae is impo
 # file of this process, read into SundialsMessages, read when a context is made
 WARNINGS_FILE = os.path.join(tempfile.gettempdir(), "acausal2d-sundials-%d.log" % os.getpid())
 os.environ.setdefault("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
-import sksundae as sun  # noqa: E402
+from .sundae import sksundae as sun  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 
 from .buffered import Buffered  # noqa: E402

@@ -12,7 +12,7 @@ import ctypes
 import glob
 import os
 
-import sksundae
+from .sundae import sksundae
 
 _lib = None
 

@@ -65,6 +65,7 @@ Wound lengths (4.118, 4.119) with the conventions of library/belt.py
 with kappa_i the contact angles in the pulley frame; for a circle this is
 exactly the circular pulley's ``-w r (phi - kappa1_world)``.
 """
+import functools
 import math
 
 import casadi as ca
@@ -81,10 +82,16 @@ _TWO_PI = 2.0 * math.pi
 def _fourier_sx(x, base, c0, a, b):
     """c0 + sum_{j>=1} a[j-1] cos(j base x) + b[j-1] sin(j base x) as a
     CasADi expression, with the angle-addition recurrence (one cos and one
-    sin evaluation)."""
-    out = c0
+    sin evaluation).  For a symbolic ``x`` the series is expanded by a CasADi
+    Function built once per number of harmonics (:func:`_fourier_function`):
+    the same expression (zero coefficients drop out as constants), built in
+    C++ instead of ~8 Python-level operations per harmonic."""
     if len(a) == 0:
-        return out
+        return c0
+    if isinstance(x, ca.SX):
+        return _fourier_function(len(a))(x, base, c0, ca.DM(np.asarray(a, dtype=float)),
+                                         ca.DM(np.asarray(b, dtype=float)))
+    out = c0
     c1, s1 = ca.cos(base * x), ca.sin(base * x)
     ck, sk = c1, s1
     for j in range(len(a)):
@@ -95,6 +102,21 @@ def _fourier_sx(x, base, c0, a, b):
         if j + 1 < len(a):
             ck, sk = ck * c1 - sk * s1, sk * c1 + ck * s1
     return out
+
+
+@functools.lru_cache(maxsize=None)
+def _fourier_function(n):
+    """CasADi Function (x, base, c0, a[n], b[n]) -> the series of
+    :func:`_fourier_sx` with n harmonics."""
+    x, base, c0 = ca.SX.sym("x"), ca.SX.sym("base"), ca.SX.sym("c0")
+    a, b = ca.SX.sym("a", n), ca.SX.sym("b", n)
+    c1, s1 = ca.cos(base * x), ca.sin(base * x)
+    ck, sk, out = c1, s1, c0
+    for j in range(n):
+        out = out + a[j] * ck + b[j] * sk
+        if j + 1 < n:
+            ck, sk = ck * c1 - sk * s1, sk * c1 + ck * s1
+    return ca.Function("fourier_%d" % n, [x, base, c0, a, b], [out])
 
 
 def _series_from_samples(v, tol, n_max=None):

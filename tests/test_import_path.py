@@ -1,0 +1,52 @@
+"""What a run imports (issue 17, item 3): compiling and simulating a model
+and writing its CSV and animation page load neither ``scipy.optimize`` nor
+matplotlib; scikit-sundae still finds scipy's ``group_columns`` when it is
+asked for it, and ``scipy.optimize`` imported afterwards is the real one."""
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+_RUN = r"""
+import sys, os, tempfile
+import acausal2d
+res = acausal2d.simulate(acausal2d.load_model(%r), stop_time=1.0)
+with tempfile.TemporaryDirectory() as d:
+    res.to_csv(os.path.join(d, "result.csv"))
+    res.animate(os.path.join(d, "animation.html"), signal="revolute.w")
+    print(os.path.getsize(os.path.join(d, "animation.html")) > 1000)
+print(sorted(m for m in sys.modules if m.startswith(("scipy.optimize", "matplotlib"))))
+print(len(res.time))
+"""
+
+
+def _run(code):
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, timeout=300)
+    assert out.returncode == 0, out.stderr
+    return out.stdout.strip().splitlines()
+
+
+def test_run_and_animation_page_import_neither_scipy_optimize_nor_matplotlib():
+    lines = _run(_RUN % os.path.join(ROOT, "models", "pendulum.py"))
+    assert lines[0] == "True"
+    assert lines[1] == "[]"
+    assert int(lines[2]) > 10
+
+
+def test_scipy_optimize_after_sksundae_is_the_real_module():
+    lines = _run("from acausal2d.runtime.sundae import sksundae\n"
+                 "import sys\n"
+                 "print('scipy.optimize._numdiff' in sys.modules)\n"
+                 "from scipy.optimize import least_squares\n"
+                 "from scipy.optimize._numdiff import approx_derivative, group_columns\n"
+                 "import sksundae._cy_ida as c\n"
+                 "import numpy as np\n"
+                 "print([int(k) for k in c.group_columns(np.eye(3))])\n"
+                 "print(sorted(int(k) for k in c.group_columns(np.ones((3, 3)))))\n"
+                 "print(least_squares(lambda x: x - 2.0, [0.0]).x[0])\n")
+    assert lines[0] == "False"
+    assert lines[1] == "[0, 0, 0]"       # independent columns share one group
+    assert lines[2] == "[0, 1, 2]"       # a full matrix: one group per column
+    assert abs(float(lines[3]) - 2.0) < 1e-8
