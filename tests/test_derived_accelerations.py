@@ -30,13 +30,16 @@ G = 9.81
 
 
 class FreeFall(Component):
-    """A free body thrown sideways: ax = 0, ay = -g, z = 0."""
+    """A free body and a free BodyShape thrown: ax = 0, ay = -g, z = 0."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
         self.body = Body(m=2.0, I=0.3, x=start(0.0, fixed=True), y=start(0.0, fixed=True),
                          phi=start(0.0, fixed=True), vx=start(1.5, fixed=True),
                          vy=start(2.0, fixed=True), w=start(0.7, fixed=True))
+        self.link = BodyShape(m=1.0, I=0.2, x=start(0.0, fixed=True), y=start(1.0, fixed=True),
+                              phi=start(0.4, fixed=True), vx=start(-1.0, fixed=True),
+                              vy=start(0.0, fixed=True), w=start(2.0, fixed=True))
 
 
 class Spinner(Component):
@@ -78,6 +81,9 @@ def test_free_fall_accelerations_are_exact():
     assert np.max(np.abs(res["body.ax"])) <= 1e-12
     assert np.max(np.abs(res["body.ay"] + G)) <= 1e-12
     assert np.max(np.abs(res["body.z"])) <= 1e-12
+    assert np.max(np.abs(res["link.ax"])) <= 1e-12
+    assert np.max(np.abs(res["link.ay"] + G)) <= 1e-12
+    assert np.max(np.abs(res["link.z"])) <= 1e-12
     assert res.unit("body.ax") == "m/s2" and res.unit("body.z") == "rad/s2"
 
 
