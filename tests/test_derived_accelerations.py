@@ -18,6 +18,7 @@ import pytest
 
 import acausal2d
 from acausal2d import Component, start
+from acausal2d.analysis.compare_inputs import modelica_counterpart
 from acausal2d.cli import main
 from acausal2d.io.tables import read_csv
 from acausal2d.library.planar import (Body, BodyShape, Fixed, FixedTranslation, IdealRolling,
@@ -143,6 +144,10 @@ def test_seen_3_modelica_acceleration_names_are_declared():
     table = modelica_names()
     assert "ax" in table["a[1]"] and "ay" in table["a[2]"]
     assert BodyShape.modelica_names["body.a[1]"] == "ax"
+    ours = {"crank.ax", "crank.phi", "body.ay", "revolute.z"}
+    assert modelica_counterpart("crank.body.a[1]", ours) == "crank.ax"
+    assert modelica_counterpart("crank.body.phi", ours) == "crank.phi"
+    assert modelica_counterpart("body.a[2]", ours) == "body.ay"
     assert IdealRolling.derived_signals["z"][0] == "der(w)"
 
 
