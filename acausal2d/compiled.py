@@ -15,6 +15,7 @@ from .runtime.initialize import initial_point
 from .runtime.selection import select
 from .runtime.simulation import Simulation, time_resolution
 from .result import Result
+from .derived import derived_columns, derived_signals
 
 
 MAX_STEPS = 1000000
@@ -37,6 +38,7 @@ class CompiledModel:
         with translated("compiling %s" % type(model).__name__, StructuralError):
             self.system = compile_system(model)
         self._whole = self._whole_parameters()
+        self.derived = derived_signals(model, self.system.names)
         self.compile_time = _time.perf_counter() - t0
 
     # ------------------------------------------------------------ parameters
@@ -47,8 +49,9 @@ class CompiledModel:
 
     @property
     def names(self):
-        """Names of all time-varying columns a result of this model holds."""
-        return self.system.names
+        """Names of all time-varying columns a result of this model holds
+        (the system's and the components' derived signals)."""
+        return self.system.names + tuple(d[0] for d in self.derived)
 
     @property
     def outputs(self):
@@ -76,6 +79,8 @@ class CompiledModel:
                 order = 0
                 while base.startswith("der("):
                     base, order = base[4:-1], order + 1
+                units[name] = derivative_unit(units.get(base, ""), order)
+            for name, _, (base, order) in self.derived:
                 units[name] = derivative_unit(units.get(base, ""), order)
             for name, (decl, _) in self._whole.items():
                 units[name] = decl.unit
@@ -239,6 +244,7 @@ class CompiledModel:
                      s.alias_names + s.alias_der_names, s.alias_values(log.nodes, p),
                      [name for name, *_ in s.parameters], p, log.events,
                      log.stats.as_dict(), self.outputs, self)
+        res.add_columns(derived_columns(res, self.derived))
         res.singularities = log.singularities
         res.stopped = log.stopped
         res.states = log.states

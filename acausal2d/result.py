@@ -37,6 +37,13 @@ class Result:
         self.singularities = []
         self.stopped = None
 
+    def add_columns(self, columns):
+        """Append (name, values over ``time``) columns, e.g. the derived
+        signals of :mod:`acausal2d.derived`."""
+        for name, values in columns:
+            self._index[name] = len(self._cols)
+            self._cols.append(np.asarray(values, dtype=float))
+
     @property
     def names(self):
         """Names of all time-varying columns (unknowns, aliases, derivatives)."""

@@ -51,19 +51,19 @@ def test_seen_3_spring_damper_demo_compares_all_six_signals(spring_damper_result
 def test_seen_3_a_reference_signal_without_counterpart_fails_and_is_named(
         spring_damper_result, tmp_path, capfd):
     text = open(REF, encoding="utf-8").read().splitlines()
-    rows = [text[0] + ',"body.a[1]"'] + [line + ",0" for line in text[1:]]
+    rows = [text[0] + ',"body.n[1]"'] + [line + ",0" for line in text[1:]]
     extra = tmp_path / "extra.csv"
     extra.write_text("\n".join(rows) + "\n", encoding="utf-8")
     capfd.readouterr()
     assert main(["compare", spring_damper_result, str(extra)]) == 1
     out = capfd.readouterr().out
-    assert "not compared (no counterpart in the result): body.a[1]" in out
+    assert "not compared (no counterpart in the result): body.n[1]" in out
     assert "--only-common" in out
     assert main(["compare", spring_damper_result, str(extra), "--only-common"]) == 0
     out = capfd.readouterr().out
-    assert "body.a[1]" in out and "6 of 6 signals passed" in out
+    assert "body.n[1]" in out and "6 of 6 signals passed" in out
     cmp = acausal2d.compare(spring_damper_result, str(extra), only_common=True)
-    assert cmp.passed and cmp.unmatched == ["body.a[1]"]
+    assert cmp.passed and cmp.unmatched == ["body.n[1]"]
     assert not acausal2d.compare(spring_damper_result, str(extra)).passed
 
 

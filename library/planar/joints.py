@@ -24,9 +24,13 @@ class Revolute(Component):
     positively; the support is grounded inside the joint (PlanarMechanics
     Joints.Revolute).  ``state_select`` applies to phi and w (default
     'prefer'; PlanarMechanics' default is 'default').  Seed eq. 2.1 (a joint
-    of one degree of freedom), eq. 4.1 at the frames."""
+    of one degree of freedom), eq. 4.1 at the frames.  Every run holds the
+    relative angular acceleration z = der(w) too (PlanarMechanics' z; a
+    derived signal, see :mod:`acausal2d.derived`) where index reduction made
+    it."""
     phi = Variable(unit="rad", doc="relative angle")
     w = Variable(unit="rad/s", doc="relative angular velocity")
+    derived_signals = {"z": ("der(w)", "der(der(phi))")}
 
     def __init__(self, use_flange=False, state_select="prefer", **kw):
         super().__init__(**kw)
@@ -72,7 +76,8 @@ class Prismatic(Component):
     the frame_a part with -f e0 (e0 the axis in world), the support is
     grounded inside the joint (PlanarMechanics Joints.Prismatic).
     ``state_select`` applies to s and v.  Seed eq. 2.1, eq. 4.1 at the
-    frames.
+    frames.  Every run holds the relative acceleration a = der(v) too
+    (PlanarMechanics' a; a derived signal) where index reduction made it.
 
     ``guide=(s_min, s_max)`` (drawing only) is the range of s that the
     animation draws as the guide when one frame is fixed in the world; see
@@ -80,6 +85,7 @@ class Prismatic(Component):
     r = Parameter((1.0, 0.0), "m", "direction of motion, resolved in frame_a", nonzero=True)
     s = Variable(unit="m", doc="relative position")
     v = Variable(unit="m/s", doc="relative velocity")
+    derived_signals = {"a": ("der(v)", "der(der(s))")}
 
     def __init__(self, use_flange=False, state_select="prefer", guide=None, **kw):
         super().__init__(**kw)
@@ -178,13 +184,15 @@ class IdealRolling(Component):
 
     The wheel's mass is a :class:`Body` at frame_a.  Variables: x, phi,
     vx = der(x), w = der(phi); the contact point's velocity vx + R w is
-    zero."""
+    zero.  Derived signals (PlanarMechanics' ax, z): ax = der(vx),
+    z = der(w), where index reduction made them."""
     R = Parameter(1.0, "m", "radius of the wheel", positive=True)
     x0 = Parameter(0.0, "m", "x of the wheel centre at phi = 0")
     x = Variable(unit="m", doc="x position of the wheel centre")
     phi = Variable(unit="rad", doc="wheel angle")
     vx = Variable(unit="m/s", doc="velocity of the wheel centre")
     w = Variable(unit="rad/s", doc="angular velocity of the wheel")
+    derived_signals = {"ax": ("der(vx)", "der(der(x))"), "z": ("der(w)", "der(der(phi))")}
 
     def __init__(self, state_select="default", **kw):
         super().__init__(**kw)

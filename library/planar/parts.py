@@ -43,7 +43,10 @@ class Body(Component):
 
     Outputs: x, y, phi of the frame and the velocities vx = der(x),
     vy = der(y), w = der(phi) (PlanarMechanics' r, v, phi, w); give them
-    start values to start a free body moving (``vx=start(1, fixed=True)``)."""
+    start values to start a free body moving (``vx=start(1, fixed=True)``).
+    Every run also holds the accelerations ax = der(vx), ay = der(vy) and
+    the angular acceleration z = der(w) (PlanarMechanics' a, z), read from
+    the derivatives index reduction made (derived signals, no equations)."""
     world = Outer(PlanarWorld)
     m = Parameter(1.0, "kg", "mass", min=0.0)
     I = Parameter(0.1, "kg.m2", "rotational inertia about the frame origin", min=0.0)
@@ -53,10 +56,13 @@ class Body(Component):
     vx = Variable(unit="m/s", doc="x velocity der(x)")
     vy = Variable(unit="m/s", doc="y velocity der(y)")
     w = Variable(unit="rad/s", doc="angular velocity der(phi)")
-    modelica_names = {"r[1]": "x", "r[2]": "y", "v[1]": "vx", "v[2]": "vy"}
-    """PlanarMechanics' array names of the variables (read by ``compare``);
-    its acceleration ``a`` has no variable here (measure it with
-    AbsoluteAcceleration)."""
+    modelica_names = {"r[1]": "x", "r[2]": "y", "v[1]": "vx", "v[2]": "vy",
+                      "a[1]": "ax", "a[2]": "ay"}
+    """PlanarMechanics' array names of the variables (read by ``compare``)."""
+    derived_signals = {"ax": ("der(vx)", "der(der(x))"), "ay": ("der(vy)", "der(der(y))"),
+                       "z": ("der(w)", "der(der(phi))")}
+    """Accelerations of the frame origin and angular acceleration (see
+    :mod:`acausal2d.derived`)."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -170,6 +176,9 @@ class BodyShape(Component):
     vx = Variable(unit="m/s", doc="x velocity of the centre of mass")
     vy = Variable(unit="m/s", doc="y velocity of the centre of mass")
     w = Variable(unit="rad/s", doc="angular velocity")
+    modelica_names = {"body." + k: v for k, v in Body.modelica_names.items()}
+    modelica_names.update({"body.phi": "phi", "body.w": "w", "body.z": "z"})
+    derived_signals = Body.derived_signals
 
     def __init__(self, shape="rod", **kw):
         super().__init__(**kw)
