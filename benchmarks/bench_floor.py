@@ -1,0 +1,130 @@
+"""acausal2d's warm simulate against the floor of IDA: CasADi's own IDAS on
+the same index-1 system.  Prints a table.
+
+    python benchmarks/bench_floor.py [--small] [repeats]
+
+For each model, acausal2d simulates it (warm: compiled, run once before);
+then the run's own formulation (the index-1 system of the state selection
+the run used, :mod:`acausal2d.compiler.index1`: states x with
+x' = y[der(x)], every equation as an algebraic equation) is handed to
+``casadi.integrator(..., 'idas')`` with the same tolerances (the run's
+rtol and the smallest of its absolute tolerances; algebraic unknowns left
+out of the error test as in acausal2d) and the same output grid, without
+events.  Both are timed as the median of ``repeats`` runs (default 5).
+
+Models: the piston engine (10 s, rtol 1e-8), a chain of 20 pendulum links
+(2 s, rtol 1e-6), the non-circular belt drive (2 s, rtol 1e-8; it has no
+events), each with 5000 output points.  ``--small`` runs short versions
+(a test runs it so that the table cannot rot).
+"""
+import os
+import statistics
+import sys
+import time
+
+import casadi as ca
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "models"))
+sys.path.insert(0, HERE)
+
+import acausal2d  # noqa: E402
+from acausal2d.runtime.simulation import Simulation  # noqa: E402
+
+HEADER = ("model", "acausal2d [s]", "IDAS [s]", "ratio", "steps a2d", "steps IDAS")
+
+
+def _piston():
+    from piston_engine import PistonEngine
+    return PistonEngine()
+
+
+def _chain():
+    from bench_core import PendulumChain
+    return PendulumChain(20)
+
+
+def _belt():
+    import noncircular_belt_drive as nbd
+    return nbd.NonCircularBeltDrive(nbd.design())
+
+
+CASES = [("piston engine", _piston, 10.0, 1e-8), ("chain of 20 links", _chain, 2.0, 1e-6),
+         ("belt drive", _belt, 2.0, 1e-8)]
+
+
+def acausal2d_run(cm, stop, rtol, n_out):
+    """(seconds, steps) of one warm ``simulate``."""
+    t0 = time.perf_counter()
+    res = cm.simulate(stop_time=stop, rtol=rtol, intervals=n_out)
+    return time.perf_counter() - t0, int(res.stats["steps"])
+
+
+def the_run(cm, stop, rtol, n_out):
+    """The :class:`Simulation` of the same run (its selection, tolerances)."""
+    times, rtol_ = cm._settings(stop, rtol, None, n_out, 0.0, None)
+    sim = Simulation(cm.system, cm.parameter_values(None), times, rtol_, None)
+    sim.run()
+    return sim
+
+
+def floor_integrator(sim):
+    """(casadi IDAS integrator, x0, z0) on the run's index-1 system."""
+    form = sim.system.formulation(sim.selection)
+    n = form.n
+    alg = np.nonzero(~form.differential)[0]
+    x, z = ca.SX.sym("x", len(form.states)), ca.SX.sym("z", len(alg))
+    nom = np.asarray(sim.system.nominal, float)     # unknowns scaled by their nominal:
+    y = ca.SX.zeros(n)                               # abstol rtol = acausal2d's rtol * nominal
+    y[list(form.states)] = x * nom[form.states]
+    y[list(alg)] = z * nom[alg]
+    t = ca.SX.sym("t")
+    F = form.res_fn(t, y, ca.SX.zeros(n), sim.p, sim.d)
+    n_eq = n - len(form.states)
+    ode = y[list(form.state_deriv)] / nom[form.states]
+    dae = {"t": t, "x": x, "z": z, "ode": ode, "alg": F[:n_eq]}
+    opts = {"abstol": float(sim.rtol), "reltol": float(sim.rtol), "suppress_algebraic": True,
+            "max_num_steps": 1000000, "calc_ic": False}
+    grid = np.asarray(sim.times, float)
+    fn = ca.integrator("floor", "idas", dae, float(grid[0]), grid[1:], opts)
+    y0, _ = form.y_from(sim.out[0][1])
+    return fn, y0[form.states] / nom[form.states], y0[alg] / nom[alg]
+
+
+def floor_run(fn, x0, z0):
+    """(seconds, steps) of one CasADi IDAS run."""
+    t0 = time.perf_counter()
+    fn(x0=x0, z0=z0)
+    return time.perf_counter() - t0, int(fn.stats()["nsteps"])
+
+
+def measure(make, stop, rtol, n_out, repeats):
+    """One row of the table: medians of ``repeats`` runs."""
+    cm = acausal2d.compile_model(make())
+    acausal2d_run(cm, stop, rtol, n_out)              # warm-up
+    runs = [acausal2d_run(cm, stop, rtol, n_out) for _ in range(repeats)]
+    fn, x0, z0 = floor_integrator(the_run(cm, stop, rtol, n_out))
+    floor_run(fn, x0, z0)
+    floors = [floor_run(fn, x0, z0) for _ in range(repeats)]
+    a = statistics.median(r[0] for r in runs)
+    f = statistics.median(r[0] for r in floors)
+    return a, f, a / f, runs[-1][1], floors[-1][1]
+
+
+def main(argv):
+    small = "--small" in argv
+    args = [a for a in argv if a != "--small"]
+    repeats = int(args[0]) if args else (1 if small else 5)
+    n_out = 200 if small else 5000
+    print("Warm simulate vs CasADi IDAS on the same index-1 system (%d output points, "
+          "median of %d)" % (n_out, repeats))
+    print("%-20s %14s %10s %7s %10s %11s" % HEADER)
+    for name, make, stop, rtol in CASES:
+        stop = stop / 10 if small else stop
+        row = measure(make, stop, rtol, n_out, repeats)
+        print("%-20s %14.4f %10.4f %7.2f %10d %11d" % ((name,) + row))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

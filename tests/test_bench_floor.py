@@ -1,0 +1,25 @@
+"""benchmarks/bench_floor.py runs (small mode) and prints its table: one row
+per model with both times, their ratio and both step counts."""
+import os
+import subprocess
+import sys
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+
+
+def test_bench_floor_small_prints_its_table():
+    out = subprocess.run([sys.executable, os.path.join(ROOT, "benchmarks", "bench_floor.py"),
+                          "--small"], capture_output=True, text=True, timeout=600, cwd=ROOT)
+    assert out.returncode == 0, out.stderr[-2000:]
+    lines = out.stdout.splitlines()
+    assert lines[1].split()[:3] == ["model", "acausal2d", "[s]"]
+    rows = {}
+    for line in lines[2:]:
+        rest = line.split()
+        rows[" ".join(rest[:-5])] = rest[-5:]
+    assert set(rows) == {"piston engine", "chain of 20 links", "belt drive"}
+    for name, (a, f, ratio, steps_a, steps_f) in rows.items():
+        a, f, ratio = float(a), float(f), float(ratio)
+        assert a > 0 and f > 0 and abs(ratio - a / f) <= 0.01 * ratio + 0.01, name
+        # the same system at the same tolerances: step counts within 25 % of each other
+        assert abs(int(steps_a) - int(steps_f)) <= 0.25 * int(steps_f), name
