@@ -123,7 +123,7 @@ def main(argv):
     for name, make, stop, rtol in CASES:
         stop = stop / 10 if small else stop
         row = measure(make, stop, rtol, n_out, repeats)
-        print("%-20s %14.4f %10.4f %7.2f %10d %11d" % ((name,) + row))
+        print("%-20s %14.5f %10.5f %7.2f %10d %11d" % ((name,) + row))
 
 
 if __name__ == "__main__":

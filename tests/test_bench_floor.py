@@ -20,6 +20,8 @@ def test_bench_floor_small_prints_its_table():
     assert set(rows) == {"piston engine", "chain of 20 links", "belt drive"}
     for name, (a, f, ratio, steps_a, steps_f) in rows.items():
         a, f, ratio = float(a), float(f), float(ratio)
-        assert a > 0 and f > 0 and abs(ratio - a / f) <= 0.01 * ratio + 0.01, name
+        assert a > 0 and f > 0, name
+        h = 0.5e-5        # the times are printed to 1e-5 s, the ratio to 0.01
+        assert (a - h) / (f + h) - 0.005 <= ratio <= (a + h) / (f - h) + 0.005, name
         # the same system at the same tolerances: step counts within 25 % of each other
         assert abs(int(steps_a) - int(steps_f)) <= 0.25 * int(steps_f), name

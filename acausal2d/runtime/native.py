@@ -1,0 +1,165 @@
+"""The native inner loop: IDA driven from C over the output times of a
+segment, with the residual, the exact iteration matrix and the event
+functions of the formulation as CasADi-generated C.
+
+Per step and per output time the Python path (:func:`~acausal2d.runtime.ida.advance`
+through scikit-sundae) calls back into Python for every residual, Jacobian
+and event evaluation; measured on the piston engine that is 4-10x the time
+CasADi's own IDAS needs for the same system.  Here the generated code and a
+small driver (``native_driver.c``) are compiled once per formulation with the
+C compiler found at run time (:mod:`~acausal2d.runtime.cbuild`, cached on
+disk by a hash of the code) and linked against the SUNDIALS libraries that
+the scikit-sundae wheel ships; the driver owns its IDA memory (no pointer is
+read out of scikit-sundae's objects on this path).
+
+It makes the same IDA settings as :func:`~acausal2d.runtime.ida.make_solver`
+and :func:`~acausal2d.runtime.ida.start_solver` (tolerances, algebraic ids
+with ``IDASetSuppressAlg``, 500 steps per output interval, root directions,
+terminal roots) and runs a segment as scikit-sundae's ``solve`` does, so
+the steps are the same.  Where there is no compiler, the build fails, the
+SUNDIALS version is not the one the declarations are written for, or IDA
+fails in a segment, the caller uses the Python path (which then reports the
+failure exactly as before).  ``ACAUSAL2D_NATIVE=0`` turns it off.
+"""
+import ctypes
+import os
+import weakref
+
+import casadi as ca
+import numpy as np
+
+from . import cbuild
+
+SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
+LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
+             "sunlinsolsuperlumt", "sunlinsollapackdense", "core")
+LAPACK_FROM = 1000             # dense systems from this size use LAPACK (measured: never)
+MAX_PASSES = 256
+_DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
+_libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
+_P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
+    ctypes.POINTER(ctypes.c_long)
+
+
+def enabled():
+    """False where ``ACAUSAL2D_NATIVE=0`` or the shipped SUNDIALS is not the
+    version the driver is written for."""
+    if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0":
+        return False
+    return cbuild._shipped_version() == SUNDIALS_VERSION and \
+        cbuild.sundials_libraries() is not None
+
+
+def _source(form):
+    """The C source of a formulation: generated functions, then the driver."""
+    cg = ca.CodeGenerator("a2d_model.c", {"with_header": False})
+    for fn in (form.res_fn, form.jac_fn, form.event_fn):
+        if fn is not None:
+            cg.add(fn)
+    with open(_DRIVER, encoding="utf-8") as fh:
+        driver = fh.read()
+    flags = "#define A2D_SPARSE %d\n" % int(bool(form.sparse))
+    if form.event_fn is not None:
+        flags += "#define A2D_EVENTS 1\n"
+    return cg.dump() + "\n" + flags + driver
+
+
+def _declare(lib):
+    lib.a2d_create.restype = ctypes.c_void_p
+    lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
+                               ctypes.c_long, ctypes.c_int, _P, _P, _P]
+    lib.a2d_destroy.argtypes = [ctypes.c_void_p]
+    lib.a2d_steps.restype = ctypes.c_long
+    lib.a2d_steps.argtypes = [ctypes.c_void_p]
+    lib.a2d_run.restype = ctypes.c_int
+    lib.a2d_run.argtypes = [ctypes.c_void_p, _P, ctypes.c_int, _P, _P, _P, _P, _I, _P, _P,
+                            _I, ctypes.c_int, _P, _I, _L]
+    return lib
+
+
+def library(form):
+    """The compiled library of a formulation (built once, cached on disk),
+    or None where it cannot be built."""
+    lib = _libs.get(form)
+    if lib is None:
+        lib = False
+        if enabled():
+            folder, libs = cbuild.sundials_libraries()
+            try:
+                path = cbuild.build({"a2d_model.c": _source(form)}, flags=["-O1"],
+                                    libraries=[libs[k] for k in LIBRARIES if k in libs],
+                                    library_dirs=[folder], name="a2d_model")
+                lib = _declare(ctypes.CDLL(path))
+            except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
+                lib = False
+        _libs[form] = lib
+    return lib or None
+
+
+def _ptr(a, kind=_P):
+    return a.ctypes.data_as(kind)
+
+
+class NativeIDA:
+    """IDA of one :class:`~acausal2d.runtime.ida.Problem` in C (see module
+    docstring); :meth:`run` is a segment."""
+
+    def __init__(self, lib, prob, rtol, atol, terminal, direction):
+        form = prob.form
+        self.lib, self.prob, self.n = lib, prob, form.n
+        self._keep = [np.ascontiguousarray(atol, float),
+                      form.differential.astype(float),
+                      np.ascontiguousarray(direction or [0], dtype=np.intc),
+                      np.ascontiguousarray(terminal or [0], dtype=np.intc)]
+        p, d = prob.res.args[3], prob.res.args[4]
+        ab = prob.ab if len(prob.ab) else np.zeros(1)
+        self._bound = [_backing(p), _backing(d), ab]
+        self.handle = lib.a2d_create(
+            self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
+            _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500,
+            int(self.n >= LAPACK_FROM), *(_ptr(b) for b in self._bound))
+        self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
+        self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
+        self.last = np.zeros(1 + 2 * self.n)
+        self.steps = 0
+
+    def __del__(self):
+        handle, self.handle = getattr(self, "handle", None), None
+        if handle:
+            self.lib.a2d_destroy(handle)
+
+    def run(self, tspan, y0, yp0):
+        """One segment over ``tspan``: (flag, T, Y, passes (T, Y), last
+        (t, y, yp), root info, nfev, njev, steps taken)."""
+        n, m = self.n, len(tspan)
+        T, Y = np.zeros(m), np.zeros((m, n))
+        PT, PY = np.zeros(MAX_PASSES), np.zeros((MAX_PASSES, n))
+        n_rows, n_pass = ctypes.c_int(m), ctypes.c_int(MAX_PASSES)
+        pass_col = self.prob.n_rel + self.prob.n_mon if self.prob.n_pass else -1
+        steps0 = self.lib.a2d_steps(self.handle)
+        flag = self.lib.a2d_run(
+            self.handle, _ptr(np.ascontiguousarray(tspan, float)), m,
+            _ptr(np.ascontiguousarray(y0, float)), _ptr(np.ascontiguousarray(yp0, float)),
+            _ptr(T), _ptr(Y), ctypes.byref(n_rows), _ptr(PT), _ptr(PY), ctypes.byref(n_pass),
+            pass_col, _ptr(self.last), _ptr(self.roots, _I), _ptr(self.counters, _L))
+        k, q = n_rows.value, n_pass.value
+        last = (float(self.last[0]), self.last[1:1 + n].copy(), self.last[1 + n:].copy())
+        return (flag, T[:k], Y[:k], (PT[:q], PY[:q]), last, self.roots.copy(),
+                int(self.counters[0]), int(self.counters[1]),
+                int(self.lib.a2d_steps(self.handle) - steps0))
+
+
+def _backing(a):
+    """A bound argument array of a Buffered (at least one element: CasADi
+    binds none for an empty one, the C code reads none)."""
+    return a if a.size else np.zeros(1)
+
+
+def native_ida(prob, rtol, atol):
+    """A :class:`NativeIDA` for ``prob`` with the settings of
+    :func:`~acausal2d.runtime.ida.make_solver`, or None (see module docstring)."""
+    lib = library(prob.form)
+    if lib is None:
+        return None
+    drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction)
+    return drv if drv.handle else None
