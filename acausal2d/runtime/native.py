@@ -163,3 +163,26 @@ def native_ida(prob, rtol, atol):
         return None
     drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction)
     return drv if drv.handle else None
+
+
+_compiled = {}       # sha of the generated code -> {name: external Function}
+
+
+def compiled(functions):
+    """CasADi functions (their names -> Function) as compiled C, loaded back
+    as CasADi functions (``casadi.external``) of the same names and signatures,
+    or None where they cannot be built (the caller keeps its own)."""
+    if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0" or cbuild.find_compiler() is None:
+        return None
+    cg = ca.CodeGenerator("a2d_functions.c", {"with_header": False})
+    for fn in functions.values():
+        cg.add(fn)
+    code = cg.dump()
+    key = cbuild.build_key({"f.c": code})
+    if key not in _compiled:
+        try:
+            path = cbuild.build({"a2d_functions.c": code}, flags=["-O1"], name="a2d_functions")
+            _compiled[key] = {name: ca.external(name, path) for name in functions}
+        except (cbuild.BuildFailed, RuntimeError, OSError):
+            _compiled[key] = None
+    return _compiled[key]

@@ -10,6 +10,8 @@ whatever step sizes the error test of the states allowed.  A row whose
 Newton does not converge (at a singular position) keeps the interpolated
 values.
 """
+import weakref
+
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
@@ -17,10 +19,30 @@ import scipy.sparse.linalg as spla
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
+from .native import compiled
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
 SIMPLIFIED_ITERATIONS = 6
+
+
+_MAPS = weakref.WeakKeyDictionary()     # system -> its mapped functions
+
+
+def _mapped_functions(system):
+    """{name: function} of E and dE/dz of a system mapped over each of
+    :data:`CHUNKS` rows (``E_rows_K``, ``J_rows_K``), compiled to C where a
+    compiler is found (:func:`~acausal2d.runtime.native.compiled`)."""
+    fns = _MAPS.get(system)
+    if fns is None:
+        fns = {}
+        for K in CHUNKS:
+            for name, fn in (("E_rows_%d" % K, system.residual_fn),
+                             ("J_rows_%d" % K, system.jacobian_fn)):
+                fns[name] = fn.map(name, "serial", K, [2, 3], [])
+        fns = compiled(fns) or fns
+        _MAPS[system] = fns
+    return fns
 
 
 class _Mapped:
@@ -30,8 +52,9 @@ class _Mapped:
         args = [np.zeros(K), np.zeros(K * system.structure.n_var), np.asarray(p, float),
                 np.zeros(system.d.numel())]
         self.K = K
-        self.E = Buffered(system.residual_fn.map("E_rows", "serial", K, [2, 3], []), args)
-        self.J = Buffered(system.jacobian_fn.map("J_rows", "serial", K, [2, 3], []), args)
+        fns = _mapped_functions(system)
+        self.E = Buffered(fns["E_rows_%d" % K], args)
+        self.J = Buffered(fns["J_rows_%d" % K], args)
 
     def __call__(self, b, T, Z, d):
         m = len(T)
