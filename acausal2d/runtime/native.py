@@ -186,3 +186,53 @@ def compiled(functions):
         except (cbuild.BuildFailed, RuntimeError, OSError):
             _compiled[key] = None
     return _compiled[key]
+
+
+_projectors = weakref.WeakKeyDictionary()     # system -> loaded library (or False)
+_PROJECT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_project.c")
+
+
+def _projector_library(system):
+    lib = _projectors.get(system)
+    if lib is None:
+        lib = False
+        if os.environ.get("ACAUSAL2D_NATIVE", "1") != "0" and cbuild.find_compiler():
+            cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
+            cg.add(system.residual_fn)
+            cg.add(system.jacobian_fn)
+            with open(_PROJECT, encoding="utf-8") as fh:
+                code = cg.dump() + "\n" + fh.read()
+            try:
+                lib = ctypes.CDLL(cbuild.build({"a2d_rows.c": code}, flags=["-O2"],
+                                               name="a2d_rows"))
+                lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
+                                            ctypes.c_int, _I, _P, ctypes.c_double,
+                                            ctypes.c_int, _I]
+            except (cbuild.BuildFailed, OSError):
+                lib = False
+        _projectors[system] = lib
+    return lib or None
+
+
+def row_projector(system, free):
+    """A function (T, Z, p, d, tol, max_iter) -> (Z solved for the unknowns
+    ``free``, converged rows) in C with dense LU (``native_project.c``), or
+    None where it cannot be built."""
+    lib = _projector_library(system)
+    if lib is None:
+        return None
+    n_var, n_eq = system.structure.n_var, system.structure.n_eq
+    col_of = np.full(n_var, -1, dtype=np.intc)
+    col_of[free] = np.arange(len(free), dtype=np.intc)
+    nominal = np.ascontiguousarray(system.nominal, dtype=float)
+
+    def project(T, Z, p, d, tol, max_iter):
+        T = np.ascontiguousarray(T, float)
+        Z = np.array(Z, dtype=float, order="C")
+        ok = np.zeros(len(T), dtype=np.intc)
+        p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
+        lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
+                        _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter),
+                        _ptr(ok, _I))
+        return Z, ok.astype(bool)
+    return project

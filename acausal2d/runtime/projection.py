@@ -19,7 +19,7 @@ import scipy.sparse.linalg as spla
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
-from .native import compiled
+from .native import compiled, row_projector
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
@@ -84,6 +84,8 @@ class Projector:
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         nnz = len(self.jrows)
+        self.native = row_projector(system, self.free) \
+            if 0 < len(self.free) == self.n_eq < SPARSE_FROM else None
         self.to_rows = sp.csr_matrix((np.ones(nnz), (self.jrows, np.arange(nnz))),
                                      shape=(self.n_eq, nnz))
 
@@ -180,10 +182,23 @@ class Projector:
 
     def project(self, T, Z, d):
         """Rows of Z (at times T, relation values d) solved for the
-        non-state unknowns; rows that do not converge are left as given."""
+        non-state unknowns; rows that do not converge are left as given.
+        Dense systems go through the C projector (``native_project.c``,
+        Newton with an LU reused from row to row) first."""
         out = np.array(Z, dtype=float)
         if not len(self.free) or not len(T):
             return out
+        if self.native is not None:
+            out, ok = self.native(T, out, self.p, d, RES_TOL, SIMPLIFIED_ITERATIONS)
+            if ok.all():
+                return out
+            rest = np.nonzero(~ok)[0]
+            out[rest] = self._project(np.asarray(T)[rest], out[rest], d)
+            return out
+        return self._project(T, out, d)
+
+    def _project(self, T, out, d):
+        """:meth:`project` in batches of mapped CasADi evaluations."""
         s = 0
         while s < len(T):
             K = next(k for k in CHUNKS if k <= len(T) - s)

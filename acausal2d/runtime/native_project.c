@@ -1,0 +1,146 @@
+/* Output rows made consistent in C (see projection.py): for each row, the
+ * non-state unknowns are solved from E(t, z) = 0 by Newton with a dense LU
+ * of dE/dz_free, reused from row to row while it converges fast, so that
+ * every equation holds to tol times its scale (|dE_i/dz| times the
+ * unknowns' sizes, at the row).  Prepended: CasADi-generated "E" and "dEdz"
+ * of the system.  A row that does not converge is left as given (ok = 0). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+  int n_var, n_eq, nnz;
+  const int *col_of;            /* free index of each unknown, -1 for states */
+  const double *nominal;        /* nominal of each unknown */
+  double *jnz, *M, *e, *scale, *z0, tbuf[1];
+  int *piv;
+  const casadi_real **arg;
+  casadi_real **res;
+  casadi_int *iw;
+  casadi_real *w;
+} a2d_proj;
+
+static int a2d_lu(double *M, int n, int *piv) {   /* column-major, in place */
+  int i, j, k, p;
+  for (k = 0; k < n; ++k) {
+    double best = 0.0;
+    p = k;
+    for (i = k; i < n; ++i) if (fabs(M[k * n + i]) > best) { best = fabs(M[k * n + i]); p = i; }
+    if (!(best > 0.0) || !isfinite(best)) return -1;
+    piv[k] = p;
+    if (p != k) for (j = 0; j < n; ++j) { double t = M[j * n + k]; M[j * n + k] = M[j * n + p]; M[j * n + p] = t; }
+    for (i = k + 1; i < n; ++i) M[k * n + i] /= M[k * n + k];
+    for (j = k + 1; j < n; ++j) {
+      double f = M[j * n + k];
+      if (f != 0.0) for (i = k + 1; i < n; ++i) M[j * n + i] -= M[k * n + i] * f;
+    }
+  }
+  return 0;
+}
+
+static void a2d_lu_solve(const double *M, int n, const int *piv, double *b) {
+  int i, k;
+  for (k = 0; k < n; ++k) { if (piv[k] != k) { double t = b[k]; b[k] = b[piv[k]]; b[piv[k]] = t; } }
+  for (k = 0; k < n; ++k) for (i = k + 1; i < n; ++i) b[i] -= M[k * n + i] * b[k];
+  for (k = n - 1; k >= 0; --k) {
+    b[k] /= M[k * n + k];
+    for (i = 0; i < k; ++i) b[i] -= M[k * n + i] * b[k];
+  }
+}
+
+static int a2d_eval(a2d_proj *h, int jac, double t, const double *z, const double *p,
+                    const double *d, double *out) {
+  h->tbuf[0] = t;
+  h->arg[0] = h->tbuf; h->arg[1] = z; h->arg[2] = p; h->arg[3] = d;
+  h->res[0] = out;
+  return jac ? dEdz(h->arg, h->res, h->iw, h->w, 0) : E(h->arg, h->res, h->iw, h->w, 0);
+}
+
+/* dE/dz at z: the row's equation scales, and (if factor) the LU of dE/dz_free */
+static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
+                        const double *d, int factor) {
+  const casadi_int *sp = dEdz_sparsity_out(0), *colind = sp + 2, *row = sp + 2 + sp[1] + 1;
+  int c, k, n = h->n_eq;
+  if (a2d_eval(h, 1, t, z, p, d, h->jnz)) return -1;
+  memset(h->scale, 0, sizeof(double) * n);
+  if (factor) memset(h->M, 0, sizeof(double) * n * n);
+  for (c = 0; c < h->n_var; ++c) {
+    int f = h->col_of[c];
+    double size = h->nominal[c] + fabs(z[c]);
+    if (f < 0) continue;
+    for (k = (int)colind[c]; k < (int)colind[c + 1]; ++k) {
+      h->scale[row[k]] += fabs(h->jnz[k]) * size;
+      if (factor) h->M[f * n + row[k]] = h->jnz[k];
+    }
+  }
+  for (k = 0; k < n; ++k) if (!(h->scale[k] > 1e-300)) h->scale[k] = 1e-300;
+  return factor ? a2d_lu(h->M, n, h->piv) : 0;
+}
+
+/* Newton on one row with the current LU: iterations used, or -1 */
+static int a2d_newton(a2d_proj *h, double t, double *z, const double *p, const double *d,
+                      double tol, int max_iter) {
+  int it, i, c, n = h->n_eq;
+  for (it = 0; it <= max_iter; ++it) {
+    int done = 1;
+    if (a2d_eval(h, 0, t, z, p, d, h->e)) return -1;
+    for (i = 0; i < n; ++i) {
+      if (!isfinite(h->e[i])) return -1;
+      if (fabs(h->e[i]) > tol * h->scale[i]) done = 0;
+    }
+    if (done) return it;
+    if (it == max_iter) break;
+    a2d_lu_solve(h->M, n, h->piv, h->e);
+    for (c = 0; c < h->n_var; ++c) if (h->col_of[c] >= 0) z[c] -= h->e[h->col_of[c]];
+  }
+  return -1;
+}
+
+int a2d_project(int m, const double *T, double *Z, const double *p, const double *d, int n_var,
+                int n_eq, const int *col_of, const double *nominal, double tol, int max_iter,
+                int *ok) {
+  a2d_proj h;
+  casadi_int sz_arg, sz_res, sz_iw, sz_w, a1, r1, i1, w1;
+  int r, fresh = 0, have = 0;
+  E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
+  dEdz_work(&a1, &r1, &i1, &w1);
+  if (a1 > sz_arg) sz_arg = a1;
+  if (r1 > sz_res) sz_res = r1;
+  if (i1 > sz_iw) sz_iw = i1;
+  if (w1 > sz_w) sz_w = w1;
+  memset(&h, 0, sizeof h);
+  h.n_var = n_var; h.n_eq = n_eq; h.col_of = col_of; h.nominal = nominal;
+  h.nnz = (int)dEdz_sparsity_out(0)[2 + dEdz_sparsity_out(0)[1]];
+  h.jnz = (double *)malloc(sizeof(double) * (h.nnz + 1));
+  h.M = (double *)malloc(sizeof(double) * (n_eq * n_eq + 1));
+  h.e = (double *)malloc(sizeof(double) * (n_eq + 1));
+  h.scale = (double *)malloc(sizeof(double) * (n_eq + 1));
+  h.z0 = (double *)malloc(sizeof(double) * (n_var + 1));
+  h.piv = (int *)malloc(sizeof(int) * (n_eq + 1));
+  h.arg = (const casadi_real **)calloc(sz_arg + 1, sizeof(casadi_real *));
+  h.res = (casadi_real **)calloc(sz_res + 1, sizeof(casadi_real *));
+  h.iw = (casadi_int *)calloc(sz_iw + 1, sizeof(casadi_int));
+  h.w = (casadi_real *)calloc(sz_w + 1, sizeof(casadi_real));
+  for (r = 0; r < m; ++r) {
+    double *z = Z + (size_t)r * n_var;
+    int its = -1;
+    memcpy(h.z0, z, sizeof(double) * n_var);
+    ok[r] = 0;
+    fresh = !have;
+    if (a2d_jacobian(&h, T[r], z, p, d, fresh)) { have = 0; continue; }
+    have = 1;
+    its = a2d_newton(&h, T[r], z, p, d, tol, max_iter);
+    if (its < 0 && !fresh) {      /* an LU of an earlier row: once more with this row's */
+      memcpy(z, h.z0, sizeof(double) * n_var);
+      if (a2d_jacobian(&h, T[r], z, p, d, 1)) { have = 0; memcpy(z, h.z0, sizeof(double) * n_var); continue; }
+      fresh = 1;
+      its = a2d_newton(&h, T[r], z, p, d, tol, max_iter);
+    }
+    if (its < 0) { memcpy(z, h.z0, sizeof(double) * n_var); have = 0; continue; }
+    ok[r] = 1;
+    if (its > 2) have = 0;        /* slow: a new LU at the next row */
+  }
+  free(h.jnz); free(h.M); free(h.e); free(h.scale); free(h.z0); free(h.piv);
+  free(h.arg); free(h.res); free(h.iw); free(h.w);
+  return 0;
+}
