@@ -33,7 +33,11 @@ from . import cbuild
 SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
              "sunlinsolsuperlumt", "sunlinsollapackdense", "core")
-LAPACK_FROM = 1000             # dense systems from this size use LAPACK (measured: never)
+SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2}
+"""IDA's linear solvers the driver can use: SUNDIALS' dense LU, LAPACK's
+dense LU, SuperLU_MT (sparse, one thread); by default the formulation's
+choice (sparse from :data:`~acausal2d.compiler.index1.SPARSE_FROM`
+unknowns, else SUNDIALS' dense: benchmarks/bench_floor.py measures them)."""
 MAX_PASSES = 256
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
@@ -58,9 +62,7 @@ def _source(form):
             cg.add(fn)
     with open(_DRIVER, encoding="utf-8") as fh:
         driver = fh.read()
-    flags = "#define A2D_SPARSE %d\n" % int(bool(form.sparse))
-    if form.event_fn is not None:
-        flags += "#define A2D_EVENTS 1\n"
+    flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
     return cg.dump() + "\n" + flags + driver
 
 
@@ -104,7 +106,7 @@ class NativeIDA:
     """IDA of one :class:`~acausal2d.runtime.ida.Problem` in C (see module
     docstring); :meth:`run` is a segment."""
 
-    def __init__(self, lib, prob, rtol, atol, terminal, direction):
+    def __init__(self, lib, prob, rtol, atol, terminal, direction, solver=None):
         form = prob.form
         self.lib, self.prob, self.n = lib, prob, form.n
         self._keep = [np.ascontiguousarray(atol, float),
@@ -117,7 +119,8 @@ class NativeIDA:
         self.handle = lib.a2d_create(
             self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
             _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500,
-            int(self.n >= LAPACK_FROM), *(_ptr(b) for b in self._bound))
+            SOLVERS[solver or ("sparse" if form.sparse else "dense")],
+            *(_ptr(b) for b in self._bound))
         self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
         self.last = np.zeros(1 + 2 * self.n)
@@ -155,13 +158,15 @@ def _backing(a):
     return a if a.size else np.zeros(1)
 
 
-def native_ida(prob, rtol, atol):
+def native_ida(prob, rtol, atol, solver=None):
     """A :class:`NativeIDA` for ``prob`` with the settings of
-    :func:`~acausal2d.runtime.ida.make_solver`, or None (see module docstring)."""
+    :func:`~acausal2d.runtime.ida.make_solver` (``solver``: a key of
+    :data:`SOLVERS`, default the formulation's choice), or None (see module
+    docstring)."""
     lib = library(prob.form)
     if lib is None:
         return None
-    drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction)
+    drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver)
     return drv if drv.handle else None
 
 

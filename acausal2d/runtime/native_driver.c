@@ -153,7 +153,9 @@ static int a2d_roots(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype *g, voi
 }
 #endif
 
-static int a2d_linear_solver(a2d_driver *h, int lapack) {
+/* solver: 0 dense (SUNDIALS' own LU), 1 dense LAPACK, 2 sparse (SuperLU_MT) */
+static int a2d_linear_solver(a2d_driver *h, int solver) {
+  h->sparse = solver == 2;
   if (h->sparse) {
     h->A = SUNSparseMatrix(h->n, h->n, h->nnz, 0, h->ctx);
     if (!h->A) return -1;
@@ -161,7 +163,7 @@ static int a2d_linear_solver(a2d_driver *h, int lapack) {
   } else {
     h->A = SUNDenseMatrix(h->n, h->n, h->ctx);
     if (!h->A) return -1;
-    h->LS = lapack ? SUNLinSol_LapackDense(h->y, h->A, h->ctx)
+    h->LS = solver == 1 ? SUNLinSol_LapackDense(h->y, h->A, h->ctx)
                    : SUNLinSol_Dense(h->y, h->A, h->ctx);
   }
   if (!h->LS) return -1;
@@ -170,7 +172,7 @@ static int a2d_linear_solver(a2d_driver *h, int lapack) {
 }
 
 static int a2d_setup(a2d_driver *h, double rtol, const double *atol, const double *id,
-                     const int *dir, long max_steps, int lapack) {
+                     const int *dir, long max_steps, int solver) {
   int i, n = h->n;
   if (SUNContext_Create(0, &h->ctx)) return -1;
   SUNContext_ClearErrHandlers(h->ctx);
@@ -187,7 +189,7 @@ static int a2d_setup(a2d_driver *h, double rtol, const double *atol, const doubl
     N_VGetArrayPointer(h->yp)[i] = 0.0;
   }
   if (IDAInit(h->mem, a2d_res, 0.0, h->y, h->yp) || IDASetUserData(h->mem, h) ||
-      IDASVtolerances(h->mem, rtol, h->atol) || a2d_linear_solver(h, lapack) ||
+      IDASVtolerances(h->mem, rtol, h->atol) || a2d_linear_solver(h, solver) ||
       IDASetId(h->mem, h->id) || IDASetSuppressAlg(h->mem, 1) ||
       IDASetMaxNumSteps(h->mem, max_steps))
     return -1;
@@ -204,13 +206,12 @@ static int a2d_setup(a2d_driver *h, double rtol, const double *atol, const doubl
 void a2d_destroy(a2d_driver *h);
 
 a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const double *id,
-                       const int *dir, const int *terminal, long max_steps, int lapack,
+                       const int *dir, const int *terminal, long max_steps, int solver,
                        const double *p, const double *d, const double *ab) {
   a2d_driver *h = (a2d_driver *)calloc(1, sizeof(a2d_driver));
   const casadi_int *sp = iteration_matrix_sparsity_out(0);
   if (!h) return 0;
   h->n = n; h->n_ev = n_ev; h->p = p; h->d = d; h->ab = ab;
-  h->sparse = A2D_SPARSE;
   h->jcol = sp + 2;
   h->jrow = sp + 2 + sp[1] + 1;
   h->nnz = (int)h->jcol[sp[1]];
@@ -223,7 +224,7 @@ a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const d
 #ifdef A2D_EVENTS
   a2d_alloc(&h->wev, events_work);
 #endif
-  if (a2d_setup(h, rtol, atol, id, dir, max_steps, lapack)) {
+  if (a2d_setup(h, rtol, atol, id, dir, max_steps, solver)) {
     a2d_destroy(h);
     return 0;
   }

@@ -138,7 +138,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
     }
     if (its < 0) { memcpy(z, h.z0, sizeof(double) * n_var); have = 0; continue; }
     ok[r] = 1;
-    if (its > 2) have = 0;        /* slow: a new LU at the next row */
+    if (its > 3) have = 0;        /* slow: a new LU at the next row */
   }
   free(h.jnz); free(h.M); free(h.e); free(h.scale); free(h.z0); free(h.piv);
   free(h.arg); free(h.res); free(h.iw); free(h.w);

@@ -21,6 +21,11 @@ from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
 from .native import compiled, row_projector
 
+DENSE_BELOW = 400
+"""Output rows of systems below this many unknowns are solved in C with
+dense LU (``native_project.c``); larger ones with the mapped functions and
+sparse LU."""
+
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
 SIMPLIFIED_ITERATIONS = 6
@@ -85,7 +90,7 @@ class Projector:
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         nnz = len(self.jrows)
         self.native = row_projector(system, self.free) \
-            if 0 < len(self.free) == self.n_eq < SPARSE_FROM else None
+            if 0 < len(self.free) == self.n_eq < DENSE_BELOW else None
         self.to_rows = sp.csr_matrix((np.ones(nnz), (self.jrows, np.arange(nnz))),
                                      shape=(self.n_eq, nnz))
 
