@@ -35,9 +35,12 @@ LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrix
              "sunlinsolsuperlumt", "sunlinsollapackdense", "core")
 SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2}
 """IDA's linear solvers the driver can use: SUNDIALS' dense LU, LAPACK's
-dense LU, SuperLU_MT (sparse, one thread); by default the formulation's
-choice (sparse from :data:`~acausal2d.compiler.index1.SPARSE_FROM`
-unknowns, else SUNDIALS' dense: benchmarks/bench_floor.py measures them)."""
+dense LU, SuperLU_MT (sparse, one thread)."""
+SPARSE_FROM = 64
+"""The driver's IDA uses SuperLU_MT from this many unknowns, SUNDIALS' dense
+LU below (benchmarks/bench_floor.py, IDA alone, CPU s: piston engine, 39
+unknowns: dense 0.0052, LAPACK 0.0061, sparse 0.0054; belt drive, 84:
+0.0193, 0.0188, 0.0163; chain of 20 links, 396: 0.348, 0.548, 0.089)."""
 MAX_PASSES = 256
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
@@ -119,7 +122,7 @@ class NativeIDA:
         self.handle = lib.a2d_create(
             self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
             _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500,
-            SOLVERS[solver or ("sparse" if form.sparse else "dense")],
+            SOLVERS[solver or ("sparse" if self.n >= SPARSE_FROM else "dense")],
             *(_ptr(b) for b in self._bound))
         self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))

@@ -76,6 +76,7 @@ typedef struct {
   const double *p, *d, *ab;       /* bound arrays of the Problem (owned by Python) */
   double t_last, cj[1], tbuf[1];
   long steps;
+  int solved;                     /* IDASolve ran (SuperLU_MT crashes when freed unused) */
   double *jnz;                    /* nonzeros of the iteration matrix */
   const casadi_int *jcol, *jrow;  /* its CCS pattern */
   int *terminal;
@@ -234,7 +235,7 @@ a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const d
 void a2d_destroy(a2d_driver *h) {
   if (!h) return;
   if (h->mem) IDAFree(&h->mem);
-  if (h->LS) SUNLinSolFree(h->LS);
+  if (h->LS && (h->solved || !h->sparse)) SUNLinSolFree(h->LS);
   if (h->A) SUNMatDestroy(h->A);
   if (h->y) N_VDestroy(h->y);
   if (h->yp) N_VDestroy(h->yp);
@@ -262,6 +263,7 @@ int a2d_run(a2d_driver *h, const double *tspan, int n_span, const double *y0,
   memcpy(N_VGetArrayPointer(h->yp), yp0, sizeof(double) * n);
   if (IDAReInit(h->mem, tspan[0], h->y, h->yp) < 0) return -1000;
   if (IDASetStopTime(h->mem, tspan[n_span - 1]) < 0) return -1000;
+  h->solved = 1;
   while (!stop) {
     flag = IDASolve(h->mem, tspan[ind], &tt, h->y, h->yp, A2D_NORMAL);
     if (flag == A2D_ROOT_RETURN) {

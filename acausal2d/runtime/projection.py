@@ -21,10 +21,11 @@ from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
 from .native import compiled, row_projector
 
-DENSE_BELOW = 400
+DENSE_BELOW = SPARSE_FROM
 """Output rows of systems below this many unknowns are solved in C with
 dense LU (``native_project.c``); larger ones with the mapped functions and
-sparse LU."""
+sparse LU (measured, chain of 20 links, 356 unknowns, 5000 rows: dense C
+1.27 s, mapped + sparse 0.64 s)."""
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
