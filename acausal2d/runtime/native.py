@@ -204,28 +204,32 @@ def _projector_library(system):
     lib = _projectors.get(system)
     if lib is None:
         lib = False
-        if os.environ.get("ACAUSAL2D_NATIVE", "1") != "0" and cbuild.find_compiler():
+        if enabled() and cbuild.find_compiler():
             cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
             cg.add(system.residual_fn)
             cg.add(system.jacobian_fn)
             with open(_PROJECT, encoding="utf-8") as fh:
                 code = cg.dump() + "\n" + fh.read()
+            folder, libs = cbuild.sundials_libraries()
             try:
-                lib = ctypes.CDLL(cbuild.build({"a2d_rows.c": code}, flags=["-O2"],
-                                               name="a2d_rows"))
+                lib = ctypes.CDLL(cbuild.build(
+                    {"a2d_rows.c": code}, flags=["-O2"], name="a2d_rows",
+                    libraries=[libs[k] for k in ("sunlinsolsuperlumt", "sunmatrixsparse",
+                                                 "nvecserial", "core")],
+                    library_dirs=[folder]))
                 lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
                                             ctypes.c_int, _I, _P, ctypes.c_double,
-                                            ctypes.c_int, _I]
-            except (cbuild.BuildFailed, OSError):
+                                            ctypes.c_int, ctypes.c_int, _I]
+            except (cbuild.BuildFailed, OSError, KeyError):
                 lib = False
         _projectors[system] = lib
     return lib or None
 
 
-def row_projector(system, free):
+def row_projector(system, free, sparse):
     """A function (T, Z, p, d, tol, max_iter) -> (Z solved for the unknowns
-    ``free``, converged rows) in C with dense LU (``native_project.c``), or
-    None where it cannot be built."""
+    ``free``, converged rows) in C (``native_project.c``) with dense LU or
+    (``sparse``) SuperLU_MT, or None where it cannot be built."""
     lib = _projector_library(system)
     if lib is None:
         return None
@@ -241,6 +245,6 @@ def row_projector(system, free):
         p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
         lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
                         _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter),
-                        _ptr(ok, _I))
+                        int(bool(sparse)), _ptr(ok, _I))
         return Z, ok.astype(bool)
     return project

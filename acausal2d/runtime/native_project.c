@@ -8,12 +8,40 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* SUNDIALS 7.x declarations (the wheel ships no headers): SuperLU_MT through
+ * the generic linear-solver interface, for the sparse rows */
+typedef struct _generic_N_Vector *N_Vector;
+typedef struct _generic_SUNMatrix *SUNMatrix;
+typedef struct _generic_SUNLinearSolver *SUNLinearSolver;
+typedef struct SUNContext_ *SUNContext;
+int SUNContext_Create(int comm, SUNContext *ctx);
+int SUNContext_Free(SUNContext *ctx);
+int SUNContext_ClearErrHandlers(SUNContext ctx);
+N_Vector N_VNew_Serial(int n, SUNContext ctx);
+double *N_VGetArrayPointer(N_Vector v);
+void N_VDestroy(N_Vector v);
+SUNMatrix SUNSparseMatrix(int m, int n, int nnz, int type, SUNContext ctx);
+double *SUNSparseMatrix_Data(SUNMatrix a);
+int *SUNSparseMatrix_IndexValues(SUNMatrix a);
+int *SUNSparseMatrix_IndexPointers(SUNMatrix a);
+void SUNMatDestroy(SUNMatrix a);
+SUNLinearSolver SUNLinSol_SuperLUMT(N_Vector y, SUNMatrix a, int threads, SUNContext ctx);
+int SUNLinSolInitialize(SUNLinearSolver s);
+int SUNLinSolSetup(SUNLinearSolver s, SUNMatrix a);
+int SUNLinSolSolve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, double tol);
+int SUNLinSolFree(SUNLinearSolver s);
+
 typedef struct {
   int n_var, n_eq, nnz;
   const int *col_of;            /* free index of each unknown, -1 for states */
   const double *nominal;        /* nominal of each unknown */
   double *jnz, *M, *e, *scale, *z0, tbuf[1];
   int *piv;
+  int sparse, set_up;           /* SuperLU_MT instead of the dense LU; factored once */
+  SUNContext ctx;
+  N_Vector x, b;
+  SUNMatrix A;
+  SUNLinearSolver LS;
   const casadi_real **arg;
   casadi_real **res;
   casadi_int *iw;
@@ -62,19 +90,30 @@ static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
   const casadi_int *sp = dEdz_sparsity_out(0), *colind = sp + 2, *row = sp + 2 + sp[1] + 1;
   int c, k, n = h->n_eq;
   if (a2d_eval(h, 1, t, z, p, d, h->jnz)) return -1;
+  int q = 0;
+  double *sdata = h->sparse ? SUNSparseMatrix_Data(h->A) : 0;
+  int *sptr = h->sparse ? SUNSparseMatrix_IndexPointers(h->A) : 0;
+  int *sidx = h->sparse ? SUNSparseMatrix_IndexValues(h->A) : 0;
   memset(h->scale, 0, sizeof(double) * n);
-  if (factor) memset(h->M, 0, sizeof(double) * n * n);
+  if (factor && !h->sparse) memset(h->M, 0, sizeof(double) * n * n);
   for (c = 0; c < h->n_var; ++c) {
     int f = h->col_of[c];
     double size = h->nominal[c] + fabs(z[c]);
     if (f < 0) continue;
+    if (factor && h->sparse) sptr[f] = q;
     for (k = (int)colind[c]; k < (int)colind[c + 1]; ++k) {
       h->scale[row[k]] += fabs(h->jnz[k]) * size;
-      if (factor) h->M[f * n + row[k]] = h->jnz[k];
+      if (factor && h->sparse) { sdata[q] = h->jnz[k]; sidx[q++] = (int)row[k]; }
+      else if (factor) h->M[f * n + row[k]] = h->jnz[k];
     }
   }
+  if (factor && h->sparse) sptr[n] = q;
   for (k = 0; k < n; ++k) if (!(h->scale[k] > 1e-300)) h->scale[k] = 1e-300;
-  return factor ? a2d_lu(h->M, n, h->piv) : 0;
+  if (!factor) return 0;
+  if (!h->sparse) return a2d_lu(h->M, n, h->piv);
+  for (k = 0; k < q; ++k) if (!isfinite(sdata[k])) return -1;
+  h->set_up = 1;
+  return SUNLinSolSetup(h->LS, h->A) ? -1 : 0;
 }
 
 /* Newton on one row with the current LU: iterations used, or -1 */
@@ -90,18 +129,43 @@ static int a2d_newton(a2d_proj *h, double t, double *z, const double *p, const d
     }
     if (done) return it;
     if (it == max_iter) break;
-    a2d_lu_solve(h->M, n, h->piv, h->e);
+    if (h->sparse) {
+      memcpy(N_VGetArrayPointer(h->b), h->e, sizeof(double) * n);
+      if (SUNLinSolSolve(h->LS, h->A, h->x, h->b, 0.0)) return -1;
+      memcpy(h->e, N_VGetArrayPointer(h->x), sizeof(double) * n);
+    } else {
+      a2d_lu_solve(h->M, n, h->piv, h->e);
+    }
     for (c = 0; c < h->n_var; ++c) if (h->col_of[c] >= 0) z[c] -= h->e[h->col_of[c]];
   }
   return -1;
 }
 
+static int a2d_sparse_setup(a2d_proj *h) {
+  if (SUNContext_Create(0, &h->ctx)) return -1;
+  SUNContext_ClearErrHandlers(h->ctx);
+  h->x = N_VNew_Serial(h->n_eq, h->ctx);
+  h->b = N_VNew_Serial(h->n_eq, h->ctx);
+  h->A = SUNSparseMatrix(h->n_eq, h->n_eq, h->nnz > 0 ? h->nnz : 1, 0, h->ctx);
+  if (!h->x || !h->b || !h->A) return -1;
+  h->LS = SUNLinSol_SuperLUMT(h->x, h->A, 1, h->ctx);
+  return (!h->LS || SUNLinSolInitialize(h->LS)) ? -1 : 0;
+}
+
+static void a2d_sparse_free(a2d_proj *h) {
+  if (h->LS && h->set_up) SUNLinSolFree(h->LS);   /* SuperLU_MT crashes when freed unused */
+  if (h->A) SUNMatDestroy(h->A);
+  if (h->x) N_VDestroy(h->x);
+  if (h->b) N_VDestroy(h->b);
+  if (h->ctx) SUNContext_Free(&h->ctx);
+}
+
 int a2d_project(int m, const double *T, double *Z, const double *p, const double *d, int n_var,
                 int n_eq, const int *col_of, const double *nominal, double tol, int max_iter,
-                int *ok) {
+                int sparse, int *ok) {
   a2d_proj h;
   casadi_int sz_arg, sz_res, sz_iw, sz_w, a1, r1, i1, w1;
-  int r, fresh = 0, have = 0;
+  int r, fresh = 0, have = 0, m_all = m;
   E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
   dEdz_work(&a1, &r1, &i1, &w1);
   if (a1 > sz_arg) sz_arg = a1;
@@ -111,8 +175,9 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   memset(&h, 0, sizeof h);
   h.n_var = n_var; h.n_eq = n_eq; h.col_of = col_of; h.nominal = nominal;
   h.nnz = (int)dEdz_sparsity_out(0)[2 + dEdz_sparsity_out(0)[1]];
+  h.sparse = sparse;
   h.jnz = (double *)malloc(sizeof(double) * (h.nnz + 1));
-  h.M = (double *)malloc(sizeof(double) * (n_eq * n_eq + 1));
+  h.M = (double *)malloc(sizeof(double) * ((sparse ? 0 : n_eq * n_eq) + 1));
   h.e = (double *)malloc(sizeof(double) * (n_eq + 1));
   h.scale = (double *)malloc(sizeof(double) * (n_eq + 1));
   h.z0 = (double *)malloc(sizeof(double) * (n_var + 1));
@@ -121,6 +186,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   h.res = (casadi_real **)calloc(sz_res + 1, sizeof(casadi_real *));
   h.iw = (casadi_int *)calloc(sz_iw + 1, sizeof(casadi_int));
   h.w = (casadi_real *)calloc(sz_w + 1, sizeof(casadi_real));
+  if (sparse && a2d_sparse_setup(&h)) m = 0;      /* every row left to the caller */
   for (r = 0; r < m; ++r) {
     double *z = Z + (size_t)r * n_var;
     int its = -1;
@@ -140,6 +206,8 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
     ok[r] = 1;
     if (its > 3) have = 0;        /* slow: a new LU at the next row */
   }
+  if (sparse) a2d_sparse_free(&h);
+  for (r = m; r < m_all; ++r) ok[r] = 0;
   free(h.jnz); free(h.M); free(h.e); free(h.scale); free(h.z0); free(h.piv);
   free(h.arg); free(h.res); free(h.iw); free(h.w);
   return 0;

@@ -23,10 +23,10 @@ from .native import compiled, row_projector
 
 DENSE_BELOW = 300
 """Output rows of systems below this many unknowns are solved in C with
-dense LU (``native_project.c``); larger ones with the mapped functions and
-sparse LU.  Measured (CPU s): compressor, 202 unknowns, 290 segments: dense C
-0.34, mapped + sparse 1.03; chain of 20 links, 356 unknowns, 5000 rows:
-dense C 1.27, mapped + sparse 0.60."""
+dense LU (``native_project.c``), larger ones in C with SuperLU_MT.
+Measured (CPU s): compressor, 202 unknowns, 290 segments: dense C 0.34,
+mapped CasADi functions + scipy's sparse LU 1.03; chain of 20 links, 356
+unknowns, 5000 rows: dense C 1.27, mapped + scipy sparse 0.60."""
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
@@ -91,8 +91,8 @@ class Projector:
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         nnz = len(self.jrows)
-        self.native = row_projector(system, self.free) \
-            if 0 < len(self.free) == self.n_eq < DENSE_BELOW else None
+        self.native = row_projector(system, self.free, self.n_eq >= DENSE_BELOW) \
+            if 0 < len(self.free) == self.n_eq else None
         self.to_rows = sp.csr_matrix((np.ones(nnz), (self.jrows, np.arange(nnz))),
                                      shape=(self.n_eq, nnz))
 
