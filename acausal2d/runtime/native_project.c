@@ -165,7 +165,8 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
                 int sparse, int *ok) {
   a2d_proj h;
   casadi_int sz_arg, sz_res, sz_iw, sz_w, a1, r1, i1, w1;
-  int r, fresh = 0, have = 0, m_all = m;
+  int r, c, fresh = 0, have = 0, pred = 0, m_all = m;
+  double *delta = (double *)calloc(n_var + 1, sizeof(double));
   E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
   dEdz_work(&a1, &r1, &i1, &w1);
   if (a1 > sz_arg) sz_arg = a1;
@@ -193,6 +194,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
     memcpy(h.z0, z, sizeof(double) * n_var);
     ok[r] = 0;
     fresh = !have;
+    if (pred) for (c = 0; c < n_var; ++c) z[c] += delta[c];   /* the last row's correction */
     if (a2d_jacobian(&h, T[r], z, p, d, fresh)) { have = 0; continue; }
     have = 1;
     its = a2d_newton(&h, T[r], z, p, d, tol, max_iter);
@@ -202,12 +204,15 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
       fresh = 1;
       its = a2d_newton(&h, T[r], z, p, d, tol, max_iter);
     }
-    if (its < 0) { memcpy(z, h.z0, sizeof(double) * n_var); have = 0; continue; }
+    if (its < 0) { memcpy(z, h.z0, sizeof(double) * n_var); have = 0; pred = 0; continue; }
     ok[r] = 1;
+    for (c = 0; c < n_var; ++c) delta[c] = z[c] - h.z0[c];
+    pred = 1;
     if (its > 3) have = 0;        /* slow: a new LU at the next row */
   }
   if (sparse) a2d_sparse_free(&h);
   for (r = m; r < m_all; ++r) ok[r] = 0;
+  free(delta);
   free(h.jnz); free(h.M); free(h.e); free(h.scale); free(h.z0); free(h.piv);
   free(h.arg); free(h.res); free(h.iw); free(h.w);
   return 0;
