@@ -42,6 +42,15 @@ LU below (benchmarks/bench_floor.py, IDA alone, CPU s: piston engine, 39
 unknowns: dense 0.0052, LAPACK 0.0061, sparse 0.0054; belt drive, 84:
 0.0193, 0.0188, 0.0163; chain of 20 links, 396: 0.348, 0.548, 0.089)."""
 MAX_PASSES = 256
+OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
+NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
+CHARS_PER_INSTRUCTION = 20   # generated C per CasADi instruction, low (measured: 23-30)
+"""Compile time of the generated C grows with its size and is paid once per
+model structure and machine (gcc, measured: piston engine 36 kB 0.25 s at
+-O1; chain of 20 links 157 kB 1.2 s; belt drive 856 kB about 3 s for its
+first simulate; chain of 100 links 787 kB 7.2 s at -O1, 2.3 s at -O0).
+-O0 code was 1.4x (chain) to 3.6x (belt drive) slower in warm runs, so -O1
+is kept; above :data:`NATIVE_BELOW` large models keep the Python path."""
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
@@ -69,6 +78,26 @@ def _source(form):
     return cg.dump() + "\n" + flags + driver
 
 
+def too_large(*functions):
+    """True where the C of these CasADi functions would be too large to
+    compile at run time (estimated from their instruction counts)."""
+    count = 0
+    for fn in functions:
+        try:
+            count += fn.n_instructions()
+        except RuntimeError:       # not an SX/MX function (a map): judged by its code
+            pass
+    return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
+
+
+def optimization(code):
+    """The compiler flags for generated C of this size, or None: too large
+    to compile at run time (see :data:`NATIVE_BELOW`)."""
+    if len(code) >= NATIVE_BELOW:
+        return None
+    return ["-O1"] if len(code) < OPTIMIZE_BELOW else ["-O0"]
+
+
 def _declare(lib):
     lib.a2d_create.restype = ctypes.c_void_p
     lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
@@ -88,10 +117,13 @@ def library(form):
     lib = _libs.get(form)
     if lib is None:
         lib = False
-        if enabled():
+        if enabled() and not too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
             folder, libs = cbuild.sundials_libraries()
+            code = _source(form)
             try:
-                path = cbuild.build({"a2d_model.c": _source(form)}, flags=["-O1"],
+                if optimization(code) is None:
+                    raise cbuild.BuildFailed("too large")
+                path = cbuild.build({"a2d_model.c": code}, flags=optimization(code),
                                     libraries=[libs[k] for k in LIBRARIES if k in libs],
                                     library_dirs=[folder], name="a2d_model")
                 lib = _declare(ctypes.CDLL(path))
@@ -189,7 +221,10 @@ def compiled(functions):
     key = cbuild.build_key({"f.c": code})
     if key not in _compiled:
         try:
-            path = cbuild.build({"a2d_functions.c": code}, flags=["-O1"], name="a2d_functions")
+            if optimization(code) is None:
+                raise cbuild.BuildFailed("too large")
+            path = cbuild.build({"a2d_functions.c": code}, flags=optimization(code),
+                                name="a2d_functions")
             _compiled[key] = {name: ca.external(name, path) for name in functions}
         except (cbuild.BuildFailed, RuntimeError, OSError):
             _compiled[key] = None
@@ -204,7 +239,8 @@ def _projector_library(system):
     lib = _projectors.get(system)
     if lib is None:
         lib = False
-        if enabled() and cbuild.find_compiler():
+        if enabled() and cbuild.find_compiler() and \
+                not too_large(system.residual_fn, system.jacobian_fn):
             cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
             cg.add(system.residual_fn)
             cg.add(system.jacobian_fn)
@@ -212,8 +248,10 @@ def _projector_library(system):
                 code = cg.dump() + "\n" + fh.read()
             folder, libs = cbuild.sundials_libraries()
             try:
+                if optimization(code) is None:
+                    raise cbuild.BuildFailed("too large")
                 lib = ctypes.CDLL(cbuild.build(
-                    {"a2d_rows.c": code}, flags=["-O2"], name="a2d_rows",
+                    {"a2d_rows.c": code}, flags=optimization(code), name="a2d_rows",
                     libraries=[libs[k] for k in ("sunlinsolsuperlumt", "sunmatrixsparse",
                                                  "nvecserial", "core")],
                     library_dirs=[folder]))

@@ -19,7 +19,7 @@ import scipy.sparse.linalg as spla
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
-from .native import compiled, row_projector
+from .native import compiled, row_projector, too_large
 
 DENSE_BELOW = 300
 """Output rows of systems below this many unknowns are solved in C with
@@ -47,7 +47,8 @@ def _mapped_functions(system):
             for name, fn in (("E_rows_%d" % K, system.residual_fn),
                              ("J_rows_%d" % K, system.jacobian_fn)):
                 fns[name] = fn.map(name, "serial", K, [2, 3], [])
-        fns = compiled(fns) or fns
+        if not too_large(system.residual_fn, system.jacobian_fn):
+            fns = compiled(fns) or fns
         _MAPS[system] = fns
     return fns
 

@@ -14,7 +14,7 @@ position.
 import numpy as np
 
 from .buffered import Buffered
-from .native import compiled
+from .native import compiled, too_large
 from .newton import NoConvergence, solve_consistent
 from .selection import SINGULAR_CONDITION, singularity, worst_level
 
@@ -44,7 +44,8 @@ class DeterminantScan:
     def __init__(self, form):
         K, fn = self.CHUNK, form.det_fn
         mapped = fn.map("det_scan", "serial", K, [3, 4], [])
-        mapped = (compiled({"det_scan": mapped}) or {"det_scan": mapped})["det_scan"]
+        if not too_large(fn):
+            mapped = (compiled({"det_scan": mapped}) or {"det_scan": mapped})["det_scan"]
         self.fn = Buffered(mapped,
                            [np.zeros(K), np.zeros(K * form.n), np.zeros(K * form.n),
                             np.zeros(fn.nnz_in(3)), np.zeros(fn.nnz_in(4))])
