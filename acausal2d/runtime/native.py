@@ -101,7 +101,7 @@ def optimization(code):
 def _declare(lib):
     lib.a2d_create.restype = ctypes.c_void_p
     lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
-                               ctypes.c_long, ctypes.c_int, _P, _P, _P]
+                               ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I]
     lib.a2d_destroy.argtypes = [ctypes.c_void_p]
     lib.a2d_steps.restype = ctypes.c_long
     lib.a2d_steps.argtypes = [ctypes.c_void_p]
@@ -148,6 +148,7 @@ class NativeIDA:
                       form.differential.astype(float),
                       np.ascontiguousarray(direction or [0], dtype=np.intc),
                       np.ascontiguousarray(terminal or [0], dtype=np.intc)]
+        self._pattern = _ccs(form.jac_sparsity)
         p, d = prob.res.args[3], prob.res.args[4]
         ab = prob.ab if len(prob.ab) else np.zeros(1)
         self._bound = [_backing(p), _backing(d), ab]
@@ -155,7 +156,7 @@ class NativeIDA:
             self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
             _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500,
             SOLVERS[solver or ("sparse" if self.n >= SPARSE_FROM else "dense")],
-            *(_ptr(b) for b in self._bound))
+            *(_ptr(b) for b in self._bound), *(_ptr(a, _I) for a in self._pattern))
         self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
         self.last = np.zeros(1 + 2 * self.n)
@@ -185,6 +186,12 @@ class NativeIDA:
         return (flag, T[:k], Y[:k], (PT[:q], PY[:q]), last, self.roots.copy(),
                 int(self.counters[0]), int(self.counters[1]),
                 int(self.lib.a2d_steps(self.handle) - steps0))
+
+
+def _ccs(sparsity):
+    """(column starts, row indices) of a CasADi sparsity as C int arrays."""
+    return (np.ascontiguousarray(sparsity.colind(), dtype=np.intc),
+            np.ascontiguousarray(np.r_[sparsity.row(), 0], dtype=np.intc))
 
 
 def _backing(a):
@@ -257,7 +264,7 @@ def _projector_library(system):
                     library_dirs=[folder]))
                 lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
                                             ctypes.c_int, _I, _P, ctypes.c_double,
-                                            ctypes.c_int, ctypes.c_int, _I]
+                                            ctypes.c_int, ctypes.c_int, _I, _I, _I]
             except (cbuild.BuildFailed, OSError, KeyError):
                 lib = False
         _projectors[system] = lib
@@ -275,6 +282,7 @@ def row_projector(system, free, sparse):
     col_of = np.full(n_var, -1, dtype=np.intc)
     col_of[free] = np.arange(len(free), dtype=np.intc)
     nominal = np.ascontiguousarray(system.nominal, dtype=float)
+    colind, row = _ccs(system.jacobian_fn.sparsity_out(0))
 
     def project(T, Z, p, d, tol, max_iter):
         T = np.ascontiguousarray(T, float)
@@ -283,6 +291,6 @@ def row_projector(system, free, sparse):
         p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
         lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
                         _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter),
-                        int(bool(sparse)), _ptr(ok, _I))
+                        int(bool(sparse)), _ptr(colind, _I), _ptr(row, _I), _ptr(ok, _I))
         return Z, ok.astype(bool)
     return project

@@ -78,7 +78,7 @@ typedef struct {
   long steps;
   int solved;                     /* IDASolve ran (SuperLU_MT crashes when freed unused) */
   double *jnz;                    /* nonzeros of the iteration matrix */
-  const casadi_int *jcol, *jrow;  /* its CCS pattern */
+  int *jcol, *jrow;               /* its CCS pattern (given: generated code compresses dense ones) */
   int *terminal;
   a2d_work wres, wjac, wev;
   SUNContext ctx;
@@ -208,14 +208,16 @@ void a2d_destroy(a2d_driver *h);
 
 a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const double *id,
                        const int *dir, const int *terminal, long max_steps, int solver,
-                       const double *p, const double *d, const double *ab) {
+                       const double *p, const double *d, const double *ab,
+                       const int *colind, const int *row) {
   a2d_driver *h = (a2d_driver *)calloc(1, sizeof(a2d_driver));
-  const casadi_int *sp = iteration_matrix_sparsity_out(0);
   if (!h) return 0;
   h->n = n; h->n_ev = n_ev; h->p = p; h->d = d; h->ab = ab;
-  h->jcol = sp + 2;
-  h->jrow = sp + 2 + sp[1] + 1;
-  h->nnz = (int)h->jcol[sp[1]];
+  h->nnz = colind[n];
+  h->jcol = (int *)malloc(sizeof(int) * (n + 1));
+  h->jrow = (int *)malloc(sizeof(int) * (h->nnz + 1));
+  memcpy(h->jcol, colind, sizeof(int) * (n + 1));
+  memcpy(h->jrow, row, sizeof(int) * h->nnz);
   h->jnz = (double *)calloc(h->nnz + 1, sizeof(double));
   h->terminal = (int *)calloc(n_ev + 1, sizeof(int));
   if (n_ev) memcpy(h->terminal, terminal, sizeof(int) * n_ev);
@@ -243,7 +245,7 @@ void a2d_destroy(a2d_driver *h) {
   if (h->id) N_VDestroy(h->id);
   if (h->ctx) SUNContext_Free(&h->ctx);
   a2d_free_work(&h->wres); a2d_free_work(&h->wjac); a2d_free_work(&h->wev);
-  free(h->jnz); free(h->terminal);
+  free(h->jnz); free(h->terminal); free(h->jcol); free(h->jrow);
   free(h);
 }
 

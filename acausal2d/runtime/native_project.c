@@ -34,6 +34,7 @@ int SUNLinSolFree(SUNLinearSolver s);
 typedef struct {
   int n_var, n_eq, nnz;
   const int *col_of;            /* free index of each unknown, -1 for states */
+  const int *colind, *row;      /* CCS pattern of dE/dz (given: generated code compresses dense ones) */
   const double *nominal;        /* nominal of each unknown */
   double *jnz, *M, *e, *scale, *z0, tbuf[1];
   int *piv;
@@ -87,7 +88,7 @@ static int a2d_eval(a2d_proj *h, int jac, double t, const double *z, const doubl
 /* dE/dz at z: the row's equation scales, and (if factor) the LU of dE/dz_free */
 static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
                         const double *d, int factor) {
-  const casadi_int *sp = dEdz_sparsity_out(0), *colind = sp + 2, *row = sp + 2 + sp[1] + 1;
+  const int *colind = h->colind, *row = h->row;
   int c, k, n = h->n_eq;
   if (a2d_eval(h, 1, t, z, p, d, h->jnz)) return -1;
   int q = 0;
@@ -162,7 +163,7 @@ static void a2d_sparse_free(a2d_proj *h) {
 
 int a2d_project(int m, const double *T, double *Z, const double *p, const double *d, int n_var,
                 int n_eq, const int *col_of, const double *nominal, double tol, int max_iter,
-                int sparse, int *ok) {
+                int sparse, const int *colind, const int *row, int *ok) {
   a2d_proj h;
   casadi_int sz_arg, sz_res, sz_iw, sz_w, a1, r1, i1, w1;
   int r, c, fresh = 0, have = 0, pred = 0, m_all = m;
@@ -175,7 +176,8 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   if (w1 > sz_w) sz_w = w1;
   memset(&h, 0, sizeof h);
   h.n_var = n_var; h.n_eq = n_eq; h.col_of = col_of; h.nominal = nominal;
-  h.nnz = (int)dEdz_sparsity_out(0)[2 + dEdz_sparsity_out(0)[1]];
+  h.colind = colind; h.row = row;
+  h.nnz = colind[n_var];
   h.sparse = sparse;
   h.jnz = (double *)malloc(sizeof(double) * (h.nnz + 1));
   h.M = (double *)malloc(sizeof(double) * ((sparse ? 0 : n_eq * n_eq) + 1));
