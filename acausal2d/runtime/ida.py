@@ -350,8 +350,6 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     if flag < 0:
         return None
     prob.steps += steps
-    if prob.progress is not None:
-        prob.progress(last[0])
     keep = np.isin(T, outputs)
     if flag == 2:
         idx = np.nonzero(roots)[0]

@@ -55,6 +55,7 @@ _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_drive
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
     ctypes.POINTER(ctypes.c_long)
+_PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_double)
 
 
 def enabled():
@@ -103,6 +104,7 @@ def _declare(lib):
     lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
                                ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I]
     lib.a2d_destroy.argtypes = [ctypes.c_void_p]
+    lib.a2d_set_progress.argtypes = [ctypes.c_void_p, _PROGRESS]
     lib.a2d_steps.restype = ctypes.c_long
     lib.a2d_steps.argtypes = [ctypes.c_void_p]
     lib.a2d_run.restype = ctypes.c_int
@@ -161,6 +163,9 @@ class NativeIDA:
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
         self.last = np.zeros(1 + 2 * self.n)
         self.steps = 0
+        if self.handle and prob.progress is not None:      # a progress bar: each output row
+            self._progress = _PROGRESS(lambda t: prob.progress(t))
+            lib.a2d_set_progress(self.handle, self._progress)
 
     def __del__(self):
         handle, self.handle = getattr(self, "handle", None), None
