@@ -55,7 +55,7 @@ _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_drive
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
     ctypes.POINTER(ctypes.c_long)
-_PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_double)
+_PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
 
 
 def enabled():
@@ -163,9 +163,20 @@ class NativeIDA:
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
         self.last = np.zeros(1 + 2 * self.n)
         self.steps = 0
+        self.raised = None
         if self.handle and prob.progress is not None:      # a progress bar: each output row
-            self._progress = _PROGRESS(lambda t: prob.progress(t))
+            self._progress = _PROGRESS(self._report)
             lib.a2d_set_progress(self.handle, self._progress)
+
+    def _report(self, t):
+        """The progress callback; an exception in it (Ctrl-C) stops the run
+        and is raised again by :meth:`run` (ctypes would swallow it)."""
+        try:
+            self.prob.progress(t)
+            return 0
+        except BaseException as exc:       # noqa: B036 - handed back to the caller
+            self.raised = exc
+            return 1
 
     def __del__(self):
         handle, self.handle = getattr(self, "handle", None), None
@@ -186,6 +197,9 @@ class NativeIDA:
             _ptr(np.ascontiguousarray(y0, float)), _ptr(np.ascontiguousarray(yp0, float)),
             _ptr(T), _ptr(Y), ctypes.byref(n_rows), _ptr(PT), _ptr(PY), ctypes.byref(n_pass),
             pass_col, _ptr(self.last), _ptr(self.roots, _I), _ptr(self.counters, _L))
+        if self.raised is not None:
+            exc, self.raised = self.raised, None
+            raise exc
         k, q = n_rows.value, n_pass.value
         last = (float(self.last[0]), self.last[1:1 + n].copy(), self.last[1 + n:].copy())
         return (flag, T[:k], Y[:k], (PT[:q], PY[:q]), last, self.roots.copy(),

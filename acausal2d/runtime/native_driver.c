@@ -77,7 +77,7 @@ typedef struct {
   double t_last, cj[1], tbuf[1];
   long steps;
   int solved;                     /* IDASolve ran (SuperLU_MT crashes when freed unused) */
-  void (*progress)(double);       /* called at each output row, if set */
+  int (*progress)(double);        /* called at each output row, if set; nonzero: stop */
   double *jnz;                    /* nonzeros of the iteration matrix */
   int *jcol, *jrow;               /* its CCS pattern (given: generated code compresses dense ones) */
   int *terminal;
@@ -252,7 +252,7 @@ void a2d_destroy(a2d_driver *h) {
 
 long a2d_steps(a2d_driver *h) { return h->steps; }
 
-void a2d_set_progress(a2d_driver *h, void (*progress)(double)) { h->progress = progress; }
+void a2d_set_progress(a2d_driver *h, int (*progress)(double)) { h->progress = progress; }
 
 /* One segment, as scikit-sundae's IDA.solve over tspan (t0 first; the last
  * is the stop time): returns IDA's last flag (2: a terminal root) and fills
@@ -291,7 +291,7 @@ int a2d_run(a2d_driver *h, const double *tspan, int n_span, const double *y0,
       memcpy(Y + (size_t)rows * n, N_VGetArrayPointer(h->y), sizeof(double) * n);
       rows++;
       ind++;
-      if (h->progress) h->progress(tt);
+      if (h->progress && h->progress(tt)) { flag = -1002; break; }
     }
   }
   IDAClearStopTime(h->mem);
