@@ -48,3 +48,17 @@ def test_without_a_compiler_the_python_path_runs(monkeypatch):
     ref, _ = _run()
     assert res.stats["steps"] == ref.stats["steps"] and len(res.time) == 501
     np.testing.assert_array_equal(res["prismatic.s"], ref["prismatic.s"])
+
+
+def test_an_interrupt_in_the_progress_callback_stops_the_run():
+    cm = acausal2d.compile_model(PistonEngine())
+    calls = []
+
+    def progress(t, t_end):
+        calls.append(t)
+        if len(calls) == 100:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        cm.simulate(stop_time=10.0, intervals=5000, progress=progress)
+    assert len(calls) == 100 and calls[-1] < 10.0
