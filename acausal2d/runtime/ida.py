@@ -134,8 +134,14 @@ class Problem:
         self.ab = self.ev.args[5] if self.ev is not None else np.zeros(0)
         self.near_ref = np.zeros(self.n_pass)
         self.hook = None          # the events function given to scikit-sundae
+        self.native = None        # its native driver (runtime.native), where there is one
         self.progress = progress
         self._pattern(form)
+        # roots: crossings and decayed blocks stop IDA, passages do not
+        self.terminal = [True] * (self.n_rel + self.n_mon) + [False] * self.n_pass \
+            + [True] * self.n_pass
+        self.direction = [0] * self.n_rel + [-1] * self.n_mon + [0] * self.n_pass \
+            + [-1] * self.n_pass
 
     def _pattern(self, form):
         sparsity = form.jac_sparsity
@@ -242,10 +248,6 @@ def make_solver(prob, rtol, atol):
     if form.sparse:
         opts.update(linsolver="sparse", sparsity=prob.pattern)
     if n_ev:
-        prob.terminal = [True] * (prob.n_rel + prob.n_mon) + [False] * prob.n_pass \
-            + [True] * prob.n_pass
-        prob.direction = [0] * prob.n_rel + [-1] * prob.n_mon + [0] * prob.n_pass \
-            + [-1] * prob.n_pass
         opts.update(eventsfn=prob, num_events=n_ev)
     with warnings.catch_warnings():
         # with a sparsity pattern and our exact jacfn, scikit-sundae notes that its own
@@ -270,6 +272,21 @@ def start_solver(solver, prob, t, y0, yp0, rtol, atol):
     solver = make_solver(prob, rtol, loose)
     solver.init_step(t, y0, yp0)
     return solver
+
+
+class LazySolver:
+    """The scikit-sundae IDA object of a problem with a native driver, made
+    on first use (the fallback path and the step-over of singular positions
+    need it; most runs never do).  Made eagerly and freed unused, its
+    SuperLU_MT solver crashes on free (scikit-sundae 1.2)."""
+
+    def __init__(self, make):
+        self._make, self._solver = make, None
+
+    def __getattr__(self, name):
+        if self._solver is None:
+            self._solver = self._make()
+        return getattr(self._solver, name)
 
 
 @dataclass
@@ -315,18 +332,49 @@ def _passes(sol, prob, hit):
     return [(float(sol.t_events[k]), np.array(sol.y_events[k])) for k in rows if idx[k, col]]
 
 
-def advance(solver, prob, t, y0, yp0, outputs, t_stop):
-    """Integrate from (t, y0, yp0) to ``t_stop`` through ``outputs`` (the
-    output times in (t, t_stop]).  Returns (outcome, times and rows of the
-    output points reached, nfev, njev); ``outcome.passes`` lists the
-    singular positions passed."""
-    prob.reset_events()
+def _tspan(t, outputs, t_stop):
+    """The times of one IDA call: the start, the output times, the stop time."""
     tspan = [t] + list(outputs)
     if not len(outputs) or outputs[-1] < t_stop:
         tspan.append(t_stop)
     if len(tspan) == 2:       # two times would make IDA return its internal steps
         tspan.insert(1, 0.5 * (t + t_stop))
-    sol = solver.solve(np.array(tspan), y0, yp0)
+    return np.array(tspan)
+
+
+def _advance_native(prob, tspan, y0, yp0, outputs):
+    """:func:`advance` by the native driver (:mod:`~acausal2d.runtime.native`);
+    None where IDA failed (the caller repeats the segment on the Python path,
+    which reports the failure)."""
+    flag, T, Y, passes, last, roots, nfev, njev, steps = prob.native.run(tspan, y0, yp0)
+    if flag < 0:
+        return None
+    prob.steps += steps
+    keep = np.isin(T, outputs)
+    if flag == 2:
+        idx = np.nonzero(roots)[0]
+        m = prob.n_rel + prob.n_mon
+        outcome = RootFound(last[0], last[1], last[2], [int(k) for k in idx if k < prob.n_rel],
+                            [int(k) - prob.n_rel for k in idx if prob.n_rel <= k < m],
+                            bool(any(k >= m + prob.n_pass for k in idx)))
+    else:
+        outcome = Reached(*last)
+    outcome.passes = [(float(t), np.array(y)) for t, y in zip(*passes)]
+    return outcome, T[keep], Y[keep], nfev, njev
+
+
+def advance(solver, prob, t, y0, yp0, outputs, t_stop):
+    """Integrate from (t, y0, yp0) to ``t_stop`` through ``outputs`` (the
+    output times in (t, t_stop]), natively where the problem has a native
+    driver.  Returns (outcome, times and rows of the output points reached,
+    nfev, njev); ``outcome.passes`` lists the singular positions passed."""
+    tspan = _tspan(t, outputs, t_stop)
+    if getattr(prob, "native", None) is not None:
+        done = _advance_native(prob, tspan, y0, yp0, outputs)
+        if done is not None:
+            return done
+    prob.reset_events()
+    sol = solver.solve(tspan, y0, yp0)
     ts, ys, yps = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
     hit = sol.status == 2
     n = len(ts) - (1 if hit else 0)

@@ -22,8 +22,9 @@ from .evaluator import Evaluator
 from .events import (ChatterWatch, EventIteration, check_assertions, check_jumps,
                      relation_text)
 from .failure import Approach
-from .ida import (Problem, Reached, RootFound, SundialsMessages, advance, make_solver,
-                  start_solver)
+from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, advance,
+                  make_solver, start_solver)
+from .native import native_ida
 from .projection import Projector
 from .initialize import initial_point, initialization_error
 from .locate import exact_point, exact_rows, locate_on_solution
@@ -179,8 +180,11 @@ class Simulation:
             atol = self.atol if self.atol is not None else self.rtol * self.system.nominal
             atol = np.broadcast_to(np.asarray(atol, dtype=float), (form.n,)).copy()
             y0, yp0 = form.y_from(self.z)
-            solver = start_solver(make_solver(prob, self.rtol, atol), prob, self.t, y0, yp0,
-                                  self.rtol, atol)
+            prob.native = native_ida(prob, self.rtol, atol)
+            solver = LazySolver(lambda t=self.t: start_solver(
+                make_solver(prob, self.rtol, atol), prob, t, y0, yp0, self.rtol, atol))
+            if prob.native is None:
+                solver = solver._make()
             self.solvers[key] = (form, prob, solver, Projector(self.system, form, self.p))
         return self.solvers[key]
 

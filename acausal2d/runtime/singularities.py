@@ -14,6 +14,7 @@ position.
 import numpy as np
 
 from .buffered import Buffered
+from .native import compiled, too_large
 from .newton import NoConvergence, solve_consistent
 from .selection import SINGULAR_CONDITION, singularity, worst_level
 
@@ -35,13 +36,17 @@ class DeterminantScan:
     points: ``det_fn`` mapped over a chunk of points (parameters and
     relation values shared) and evaluated through a :class:`Buffered` on
     arrays filled in place - converting large arrays to CasADi matrices
-    would cost ten times the evaluation."""
+    would cost ten times the evaluation.  Compiled to C where a compiler
+    is found (:func:`~acausal2d.runtime.native.compiled`)."""
 
     CHUNK = 256
 
     def __init__(self, form):
         K, fn = self.CHUNK, form.det_fn
-        self.fn = Buffered(fn.map("det_scan", "serial", K, [3, 4], []),
+        mapped = fn.map("det_scan", "serial", K, [3, 4], [])
+        if not too_large(fn):
+            mapped = (compiled({"det_scan": mapped}) or {"det_scan": mapped})["det_scan"]
+        self.fn = Buffered(mapped,
                            [np.zeros(K), np.zeros(K * form.n), np.zeros(K * form.n),
                             np.zeros(fn.nnz_in(3)), np.zeros(fn.nnz_in(4))])
         t, y, yp, self.p, self.d = self.fn.args

@@ -1,6 +1,12 @@
 """IDA settings that scikit-sundae does not expose, set on its IDA memory
 through the SUNDIALS library it ships.
 
+Used on the Python path only: the native driver (:mod:`.native`, wherever a
+C compiler is found) owns its IDA memory and sets ``IDASetSuppressAlg``
+itself.  scikit-sundae 1.2 has no public route to its IDA memory (the
+pointer is a ``cdef`` attribute; no option sets suppressalg), so on the
+fallback path the guarded read below stays.
+
 scikit-sundae keeps the IDA memory pointer in its Cython object; it is read
 at its place in the object (after the Python object header and the Cython
 method table) and accepted only if IDA itself confirms it: the time IDA

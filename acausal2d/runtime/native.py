@@ -1,0 +1,315 @@
+"""The native inner loop: IDA driven from C over the output times of a
+segment, with the residual, the exact iteration matrix and the event
+functions of the formulation as CasADi-generated C.
+
+Per step and per output time the Python path (:func:`~acausal2d.runtime.ida.advance`
+through scikit-sundae) calls back into Python for every residual, Jacobian
+and event evaluation; measured on the piston engine that is 4-10x the time
+CasADi's own IDAS needs for the same system.  Here the generated code and a
+small driver (``native_driver.c``) are compiled once per formulation with the
+C compiler found at run time (:mod:`~acausal2d.runtime.cbuild`, cached on
+disk by a hash of the code) and linked against the SUNDIALS libraries that
+the scikit-sundae wheel ships; the driver owns its IDA memory (no pointer is
+read out of scikit-sundae's objects on this path).
+
+It makes the same IDA settings as :func:`~acausal2d.runtime.ida.make_solver`
+and :func:`~acausal2d.runtime.ida.start_solver` (tolerances, algebraic ids
+with ``IDASetSuppressAlg``, 500 steps per output interval, root directions,
+terminal roots) and runs a segment as scikit-sundae's ``solve`` does, so
+the steps are the same.  Where there is no compiler, the build fails, the
+SUNDIALS version is not the one the declarations are written for, or IDA
+fails in a segment, the caller uses the Python path (which then reports the
+failure exactly as before).  ``ACAUSAL2D_NATIVE=0`` turns it off.
+"""
+import ctypes
+import os
+import weakref
+
+import casadi as ca
+import numpy as np
+
+from . import cbuild
+
+SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
+LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
+             "sunlinsolsuperlumt", "sunlinsollapackdense", "core")
+SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2}
+"""IDA's linear solvers the driver can use: SUNDIALS' dense LU, LAPACK's
+dense LU, SuperLU_MT (sparse, one thread)."""
+SPARSE_FROM = 64
+"""The driver's IDA uses SuperLU_MT from this many unknowns, SUNDIALS' dense
+LU below (benchmarks/bench_floor.py, IDA alone, CPU s: piston engine, 39
+unknowns: dense 0.0052, LAPACK 0.0061, sparse 0.0054; belt drive, 84:
+0.0193, 0.0188, 0.0163; chain of 20 links, 396: 0.348, 0.548, 0.089)."""
+MAX_PASSES = 256
+OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
+NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
+CHARS_PER_INSTRUCTION = 20   # generated C per CasADi instruction, low (measured: 23-30)
+"""Compile time of the generated C grows with its size and is paid once per
+model structure and machine (gcc, measured: piston engine 36 kB 0.25 s at
+-O1; chain of 20 links 157 kB 1.2 s; belt drive 856 kB about 3 s for its
+first simulate; chain of 100 links 787 kB 7.2 s at -O1, 2.3 s at -O0).
+-O0 code was 1.4x (chain) to 3.6x (belt drive) slower in warm runs, so -O1
+is kept; above :data:`NATIVE_BELOW` large models keep the Python path."""
+_DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
+_libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
+_P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
+    ctypes.POINTER(ctypes.c_long)
+_PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
+
+
+def enabled():
+    """False where ``ACAUSAL2D_NATIVE=0`` or the shipped SUNDIALS is not the
+    version the driver is written for."""
+    if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0":
+        return False
+    return cbuild._shipped_version() == SUNDIALS_VERSION and \
+        cbuild.sundials_libraries() is not None
+
+
+def _source(form):
+    """The C source of a formulation: generated functions, then the driver."""
+    cg = ca.CodeGenerator("a2d_model.c", {"with_header": False})
+    for fn in (form.res_fn, form.jac_fn, form.event_fn):
+        if fn is not None:
+            cg.add(fn)
+    with open(_DRIVER, encoding="utf-8") as fh:
+        driver = fh.read()
+    flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
+    return cg.dump() + "\n" + flags + driver
+
+
+def too_large(*functions):
+    """True where the C of these CasADi functions would be too large to
+    compile at run time (estimated from their instruction counts)."""
+    count = 0
+    for fn in functions:
+        try:
+            count += fn.n_instructions()
+        except RuntimeError:       # not an SX/MX function (a map): judged by its code
+            pass
+    return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
+
+
+def optimization(code):
+    """The compiler flags for generated C of this size, or None: too large
+    to compile at run time (see :data:`NATIVE_BELOW`)."""
+    if len(code) >= NATIVE_BELOW:
+        return None
+    return ["-O1"] if len(code) < OPTIMIZE_BELOW else ["-O0"]
+
+
+def _declare(lib):
+    lib.a2d_create.restype = ctypes.c_void_p
+    lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
+                               ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I]
+    lib.a2d_destroy.argtypes = [ctypes.c_void_p]
+    lib.a2d_set_progress.argtypes = [ctypes.c_void_p, _PROGRESS]
+    lib.a2d_steps.restype = ctypes.c_long
+    lib.a2d_steps.argtypes = [ctypes.c_void_p]
+    lib.a2d_run.restype = ctypes.c_int
+    lib.a2d_run.argtypes = [ctypes.c_void_p, _P, ctypes.c_int, _P, _P, _P, _P, _I, _P, _P,
+                            _I, ctypes.c_int, _P, _I, _L]
+    return lib
+
+
+def library(form):
+    """The compiled library of a formulation (built once, cached on disk),
+    or None where it cannot be built."""
+    lib = _libs.get(form)
+    if lib is None:
+        lib = False
+        if enabled() and not too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
+            folder, libs = cbuild.sundials_libraries()
+            code = _source(form)
+            try:
+                if optimization(code) is None:
+                    raise cbuild.BuildFailed("too large")
+                path = cbuild.build({"a2d_model.c": code}, flags=optimization(code),
+                                    libraries=[libs[k] for k in LIBRARIES if k in libs],
+                                    library_dirs=[folder], name="a2d_model")
+                lib = _declare(ctypes.CDLL(path))
+            except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
+                lib = False
+        _libs[form] = lib
+    return lib or None
+
+
+def _ptr(a, kind=_P):
+    return a.ctypes.data_as(kind)
+
+
+class NativeIDA:
+    """IDA of one :class:`~acausal2d.runtime.ida.Problem` in C (see module
+    docstring); :meth:`run` is a segment."""
+
+    def __init__(self, lib, prob, rtol, atol, terminal, direction, solver=None):
+        form = prob.form
+        self.lib, self.prob, self.n = lib, prob, form.n
+        self._keep = [np.ascontiguousarray(atol, float),
+                      form.differential.astype(float),
+                      np.ascontiguousarray(direction or [0], dtype=np.intc),
+                      np.ascontiguousarray(terminal or [0], dtype=np.intc)]
+        self._pattern = _ccs(form.jac_sparsity)
+        p, d = prob.res.args[3], prob.res.args[4]
+        ab = prob.ab if len(prob.ab) else np.zeros(1)
+        self._bound = [_backing(p), _backing(d), ab]
+        self.handle = lib.a2d_create(
+            self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
+            _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500,
+            SOLVERS[solver or ("sparse" if self.n >= SPARSE_FROM else "dense")],
+            *(_ptr(b) for b in self._bound), *(_ptr(a, _I) for a in self._pattern))
+        self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
+        self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
+        self.last = np.zeros(1 + 2 * self.n)
+        self.steps = 0
+        self.raised = None
+        if self.handle and prob.progress is not None:      # a progress bar: each output row
+            self._progress = _PROGRESS(self._report)
+            lib.a2d_set_progress(self.handle, self._progress)
+
+    def _report(self, t):
+        """The progress callback; an exception in it (Ctrl-C) stops the run
+        and is raised again by :meth:`run` (ctypes would swallow it)."""
+        try:
+            self.prob.progress(t)
+            return 0
+        except BaseException as exc:       # noqa: B036 - handed back to the caller
+            self.raised = exc
+            return 1
+
+    def __del__(self):
+        handle, self.handle = getattr(self, "handle", None), None
+        if handle:
+            self.lib.a2d_destroy(handle)
+
+    def run(self, tspan, y0, yp0):
+        """One segment over ``tspan``: (flag, T, Y, passes (T, Y), last
+        (t, y, yp), root info, nfev, njev, steps taken)."""
+        n, m = self.n, len(tspan)
+        T, Y = np.zeros(m), np.zeros((m, n))
+        PT, PY = np.zeros(MAX_PASSES), np.zeros((MAX_PASSES, n))
+        n_rows, n_pass = ctypes.c_int(m), ctypes.c_int(MAX_PASSES)
+        pass_col = self.prob.n_rel + self.prob.n_mon if self.prob.n_pass else -1
+        steps0 = self.lib.a2d_steps(self.handle)
+        flag = self.lib.a2d_run(
+            self.handle, _ptr(np.ascontiguousarray(tspan, float)), m,
+            _ptr(np.ascontiguousarray(y0, float)), _ptr(np.ascontiguousarray(yp0, float)),
+            _ptr(T), _ptr(Y), ctypes.byref(n_rows), _ptr(PT), _ptr(PY), ctypes.byref(n_pass),
+            pass_col, _ptr(self.last), _ptr(self.roots, _I), _ptr(self.counters, _L))
+        if self.raised is not None:
+            exc, self.raised = self.raised, None
+            raise exc
+        k, q = n_rows.value, n_pass.value
+        last = (float(self.last[0]), self.last[1:1 + n].copy(), self.last[1 + n:].copy())
+        return (flag, T[:k], Y[:k], (PT[:q], PY[:q]), last, self.roots.copy(),
+                int(self.counters[0]), int(self.counters[1]),
+                int(self.lib.a2d_steps(self.handle) - steps0))
+
+
+def _ccs(sparsity):
+    """(column starts, row indices) of a CasADi sparsity as C int arrays."""
+    return (np.ascontiguousarray(sparsity.colind(), dtype=np.intc),
+            np.ascontiguousarray(np.r_[sparsity.row(), 0], dtype=np.intc))
+
+
+def _backing(a):
+    """A bound argument array of a Buffered (at least one element: CasADi
+    binds none for an empty one, the C code reads none)."""
+    return a if a.size else np.zeros(1)
+
+
+def native_ida(prob, rtol, atol, solver=None):
+    """A :class:`NativeIDA` for ``prob`` with the settings of
+    :func:`~acausal2d.runtime.ida.make_solver` (``solver``: a key of
+    :data:`SOLVERS`, default the formulation's choice), or None (see module
+    docstring)."""
+    lib = library(prob.form)
+    if lib is None:
+        return None
+    drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver)
+    return drv if drv.handle else None
+
+
+_compiled = {}       # sha of the generated code -> {name: external Function}
+
+
+def compiled(functions):
+    """CasADi functions (their names -> Function) as compiled C, loaded back
+    as CasADi functions (``casadi.external``) of the same names and signatures,
+    or None where they cannot be built (the caller keeps its own)."""
+    if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0" or cbuild.find_compiler() is None:
+        return None
+    cg = ca.CodeGenerator("a2d_functions.c", {"with_header": False})
+    for fn in functions.values():
+        cg.add(fn)
+    code = cg.dump()
+    key = cbuild.build_key({"f.c": code})
+    if key not in _compiled:
+        try:
+            if optimization(code) is None:
+                raise cbuild.BuildFailed("too large")
+            path = cbuild.build({"a2d_functions.c": code}, flags=optimization(code),
+                                name="a2d_functions")
+            _compiled[key] = {name: ca.external(name, path) for name in functions}
+        except (cbuild.BuildFailed, RuntimeError, OSError):
+            _compiled[key] = None
+    return _compiled[key]
+
+
+_projectors = weakref.WeakKeyDictionary()     # system -> loaded library (or False)
+_PROJECT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_project.c")
+
+
+def _projector_library(system):
+    lib = _projectors.get(system)
+    if lib is None:
+        lib = False
+        if enabled() and cbuild.find_compiler() and \
+                not too_large(system.residual_fn, system.jacobian_fn):
+            cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
+            cg.add(system.residual_fn)
+            cg.add(system.jacobian_fn)
+            with open(_PROJECT, encoding="utf-8") as fh:
+                code = cg.dump() + "\n" + fh.read()
+            folder, libs = cbuild.sundials_libraries()
+            try:
+                if optimization(code) is None:
+                    raise cbuild.BuildFailed("too large")
+                lib = ctypes.CDLL(cbuild.build(
+                    {"a2d_rows.c": code}, flags=optimization(code), name="a2d_rows",
+                    libraries=[libs[k] for k in ("sunlinsolsuperlumt", "sunmatrixsparse",
+                                                 "nvecserial", "core")],
+                    library_dirs=[folder]))
+                lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
+                                            ctypes.c_int, _I, _P, ctypes.c_double,
+                                            ctypes.c_int, ctypes.c_int, _I, _I, _I]
+            except (cbuild.BuildFailed, OSError, KeyError):
+                lib = False
+        _projectors[system] = lib
+    return lib or None
+
+
+def row_projector(system, free, sparse):
+    """A function (T, Z, p, d, tol, max_iter) -> (Z solved for the unknowns
+    ``free``, converged rows) in C (``native_project.c``) with dense LU or
+    (``sparse``) SuperLU_MT, or None where it cannot be built."""
+    lib = _projector_library(system)
+    if lib is None:
+        return None
+    n_var, n_eq = system.structure.n_var, system.structure.n_eq
+    col_of = np.full(n_var, -1, dtype=np.intc)
+    col_of[free] = np.arange(len(free), dtype=np.intc)
+    nominal = np.ascontiguousarray(system.nominal, dtype=float)
+    colind, row = _ccs(system.jacobian_fn.sparsity_out(0))
+
+    def project(T, Z, p, d, tol, max_iter):
+        T = np.ascontiguousarray(T, float)
+        Z = np.array(Z, dtype=float, order="C")
+        ok = np.zeros(len(T), dtype=np.intc)
+        p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
+        lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
+                        _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter),
+                        int(bool(sparse)), _ptr(colind, _I), _ptr(row, _I), _ptr(ok, _I))
+        return Z, ok.astype(bool)
+    return project
