@@ -135,15 +135,26 @@ class SundialsDirs:
     version: str
 
 
+def _sksundae_dir():
+    """The folder of the installed ``sksundae`` package, found without
+    importing it (its import pulls in scipy.optimize), or None."""
+    import importlib.util
+    try:
+        spec = importlib.util.find_spec("sksundae")
+    except (ImportError, ValueError):
+        return None
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    return list(spec.submodule_search_locations)[0]
+
+
 def sundials_libraries():
     """(lib folder, short name -> path) of the SUNDIALS libraries that the
     scikit-sundae wheel ships, or None if it is not installed that way."""
-    try:
-        import sksundae
-    except ImportError:
+    pkg = _sksundae_dir()
+    if pkg is None:
         return None
-    folder = os.path.normpath(os.path.join(os.path.dirname(sksundae.__file__), "..",
-                                           "scikit_sundae.libs"))
+    folder = os.path.normpath(os.path.join(pkg, "..", "scikit_sundae.libs"))
     found = {}
     for path in sorted(glob.glob(os.path.join(folder, "libsundials_*.so*"))):
         short = os.path.basename(path)[len("libsundials_"):].split("-")[0].split(".")[0]
@@ -171,10 +182,9 @@ def sundials_dirs():
     libs = sundials_libraries()
     if libs is None:
         return None
-    import sksundae
-    version = getattr(sksundae, "__sundials_version__", None) or _shipped_version()
+    version = _shipped_version()
     candidates = [os.environ.get("SUNDIALS_INCLUDE_DIR", ""),
-                  os.path.join(os.path.dirname(sksundae.__file__), "include")]
+                  os.path.join(_sksundae_dir(), "include")]
     for inc in candidates:
         if inc and os.path.exists(os.path.join(inc, "ida", "ida.h")) and \
                 _header_version(inc) == version:
@@ -184,8 +194,10 @@ def sundials_dirs():
 
 def _shipped_version():
     """The SUNDIALS version scikit-sundae was built with (its config file)."""
-    import sksundae
-    path = os.path.join(os.path.dirname(sksundae.__file__), "py_config.pxi")
+    pkg = _sksundae_dir()
+    if pkg is None:
+        return None
+    path = os.path.join(pkg, "py_config.pxi")
     try:
         with open(path, encoding="utf-8") as fh:
             for line in fh:
