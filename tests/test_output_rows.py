@@ -19,8 +19,8 @@ from bench_core import PendulumChain  # noqa: E402
 
 
 def _run(cm, stop, rtol, intervals):
-    times, rtol = cm._settings(stop, rtol, None, intervals, 0.0, None)
-    sim = Simulation(cm.system, cm.parameter_values(None), times, rtol, None)
+    times, rtol, atol = cm._settings(stop, rtol, None, intervals, 0.0, None)
+    sim = Simulation(cm.system, cm.parameter_values(None), times, rtol, atol)
     return sim, sim.run()
 
 
