@@ -28,6 +28,11 @@ def cmd_optimize(args):
     return 0
 
 
+GRID_NOISE = 1e-9
+"""Relative difference below which a grid value equals the optimum's (the
+re-runs of the grid differ from the optimiser's run by round-off)."""
+
+
 def _grid_check(opt, args):
     """Objective on a grid around the optimum (--grid POINTS, --grid-span);
     prints the smallest value found and writes grid.csv."""
@@ -37,9 +42,11 @@ def _grid_check(opt, args):
     np.savetxt(path, np.column_stack([xs, values]), delimiter=",", comments="",
                header=",".join(opt.names + ["objective"]), fmt="%.12g")
     k = int(np.nanargmin(values))
+    # lower only by more than round-off of the re-run (1e-9 relative) counts as below
+    below = values[k] < opt.objective - GRID_NOISE * max(abs(opt.objective), 1e-300)
     print("grid of %d points within +-%g around the optimum: smallest objective %.8g%s" % (
         len(values), args.grid_span, values[k],
-        " (the optimum's)" if values[k] >= opt.objective else
+        " (the optimum's)" if not below else
         " at %s, BELOW the optimum" % ", ".join("%s=%.6g" % kv
                                                 for kv in zip(opt.names, xs[k]))))
     return path
