@@ -30,11 +30,14 @@ def make_clone(base):
 
 
 def readme_commands():
-    """The ``$ acausal2d ...`` lines of the README's workflow block."""
+    """The ``$ acausal2d simulate|compare ...`` lines of the README's workflow
+    block (the first code block under "## Workflow"; every other command of
+    the README runs in tests/test_readme_commands.py)."""
     with open(os.path.join(ROOT, "README.md")) as fh:
         text = fh.read()
+    block = text.split("## Workflow", 1)[1].split("```", 2)[1]
     return [shlex.split(m) for m in re.findall(r"^\$ (acausal2d (?:simulate|compare) .*)$",
-                                               text, re.M)]
+                                               block, re.M)]
 
 
 def test_readme_workflow_and_reference_tests_in_a_plain_clone(tmp_path):
