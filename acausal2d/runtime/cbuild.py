@@ -110,7 +110,7 @@ def fingerprint(functions, *texts):
     import casadi as ca
     h = hashlib.sha256()
     parts = [fn.serialize() for fn in functions if fn is not None]
-    for part in parts + list(texts) + [ca.__version__, str(find_compiler())]:
+    for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS]:
         data = str(part).encode("utf-8")
         h.update(len(data).to_bytes(8, "little"))
         h.update(data)

@@ -84,7 +84,7 @@ def _derived(owner):
     times the residual, took 0.026 s of the belt drive's run."""
     path = sys.modules[type(owner).__module__].__file__
     if path not in _module_texts:
-        _module_texts[path] = _text(path)
+        _module_texts[path] = _text(path) + "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
     return _module_texts[path]
 
 
@@ -272,7 +272,8 @@ def compiled(functions):
             raise cbuild.BuildFailed("too large")
         return cbuild.build({"a2d_functions.c": code}, flags=optimization(code),
                             name="a2d_functions")
-    key = cbuild.fingerprint(functions.values(), *functions)
+    key = cbuild.fingerprint(functions.values(), "%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW),
+                             *functions)
     if key not in _compiled:
         try:
             path = cbuild.build_indexed(key, make, "a2d_functions")
