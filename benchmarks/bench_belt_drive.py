@@ -14,6 +14,15 @@ compile   = model construction and compile_model (flatten, aliases, balance, Pan
 simulate  = CompiledModel.simulate with the model's experiment (rtol 1e-8,
             721 output points): initialization, state selection, generation
             of the index-1 functions and the IDA run
+native    = whether the C of the model (its residual, Jacobian and event
+            functions, compiled once per model structure by the native
+            runtime) was already in the disk cache (``$ACAUSAL2D_CACHE_DIR``,
+            else ~/.cache/acausal2d/cbuild) at the first run: "warm" or
+            "cold" (the first run then includes the C compiler)
+cold      = (full mode only) one run in a fresh process with empty caches
+            (native libraries and pulley design): what the very first run
+            on a machine costs, C compiler included (CPU of the process and
+            of its children, the compiler)
 The seed reports 4.2 s in SimulationX on a 3 GHz CPU for compile + simulate
 (with given contours).  The table shows the first run in this process and the
 median of ``repeats`` runs; the target of issue 17 is design + compile +
@@ -29,6 +38,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 import acausal2d  # noqa: E402
 import noncircular_belt_drive as nbd  # noqa: E402
+from _cache import cold_run, native_libraries, print_cold, state  # noqa: E402
 
 SEED_TIME = 4.2
 TARGET = SEED_TIME / 30
@@ -51,11 +61,14 @@ def one_run():
     return (t1 - t0, t3 - t2, t4 - t3, t5 - t4, time.process_time() - c2), res
 
 
-def main(repeats=5):
+def main(repeats=5, cold=True):
     rows, res = [], None
+    libs = native_libraries()
     for _ in range(max(repeats, 1)):
         times, res = one_run()
         rows.append(times)
+        if len(rows) == 1:
+            warm = state(libs)
     first = rows[0]
     med = [statistics.median(r[k] for r in rows) for k in range(5)]
     dev = max(abs(r / rd - 1.0) for r, rd in zip(res["ratio"], res["ratio_design"]))
@@ -73,6 +86,9 @@ def main(repeats=5):
     print("%-40s %10.3f" % ("seed (SimulationX, 3 GHz)", SEED_TIME))
     print("%-40s %9.1fx %9.1fx" % ("speed-up vs seed, incl. design", SEED_TIME / tot_first,
                                    SEED_TIME / tot_med))
+    print("native C libraries in the disk cache at the first run: %s" % warm)
+    if cold:
+        print_cold(*cold_run(__file__, "--one"))
     print("IDA: %d residual evaluations, %d Jacobians; max |ratio/designed - 1| = %.2e; "
           "large pulley turned %.6f rev" % (res.stats["nfev"], res.stats["njev"], dev,
                                             res["large.phi"][-1] / (2 * math.pi)))
@@ -80,6 +96,9 @@ def main(repeats=5):
 
 if __name__ == "__main__":
     if sys.argv[1:] == ["--small"]:
-        main(1)
+        main(1, cold=False)
+    elif sys.argv[1:] == ["--one"]:
+        nbd.design()
+        acausal2d.compile_model(nbd.NonCircularBeltDrive(nbd.design())).simulate()
     else:
         main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)

@@ -10,6 +10,10 @@ index reduction, code generation), simulate = consistent initialization and
 the IDA run over the 30 s cycle at the model's rtol (1e-7), 601 output
 points.  The first row is the first cycle in this process; the last rows the
 median and the best of all repeats (issue 17: >= 300x the seed's 140 s).
+The native C of the model is compiled once per model structure and cached
+on disk; the table says whether it was there at the first cycle ("warm") and
+(full mode) what one cycle costs in a fresh process with empty caches, C
+compiler included ("cold").
 """
 import os
 import statistics
@@ -20,6 +24,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 from acausal2d import compile_model  # noqa: E402
 from cable_crane import CableCrane, T_STOP  # noqa: E402
+from _cache import cold_run, native_libraries, print_cold, state  # noqa: E402
 
 SEED_SECONDS = 140.0
 
@@ -37,11 +42,13 @@ def one_cycle():
     return t1 - t0, t2 - t1, t3 - t2, cpu, cm.system.n_flat_equations, res
 
 
-def main(repeats=5):
-    rows = []
+def main(repeats=5, cold=True):
+    rows, libs = [], native_libraries()
     for _ in range(repeats):
         b, c, s, cpu, neq, res = one_cycle()
         rows.append((b, c, s, b + c + s, cpu))
+        if len(rows) == 1:
+            warm = state(libs)
     print("Cable crane, one transfer cycle of %.0f s (%d flat equations, %d events)"
           % (T_STOP, neq, len(res.events)))
     print("%-8s %8s %9s %9s %9s %10s %9s %10s" % ("run", "build", "compile", "simulate",
@@ -52,10 +59,15 @@ def main(repeats=5):
                                                                         ("best", best)]:
         print("%-8s %7.2fs %8.2fs %8.2fs %8.2fs %9.0fx %8.2fs %9.0fx"
               % (label, *r[:4], SEED_SECONDS / r[3], r[4], SEED_SECONDS / r[4]))
+    print("native C libraries in the disk cache at the first cycle: %s" % warm)
+    if cold:
+        print_cold(*cold_run(__file__, "--one"), width=17)
 
 
 if __name__ == "__main__":
     if sys.argv[1:] == ["--small"]:
-        main(1)
+        main(1, cold=False)
+    elif sys.argv[1:] == ["--one"]:
+        one_cycle()
     else:
         main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)

@@ -61,3 +61,27 @@ def test_sundials_libraries_of_scikit_sundae():
     assert all(os.path.dirname(p) == folder for p in libs.values())
     dirs = cbuild.sundials_dirs()       # headers: only where they are of the shipped version
     assert dirs is None or os.path.exists(os.path.join(dirs.include, "ida", "ida.h"))
+
+
+@needs_cc
+def test_indexed_build_is_found_without_generating_the_code(tmp_path, monkeypatch):
+    import casadi as ca
+    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path))
+    x = ca.SX.sym("x")
+    f, g = ca.Function("f", [x], [x * x]), ca.Function("f", [x], [x * x + 1])
+    assert cbuild.fingerprint([f]) == cbuild.fingerprint([ca.Function("f", [x], [x * x])])
+    assert cbuild.fingerprint([f]) != cbuild.fingerprint([g])
+    assert cbuild.fingerprint([f]) != cbuild.fingerprint([f], "driver text")
+    calls = []
+
+    def make():
+        calls.append(1)
+        return cbuild.build({"poly.c": SOURCE}, name="poly")
+    key = cbuild.fingerprint([f])
+    path = cbuild.build_indexed(key, make, "poly")
+    assert cbuild.build_indexed(key, make, "poly") == path and len(calls) == 1
+    os.remove(path)                                  # a library gone: built again
+    assert cbuild.build_indexed(key, make, "poly") == path and len(calls) == 2
+    with open(os.path.join(str(tmp_path), "poly-%s.idx" % key[:32]), "w") as fh:
+        fh.write("garbage")                          # a broken index only costs a build
+    assert cbuild.build_indexed(key, make, "poly") == path and len(calls) == 3

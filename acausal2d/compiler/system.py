@@ -105,7 +105,7 @@ class System:
         E = column(s.eq_expr)
         args = [time, z, self.p, self.d]
         self.residual_fn = ca.Function("E", args, [E])
-        J = ca.jacobian(E, z)
+        self._dEdz = J = ca.jacobian(E, z)
         self.jacobian_fn = ca.Function("dEdz", args, [J])
         rows, cols = J.sparsity().get_triplet()
         self.jacobian_pattern = (np.array(rows, dtype=int), np.array(cols, dtype=int))
@@ -258,7 +258,8 @@ class System:
         f = self._formulations.get(selection.dummies)
         if f is None:
             with cyclic_gc_paused():
-                f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings)
+                f = Formulation(self.structure, selection, self.p, self.d, self.state_crossings,
+                                self._dEdz)
             self._formulations[selection.dummies] = f
         return f
 

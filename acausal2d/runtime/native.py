@@ -23,6 +23,7 @@ failure exactly as before).  ``ACAUSAL2D_NATIVE=0`` turns it off.
 """
 import ctypes
 import os
+import sys
 import weakref
 
 import casadi as ca
@@ -67,16 +68,34 @@ def enabled():
         cbuild.sundials_libraries() is not None
 
 
+def _text(path):
+    with open(path, encoding="utf-8") as fh:
+        return fh.read()
+
+
+_module_texts = {}
+
+
+def _derived(owner):
+    """What identifies the Jacobian functions of ``owner`` (a formulation
+    or a system) given its residual function: the text of the module that
+    derives them from the residual (``casadi.jacobian``; the CasADi version
+    is in the fingerprint).  Serializing the Jacobians themselves, three
+    times the residual, took 0.026 s of the belt drive's run."""
+    path = sys.modules[type(owner).__module__].__file__
+    if path not in _module_texts:
+        _module_texts[path] = _text(path) + "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
+    return _module_texts[path]
+
+
 def _source(form):
     """The C source of a formulation: generated functions, then the driver."""
     cg = ca.CodeGenerator("a2d_model.c", {"with_header": False})
     for fn in (form.res_fn, form.jac_fn, form.event_fn):
         if fn is not None:
             cg.add(fn)
-    with open(_DRIVER, encoding="utf-8") as fh:
-        driver = fh.read()
     flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
-    return cg.dump() + "\n" + flags + driver
+    return cg.dump() + "\n" + flags + _text(_DRIVER)
 
 
 def too_large(*functions):
@@ -121,14 +140,18 @@ def library(form):
         lib = False
         if enabled() and not too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
             folder, libs = cbuild.sundials_libraries()
-            code = _source(form)
-            try:
+            linked = [libs[k] for k in LIBRARIES if k in libs]
+
+            def make():
+                code = _source(form)
                 if optimization(code) is None:
                     raise cbuild.BuildFailed("too large")
-                path = cbuild.build({"a2d_model.c": code}, flags=optimization(code),
-                                    libraries=[libs[k] for k in LIBRARIES if k in libs],
-                                    library_dirs=[folder], name="a2d_model")
-                lib = _declare(ctypes.CDLL(path))
+                return cbuild.build({"a2d_model.c": code}, flags=optimization(code),
+                                    libraries=linked, library_dirs=[folder], name="a2d_model")
+            key = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
+                                     _text(_DRIVER), *linked)
+            try:
+                lib = _declare(ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_model")))
             except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
                 lib = False
         _libs[form] = lib
@@ -231,7 +254,7 @@ def native_ida(prob, rtol, atol, solver=None):
     return drv if drv.handle else None
 
 
-_compiled = {}       # sha of the generated code -> {name: external Function}
+_compiled = {}       # fingerprint of the functions -> {name: external Function}
 
 
 def compiled(functions):
@@ -240,17 +263,20 @@ def compiled(functions):
     or None where they cannot be built (the caller keeps its own)."""
     if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0" or cbuild.find_compiler() is None:
         return None
-    cg = ca.CodeGenerator("a2d_functions.c", {"with_header": False})
-    for fn in functions.values():
-        cg.add(fn)
-    code = cg.dump()
-    key = cbuild.build_key({"f.c": code})
+    def make():
+        cg = ca.CodeGenerator("a2d_functions.c", {"with_header": False})
+        for fn in functions.values():
+            cg.add(fn)
+        code = cg.dump()
+        if optimization(code) is None:
+            raise cbuild.BuildFailed("too large")
+        return cbuild.build({"a2d_functions.c": code}, flags=optimization(code),
+                            name="a2d_functions")
+    key = cbuild.fingerprint(functions.values(), "%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW),
+                             *functions)
     if key not in _compiled:
         try:
-            if optimization(code) is None:
-                raise cbuild.BuildFailed("too large")
-            path = cbuild.build({"a2d_functions.c": code}, flags=optimization(code),
-                                name="a2d_functions")
+            path = cbuild.build_indexed(key, make, "a2d_functions")
             _compiled[key] = {name: ca.external(name, path) for name in functions}
         except (cbuild.BuildFailed, RuntimeError, OSError):
             _compiled[key] = None
@@ -267,20 +293,23 @@ def _projector_library(system):
         lib = False
         if enabled() and cbuild.find_compiler() and \
                 not too_large(system.residual_fn, system.jacobian_fn):
-            cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
-            cg.add(system.residual_fn)
-            cg.add(system.jacobian_fn)
-            with open(_PROJECT, encoding="utf-8") as fh:
-                code = cg.dump() + "\n" + fh.read()
             folder, libs = cbuild.sundials_libraries()
-            try:
+            linked = [libs[k] for k in ("sunlinsolsuperlumt", "sunmatrixsparse",
+                                        "nvecserial", "core")]
+
+            def make():
+                cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
+                cg.add(system.residual_fn)
+                cg.add(system.jacobian_fn)
+                code = cg.dump() + "\n" + _text(_PROJECT)
                 if optimization(code) is None:
                     raise cbuild.BuildFailed("too large")
-                lib = ctypes.CDLL(cbuild.build(
-                    {"a2d_rows.c": code}, flags=optimization(code), name="a2d_rows",
-                    libraries=[libs[k] for k in ("sunlinsolsuperlumt", "sunmatrixsparse",
-                                                 "nvecserial", "core")],
-                    library_dirs=[folder]))
+                return cbuild.build({"a2d_rows.c": code}, flags=optimization(code),
+                                    name="a2d_rows", libraries=linked, library_dirs=[folder])
+            key = cbuild.fingerprint((system.residual_fn,), _derived(system),
+                                     _text(_PROJECT), *linked)
+            try:
+                lib = ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_rows"))
                 lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
                                             ctypes.c_int, _I, _P, ctypes.c_double,
                                             ctypes.c_int, ctypes.c_int, _I, _I, _I]

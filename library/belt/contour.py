@@ -104,6 +104,23 @@ def _fourier_sx(x, base, c0, a, b):
     return out
 
 
+_GRID = 4096      # points of the numeric checks and integrals of a SupportContour
+
+
+@functools.lru_cache(maxsize=8)
+def _grid_trig(base, n):
+    """(psi, harmonic numbers, cos, sin of their outer product) on the
+    grid of :data:`_GRID` points over one revolution, read-only; computed
+    as :meth:`Contour._np_series` does (identical numbers)."""
+    psi = np.linspace(0.0, _TWO_PI, _GRID, endpoint=False)
+    js = base * np.arange(1, n + 1, dtype=float)
+    X = np.outer(psi, js)
+    out = (psi, js, np.cos(X), np.sin(X))
+    for arr in out:
+        arr.flags.writeable = False
+    return out
+
+
 @functools.lru_cache(maxsize=None)
 def _fourier_function(n):
     """CasADi Function (x, base, c0, a[n], b[n]) -> the series of
@@ -264,14 +281,19 @@ class Contour:
         """Fourier series (order 0) or its derivatives (order 1, 2), numpy."""
         js = base * np.arange(1, len(a) + 1, dtype=float)
         X = np.outer(np.ravel(x), js)
-        C, S = np.cos(X), np.sin(X)
+        v = Contour._trig_series(c0, a, b, js, np.cos(X), np.sin(X), order)
+        return v.reshape(np.shape(x))
+
+    @staticmethod
+    def _trig_series(c0, a, b, js, C, S, order):
+        """The series of :meth:`_np_series` from cos/sin of its arguments."""
         if order == 0:
             v = c0 + C @ a + S @ b
         elif order == 1:
             v = (-S * js) @ a + (C * js) @ b
         else:
             v = (-C * js ** 2) @ a + (-S * js ** 2) @ b
-        return v.reshape(np.shape(x))
+        return v
 
     @classmethod
     def from_table(cls, kappa, r, n_harm=64):
@@ -488,8 +510,7 @@ class SupportContour:
         self.kind = "support"
         self.perimeter = _TWO_PI * self.p0
         self.r_mean = self.p0
-        psi = np.linspace(0.0, _TWO_PI, 4096, endpoint=False)
-        rho = self.p(psi) + self.p(psi, 2)
+        rho = self._p_grid(0) + self._p_grid(2)
         if np.min(rho) <= 0.0:
             raise ModelDefinitionError("SupportContour: not a convex contour (min p + p'' = %.3g)"
                                        % np.min(rho))
@@ -499,6 +520,13 @@ class SupportContour:
         """Support function or its derivatives (numpy)."""
         return Contour._np_series(np.asarray(psi, dtype=float), self.p0 if order == 0 else 0.0,
                                   self.a, self.b, self.base, order)
+
+    def _p_grid(self, order=0):
+        """:meth:`p` on the grid of :func:`_grid_trig` (the same numbers;
+        the cos/sin table is shared by the contours and the model builds)."""
+        _, js, C, S = _grid_trig(self.base, len(self.a))
+        return Contour._trig_series(self.p0 if order == 0 else 0.0, self.a, self.b, js, C, S,
+                                    order)
 
     def _sym(self, psi):
         js = self.base * np.arange(1, len(self.a) + 1, dtype=float)
@@ -541,10 +569,12 @@ class SupportContour:
     def mass_properties(self, thickness, density):
         """(m, J about the centre of gravity, (x_S, y_S)) of a plain disc with
         this outline (Green's theorem over the parametrised contour)."""
-        N = 4096
-        psi = np.linspace(0.0, _TWO_PI, N, endpoint=False)
-        x, y = self.point(psi)
-        rho = self.p(psi) + self.p(psi, 2)
+        N = _GRID
+        psi = _grid_trig(self.base, len(self.a))[0]
+        p, dp = self._p_grid(0), self._p_grid(1)
+        c, s = np.cos(psi), np.sin(psi)
+        x, y = p * c - dp * s, p * s + dp * c          # point(psi)
+        rho = p + self._p_grid(2)
         dx, dy = -np.sin(psi) * rho, np.cos(psi) * rho
         h = _TWO_PI / N * thickness * density
         m = h * np.sum(0.5 * (x * dy - y * dx))
