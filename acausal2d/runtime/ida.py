@@ -24,8 +24,6 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")     # before scikit-sundae is impo
 # file of this process, read into SundialsMessages, read when a context is made
 WARNINGS_FILE = os.path.join(tempfile.gettempdir(), "acausal2d-sundials-%d.log" % os.getpid())
 os.environ.setdefault("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
-from .sundae import sksundae as sun  # noqa: E402
-import scipy.sparse as sp  # noqa: E402
 
 from .buffered import Buffered  # noqa: E402
 from .sundials_ext import ida_memory, suppress_algebraic  # noqa: E402
@@ -146,6 +144,7 @@ class Problem:
     def _pattern(self, form):
         sparsity = form.jac_sparsity
         if form.sparse:
+            import scipy.sparse as sp     # here: the native path never needs it
             self.pattern = sp.csc_matrix((np.ones(sparsity.nnz()), np.array(sparsity.row()),
                                           np.array(sparsity.colind())), shape=(form.n, form.n))
         else:
@@ -238,7 +237,10 @@ class Problem:
 
 
 def make_solver(prob, rtol, atol):
-    """The scikit-sundae IDA object of a problem (see :func:`start_solver`)."""
+    """The scikit-sundae IDA object of a problem (see :func:`start_solver`).
+    scikit-sundae (and with it scipy) is imported here, on the Python path
+    only."""
+    from .sundae import sksundae as sun
     form = prob.form
     n_ev = prob.n_events
     tested = form.differential
