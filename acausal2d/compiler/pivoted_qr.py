@@ -47,7 +47,7 @@ def _geqp3(f, M):
     tau = np.zeros(min(m, n))
     info = ctypes.c_int(0)
     iv = ctypes.c_int
-    ptr = np.ctypeslib.as_ctypes_type(np.float64)
+    ptr = ctypes.c_double
 
     def call(work, lwork):
         f(ctypes.byref(iv(m)), ctypes.byref(iv(n)), a.ctypes.data_as(ctypes.POINTER(ptr)),

@@ -344,6 +344,17 @@ def _tspan(t, outputs, t_stop):
     return np.array(tspan)
 
 
+def _member(values, of):
+    """``np.isin(values, of)`` for float arrays (exact equality) without
+    ``np.unique``, whose first call imports ``numpy.ma`` (~7 ms)."""
+    ref = np.sort(np.asarray(of, dtype=float).ravel())
+    values = np.asarray(values, dtype=float)
+    if ref.size == 0:
+        return np.zeros(values.shape, dtype=bool)
+    at = np.minimum(np.searchsorted(ref, values), ref.size - 1)
+    return ref[at] == values
+
+
 def _advance_native(prob, tspan, y0, yp0, outputs):
     """:func:`advance` by the native driver (:mod:`~acausal2d.runtime.native`);
     None where IDA failed (the caller repeats the segment on the Python path,
@@ -352,7 +363,7 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     if flag < 0:
         return None
     prob.steps += steps
-    keep = np.isin(T, outputs)
+    keep = _member(T, outputs)
     if flag == 2:
         idx = np.nonzero(roots)[0]
         m = prob.n_rel + prob.n_mon
