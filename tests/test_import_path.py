@@ -50,3 +50,49 @@ def test_scipy_optimize_after_sksundae_is_the_real_module():
     assert lines[1] == "[0, 0, 0]"       # independent columns share one group
     assert lines[2] == "[0, 1, 2]"       # a full matrix: one group per column
     assert abs(float(lines[3]) - 2.0) < 1e-8
+
+
+_NATIVE_RUN = r"""
+import sys
+import acausal2d
+from acausal2d.runtime import native
+cm = acausal2d.compile_model(acausal2d.load_model(%r))
+res = cm.simulate(stop_time=1.0, intervals=200)
+forms = list(cm.system._formulations.values())
+print(all(native.library(f) is not None for f in forms))
+print(sorted(m for m in sys.modules if m.startswith(("scipy", "sksundae", "matplotlib"))))
+print(len(res.time))
+"""
+
+
+def _native_available():
+    from acausal2d.runtime import cbuild, native
+    return cbuild.find_compiler() is not None and native.enabled()
+
+
+def test_native_run_imports_no_scipy_no_scikit_sundae_no_matplotlib():
+    """Where the native loop runs (a C compiler), compiling and simulating a
+    small model (dense below SPARSE_FROM unknowns) loads neither scipy (so
+    not scipy.optimize) nor scikit-sundae nor matplotlib: the Python path
+    imports them when it is taken."""
+    import pytest
+    if not _native_available():
+        pytest.skip("no C compiler or another SUNDIALS: the run takes the Python path")
+    for model in ("pendulum.py", "piston_engine.py"):
+        lines = _run(_NATIVE_RUN % os.path.join(ROOT, "models", model))
+        assert lines[0] == "True", model
+        assert lines[1] == "[]", (model, lines[1])
+        assert int(lines[2]) == 201, model
+
+
+def test_python_path_still_imports_scikit_sundae():
+    """ACAUSAL2D_NATIVE=0: the same run goes through scikit-sundae (imported
+    on that path), still without scipy.optimize."""
+    code = _NATIVE_RUN % os.path.join(ROOT, "models", "piston_engine.py")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                         timeout=300, env=dict(os.environ, ACAUSAL2D_NATIVE="0"))
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.strip().splitlines()
+    assert lines[0] == "False"
+    assert "sksundae" in lines[1] and "scipy.optimize" not in lines[1]
+    assert int(lines[2]) == 201

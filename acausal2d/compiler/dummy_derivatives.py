@@ -18,11 +18,11 @@ derivative is chosen as a dummy, or no equation is ever differentiated so
 that it could be one, selection raises an error naming it.
 """
 import numpy as np
-import scipy.linalg as sla
 
 from ..errors import ModelDefinitionError, SimulationError
 from ..language.dsl import STATE_SELECT
 from ..language.unionfind import UnionFind
+from .pivoted_qr import qr_pivoted
 from .structure import Level, Selection
 
 _ALWAYS = STATE_SELECT.index("always")
@@ -43,7 +43,7 @@ def _pick(H, prio, need):
         if not idx:
             continue
         M = H[:, idx] if Q is None else H[:, idx] - Q @ (Q.T @ H[:, idx])
-        _, r, piv = sla.qr(M, pivoting=True, mode="economic")
+        r, piv = qr_pivoted(M)
         d = np.abs(np.diag(r)) if r.size else np.zeros(0)
         k = min(int(np.sum(d > 1e-9 * scale)), need - len(chosen))
         if k == 0:

@@ -21,7 +21,6 @@ import glob
 import hashlib
 import os
 import shutil
-import subprocess
 import tempfile
 from dataclasses import dataclass
 
@@ -144,7 +143,10 @@ def build_indexed(key, make, name="lib"):
 
 
 def _compile(cc, sources, args, folder, target):
-    """Compile in a temporary folder and rename the library into ``target``."""
+    """Compile in a temporary folder and rename the library into ``target``.
+    (``subprocess`` is imported here: a run that finds its library in the
+    cache never needs it.)"""
+    import subprocess
     with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp:
         files = []
         for fname, text in sorted(sources.items()):

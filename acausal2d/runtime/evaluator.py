@@ -4,7 +4,6 @@ the residuals E of all index-reduced equations, their Jacobian dE/dz
 (dense below :data:`~acausal2d.compiler.index1.SPARSE_FROM` nodes, else
 sparse) and the relations' crossing functions."""
 import numpy as np
-import scipy.sparse as sp
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
@@ -52,6 +51,7 @@ class Evaluator:
             M = np.zeros((self.n_eq, self.n))
             M[self.rows, self.cols] = nz
             return M
+        import scipy.sparse as sp     # large systems only: a small run needs no scipy
         return sp.csr_matrix((nz.copy(), (self.rows, self.cols)), shape=(self.n_eq, self.n))
 
     def crossings(self, t, z, d):

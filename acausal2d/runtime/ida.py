@@ -24,8 +24,6 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")     # before scikit-sundae is impo
 # file of this process, read into SundialsMessages, read when a context is made
 WARNINGS_FILE = os.path.join(tempfile.gettempdir(), "acausal2d-sundials-%d.log" % os.getpid())
 os.environ.setdefault("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
-from .sundae import sksundae as sun  # noqa: E402
-import scipy.sparse as sp  # noqa: E402
 
 from .buffered import Buffered  # noqa: E402
 from .sundials_ext import ida_memory, suppress_algebraic  # noqa: E402
@@ -146,6 +144,7 @@ class Problem:
     def _pattern(self, form):
         sparsity = form.jac_sparsity
         if form.sparse:
+            import scipy.sparse as sp     # here: the native path never needs it
             self.pattern = sp.csc_matrix((np.ones(sparsity.nnz()), np.array(sparsity.row()),
                                           np.array(sparsity.colind())), shape=(form.n, form.n))
         else:
@@ -238,7 +237,10 @@ class Problem:
 
 
 def make_solver(prob, rtol, atol):
-    """The scikit-sundae IDA object of a problem (see :func:`start_solver`)."""
+    """The scikit-sundae IDA object of a problem (see :func:`start_solver`).
+    scikit-sundae (and with it scipy) is imported here, on the Python path
+    only."""
+    from .sundae import sksundae as sun
     form = prob.form
     n_ev = prob.n_events
     tested = form.differential
@@ -342,6 +344,17 @@ def _tspan(t, outputs, t_stop):
     return np.array(tspan)
 
 
+def _member(values, of):
+    """``np.isin(values, of)`` for float arrays (exact equality) without
+    ``np.unique``, whose first call imports ``numpy.ma`` (~7 ms)."""
+    ref = np.sort(np.asarray(of, dtype=float).ravel())
+    values = np.asarray(values, dtype=float)
+    if ref.size == 0:
+        return np.zeros(values.shape, dtype=bool)
+    at = np.minimum(np.searchsorted(ref, values), ref.size - 1)
+    return ref[at] == values
+
+
 def _advance_native(prob, tspan, y0, yp0, outputs):
     """:func:`advance` by the native driver (:mod:`~acausal2d.runtime.native`);
     None where IDA failed (the caller repeats the segment on the Python path,
@@ -350,7 +363,7 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     if flag < 0:
         return None
     prob.steps += steps
-    keep = np.isin(T, outputs)
+    keep = _member(T, outputs)
     if flag == 2:
         idx = np.nonzero(roots)[0]
         m = prob.n_rel + prob.n_mon

@@ -2,8 +2,6 @@
 E(t, z) = 0 with some node values held.  Dense or sparse LU with a line
 search; a minimum-norm least-squares step where the Jacobian is singular."""
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 _WATCHDOG = 3   # Newton iterations whose full step is accepted even if the residual grows
 
@@ -27,8 +25,7 @@ def _step(J, r, square):
     if square:
         with np.errstate(all="ignore"):
             try:
-                dz = -(np.linalg.solve(J, r) if isinstance(J, np.ndarray)
-                       else spla.splu(J.tocsc()).solve(r))
+                dz = -(np.linalg.solve(J, r) if isinstance(J, np.ndarray) else _splu(J).solve(r))
             except (np.linalg.LinAlgError, RuntimeError):
                 dz = None
         if dz is not None and np.all(np.isfinite(dz)):
@@ -38,6 +35,31 @@ def _step(J, r, square):
         return None
     with np.errstate(all="ignore"):
         return -np.linalg.lstsq(Jd, r, rcond=1e-12)[0]
+
+
+def _splu(J):
+    import scipy.sparse.linalg as spla    # sparse systems only: a small run needs no scipy
+    return spla.splu(J.tocsc())
+
+
+def _held_rows(held, n, sparse):
+    """The rows z[held] = ... of the Jacobian: CSR where the system is
+    sparse, else a dense array (the same values; no scipy)."""
+    if sparse:
+        import scipy.sparse as sp
+        return sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held)),
+                             shape=(len(held), n))
+    H = np.zeros((len(held), n))
+    np.add.at(H, (np.arange(len(held)), held), 1.0)
+    return H
+
+
+def _stack(J, H):
+    """[J; H] (J dense or CSR; H as :func:`_held_rows` made it)."""
+    if isinstance(J, np.ndarray):
+        return np.vstack([J, H if isinstance(H, np.ndarray) else H.toarray()])
+    import scipy.sparse as sp
+    return sp.vstack([J, H])
 
 
 def _line_search(F, z, dz, norm, it, tol):
@@ -66,8 +88,7 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
     held_values = np.asarray(held_values, dtype=float)
     z[held] = held_values
     n, m = len(z), ev.n_eq + len(held)
-    H = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held)), shape=(len(held), n))
-    Hd = H.toarray() if not ev.sparse else None
+    H = _held_rows(held, n, ev.sparse)
 
     def F(zz):
         return np.concatenate([ev.residual(t, zz, d), zz[held] - held_values])
@@ -78,7 +99,7 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
         if norm < tol:
             return z
         J = ev.jacobian(t, z, d)
-        J = np.vstack([J, Hd]) if isinstance(J, np.ndarray) else sp.vstack([J, H])
+        J = _stack(J, H)
         dz = _step(J, r, m == n)
         found = _line_search(F, z, dz, norm, it, tol) if dz is not None else None
         if found is None:

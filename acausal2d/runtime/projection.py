@@ -13,9 +13,6 @@ values.
 import weakref
 
 import numpy as np
-import scipy.linalg as sla
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
@@ -91,11 +88,20 @@ class Projector:
         order = np.lexsort((self.jrows, self.jcols))
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
-        nnz = len(self.jrows)
         self.native = row_projector(system, self.free, self.n_eq >= DENSE_BELOW) \
             if 0 < len(self.free) == self.n_eq else None
-        self.to_rows = sp.csr_matrix((np.ones(nnz), (self.jrows, np.arange(nnz))),
-                                     shape=(self.n_eq, nnz))
+        self._to_rows = None
+
+    @property
+    def to_rows(self):
+        """The sparse sum of Jacobian entries into their rows (the Python
+        path only; scipy is imported here, not on the native path)."""
+        if self._to_rows is None:
+            import scipy.sparse as sp
+            nnz = len(self.jrows)
+            self._to_rows = sp.csr_matrix((np.ones(nnz), (self.jrows, np.arange(nnz))),
+                                          shape=(self.n_eq, nnz))
+        return self._to_rows
 
     def _map(self, K):
         if K not in self._maps:
@@ -121,6 +127,9 @@ class Projector:
         return None if solve is None else (solve, np.maximum(scale, 1e-300))
 
     def _lu(self, nz):
+        import scipy.linalg as sla        # the Python path only
+        import scipy.sparse as sp
+        import scipy.sparse.linalg as spla
         n = len(self.free)
         with np.errstate(all="ignore"):
             try:

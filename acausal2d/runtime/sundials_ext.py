@@ -18,14 +18,13 @@ import ctypes
 import glob
 import os
 
-from .sundae import sksundae
-
 _lib = None
 
 
 def _library():
     global _lib
     if _lib is None:
+        from .sundae import sksundae      # the Python path only: it imports scipy
         folder = os.path.join(os.path.dirname(sksundae.__file__), "..", "scikit_sundae.libs")
         found = glob.glob(os.path.join(folder, "libsundials_ida-*.so*"))
         _lib = ctypes.CDLL(found[0]) if found else False
