@@ -5,6 +5,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .stacked import StackedJacobian
+
 _WATCHDOG = 3   # Newton iterations whose full step is accepted even if the residual grows
 
 
@@ -66,8 +68,10 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
     held_values = np.asarray(held_values, dtype=float)
     z[held] = held_values
     n, m = len(z), ev.n_eq + len(held)
-    H = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held)), shape=(len(held), n))
-    Hd = H.toarray() if not ev.sparse else None
+    stacked = StackedJacobian.of(ev, held) if ev.sparse and m == n else None
+    if stacked is None:
+        H = sp.csr_matrix((np.ones(len(held)), (np.arange(len(held)), held)), shape=(len(held), n))
+        Hd = H.toarray() if not ev.sparse else None
 
     def F(zz):
         return np.concatenate([ev.residual(t, zz, d), zz[held] - held_values])
@@ -77,9 +81,12 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
     for it in range(max_iter):
         if norm < tol:
             return z
-        J = ev.jacobian(t, z, d)
-        J = np.vstack([J, Hd]) if isinstance(J, np.ndarray) else sp.vstack([J, H])
-        dz = _step(J, r, m == n)
+        if stacked is not None:
+            dz = stacked.step(t, z, d, r)
+        else:
+            J = ev.jacobian(t, z, d)
+            J = np.vstack([J, Hd]) if isinstance(J, np.ndarray) else sp.vstack([J, H])
+            dz = _step(J, r, m == n)
         found = _line_search(F, z, dz, norm, it, tol) if dz is not None else None
         if found is None:
             break
