@@ -303,10 +303,21 @@ class System:
         """Values of the eliminated variables and their derivatives for node
         values Z (one point per row)."""
         offsets = self.alias_offset_fn(p).full().ravel()
+        Z = np.asarray(Z, dtype=float)
         free = self.alias_node >= 0
-        A = np.tile(offsets, (len(Z), 1))
-        A[:, free] += Z[:, self.alias_node[free]] * self.alias_sign[free]
-        return np.hstack([A, Z[:, self.alias_der_node] * self.alias_der_sign])
+        n_der = len(self.alias_der_node)
+        if Z.shape[1] == 0 or len(Z) == 0:
+            A = np.tile(offsets, (len(Z), 1))
+            return np.hstack([A, np.zeros((len(Z), n_der))])
+        # one gather, one product, one sum over all columns (a node column
+        # stands in for the fixed aliases, which are then set to their offsets)
+        node = np.concatenate([np.where(free, self.alias_node, 0), self.alias_der_node])
+        sign = np.concatenate([np.where(free, self.alias_sign, 0.0), self.alias_der_sign])
+        A = Z.take(node.astype(np.intp), axis=1)
+        A *= sign
+        A[:, :len(offsets)] += offsets
+        A[:, np.nonzero(~free)[0]] = offsets[~free]
+        return A
 
 
 def _is_zero(v):
