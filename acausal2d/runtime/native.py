@@ -67,12 +67,26 @@ def enabled():
         cbuild.sundials_libraries() is not None
 
 
+def eliminated(fn):
+    """``fn`` with its common subexpressions merged (``casadi.cse``): the
+    same operations on the same inputs, so the same values to the last bit,
+    in fewer instructions (belt drive: residual 7374 -> 3737, iteration
+    matrix 24662 -> 9408; piston engine 268 -> 256, 322 -> 262).  Functions
+    other than SX functions are returned as they are."""
+    if not fn.is_a("SXFunction"):
+        return fn
+    args = fn.sx_in()
+    outs = fn(*args)
+    outs = [ca.cse(o) for o in (outs if isinstance(outs, (list, tuple)) else [outs])]
+    return ca.Function(fn.name(), args, outs, fn.name_in(), fn.name_out())
+
+
 def _source(form):
     """The C source of a formulation: generated functions, then the driver."""
     cg = ca.CodeGenerator("a2d_model.c", {"with_header": False})
     for fn in (form.res_fn, form.jac_fn, form.event_fn):
         if fn is not None:
-            cg.add(fn)
+            cg.add(eliminated(fn))
     with open(_DRIVER, encoding="utf-8") as fh:
         driver = fh.read()
     flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
@@ -268,8 +282,8 @@ def _projector_library(system):
         if enabled() and cbuild.find_compiler() and \
                 not too_large(system.residual_fn, system.jacobian_fn):
             cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
-            cg.add(system.residual_fn)
-            cg.add(system.jacobian_fn)
+            cg.add(eliminated(system.residual_fn))
+            cg.add(eliminated(system.jacobian_fn))
             with open(_PROJECT, encoding="utf-8") as fh:
                 code = cg.dump() + "\n" + fh.read()
             folder, libs = cbuild.sundials_libraries()
