@@ -10,7 +10,11 @@ it and calls SuperLU's factorization directly.  The arrays handed to SuperLU
 the last bit (event counts and times depend on that rounding)."""
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg._dsolve import _superlu
+import scipy.sparse.linalg as spla
+try:                 # scipy's own binding of SuperLU (what splu calls); private, so guarded
+    from scipy.sparse.linalg._dsolve import _superlu
+except ImportError:  # another scipy layout: the general path of newton.py is used
+    _superlu = None
 
 # what scipy's splu passes with its defaults (SuperLU chooses: COLAMD, threshold 1)
 _OPTIONS = dict(DiagPivotThresh=None, ColPerm=None, PanelSize=None, Relax=None)
@@ -34,6 +38,8 @@ class StackedJacobian:
     def of(cls, ev, held):
         """The cached layout for ``held`` (None where the pattern has
         duplicate entries: the general path sums them)."""
+        if _superlu is None:
+            return None
         cache = ev.__dict__.setdefault("_stacked", {})
         key = tuple(int(h) for h in held)
         if key not in cache:
@@ -46,6 +52,16 @@ class StackedJacobian:
         self.values[:len(self.ev.rows)] = self.ev.J_values(t, z, d)
         return self.values[self.order]
 
+    def _factor(self, data):
+        """SuperLU's factorization of the stacked matrix with values ``data``."""
+        try:
+            return _superlu.gstrf(self.n, len(data), data, self.indices, self.indptr,
+                                  csc_construct_func=sp.csc_array, ilu=False,
+                                  options=_OPTIONS)
+        except TypeError:      # another signature: through splu (same arrays)
+            return spla.splu(sp.csc_array((data, self.indices, self.indptr),
+                                          shape=(self.n, self.n)))
+
     def step(self, t, z, d, r):
         """Newton step -A^-1 r, or the least-squares step where A is
         singular; None where A or r is not finite."""
@@ -54,10 +70,7 @@ class StackedJacobian:
             return None
         with np.errstate(all="ignore"):
             try:
-                lu = _superlu.gstrf(self.n, len(data), data, self.indices, self.indptr,
-                                    csc_construct_func=sp.csc_array, ilu=False,
-                                    options=_OPTIONS)
-                dz = -lu.solve(r)
+                dz = -self._factor(data).solve(r)
             except RuntimeError:
                 dz = None
         if dz is not None and np.all(np.isfinite(dz)):
