@@ -81,6 +81,13 @@ def eliminated(fn):
     return ca.Function(fn.name(), args, outs, fn.name_in(), fn.name_out())
 
 
+def _residual_and_jacobian(system):
+    """E and dE/dz as one function "EJ" (their shared subexpressions once)."""
+    args = system.residual_fn.sx_in()
+    outs = [system.residual_fn(*args), system.jacobian_fn(*args)]
+    return ca.Function("EJ", args, ca.cse(outs))
+
+
 def _source(form):
     """The C source of a formulation: generated functions, then the driver."""
     cg = ca.CodeGenerator("a2d_model.c", {"with_header": False})
@@ -283,7 +290,7 @@ def _projector_library(system):
                 not too_large(system.residual_fn, system.jacobian_fn):
             cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
             cg.add(eliminated(system.residual_fn))
-            cg.add(eliminated(system.jacobian_fn))
+            cg.add(_residual_and_jacobian(system))
             with open(_PROJECT, encoding="utf-8") as fh:
                 code = cg.dump() + "\n" + fh.read()
             folder, libs = cbuild.sundials_libraries()

@@ -96,7 +96,11 @@ static int a2d_eval(a2d_proj *h, int jac, double t, const double *z, const doubl
   h->tbuf[0] = t;
   h->arg[0] = h->tbuf; h->arg[1] = z; h->arg[2] = p; h->arg[3] = d;
   h->res[0] = out;
-  return jac ? dEdz(h->arg, h->res, h->iw, h->w, 0) : E(h->arg, h->res, h->iw, h->w, 0);
+  if (jac) {            /* E and dE/dz in one pass (shared subexpressions): E into h->e */
+    h->res[0] = h->e; h->res[1] = out;
+    return EJ(h->arg, h->res, h->iw, h->w, 0);
+  }
+  return E(h->arg, h->res, h->iw, h->w, 0);
 }
 
 /* dE/dz at z: the row's equation scales, and (if factor) the LU of dE/dz_free */
@@ -135,13 +139,14 @@ static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
   return SUNLinSolSetup(h->LS, h->A) ? -1 : 0;
 }
 
-/* Newton on one row with the current LU: iterations used, or -1 */
+/* Newton on one row with the current LU, from the z at which a2d_jacobian
+ * left E(z) in h->e: iterations used, or -1 */
 static int a2d_newton(a2d_proj *h, double t, double *z, const double *p, const double *d,
                       double tol, int max_iter) {
   int it, i, c, n = h->n_eq;
   for (it = 0; it <= max_iter; ++it) {
     int done = 1;
-    if (a2d_eval(h, 0, t, z, p, d, h->e)) return -1;
+    if (it > 0 && a2d_eval(h, 0, t, z, p, d, h->e)) return -1;
     for (i = 0; i < n; ++i) {
       if (!isfinite(h->e[i])) return -1;
       if (fabs(h->e[i]) > tol * h->scale[i]) done = 0;
@@ -187,7 +192,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   int r, c, fresh = 0, have = 0, pred = 0, m_all = m;
   double *delta = (double *)calloc(n_var + 1, sizeof(double));
   E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
-  dEdz_work(&a1, &r1, &i1, &w1);
+  EJ_work(&a1, &r1, &i1, &w1);
   if (a1 > sz_arg) sz_arg = a1;
   if (r1 > sz_res) sz_res = r1;
   if (i1 > sz_iw) sz_iw = i1;
