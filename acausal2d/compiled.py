@@ -241,7 +241,7 @@ class CompiledModel:
         log.stats.compile_time = self.compile_time
         s = self.system
         res = Result(log.times, s.node_names, log.nodes,
-                     s.alias_names + s.alias_der_names, s.alias_values(log.nodes, p),
+                     s.alias_names + s.alias_der_names, s.alias_columns(log.nodes, p),
                      [name for name, *_ in s.parameters], p, log.events,
                      log.stats.as_dict(), self.outputs, self)
         res.add_columns(derived_columns(res, self.derived))

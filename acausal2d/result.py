@@ -25,6 +25,11 @@ class Result:
         self._index = {}
         self._cols = []
         for names, values in ((node_names, node_values), (alias_names, alias_values)):
+            if hasattr(values, "column"):      # computed when first read
+                for k, name in enumerate(names):
+                    self._index[name] = len(self._cols)
+                    self._cols.append(_Lazy(values, k))
+                continue
             values = np.asarray(values).reshape(len(self.time), -1) if len(names) else None
             for k, name in enumerate(names):
                 self._index[name] = len(self._cols)
@@ -57,6 +62,8 @@ class Result:
             return self.time
         k = self._index.get(name)
         if k is not None:
+            if isinstance(self._cols[k], _Lazy):
+                self._cols[k] = self._cols[k].values()
             return self._cols[k]
         if name in self.parameters:
             return np.full(len(self.time), self.parameters[name])
@@ -141,3 +148,14 @@ class Result:
         :func:`acausal2d.analysis.poles.transfer`."""
         from .analysis.poles import transfer
         return transfer(self, q, p, orders)
+
+
+class _Lazy:
+    """A column of a Result computed when first read (``source.column(k)``)."""
+    __slots__ = ("source", "k")
+
+    def __init__(self, source, k):
+        self.source, self.k = source, k
+
+    def values(self):
+        return self.source.column(self.k)

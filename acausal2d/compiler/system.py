@@ -300,14 +300,55 @@ class System:
                         name, given, name, by_eq, "\n".join("  - " + e for e in eqs), name,
                         by_eq))
 
+    def alias_columns(self, Z, p):
+        """The columns of :meth:`alias_values` as an :class:`AliasColumns`:
+        each is computed when it is first read (a run's Result reads few)."""
+        return AliasColumns(self, np.asarray(Z, dtype=float),
+                            self.alias_offset_fn(p).full().ravel())
+
     def alias_values(self, Z, p):
         """Values of the eliminated variables and their derivatives for node
         values Z (one point per row)."""
         offsets = self.alias_offset_fn(p).full().ravel()
+        Z = np.asarray(Z, dtype=float)
         free = self.alias_node >= 0
-        A = np.tile(offsets, (len(Z), 1))
-        A[:, free] += Z[:, self.alias_node[free]] * self.alias_sign[free]
-        return np.hstack([A, Z[:, self.alias_der_node] * self.alias_der_sign])
+        n_der = len(self.alias_der_node)
+        if Z.shape[1] == 0 or len(Z) == 0:
+            A = np.tile(offsets, (len(Z), 1))
+            return np.hstack([A, np.zeros((len(Z), n_der))])
+        # one gather, one product, one sum over all columns (a node column
+        # stands in for the fixed aliases, which are then set to their offsets)
+        node = np.concatenate([np.where(free, self.alias_node, 0), self.alias_der_node])
+        sign = np.concatenate([np.where(free, self.alias_sign, 0.0), self.alias_der_sign])
+        A = Z.take(node.astype(np.intp), axis=1)
+        A *= sign
+        A[:, :len(offsets)] += offsets
+        A[:, np.nonzero(~free)[0]] = offsets[~free]
+        return A
+
+
+class AliasColumns:
+    """The eliminated variables' and derivatives' values at node rows Z,
+    column by column (the same operations as :meth:`System.alias_values`,
+    so the same values)."""
+
+    def __init__(self, system, Z, offsets):
+        self.Z, self.offsets = Z, offsets
+        s = system
+        self.node = np.concatenate([s.alias_node, s.alias_der_node]).astype(int)
+        self.sign = np.concatenate([s.alias_sign, s.alias_der_sign])
+        self.n_alias = len(offsets)
+
+    def __len__(self):
+        return len(self.node)
+
+    def column(self, k):
+        """Values of column k over the rows of Z (a new array)."""
+        if k >= self.n_alias:
+            return self.Z[:, self.node[k]] * self.sign[k]
+        if self.node[k] < 0:
+            return np.full(len(self.Z), self.offsets[k])
+        return self.Z[:, self.node[k]] * self.sign[k] + self.offsets[k]
 
 
 def _is_zero(v):

@@ -43,6 +43,11 @@ class Evaluator:
         """E(t, z, p, d) (a new array)."""
         return self._call(self.E, t, z, d).copy()
 
+    def J_values(self, t, z, d):
+        """The nonzeros of dE/dz at (rows, cols) (a buffer the next call
+        overwrites)."""
+        return self._call(self.J, t, z, d)
+
     def jacobian(self, t, z, d, dense=None):
         """dE/dz: a dense array (small systems, or ``dense=True``) or a CSR
         matrix."""

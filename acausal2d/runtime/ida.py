@@ -336,12 +336,11 @@ def _passes(sol, prob, hit):
 
 def _tspan(t, outputs, t_stop):
     """The times of one IDA call: the start, the output times, the stop time."""
-    tspan = [t] + list(outputs)
-    if not len(outputs) or outputs[-1] < t_stop:
-        tspan.append(t_stop)
-    if len(tspan) == 2:       # two times would make IDA return its internal steps
-        tspan.insert(1, 0.5 * (t + t_stop))
-    return np.array(tspan)
+    outputs = np.asarray(outputs, dtype=float)
+    end = [t_stop] if not len(outputs) or outputs[-1] < t_stop else []
+    if len(outputs) + len(end) == 1:   # two times would make IDA return its internal steps
+        return np.array([t, 0.5 * (t + t_stop)] + [float(x) for x in outputs] + end)
+    return np.concatenate([[t], outputs, end])
 
 
 def _member(values, of):

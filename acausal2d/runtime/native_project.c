@@ -37,7 +37,7 @@ typedef struct {
   const int *colind, *row;      /* CCS pattern of dE/dz (given: generated code compresses dense ones) */
   const double *nominal;        /* nominal of each unknown */
   double *jnz, *M, *e, *scale, *z0, tbuf[1];
-  int *piv;
+  int *piv, *lp, *li, *up, *ui;   /* pivots; nonzero pattern of L and U */
   int sparse, set_up;           /* SuperLU_MT instead of the dense LU; factored once */
   SUNContext ctx;
   N_Vector x, b;
@@ -67,13 +67,27 @@ static int a2d_lu(double *M, int n, int *piv) {   /* column-major, in place */
   return 0;
 }
 
-static void a2d_lu_solve(const double *M, int n, const int *piv, double *b) {
-  int i, k;
+/* Nonzeros of each column of L (below the diagonal) and U (above it), in
+ * ascending row order: the solves skip the exact zeros of the factors (the
+ * rows of a mechanism's Jacobian are sparse), same operations otherwise. */
+static void a2d_lu_pattern(const double *M, int n, int *lp, int *li, int *up, int *ui) {
+  int i, k, ql = 0, qu = 0;
+  for (k = 0; k < n; ++k) {
+    lp[k] = ql; up[k] = qu;
+    for (i = k + 1; i < n; ++i) if (M[k * n + i] != 0.0) li[ql++] = i;
+    for (i = 0; i < k; ++i) if (M[k * n + i] != 0.0) ui[qu++] = i;
+  }
+  lp[n] = ql; up[n] = qu;
+}
+
+static void a2d_lu_solve(const double *M, int n, const int *piv, const int *lp,
+                         const int *li, const int *up, const int *ui, double *b) {
+  int q, k;
   for (k = 0; k < n; ++k) { if (piv[k] != k) { double t = b[k]; b[k] = b[piv[k]]; b[piv[k]] = t; } }
-  for (k = 0; k < n; ++k) for (i = k + 1; i < n; ++i) b[i] -= M[k * n + i] * b[k];
+  for (k = 0; k < n; ++k) for (q = lp[k]; q < lp[k + 1]; ++q) b[li[q]] -= M[k * n + li[q]] * b[k];
   for (k = n - 1; k >= 0; --k) {
     b[k] /= M[k * n + k];
-    for (i = 0; i < k; ++i) b[i] -= M[k * n + i] * b[k];
+    for (q = up[k]; q < up[k + 1]; ++q) b[ui[q]] -= M[k * n + ui[q]] * b[k];
   }
 }
 
@@ -82,7 +96,11 @@ static int a2d_eval(a2d_proj *h, int jac, double t, const double *z, const doubl
   h->tbuf[0] = t;
   h->arg[0] = h->tbuf; h->arg[1] = z; h->arg[2] = p; h->arg[3] = d;
   h->res[0] = out;
-  return jac ? dEdz(h->arg, h->res, h->iw, h->w, 0) : E(h->arg, h->res, h->iw, h->w, 0);
+  if (jac) {            /* E and dE/dz in one pass (shared subexpressions): E into h->e */
+    h->res[0] = h->e; h->res[1] = out;
+    return EJ(h->arg, h->res, h->iw, h->w, 0);
+  }
+  return E(h->arg, h->res, h->iw, h->w, 0);
 }
 
 /* dE/dz at z: the row's equation scales, and (if factor) the LU of dE/dz_free */
@@ -111,19 +129,24 @@ static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
   if (factor && h->sparse) sptr[n] = q;
   for (k = 0; k < n; ++k) if (!(h->scale[k] > 1e-300)) h->scale[k] = 1e-300;
   if (!factor) return 0;
-  if (!h->sparse) return a2d_lu(h->M, n, h->piv);
+  if (!h->sparse) {
+    if (a2d_lu(h->M, n, h->piv)) return -1;
+    a2d_lu_pattern(h->M, n, h->lp, h->li, h->up, h->ui);
+    return 0;
+  }
   for (k = 0; k < q; ++k) if (!isfinite(sdata[k])) return -1;
   h->set_up = 1;
   return SUNLinSolSetup(h->LS, h->A) ? -1 : 0;
 }
 
-/* Newton on one row with the current LU: iterations used, or -1 */
+/* Newton on one row with the current LU, from the z at which a2d_jacobian
+ * left E(z) in h->e: iterations used, or -1 */
 static int a2d_newton(a2d_proj *h, double t, double *z, const double *p, const double *d,
                       double tol, int max_iter) {
   int it, i, c, n = h->n_eq;
   for (it = 0; it <= max_iter; ++it) {
     int done = 1;
-    if (a2d_eval(h, 0, t, z, p, d, h->e)) return -1;
+    if (it > 0 && a2d_eval(h, 0, t, z, p, d, h->e)) return -1;
     for (i = 0; i < n; ++i) {
       if (!isfinite(h->e[i])) return -1;
       if (fabs(h->e[i]) > tol * h->scale[i]) done = 0;
@@ -135,7 +158,7 @@ static int a2d_newton(a2d_proj *h, double t, double *z, const double *p, const d
       if (SUNLinSolSolve(h->LS, h->A, h->x, h->b, 0.0)) return -1;
       memcpy(h->e, N_VGetArrayPointer(h->x), sizeof(double) * n);
     } else {
-      a2d_lu_solve(h->M, n, h->piv, h->e);
+      a2d_lu_solve(h->M, n, h->piv, h->lp, h->li, h->up, h->ui, h->e);
     }
     for (c = 0; c < h->n_var; ++c) if (h->col_of[c] >= 0) z[c] -= h->e[h->col_of[c]];
   }
@@ -169,7 +192,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   int r, c, fresh = 0, have = 0, pred = 0, m_all = m;
   double *delta = (double *)calloc(n_var + 1, sizeof(double));
   E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
-  dEdz_work(&a1, &r1, &i1, &w1);
+  EJ_work(&a1, &r1, &i1, &w1);
   if (a1 > sz_arg) sz_arg = a1;
   if (r1 > sz_res) sz_res = r1;
   if (i1 > sz_iw) sz_iw = i1;
@@ -185,6 +208,10 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   h.scale = (double *)malloc(sizeof(double) * (n_eq + 1));
   h.z0 = (double *)malloc(sizeof(double) * (n_var + 1));
   h.piv = (int *)malloc(sizeof(int) * (n_eq + 1));
+  h.lp = (int *)malloc(sizeof(int) * (n_eq + 1));
+  h.up = (int *)malloc(sizeof(int) * (n_eq + 1));
+  h.li = (int *)malloc(sizeof(int) * ((sparse ? 0 : n_eq * n_eq) + 1));
+  h.ui = (int *)malloc(sizeof(int) * ((sparse ? 0 : n_eq * n_eq) + 1));
   h.arg = (const casadi_real **)calloc(sz_arg + 1, sizeof(casadi_real *));
   h.res = (casadi_real **)calloc(sz_res + 1, sizeof(casadi_real *));
   h.iw = (casadi_int *)calloc(sz_iw + 1, sizeof(casadi_int));
@@ -216,6 +243,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   for (r = m; r < m_all; ++r) ok[r] = 0;
   free(delta);
   free(h.jnz); free(h.M); free(h.e); free(h.scale); free(h.z0); free(h.piv);
+  free(h.lp); free(h.up); free(h.li); free(h.ui);
   free(h.arg); free(h.res); free(h.iw); free(h.w);
   return 0;
 }

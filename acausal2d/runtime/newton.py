@@ -3,6 +3,7 @@ E(t, z) = 0 with some node values held.  Dense or sparse LU with a line
 search; a minimum-norm least-squares step where the Jacobian is singular."""
 import numpy as np
 
+
 _WATCHDOG = 3   # Newton iterations whose full step is accepted even if the residual grows
 
 
@@ -88,7 +89,12 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
     held_values = np.asarray(held_values, dtype=float)
     z[held] = held_values
     n, m = len(z), ev.n_eq + len(held)
-    H = _held_rows(held, n, ev.sparse)
+    stacked = None
+    if ev.sparse and m == n:
+        from .stacked import StackedJacobian       # scipy's SuperLU: sparse systems only
+        stacked = StackedJacobian.of(ev, held)
+    if stacked is None:
+        H = _held_rows(held, n, ev.sparse)
 
     def F(zz):
         return np.concatenate([ev.residual(t, zz, d), zz[held] - held_values])
@@ -98,9 +104,11 @@ def solve_consistent(ev, t, z0, d, held, held_values, tol=1e-10, max_iter=60):
     for it in range(max_iter):
         if norm < tol:
             return z
-        J = ev.jacobian(t, z, d)
-        J = _stack(J, H)
-        dz = _step(J, r, m == n)
+        if stacked is not None:
+            dz = stacked.step(t, z, d, r)
+        else:
+            J = _stack(ev.jacobian(t, z, d), H)
+            dz = _step(J, r, m == n)
         found = _line_search(F, z, dz, norm, it, tol) if dz is not None else None
         if found is None:
             break

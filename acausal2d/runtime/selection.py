@@ -12,28 +12,30 @@ SINGULAR_CONDITION = 1e-4    # relative smallest singular value of a singular bl
 
 
 def select(system, ev, t, z, d):
-    """Dummy-derivative selection at the point z (dense Jacobian below
-    :data:`~acausal2d.compiler.index1.SPARSE_FROM` unknowns: the same
-    blocks, and no scipy on a small model's run)."""
-    if ev.sparse:
-        J = ev.jacobian(t, z, d, dense=False).tocsr()
-        bad = np.unique(J.nonzero()[0][~np.isfinite(J.data)]) \
-            if not np.all(np.isfinite(J.data)) else None
+    """Dummy-derivative selection at the point z."""
+    J = ev.jacobian(t, z, d, dense=not ev.sparse)    # dense below SPARSE_FROM: no scipy per block
+    bad = ~np.isfinite(J if isinstance(J, np.ndarray) else J.data)
+    if np.any(bad):
+        _non_finite(system, ev, t, J)
+    if isinstance(J, np.ndarray):
+        def jac(eqs, nodes):
+            return J[np.ix_(list(eqs), list(nodes))]
+    else:
+        J = J.tocsr()
 
         def jac(eqs, nodes):
             return J[list(eqs)][:, list(nodes)].toarray()
-    else:
-        J = ev.jacobian(t, z, d, dense=True)
-        bad = np.unique(np.nonzero(~np.isfinite(J))[0]) if not np.all(np.isfinite(J)) else None
-
-        def jac(eqs, nodes):
-            return J[np.ix_(np.asarray(list(eqs), dtype=int), np.asarray(list(nodes), dtype=int))]
-    if bad is not None:
-        marks = np.zeros(system.structure.n_eq)
-        marks[bad] = np.nan
-        raise SimulationError("At t=%.6g the derivatives of %s" % (
-            t, non_finite(system, marks, ev.E.args[2])), time=t)
     return select_dummies(system.structure, system.priority, system.nominal, jac)
+
+
+def _non_finite(system, ev, t, J):
+    """Raise the error naming the equations whose derivatives are inf or NaN."""
+    rows = np.unique(np.nonzero(~np.isfinite(J))[0]) if isinstance(J, np.ndarray) else \
+        np.unique(J.tocsr().nonzero()[0][~np.isfinite(J.tocsr().data)])
+    marks = np.zeros(system.structure.n_eq)
+    marks[rows] = np.nan
+    raise SimulationError("At t=%.6g the derivatives of %s" % (
+        t, non_finite(system, marks, ev.E.args[2])), time=t)
 
 
 def block_conditioning(system, ev, t, z, d, level):

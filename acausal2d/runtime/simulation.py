@@ -208,13 +208,14 @@ class Simulation:
         except Exception as exc:       # scikit-sundae raises on bad input at the start
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
-        self.out.extend(zip(T.tolist(), projector.project(T, Y, self.d)))
+        rows = projector.project(T, Y, self.d)
+        self.out.extend(zip(T.tolist(), rows))
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
         self.stats.nfev += nfev
         self.stats.njev += njev
         self._record_passes(outcome.passes)
-        self._scan(form, n0)
+        self._scan(form, n0, T, rows)
         return outcome
 
     def _stop_and_outputs(self):
@@ -236,13 +237,15 @@ class Simulation:
             worst = worst_level(self.system, self.ev, self.selection, t, y, self.d, level)
             self.singular.append(singularity(self.system, t, "singular position passed", worst))
 
-    def _scan(self, form, n0):
-        """Singular positions passed between the new output points."""
+    def _scan(self, form, n0, T, Z):
+        """Singular positions passed between the new output points (times
+        T, rows Z, after the row n0 - 1 of ``out``)."""
         if len(self.out) - n0 + 1 < 3:
             return
-        seg = self.out[max(n0 - 1, 0):]
-        T = np.array([t for t, _ in seg])
-        Z = np.array([z for _, z in seg])
+        if n0 > 0:
+            T = np.concatenate([[self.out[n0 - 1][0]], T])
+            Z = np.vstack([self.out[n0 - 1][1], Z])
+        T, Z = np.asarray(T, dtype=float), np.asarray(Z, dtype=float)
         sizes = sing.scan_singular_positions(self.system, self.ev, form, self.selection, self.p,
                                              self.d, T, Z, self.singular)
         if 0 in sizes:

@@ -74,10 +74,12 @@ def _passed(row, n, sign_changes):
     scale = np.max(np.abs(row))
     if scale == 0:
         return []
-    a, sign = np.abs(row) / scale, np.sign(row)
-    return [i for i in range(1, n - 1)
-            if (sign_changes and sign[i] != sign[i + 1] and sign[i] != 0)
-            or (a[i] < 1e-3 and a[i] <= a[i - 1] and a[i] < a[i + 1])]
+    a, sign = np.abs(row[:n]) / scale, np.sign(row[:n])
+    mid = a[1:-1]
+    hit = (mid < 1e-3) & (mid <= a[:-2]) & (mid < a[2:])
+    if sign_changes:
+        hit |= (sign[1:-1] != sign[2:]) & (sign[1:-1] != 0)
+    return (np.nonzero(hit)[0] + 1).tolist()
 
 
 def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found):
