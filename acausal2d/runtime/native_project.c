@@ -237,7 +237,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
     ok[r] = 1;
     for (c = 0; c < n_var; ++c) delta[c] = z[c] - h.z0[c];
     pred = 1;
-    if (its > 3) have = 0;        /* slow: a new LU at the next row */
+    if (its > max_iter / 2) have = 0;   /* slow: a new LU at the next row (max_iter 6: after 3) */
   }
   if (sparse) a2d_sparse_free(&h);
   for (r = m; r < m_all; ++r) ok[r] = 0;

@@ -28,6 +28,13 @@ unknowns, 5000 rows: dense C 1.27, mapped + scipy sparse 0.60."""
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
 SIMPLIFIED_ITERATIONS = 6
+LONG_REUSE_FROM = 150           # dense C rows from this size: the reused LU for up to 16 iterations
+"""The C projector takes a new LU after a row that needed more than half
+its iterations with the reused one.  Small systems and SuperLU_MT: at most
+6 iterations (a new LU after 3); dense systems of 150 to 299 unknowns: up
+to 16 (after 8), since there a dense LU costs far more than a residual
+(compressor, 202 unknowns: rows 0.205 -> 0.155 s CPU; on the piston engine,
+the belt drive and the chain 16 iterations were 8-15% slower)."""
 
 
 _MAPS = weakref.WeakKeyDictionary()     # system -> its mapped functions
@@ -90,6 +97,8 @@ class Projector:
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         self.native = row_projector(system, self.free, self.n_eq >= DENSE_BELOW) \
             if 0 < len(self.free) == self.n_eq else None
+        self.native_iterations = 16 if LONG_REUSE_FROM <= self.n_eq < DENSE_BELOW \
+            else SIMPLIFIED_ITERATIONS
         self._to_rows = None
 
     @property
@@ -206,7 +215,7 @@ class Projector:
         if not len(self.free) or not len(T):
             return out
         if self.native is not None:
-            out, ok = self.native(T, out, self.p, d, RES_TOL, SIMPLIFIED_ITERATIONS)
+            out, ok = self.native(T, out, self.p, d, RES_TOL, self.native_iterations)
             if ok.all():
                 return out
             rest = np.nonzero(~ok)[0]
