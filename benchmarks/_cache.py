@@ -27,8 +27,7 @@ def cold_run(script, *args):
     """(wall, CPU of the process and its children) of ``python script args``
     in a fresh process with empty caches (native libraries, pulley design)."""
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, ACAUSAL2D_CACHE_DIR=os.path.join(tmp, "cbuild"),
-                   ACAUSAL2D_CACHE=os.path.join(tmp, "design"))
+        env = dict(os.environ, ACAUSAL2D_CACHE_DIR=tmp)
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         subprocess.run([sys.executable, os.path.abspath(script)] + list(args), env=env,

@@ -16,7 +16,7 @@ gauss_newton = load_model_class("noncircular_belt_drive.py", "gauss_newton")
 
 @pytest.fixture
 def cache_folder(tmp_path, monkeypatch):
-    monkeypatch.setenv("ACAUSAL2D_CACHE", str(tmp_path))
+    monkeypatch.setenv("ACAUSAL2D_CACHE_DIR", str(tmp_path))
     return tmp_path
 
 
@@ -48,7 +48,7 @@ def test_corrupt_entry_is_recomputed(cache_folder):
 def test_unwritable_folder_only_costs_the_computation(tmp_path, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("a file where the folder should be")
-    monkeypatch.setenv("ACAUSAL2D_CACHE", str(blocker / "sub"))
+    monkeypatch.setenv("ACAUSAL2D_CACHE_DIR", str(blocker / "sub"))
     assert cache.cached_arrays("t", 1, lambda: {"x": np.ones(1)})["x"][0] == 1.0
 
 

@@ -2,8 +2,10 @@
 processes (e.g. the synthesis of a non-circular pulley pair), keyed by a
 hash of everything they depend on.
 
-The folder is ``$ACAUSAL2D_CACHE``, else ``$XDG_CACHE_HOME/acausal2d``,
-else ``~/.cache/acausal2d``.  A missing, unreadable or corrupt entry is
+The folder is ``$ACAUSAL2D_CACHE_DIR``, else ``$XDG_CACHE_HOME/acausal2d``,
+else ``~/.cache/acausal2d`` (the compiled C of the native runtime lives in
+its ``cbuild`` subfolder, or in ``$ACAUSAL2D_CACHE_DIR`` itself:
+:func:`acausal2d.runtime.cbuild.cache_dir`).  A missing, unreadable or corrupt entry is
 recomputed; a folder that cannot be written only costs the time of the
 computation.  Entries are written atomically (:func:`~.files.atomic_path`).
 """
@@ -19,8 +21,9 @@ from .files import atomic_path
 
 def cache_dir():
     """The folder of the disk cache (see the module docstring)."""
-    if os.environ.get("ACAUSAL2D_CACHE"):
-        return os.environ["ACAUSAL2D_CACHE"]
+    from ..runtime.cbuild import CACHE_ENV
+    if os.environ.get(CACHE_ENV):
+        return os.environ[CACHE_ENV]
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     return os.path.join(base, "acausal2d")
 
