@@ -96,3 +96,31 @@ def test_python_path_still_imports_scikit_sundae():
     assert lines[0] == "False"
     assert "sksundae" in lines[1] and "scipy.optimize" not in lines[1]
     assert int(lines[2]) == 201
+
+
+_SPARSE_GRID = r"""
+import sys
+import numpy as np
+import acausal2d
+cm = acausal2d.compile_model(acausal2d.load_model(%r))
+fine = cm.simulate(stop_time=10.0, rtol=1e-8, intervals=5000)
+coarse = cm.simulate(output_times=[0.0, 10.0], rtol=1e-8)
+print(sorted(m for m in sys.modules if m.startswith("sksundae")))
+print(coarse.stats["steps"] > 500)
+print(abs(coarse["revoluteDrive.phi"][-1] - fine["revoluteDrive.phi"][-1]))
+"""
+
+
+def test_a_used_up_step_budget_stays_on_the_native_path():
+    """One output interval that takes more than MAX_STEPS (500) IDA steps
+    (the piston engine's 10 s in one interval: about 1500 steps): the native
+    loop reports the used-up budget as the Python path does and the run goes
+    on natively (before, the whole segment was repeated through
+    scikit-sundae); the end point agrees with a 5000-interval run."""
+    import pytest
+    if not _native_available():
+        pytest.skip("no C compiler or another SUNDIALS: the run takes the Python path")
+    lines = _run(_SPARSE_GRID % os.path.join(ROOT, "models", "piston_engine.py"))
+    assert lines[0] == "[]"
+    assert lines[1] == "True"
+    assert float(lines[2]) < 1e-5

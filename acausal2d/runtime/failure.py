@@ -14,11 +14,10 @@ import numpy as np
 from ..errors import SimulationError
 from . import singularities as sing
 from .diagnose import non_finite
-from .ida import MAX_STEPS
+from .ida import MAX_STEPS, TOO_MUCH_WORK
 from .newton import NoConvergence, solve_consistent
 
 _STALLED = 20         # steps 1e6 times shorter than the longest, in a row: IDA stalls
-TOO_MUCH_WORK = -1    # IDA's status when it used up its steps for one output interval
 
 
 def _take_steps(solver, form, start, t_next, keep, max_steps):

@@ -30,6 +30,7 @@ from .sundials_ext import ida_memory, suppress_algebraic  # noqa: E402
 
 ALGEBRAIC_ATOL = 1e10    # fallback: an absolute tolerance that leaves an unknown untested
 MAX_STEPS = 500       # IDA steps per output interval before the runtime looks at the run
+TOO_MUCH_WORK = -1    # IDA's status when it used up MAX_STEPS for one output interval
 MONITOR_THRESHOLD = 0.25    # a watched block whose |det| dropped 4x: re-check the selection
 NEAR_SINGULAR = 1e-3        # the highest block's |det| this small: a singular position ahead
 
@@ -357,13 +358,19 @@ def _member(values, of):
 def _advance_native(prob, tspan, y0, yp0, outputs):
     """:func:`advance` by the native driver (:mod:`~acausal2d.runtime.native`);
     None where IDA failed (the caller repeats the segment on the Python path,
-    which reports the failure)."""
+    which reports the failure), except for a used-up step budget, which is
+    a :class:`Failed` outcome as on the Python path (the runtime looks at
+    the run and goes on)."""
     flag, T, Y, passes, last, roots, nfev, njev, steps = prob.native.run(tspan, y0, yp0)
-    if flag < 0:
+    budget = flag == TOO_MUCH_WORK and last[0] > tspan[0]
+    if flag < 0 and not budget:
         return None
     prob.steps += steps
     keep = _member(T, outputs)
-    if flag == 2:
+    if budget:       # only the step budget of one output interval: as the Python path reports it
+        outcome = Failed(*last, TOO_MUCH_WORK, "IDA took %d steps without reaching the next "
+                         "output time" % MAX_STEPS)
+    elif flag == 2:
         idx = np.nonzero(roots)[0]
         m = prob.n_rel + prob.n_mon
         outcome = RootFound(last[0], last[1], last[2], [int(k) for k in idx if k < prob.n_rel],
