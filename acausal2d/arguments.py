@@ -4,7 +4,6 @@
 an :class:`~acausal2d.errors.Acausal2dError` that names the argument and
 says what it takes, never a raw Python or numpy error from deep inside."""
 import inspect
-import numbers
 import os
 
 import numpy as np
@@ -56,15 +55,6 @@ def check_load(path, name, kwargs):
                              "not %r" % (name,))
 
 
-def _number(function, name, value, positive=False):
-    if value is None:
-        return
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or value != value \
-            or (positive and not value > 0):
-        raise Acausal2dError("%s: %s must be a %snumber, not %r"
-                             % (function, name, "positive " if positive else "", value))
-
-
 def _check_vary(vary):
     if vary is None:
         return
@@ -83,13 +73,15 @@ def _check_vary(vary):
 
 def check_sweep(vary, points, options):
     """``sweep``: vary a dict, points a list of dicts, numeric options numbers."""
+    from .compiled import number
     _check_vary(vary)
     if points is not None and (isinstance(points, (str, dict)) or not hasattr(points, "__iter__")
                                or not all(isinstance(p, dict) for p in points)):
         raise Acausal2dError("sweep: points must be a list of {'comp.param': value} dicts, "
                              "not %r" % (points,))
     for name in ("stop_time", "rtol", "intervals", "at"):
-        _number("sweep", name, options.get(name))
+        if options.get(name) is not None:
+            number("sweep: " + name, options[name])
     workers = options.get("workers")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):

@@ -190,14 +190,14 @@ class CompiledModel:
         """(output times, rtol) from the arguments and the model's
         ``experiment``, checked."""
         exp = _experiment(self.model)
-        rtol = float(_number("rtol", rtol if rtol is not None else exp.get("rtol", 1e-6)))
+        rtol = float(number("rtol", rtol if rtol is not None else exp.get("rtol", 1e-6)))
         atol = _check_tolerances(rtol, atol, self.system.node_names)
         if output_times is None:
-            stop = _number("stop_time", stop_time if stop_time is not None
+            stop = number("stop_time", stop_time if stop_time is not None
                            else exp.get("stop_time", 1.0))
-            intervals = _number("intervals", intervals if intervals is not None
+            intervals = number("intervals", intervals if intervals is not None
                                 else exp.get("intervals", 500))
-            output_times = _output_grid(_number("start_time", start_time), stop, intervals,
+            output_times = _output_grid(number("start_time", start_time), stop, intervals,
                                         len(self.names))
         output_times = _times(output_times)
         _check_clock(output_times)
@@ -322,8 +322,9 @@ MAX_RESULT_BYTES = 4e9
 _EXPERIMENT_KEYS = ("stop_time", "rtol", "intervals")
 
 
-def _number(name, value):
-    """A finite number, or the project's error naming the setting."""
+def number(name, value):
+    """``value`` if it is a finite number, else the project's error naming
+    the setting ``name`` (used by ``simulate``'s settings and ``sweep``)."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise Acausal2dError("%s must be a number, got %r" % (name, value))
     if not np.isfinite(value):
@@ -343,7 +344,7 @@ def _experiment(model):
                                    % (type(model).__name__, ", ".join(map(repr, unknown)),
                                       ", ".join(_EXPERIMENT_KEYS)))
     for key, value in exp.items():
-        _number("%s: experiment['%s']" % (type(model).__name__, key), value)
+        number("%s: experiment['%s']" % (type(model).__name__, key), value)
     return dict(exp)
 
 
