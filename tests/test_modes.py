@@ -4,6 +4,7 @@ pendulum's M and K, and A against a finite-difference linearisation of the
 run's right-hand side (states perturbed, the nonlinear equations solved by
 the runtime's Newton for every perturbation)."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -338,25 +339,9 @@ def test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia(degrees
         math.sqrt(fb.C_SHAFT / fb.reduced_inertia(phi)) / (2 * math.pi), rel=1e-9)
 
 
-class ForcedMass(Component):
-    """A top-level input u pushes a mass on a spring: x' = v, v' = (u - c s) / m."""
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.u = acausal2d.RealInput()
-        self.wall = translational.Fixed()
-        self.spring = translational.Spring(c=100.0)
-        self.mass = translational.Mass(m=4.0, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
-        self.force = translational.Force()
-        self.connect(self.wall.flange, self.spring.flange_a)
-        self.connect(self.spring.flange_b, self.mass.flange_a)
-        self.connect(self.force.flange, self.mass.flange_b)
-        self.connect(self.u, self.force.f_in)
-
-
 def test_top_level_input_becomes_a_parameter_input():
     from acausal2d.language.inputs import bind_inputs
-    model = ForcedMass()
+    model = acausal2d.load_model(os.path.join(os.path.dirname(__file__), "data", "forced_mass.py"))
     assert bind_inputs(model, {"u": 20.0}) == {"u": "u_source.k"}
     cm = acausal2d.compile_model(model)
     lin = cm.linearize(equilibrium=True, inputs=["u"], outputs=["mass.s", "spring.f"])

@@ -107,33 +107,12 @@ def test_at_with_equilibrium_and_a_bad_time(tmp_path, capsys):
     assert code == 2 and "--at must be a time >= 0" in capsys.readouterr().err
 
 
-FORCED_MASS = '''
-from acausal2d import Component, RealInput, start
-from acausal2d.library import translational
-
-
-class ForcedMass(Component):
-    outputs = ["mass.s"]
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.u = RealInput()
-        self.wall = translational.Fixed()
-        self.spring = translational.Spring(c=100.0)
-        self.mass = translational.Mass(m=4.0, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
-        self.force = translational.Force()
-        self.connect(self.wall.flange, self.spring.flange_a)
-        self.connect(self.spring.flange_b, self.mass.flange_a)
-        self.connect(self.force.flange, self.mass.flange_b)
-        self.connect(self.u, self.force.f_in)
-'''
+FORCED_MASS = os.path.join(ROOT, "tests", "data", "forced_mass.py")
 
 
 def test_linearize_with_a_top_level_input(tmp_path, capsys):
-    path = tmp_path / "forced_mass.py"
-    path.write_text(FORCED_MASS)
     out = str(tmp_path / "lin")
-    code = cli.main(["linearize", str(path), "--equilibrium", "--set", "u_source.k=20",
+    code = cli.main(["linearize", FORCED_MASS, "--equilibrium", "--set", "u_source.k=20",
                      "--inputs", "u", "--out", out])
     assert code == 0, capsys.readouterr()
     data = json.load(open(os.path.join(out, "linear.json")))
