@@ -379,6 +379,8 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     else:
         outcome = Reached(*last)
     outcome.passes = [(float(t), np.array(y)) for t, y in zip(*passes)]
+    if keep.all():        # every row an output time (the usual case): no copy
+        return outcome, T, Y, nfev, njev
     return outcome, T[keep], Y[keep], nfev, njev
 
 

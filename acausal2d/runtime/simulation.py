@@ -26,6 +26,7 @@ from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, adv
                   make_solver, start_solver)
 from .native import native_ida
 from .projection import Projector
+from .rows import OutputRows
 from .initialize import initial_point, initialization_error
 from .locate import exact_point, exact_rows, locate_on_solution
 from .newton import NoConvergence, solve_consistent
@@ -96,7 +97,7 @@ class Simulation:
         self.atol = None if atol is None else atol * STATE_TOL_FACTOR
         self.progress = progress
         self.ev = Evaluator(system, self.p)
-        self.out, self.events, self.singular = [], [], []
+        self.out, self.events, self.singular = OutputRows(system.structure.n_var), [], []
         self.stats = Stats()
         self.stopped = None
         self.solvers = {}
@@ -110,7 +111,7 @@ class Simulation:
         wall = _time.perf_counter()
         if self.system.structure.n_var == 0:     # everything is determined: evaluate
             self.selection = None
-            self.out = [(float(t), np.zeros(0)) for t in self.times]
+            self.out.add_block(self.times, np.zeros((len(self.times), 0)))
             return self._log(wall)
         with SundialsMessages() as self.messages:
             self._start()
@@ -129,8 +130,7 @@ class Simulation:
 
     def _log(self, wall):
         self.stats.wall_time = _time.perf_counter() - wall
-        T = np.array([t for t, _ in self.out])
-        Z = np.array([z for _, z in self.out]).reshape(len(T), self.system.structure.n_var)
+        T, Z = self.out.arrays()
         states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
             self.selection)] if self.selection is not None else []
         return RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
@@ -209,7 +209,7 @@ class Simulation:
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
         rows = projector.project(T, Y, self.d)
-        self.out.extend(zip(T.tolist(), rows))
+        self.out.add_block(T, rows)
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
         self.stats.nfev += nfev
@@ -310,9 +310,9 @@ class Simulation:
         points = [self.seg_left] + rows + [(outcome.t, np.array(outcome.y))]
         t, z, flipped = locate_on_solution(self.system, self.ev, self.d, points, rels,
                                            self.time_event)
-        self.out[self.seg_start:] = [row for row in self.out[self.seg_start:] if row[0] <= t]
+        self.out.keep_until(t, self.seg_start)
         late = self.times[(self.times > outcome.t) & (self.times < t)]
-        self.out += exact_rows(self.ev, self.d, points[-2], (t, z), late)
+        self.out.extend(exact_rows(self.ev, self.d, points[-2], (t, z), late))
         self.t = t
         if flipped:
             self._event(z, flipped)
