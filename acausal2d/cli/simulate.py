@@ -73,14 +73,31 @@ def _print_events(events, first=5):
 
 def cmd_simulate(args):
     """``acausal2d simulate``: run a model file; write the CSV, plots and animation."""
-    from ..compiled import compile_model
     from ..io.files import clear_previous_run
-    from ..io.loader import load_model
+    from ..visual.figure_process import FigureProcess
     out = args.out
     os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
     clear_previous_run(out)                # first: a failure at any stage leaves nothing old
-    model = load_model(args.model_file, args.model)
-    cm = compile_model(model)
+    drawer = FigureProcess.start()         # imports matplotlib on the other core meanwhile
+    try:
+        res, settings = _run(args)
+        pngs, extra = _write_outputs(res, out, settings, args, drawer)
+    finally:
+        if drawer is not None:
+            drawer.close()
+    model = res.model.model
+    _print_summary(model, res, out, pngs, extra)
+    if res.stopped:
+        print("stopped early: %s" % res.stopped, file=sys.stderr)
+        return 3
+    return 0
+
+
+def _run(args):
+    """Load, compile and simulate the model file: (result, settings)."""
+    from ..compiled import compile_model
+    from ..io.loader import load_model
+    cm = compile_model(load_model(args.model_file, args.model))
     settings = _simulate_settings(args, cm)
     progress = _Progress()
     try:
@@ -89,12 +106,7 @@ def cmd_simulate(args):
                           max_steps=args.max_steps, max_wall_time=args.max_wall_time)
     finally:
         progress.close()
-    pngs, extra = _write_outputs(res, out, settings, args)
-    _print_summary(model, res, out, pngs, extra)
-    if res.stopped:
-        print("stopped early: %s" % res.stopped, file=sys.stderr)
-        return 3
-    return 0
+    return res, settings
 
 
 def _simulate_settings(args, cm):
@@ -113,23 +125,30 @@ def _simulate_settings(args, cm):
             "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
 
 
-def _write_outputs(res, out, settings, args):
-    """CSV, figures, animation, the files the model writes itself and the
-    run's manifest; returns the figures and the model's files."""
+def _write_outputs(res, out, settings, args, drawer=None):
+    """CSV, figures (drawn by ``drawer``, a :class:`~acausal2d.visual.
+    figure_process.FigureProcess`, if given), animation, the files the model
+    writes itself and the run's manifest; returns the figures and the
+    model's files."""
     from ..io.files import write_manifest
-    from ..visual.plotting import write_figures
-    files = [res.to_csv(os.path.join(out, "result.csv"))]
+    from ..visual.plotting import draw_jobs, figure_jobs
     if settings["transfer"]:
         from ..visual.plotting import write_transfer_figures
+        jobs = None
         pngs = write_transfer_figures(res, out, settings["specs"], settings["transfer"],
                                       args.format)
     else:
-        pngs = write_figures(res, out, settings["specs"], args.format)
+        jobs = figure_jobs(res, out, settings["specs"], args.format)
+        if drawer is not None:
+            drawer.submit(jobs)             # drawn by the child while the files below are written
+    csv = res.to_csv(os.path.join(out, "result.csv"))
+    page = res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
+                       **settings["animation"])
+    if jobs is not None:
+        pngs = drawer.collect() if drawer is not None else draw_jobs(jobs)
     if not settings["specs"]:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
-    files += pngs
-    files.append(res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
-                             **settings["animation"]))
+    files = [csv] + pngs + [page]
     extra = _model_files(res, out)
     write_manifest(out, files + extra,
                    model=type(res.model.model).__name__ if res.model else None,

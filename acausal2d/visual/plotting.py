@@ -77,29 +77,45 @@ def figure_title(result, title=None):
     return ": ".join(t for t in (name, title) if t)
 
 
-def make_figure(result, groups, x=None, title=None):
-    """A matplotlib Figure (Agg canvas attached) of the signal ``groups``
-    (a list of lists of names) over ``x`` (time by default)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
+def figure_plan(result, groups, x=None, title=None):
+    """What a figure of the signal ``groups`` (a list of lists of names)
+    over ``x`` (time by default) shows, as plain data (picklable: it can be
+    drawn in another process, :mod:`~acausal2d.visual.figure_process`): a
+    dict with the x values and label, the title and per axes its y label
+    and (name, values) lines."""
     plan = panels(result, groups)
     if not plan:
         raise Acausal2dError("nothing to plot: give signal names (the model declares no outputs)")
     xv, xlabel = x_values(result, x)
-    fig = Figure(figsize=(8, 2.4 * len(plan) + 0.9))
+    axes = [(_ylabel(unit, names), [(name, np.asarray(result[name], dtype=float))
+                                    for name in names]) for unit, names in plan]
+    return {"x": xv, "xlabel": xlabel, "title": figure_title(result, title), "axes": axes}
+
+
+def draw_plan(plan):
+    """A matplotlib Figure (Agg canvas attached) of a :func:`figure_plan`."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(8, 2.4 * len(plan["axes"]) + 0.9))
     FigureCanvasAgg(fig)
-    axes = fig.subplots(len(plan), 1, sharex=True, squeeze=False)[:, 0]
-    for ax, (unit, names) in zip(axes, plan):
-        for name in names:
-            ax.plot(xv, result[name], lw=1.3, label=name)
-        ax.set_ylabel(_ylabel(unit, names), fontsize=9)
+    axes = fig.subplots(len(plan["axes"]), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, (ylabel, lines) in zip(axes, plan["axes"]):
+        for name, values in lines:
+            ax.plot(plan["x"], values, lw=1.3, label=name)
+        ax.set_ylabel(ylabel, fontsize=9)
         ax.grid(True, alpha=0.3)
-        if len(names) > 1:
+        if len(lines) > 1:
             ax.legend(fontsize=8, loc="best")
-    axes[-1].set_xlabel(xlabel)
-    fig.suptitle(figure_title(result, title))
+    axes[-1].set_xlabel(plan["xlabel"])
+    fig.suptitle(plan["title"])
     fig.tight_layout()
     return fig
+
+
+def make_figure(result, groups, x=None, title=None):
+    """A matplotlib Figure (Agg canvas attached) of the signal ``groups``
+    (a list of lists of names) over ``x`` (time by default)."""
+    return draw_plan(figure_plan(result, groups, x=x, title=title))
 
 
 def save_figure(fig, path, dpi=110):
@@ -160,13 +176,25 @@ def write_figures(result, out_dir, specs, fmt="png"):
     """Write one figure file (``fmt``: png, svg or pdf) per figure spec
     (dicts as from :func:`declared_figures`) into ``out_dir``; the file is
     named by the spec's ``name`` or by its signals.  Returns the paths."""
+    return draw_jobs(figure_jobs(result, out_dir, specs, fmt))
+
+
+def figure_jobs(result, out_dir, specs, fmt="png"):
+    """The (path, :func:`figure_plan`) pairs :func:`write_figures` draws:
+    signal names checked, values taken from ``result``; no matplotlib."""
     from ..io.files import safe_filename
-    paths = []
+    jobs = []
     for spec in specs:
         stem = spec.get("name") or "+".join(n for g in spec["groups"] for n in g)
-        fig = make_figure(result, spec["groups"], x=spec.get("x"), title=spec.get("title"))
-        paths.append(save_figure(fig, os.path.join(out_dir, safe_filename(stem) + "." + fmt)))
-    return paths
+        plan = figure_plan(result, spec["groups"], x=spec.get("x"), title=spec.get("title"))
+        jobs.append((os.path.join(out_dir, safe_filename(stem) + "." + fmt), plan))
+    return jobs
+
+
+def draw_jobs(jobs):
+    """Draw and write each (path, :func:`figure_plan`) of ``jobs``; returns
+    the paths."""
+    return [save_figure(draw_plan(plan), path) for path, plan in jobs]
 
 
 def _sweep_lines(ax, study, x, names, others):

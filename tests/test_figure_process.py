@@ -1,0 +1,82 @@
+"""Figures drawn by a forked child (acausal2d.visual.figure_process): the same
+files as drawn in-process, errors handed back, nothing left running, and the
+simulate command's own process never imports matplotlib."""
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from acausal2d.errors import Acausal2dError
+from acausal2d.visual import plotting
+from acausal2d.visual.figure_process import FigureProcess
+
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform")
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _plan(k):
+    t = np.linspace(0.0, 2.0, 201)
+    return {"x": t, "xlabel": "time [s]", "title": "Test %d" % k,
+            "axes": [("q [m]", [("a.q", np.sin(3 * t + k)), ("b.q", np.cos(t))]),
+                     ("F [N]", [("a.F", t ** 2)])]}
+
+
+def _started():
+    drawer = FigureProcess.start()
+    if drawer is None:
+        pytest.skip("threads are running in this test process: figures are drawn in-process")
+    return drawer
+
+
+def test_child_writes_the_files_the_process_itself_writes(tmp_path):
+    import matplotlib.image as mpimg
+    jobs = [(str(tmp_path / ("child%d.png" % k)), _plan(k)) for k in range(2)]
+    mine = [(str(tmp_path / ("here%d.png" % k)), _plan(k)) for k in range(2)]
+    drawer = _started()
+    try:
+        drawer.submit(jobs)
+        paths = drawer.collect()
+    finally:
+        drawer.close()
+    assert paths == [p for p, _ in jobs]
+    for (a, _), b in zip(jobs, plotting.draw_jobs(mine)):
+        pa, pb = mpimg.imread(a), mpimg.imread(b)
+        assert pa.shape == pb.shape and np.array_equal(pa, pb)
+
+
+def test_a_drawing_error_is_raised_in_the_caller(tmp_path):
+    drawer = _started()
+    try:
+        plan = _plan(0)
+        plan["axes"][1][1][0] = ("a.F", np.zeros(7))          # 7 values for 201 times
+        drawer.submit([(str(tmp_path / "x.png"), plan)])
+        with pytest.raises(Acausal2dError, match="drawing the figures failed: ValueError: x and "
+                                                 "y must have same first dimension"):
+            drawer.collect()
+    finally:
+        drawer.close()
+
+
+def test_an_unused_child_is_ended_at_once():
+    drawer = _started()
+    t = time.perf_counter()
+    drawer.close()                                  # interrupted, not waited for: its import
+    assert time.perf_counter() - t < 0.15           # alone takes about 0.2 s
+    with pytest.raises(ChildProcessError):
+        os.waitpid(drawer.pid, os.WNOHANG)          # reaped: no zombie left
+
+
+def test_simulate_command_draws_without_importing_matplotlib(tmp_path):
+    code = ("import sys; from acausal2d.cli import main; "
+            "rc = main(['simulate', %r, '--out', %r]); "
+            "print('MPL', 'matplotlib' in sys.modules); sys.exit(rc)"
+            % (os.path.join(ROOT, "models", "pendulum.py"), str(tmp_path)))
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert "MPL False" in proc.stdout
+    for name in ("body.phi.png", "revolute.w.png"):
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
