@@ -242,12 +242,10 @@ class Simulation:
         T, rows Z, after the row n0 - 1 of ``out``)."""
         if len(self.out) - n0 + 1 < 3:
             return
-        if n0 > 0:
-            T = np.concatenate([[self.out[n0 - 1][0]], T])
-            Z = np.vstack([self.out[n0 - 1][1], Z])
+        before = self.out[n0 - 1] if n0 > 0 else None
         T, Z = np.asarray(T, dtype=float), np.asarray(Z, dtype=float)
         sizes = sing.scan_singular_positions(self.system, self.ev, form, self.selection, self.p,
-                                             self.d, T, Z, self.singular)
+                                             self.d, T, Z, self.singular, before)
         if 0 in sizes:
             self._solver()[1].note_size([sizes[0]])
 

@@ -67,6 +67,26 @@ class DeterminantScan:
             rows.append(self.out[:m].copy())
         return np.vstack(rows)
 
+    def of_rows(self, T, Z, all_deriv, p, d):
+        """Determinants (points x blocks) at output rows (T, Z) of the
+        system's unknowns: Y = Z and Y' read from Z's derivative nodes
+        (``all_deriv``: the derivative node of each unknown, or -1), filled
+        chunk by chunk into the buffers (no array of the size of Z)."""
+        self.p[:] = p
+        self.d[:] = d
+        st = np.nonzero(all_deriv >= 0)[0]
+        src = all_deriv[st]
+        rows = []
+        self.yp[:] = 0.0
+        for s in range(0, len(T), self.CHUNK):
+            m = min(self.CHUNK, len(T) - s)
+            self.t[:m] = T[s:s + m]
+            self.y[:m] = Z[s:s + m]
+            self.yp[:m, st] = Z[s:s + m, src]
+            self.fn.eval()
+            rows.append(self.out[:m].copy())
+        return np.vstack(rows)
+
 
 def _passed(row, n, sign_changes):
     """Indices i where a determinant row has a deep local minimum at i or
@@ -82,27 +102,32 @@ def _passed(row, n, sign_changes):
     return (np.nonzero(hit)[0] + 1).tolist()
 
 
-def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found):
+def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found, before=None):
     """Find singular positions passed between the output points (T, Z) of a
-    segment: the determinant of a watched dummy block changes sign (except
-    the highest level's, whose sign changes IDA locates as roots), or has a
-    local minimum far below its typical size.  Returns {level: largest
-    |det| seen}."""
-    n = len(T)
+    segment (after the point ``before`` = (t, z), if given): the determinant
+    of a watched dummy block changes sign (except the highest level's, whose
+    sign changes IDA locates as roots), or has a local minimum far below its
+    typical size.  Returns {level: largest |det| seen}."""
+    n = len(T) + (before is not None)
     if form.det_fn is None or n < 3:
         return {}
-    YP = np.zeros_like(Z)
-    st = form.all_deriv >= 0
-    YP[:, st] = Z[:, form.all_deriv[st]]
     if getattr(form, "det_scan", None) is None:
         form.det_scan = DeterminantScan(form)
-    dets = form.det_scan(T, Z, YP, p, np.asarray(d, float)).T
+    d = np.asarray(d, float)
+    dets = form.det_scan.of_rows(T, Z, form.all_deriv, p, d)
+    if before is not None:
+        first = form.det_scan.of_rows(np.array([before[0]]), np.asarray(before[1])[None, :],
+                                      form.all_deriv, p, d)
+        dets = np.vstack([first, dets])
+    dets = dets.T
+    point = (lambda i: (T[i - 1], Z[i - 1])) if before is not None else (lambda i: (T[i], Z[i]))
     found_sizes = {k: float(np.max(np.abs(row))) for row, k in zip(dets, form.scan_levels)}
     for row, k in zip(dets, form.scan_levels):
         lv = selection.levels[k]
         for i in _passed(row, n, k != 0 or not form.n_pass):
-            found.append(singularity(system, float(T[i]), "singular position passed",
-                                     worst_level(system, ev, selection, T[i], Z[i], d, [lv])))
+            t, z = point(i)
+            found.append(singularity(system, float(t), "singular position passed",
+                                     worst_level(system, ev, selection, t, z, d, [lv])))
     return found_sizes
 
 
