@@ -65,16 +65,26 @@ class StackedJacobian:
     def step(self, t, z, d, r):
         """Newton step -A^-1 r, or the least-squares step where A is
         singular; None where A or r is not finite."""
+        return self.step_and_solver(t, z, d, r)[0]
+
+    def step_and_solver(self, t, z, d, r):
+        """(:meth:`step`, the LU's solve for more right-hand sides or None
+        where the step is not an LU step)."""
         data = self.matrix(t, z, d)
         if not (np.all(np.isfinite(data)) and np.all(np.isfinite(r))):
-            return None
+            return None, None
         with np.errstate(all="ignore"):
             try:
-                dz = -self._factor(data).solve(r)
+                lu = self._factor(data)
+                dz = -lu.solve(r)
             except RuntimeError:
                 dz = None
         if dz is not None and np.all(np.isfinite(dz)):
-            return dz
+            return dz, lu.solve
+        return self._least_squares(data, r), None
+
+    def _least_squares(self, data, r):
+        """The minimum-norm least-squares step where A is singular."""
         if self.n > 4000:
             return None
         A = sp.csc_array((data, self.indices, self.indptr), shape=(self.n, self.n)).toarray()
