@@ -40,13 +40,19 @@ SUNLinearSolver SUNLinSol_LapackDense(N_Vector y, SUNMatrix a, SUNContext ctx);
 SUNLinearSolver SUNLinSol_SuperLUMT(N_Vector y, SUNMatrix a, int threads, SUNContext ctx);
 int SUNLinSolFree(SUNLinearSolver s);
 SUNLinearSolver SUNLinSolNewEmpty(SUNContext ctx);
+int SUNLinSolGetType(SUNLinearSolver s);
+int SUNLinSolSetup(SUNLinearSolver s, SUNMatrix a);
+int SUNLinSolSolve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol);
+sunindextype SUNLinSolLastFlag(SUNLinearSolver s);
+int SUNLinSolSpace(SUNLinearSolver s, long *lrw, long *liw);
 void SUNLinSolFreeEmpty(SUNLinearSolver s);
 /* the ops of SUNDIALS' dense solver: only their addresses are used (a2d_slots) */
 int SUNLinSolGetType_Dense(SUNLinearSolver s);
 int SUNLinSolGetID_Dense(SUNLinearSolver s);
 int SUNLinSolInitialize_Dense(SUNLinearSolver s);
 int SUNLinSolSetup_Dense(SUNLinearSolver s, SUNMatrix a);
-int SUNLinSolSolve_Dense(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype t);
+int SUNLinSolSolve_Dense(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b,
+                         sunrealtype t);
 sunindextype SUNLinSolLastFlag_Dense(SUNLinearSolver s);
 int SUNLinSolSpace_Dense(SUNLinearSolver s, long *lrw, long *liw);
 int SUNLinSolFree_Dense(SUNLinearSolver s);
@@ -163,7 +169,9 @@ static int a2d_ls_solve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, 
   return a2d_lu_solve(c->lu, xd, c->w) ? -1 : 0;
 }
 
-static sunindextype a2d_ls_last(SUNLinearSolver s) { return (sunindextype)a2d_ls_of(s)->last_flag; }
+static sunindextype a2d_ls_last(SUNLinearSolver s) {
+  return (sunindextype)a2d_ls_of(s)->last_flag;
+}
 
 static int a2d_ls_space(SUNLinearSolver s, long *lrw, long *liw) {
   a2d_ls *c = a2d_ls_of(s);
@@ -331,7 +339,8 @@ static int a2d_setup(a2d_driver *h, double rtol, const double *atol, const doubl
     N_VGetArrayPointer(h->yp)[i] = 0.0;
   }
   if (IDAInit(h->mem, a2d_res, 0.0, h->y, h->yp) || IDASetUserData(h->mem, h) ||
-      IDASVtolerances(h->mem, rtol, h->atol) || a2d_linear_solver(h, solver, order, order ? order + n : 0) ||
+      IDASVtolerances(h->mem, rtol, h->atol) ||
+      a2d_linear_solver(h, solver, order, order ? order + n : 0) ||
       IDASetId(h->mem, h->id) || IDASetSuppressAlg(h->mem, 1) ||
       IDASetMaxNumSteps(h->mem, max_steps))
     return -1;
@@ -391,6 +400,36 @@ void a2d_destroy(a2d_driver *h) {
 }
 
 long a2d_steps(a2d_driver *h) { return h->steps; }
+
+/* For tests: IDA's linear solver called through SUNDIALS' generic functions
+ * (so through the op slots found) on the iteration matrix pattern with the
+ * values given; b := A^-1 b where setup succeeded.  info: type, setup flag,
+ * last flag, solve flag, real words of its space, 3 (own LU) or 2 (SuperLU_MT). */
+static void a2d_probe_with(a2d_driver *h, N_Vector x, N_Vector r, const double *values,
+                           double *b, long *info) {
+  long liw = 0;
+  int c;
+  for (c = 0; c <= h->n; ++c) SUNSparseMatrix_IndexPointers(h->A)[c] = h->jcol[c];
+  for (c = 0; c < h->nnz; ++c) SUNSparseMatrix_IndexValues(h->A)[c] = h->jrow[c];
+  memcpy(SUNSparseMatrix_Data(h->A), values, sizeof(double) * h->nnz);
+  memcpy(N_VGetArrayPointer(r), b, sizeof(double) * h->n);
+  info[0] = SUNLinSolGetType(h->LS);
+  info[1] = SUNLinSolSetup(h->LS, h->A);
+  info[2] = (long)SUNLinSolLastFlag(h->LS);
+  info[3] = info[1] ? -1 : SUNLinSolSolve(h->LS, h->A, x, r, 0.0);
+  if (!info[1]) memcpy(b, N_VGetArrayPointer(x), sizeof(double) * h->n);
+  SUNLinSolSpace(h->LS, info + 4, &liw);
+  info[5] = h->superlu ? 2 : 3;
+  h->solved = 1;
+}
+
+void a2d_probe(a2d_driver *h, const double *values, double *b, long *info) {
+  N_Vector x = N_VNew_Serial(h->n, h->ctx), r = N_VNew_Serial(h->n, h->ctx);
+  info[5] = -1;
+  if (h->sparse && x && r) a2d_probe_with(h, x, r, values, b, info);
+  if (x) N_VDestroy(x);
+  if (r) N_VDestroy(r);
+}
 
 void a2d_set_progress(a2d_driver *h, int (*progress)(double)) { h->progress = progress; }
 
