@@ -39,10 +39,15 @@ SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2, "sparse-lu": 3}
 dense LU, SuperLU_MT (sparse, one thread), the driver's own sparse LU
 (``native_lu.c``, in the order of :func:`~acausal2d.runtime.ordering.lu_order`)."""
 SPARSE_FROM = 64
-"""The driver's IDA uses SuperLU_MT from this many unknowns, SUNDIALS' dense
-LU below (benchmarks/bench_floor.py, IDA alone, CPU s: piston engine, 39
-unknowns: dense 0.0052, LAPACK 0.0061, sparse 0.0054; belt drive, 84:
-0.0193, 0.0188, 0.0163; chain of 20 links, 396: 0.348, 0.548, 0.089)."""
+"""The driver's IDA uses its own sparse LU (``native_lu.c``) from this many
+unknowns, SUNDIALS' dense LU below (benchmarks/bench_floor.py, IDA alone,
+CPU s, median of 5: piston engine, 39 unknowns: dense 0.0052, LAPACK 0.0058,
+SuperLU_MT 0.0052, sparse LU 0.0032; belt drive, 84: 0.0145, 0.0157,
+0.0129, 0.0107; chain of 20 links, 396: 0.333, 0.495, 0.078, 0.040).  The
+LU is also the faster one at 39 (the piston's warm simulate 0.0153 ->
+0.0129 s), but below 64 the native loop keeps the dense LU of the Python
+path, whose steps it takes exactly (piston engine 1463 steps, asserted in
+tests/test_native_runtime.py; 1437 with the LU)."""
 MAX_PASSES = 256
 OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
 NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
