@@ -21,18 +21,18 @@ pytestmark = pytest.mark.skipif(cbuild.find_compiler() is None, reason="no C com
 def lib():
     with open(LU_C, encoding="utf-8") as fh:
         path = cbuild.build({"native_lu.c": fh.read()}, flags=["-O1"], libraries=["m"],
-                            name="a2d_lu_test")
+                            name="a2d_splu_test")
     lib = ctypes.CDLL(path)
-    lib.a2d_lu_new.restype = ctypes.c_void_p
-    lib.a2d_lu_new.argtypes = [ctypes.c_int, ctypes.c_int, _I, _I]
-    lib.a2d_lu_free.argtypes = [ctypes.c_void_p]
-    for name in ("a2d_lu_factor", "a2d_lu_refactor"):
+    lib.a2d_splu_new.restype = ctypes.c_void_p
+    lib.a2d_splu_new.argtypes = [ctypes.c_int, ctypes.c_int, _I, _I]
+    lib.a2d_splu_free.argtypes = [ctypes.c_void_p]
+    for name in ("a2d_splu_factor", "a2d_splu_refactor"):
         getattr(lib, name).argtypes = [ctypes.c_void_p, _I, _I, _P]
-    lib.a2d_lu_solve.argtypes = [ctypes.c_void_p, _P, _P]
-    lib.a2d_lu_count.restype = ctypes.c_long
-    lib.a2d_lu_count.argtypes = [ctypes.c_void_p, ctypes.c_int]
-    lib.a2d_lu_nnz.restype = ctypes.c_long
-    lib.a2d_lu_nnz.argtypes = [ctypes.c_void_p]
+    lib.a2d_splu_solve.argtypes = [ctypes.c_void_p, _P, _P, _P]
+    lib.a2d_splu_count.restype = ctypes.c_long
+    lib.a2d_splu_count.argtypes = [ctypes.c_void_p, ctypes.c_int]
+    lib.a2d_splu_nnz.restype = ctypes.c_long
+    lib.a2d_splu_nnz.argtypes = [ctypes.c_void_p]
     return lib
 
 
@@ -43,27 +43,28 @@ class LU:
         self.lib, self.n = lib, a.shape[0]
         self.colind, self.row = _ccs(a != 0)
         q, prefer = ordering.lu_order(self.n, self.colind, self.row)
-        self.handle = lib.a2d_lu_new(self.n, len(self.row), _ptr(q, _I), _ptr(prefer, _I))
+        self.handle = lib.a2d_splu_new(self.n, len(self.row), _ptr(q, _I), _ptr(prefer, _I))
 
     def values(self, a):
         return np.ascontiguousarray([a[r, c] for c in range(self.n)
                                      for r in self.row[self.colind[c]:self.colind[c + 1]]])
 
     def factor(self, a, refactor=False):
-        fn = self.lib.a2d_lu_refactor if refactor else self.lib.a2d_lu_factor
+        fn = self.lib.a2d_splu_refactor if refactor else self.lib.a2d_splu_factor
         self._x = self.values(a)
         return fn(self.handle, _ptr(self.colind, _I), _ptr(self.row, _I), _ptr(self._x))
 
     def solve(self, b):
         x = np.array(b, dtype=float)
-        assert self.lib.a2d_lu_solve(self.handle, _ptr(x), _ptr(np.zeros(self.n))) == 0
+        w = np.zeros(self.n)
+        assert self.lib.a2d_splu_solve(self.handle, _ptr(x), _ptr(x), _ptr(w)) == 0
         return x
 
     def count(self, which):
-        return self.lib.a2d_lu_count(self.handle, which)
+        return self.lib.a2d_splu_count(self.handle, which)
 
     def __del__(self):
-        self.lib.a2d_lu_free(self.handle)
+        self.lib.a2d_splu_free(self.handle)
 
 
 def _ptr(a, kind=_P):
@@ -101,7 +102,7 @@ def test_random_sparse_matrices_solve_as_numpy(lib, n, density):
     lu = LU(lib, a)
     assert lu.factor(a) == 0
     _check(lu, a, rng)
-    assert lib.a2d_lu_nnz(lu.handle) >= np.count_nonzero(a)
+    assert lib.a2d_splu_nnz(lu.handle) >= np.count_nonzero(a)
 
 
 def test_matrices_that_need_row_exchanges(lib):
@@ -147,7 +148,7 @@ def test_a_singular_matrix_is_a_flag(lib):
     status = lu.factor(a)
     assert status > 0
     x = np.zeros(3)
-    assert lib.a2d_lu_solve(lu.handle, _ptr(x), _ptr(np.zeros(3))) == -1
+    assert lib.a2d_splu_solve(lu.handle, _ptr(x), _ptr(x), _ptr(np.zeros(3))) == -1
     structurally = np.array([[1.0, 0.0], [1.0, 0.0]])
     lu = LU(lib, structurally)
     assert lu.factor(structurally) > 0

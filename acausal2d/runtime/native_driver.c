@@ -102,7 +102,7 @@ enum { A2D_GETTYPE, A2D_GETID, A2D_INIT, A2D_SETUP, A2D_SOLVE, A2D_LASTFLAG, A2D
 #define A2D_LUFACT_FAIL 9              /* SUNLS_LUFACT_FAIL: recoverable, IDA cuts its step */
 
 typedef struct {
-  a2d_lu *lu;
+  a2d_splu *lu;
   double *w;
   long last_flag;
 } a2d_ls;
@@ -156,17 +156,15 @@ static int a2d_ls_setup(SUNLinearSolver s, SUNMatrix a) {
   a2d_ls *c = a2d_ls_of(s);
   const int *ap = SUNSparseMatrix_IndexPointers(a), *ai = SUNSparseMatrix_IndexValues(a);
   const double *ax = SUNSparseMatrix_Data(a);
-  if (a2d_lu_refactor(c->lu, ap, ai, ax) == 0) return (int)(c->last_flag = 0);
-  c->last_flag = a2d_lu_factor(c->lu, ap, ai, ax);
+  if (a2d_splu_refactor(c->lu, ap, ai, ax) == 0) return (int)(c->last_flag = 0);
+  c->last_flag = a2d_splu_factor(c->lu, ap, ai, ax);
   return c->last_flag == 0 ? 0 : c->last_flag > 0 ? A2D_LUFACT_FAIL : -1;
 }
 
 static int a2d_ls_solve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, double tol) {
   a2d_ls *c = a2d_ls_of(s);
-  double *xd = N_VGetArrayPointer(x);
   (void)a; (void)tol;
-  memmove(xd, N_VGetArrayPointer(b), sizeof(double) * c->lu->n);
-  return a2d_lu_solve(c->lu, xd, c->w) ? -1 : 0;
+  return a2d_splu_solve(c->lu, N_VGetArrayPointer(b), N_VGetArrayPointer(x), c->w) ? -1 : 0;
 }
 
 static sunindextype a2d_ls_last(SUNLinearSolver s) {
@@ -184,14 +182,14 @@ static int a2d_ls_free(SUNLinearSolver s) {
   a2d_ls *c;
   if (!s) return 0;
   c = a2d_ls_of(s);
-  if (c) { a2d_lu_free(c->lu); free(c->w); free(c); }
+  if (c) { a2d_splu_free(c->lu); free(c->w); free(c); }
   *(a2d_ls **)s = 0;
   SUNLinSolFreeEmpty(s);
   return 0;
 }
 
 /* The LU solver for n x n matrices of nnz nonzeros in the order (q, prefer), or 0. */
-static SUNLinearSolver a2d_lu_solver(SUNContext ctx, int n, int nnz, const int *q,
+static SUNLinearSolver a2d_splu_solver(SUNContext ctx, int n, int nnz, const int *q,
                                      const int *prefer) {
   int slot[A2D_OPS];
   a2d_ls *c;
@@ -202,7 +200,7 @@ static SUNLinearSolver a2d_lu_solver(SUNContext ctx, int n, int nnz, const int *
   c = (a2d_ls *)calloc(1, sizeof(a2d_ls));
   if (!s || !c) { free(c); if (s) SUNLinSolFreeEmpty(s); return 0; }
   *(a2d_ls **)s = c;
-  c->lu = a2d_lu_new(n, nnz, q, prefer);
+  c->lu = a2d_splu_new(n, nnz, q, prefer);
   c->w = (double *)malloc(sizeof(double) * (n + 1));
   if (!c->lu || !c->w) { a2d_ls_free(s); return 0; }
   ops = a2d_ops(s);
@@ -307,7 +305,7 @@ static int a2d_linear_solver(a2d_driver *h, int solver, const int *q, const int 
   if (h->sparse) {
     h->A = SUNSparseMatrix(h->n, h->n, h->nnz, 0, h->ctx);
     if (!h->A) return -1;
-    h->LS = solver == 3 ? a2d_lu_solver(h->ctx, h->n, h->nnz, q, prefer) : 0;
+    h->LS = solver == 3 ? a2d_splu_solver(h->ctx, h->n, h->nnz, q, prefer) : 0;
     h->superlu = !h->LS;
     if (h->superlu) h->LS = SUNLinSol_SuperLUMT(h->y, h->A, 1, h->ctx);
   } else {

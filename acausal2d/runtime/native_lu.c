@@ -18,8 +18,9 @@
  * compressor (217 unknowns, 664 nonzeros, L + U 1230; perf of five
  * simulates in one process): solves 8.4 % of the samples, full
  * factorizations 3.1 %, refactorizations 2.0 % (78 % of the setups
- * refactor) - SuperLU_MT took 29 %.  Refactor pays a little: warm simulate 0.90-0.95 s with it,
- * 0.94-0.96 s without.  Matrices are compressed sparse columns, 0-based int.
+ * refactor) - SuperLU_MT took 29 %.  Refactor pays a little: warm simulate
+ * 0.90-0.95 s with it, 0.94-0.96 s without.  Matrices are compressed sparse
+ * columns, 0-based int.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -51,9 +52,9 @@ typedef struct {
   int *xi, *mark, stamp;      /* reach (2n: stack and pattern), visit marks */
   int valid;                  /* a factorization to refactor and solve with */
   long full, refactored;      /* counts */
-} a2d_lu;
+} a2d_splu;
 
-void a2d_lu_free(a2d_lu *f) {
+void a2d_splu_free(a2d_splu *f) {
   if (!f) return;
   free(f->q); free(f->prefer); free(f->lp); free(f->li); free(f->up); free(f->ui);
   free(f->lx); free(f->ux); free(f->pinv); free(f->prow); free(f->ap); free(f->ai);
@@ -63,8 +64,8 @@ void a2d_lu_free(a2d_lu *f) {
 
 /* A factorization object for n x n matrices of nnz nonzeros, factored in
  * the column order q with the preferred pivot rows prefer (copied). */
-a2d_lu *a2d_lu_new(int n, int nnz, const int *q, const int *prefer) {
-  a2d_lu *f = (a2d_lu *)calloc(1, sizeof(a2d_lu));
+a2d_splu *a2d_splu_new(int n, int nnz, const int *q, const int *prefer) {
+  a2d_splu *f = (a2d_splu *)calloc(1, sizeof(a2d_splu));
   if (!f) return 0;
   f->n = n; f->nnz = nnz;
   f->lmax = f->umax = 4 * nnz + n;
@@ -79,7 +80,7 @@ a2d_lu *a2d_lu_new(int n, int nnz, const int *q, const int *prefer) {
   f->mark = (int *)calloc(n, sizeof(int));
   if (!f->q || !f->prefer || !f->lp || !f->up || !f->li || !f->ui || !f->lx || !f->ux ||
       !f->pinv || !f->prow || !f->ap || !f->ai || !f->x || !f->xi || !f->mark) {
-    a2d_lu_free(f);
+    a2d_splu_free(f);
     return 0;
   }
   memcpy(f->q, q, sizeof(int) * n);
@@ -88,7 +89,7 @@ a2d_lu *a2d_lu_new(int n, int nnz, const int *q, const int *prefer) {
 }
 
 /* Room for `need` more entries of L (which 0) or U (1); 0 on success. */
-static int lu_grow(a2d_lu *f, int which, int need) {
+static int lu_grow(a2d_splu *f, int which, int need) {
   int *cap = which ? &f->umax : &f->lmax, size = *cap;
   int **idx = which ? &f->ui : &f->li;
   double **val = which ? &f->ux : &f->lx, *v;
@@ -108,7 +109,7 @@ static int lu_grow(a2d_lu *f, int which, int need) {
 /* Depth-first search from row j in the graph of L (row -> the column it
  * pivots, that column's rows): the rows reached are pushed below `top` in
  * xi in topological order; returns the new top (cs_dfs without recursion). */
-static int lu_dfs(a2d_lu *f, int j, int top) {
+static int lu_dfs(a2d_splu *f, int j, int top) {
   int *xi = f->xi, *stack = f->xi + f->n, head = 0, p, col, end, done;
   xi[0] = j;
   while (head >= 0) {
@@ -133,7 +134,7 @@ static int lu_dfs(a2d_lu *f, int j, int top) {
 }
 
 /* x = L \ A(:, c) on the reach of column c; returns top (the reach is xi[top..n)). */
-static int lu_column(a2d_lu *f, const int *ap, const int *ai, const double *ax, int c) {
+static int lu_column(a2d_splu *f, const int *ap, const int *ai, const double *ax, int c) {
   int p, px, top = f->n, j, col;
   if (++f->stamp == 0x7fffffff) { memset(f->mark, 0, sizeof(int) * f->n); f->stamp = 1; }
   for (p = ap[c]; p < ap[c + 1]; ++p)
@@ -151,7 +152,7 @@ static int lu_column(a2d_lu *f, const int *ap, const int *ai, const double *ax, 
 /* The pivot row of the reach xi[top..n): the preferred row if it is within
  * the threshold of the largest candidate, else the largest; -1 if none is
  * nonzero and finite (a singular column). */
-static int lu_pivot(a2d_lu *f, int top, int preferred) {
+static int lu_pivot(a2d_splu *f, int top, int preferred) {
   int px, i, best = -1;
   double big = 0.0, t;
   for (px = top; px < f->n; ++px) {
@@ -167,7 +168,7 @@ static int lu_pivot(a2d_lu *f, int top, int preferred) {
 }
 
 /* Column k of L and U from the reach and the pivot row ipiv; clears x. */
-static void lu_store(a2d_lu *f, int k, int top, int ipiv) {
+static void lu_store(a2d_splu *f, int k, int top, int ipiv) {
   int px, i, lnz = f->lp[k], unz = f->up[k];
   double pivot = f->x[ipiv];
   f->li[lnz] = ipiv; f->lx[lnz++] = 1.0;
@@ -185,13 +186,13 @@ static void lu_store(a2d_lu *f, int k, int top, int ipiv) {
   f->lp[k + 1] = lnz; f->up[k + 1] = unz;
 }
 
-static void lu_clear(a2d_lu *f, int top) {
+static void lu_clear(a2d_splu *f, int top) {
   for (; top < f->n; ++top) f->x[f->xi[top]] = 0.0;
 }
 
 /* Full factorization with pivoting of the matrix (ap, ai, ax): 0, or k + 1
  * for a singular column k, or -1 out of memory. */
-int a2d_lu_factor(a2d_lu *f, const int *ap, const int *ai, const double *ax) {
+int a2d_splu_factor(a2d_splu *f, const int *ap, const int *ai, const double *ax) {
   int k, p, top, ipiv, n = f->n;
   f->valid = 0;
   if (ap[n] > f->nnz) return -1;
@@ -214,7 +215,7 @@ int a2d_lu_factor(a2d_lu *f, const int *ap, const int *ai, const double *ax) {
 
 /* Column k of a refactorization (x indexed by pivot): 0, or 1 where the
  * pivot is below the threshold of its column (x is cleared either way). */
-static int lu_recolumn(a2d_lu *f, int k) {
+static int lu_recolumn(a2d_splu *f, int k) {
   int p, pp, j, end = f->up[k + 1] - 1;
   double xj, pivot, big = 0.0;
   for (p = f->up[k]; p < end; ++p) {
@@ -242,8 +243,8 @@ static int lu_recolumn(a2d_lu *f, int k) {
 
 /* New values on the pattern of the last full factorization with its pivot
  * order: 0, or 1 (no factorization to reuse, another pattern, or a pivot
- * too small: the caller factors afresh with a2d_lu_factor). */
-int a2d_lu_refactor(a2d_lu *f, const int *ap, const int *ai, const double *ax) {
+ * too small: the caller factors afresh with a2d_splu_factor). */
+int a2d_splu_refactor(a2d_splu *f, const int *ap, const int *ai, const double *ax) {
   int k, p, c, n = f->n;
   if (!f->valid || memcmp(ap, f->ap, sizeof(int) * (n + 1)) ||
       memcmp(ai, f->ai, sizeof(int) * ap[n]))
@@ -257,8 +258,9 @@ int a2d_lu_refactor(a2d_lu *f, const int *ap, const int *ai, const double *ax) {
   return 0;
 }
 
-/* b := A^-1 b with the factorization (work: n doubles); -1 without one. */
-int a2d_lu_solve(const a2d_lu *f, double *b, double *w) {
+/* x := A^-1 b with the factorization (x may be b; work w: n doubles); -1
+ * without one. */
+int a2d_splu_solve(const a2d_splu *f, const double *b, double *x, double *w) {
   int k, p, n = f->n;
   double t;
   if (!f->valid) return -1;
@@ -271,17 +273,17 @@ int a2d_lu_solve(const a2d_lu *f, double *b, double *w) {
     t = w[k] /= f->ux[f->up[k + 1] - 1];
     for (p = f->up[k]; p < f->up[k + 1] - 1; ++p) w[f->ui[p]] -= f->ux[p] * t;
   }
-  for (k = 0; k < n; ++k) b[f->q[k]] = w[k];
+  for (k = 0; k < n; ++k) x[f->q[k]] = w[k];
   return 0;
 }
 
 /* Nonzeros of L and U (for the space report and the tests). */
-long a2d_lu_nnz(const a2d_lu *f) {
+long a2d_splu_nnz(const a2d_splu *f) {
   return f->valid ? (long)f->lp[f->n] + f->up[f->n] : 0;
 }
 
 /* For tests: number of full factorizations (which 0) or refactorizations (1). */
-long a2d_lu_count(const a2d_lu *f, int which) { return which ? f->refactored : f->full; }
+long a2d_splu_count(const a2d_splu *f, int which) { return which ? f->refactored : f->full; }
 
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC pop_options
