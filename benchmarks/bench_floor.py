@@ -14,7 +14,8 @@ events.  Both are timed in CPU seconds of this process (single-threaded
 both; on a machine shared with other jobs wall times scatter by 2-3x) as
 the median of ``repeats`` runs (default 5).  A second table gives the
 native IDA alone with each linear solver it can use (the choice of
-:mod:`acausal2d.runtime.native`).
+:mod:`acausal2d.runtime.native`: SUNDIALS' dense LU, LAPACK's, SuperLU_MT,
+the driver's own sparse LU).
 
 Models: the piston engine (10 s, rtol 1e-8), a chain of 20 pendulum links
 (2 s, rtol 1e-6), the non-circular belt drive (2 s, rtol 1e-8; it has no
@@ -155,11 +156,10 @@ def main(argv):
                         solver_times(sim, repeats)))
     print()
     print("IDA alone (native driver, no output rows) by linear solver [s]")
-    print("%-20s %6s %10s %10s %10s" % ("model", "n", "dense", "lapack", "sparse"))
+    print("%-20s %6s" % ("model", "n") + " %10s" * len(native.SOLVERS) % tuple(native.SOLVERS))
     for name, n, times in solvers:
-        print("%-20s %6d %10.5f %10.5f %10.5f" % (name, n, times.get("dense", np.nan),
-                                                  times.get("lapack", np.nan),
-                                                  times.get("sparse", np.nan)))
+        print("%-20s %6d" % (name, n) +
+              " %10.5f" * len(native.SOLVERS) % tuple(times.get(s, np.nan) for s in native.SOLVERS))
 
 
 if __name__ == "__main__":

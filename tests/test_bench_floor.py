@@ -29,8 +29,8 @@ def test_bench_floor_small_prints_its_table():
         # the same system at the same tolerances: step counts within 25 % of each other
         assert abs(int(steps_a) - int(steps_f)) <= 0.25 * int(steps_f), name
     # second table: the native IDA alone with each linear solver
-    assert lines[blank + 2].split() == ["model", "n", "dense", "lapack", "sparse"]
-    solvers = {" ".join(line.split()[:-4]): line.split()[-4:] for line in lines[blank + 3:]}
+    assert lines[blank + 2].split() == ["model", "n", "dense", "lapack", "sparse", "sparse-lu"]
+    solvers = {" ".join(line.split()[:-5]): line.split()[-5:] for line in lines[blank + 3:]}
     assert set(solvers) == set(rows)
     assert int(solvers["chain of 20 links"][0]) >= 100         # a sparse-size system
     for name, (n, *times) in solvers.items():

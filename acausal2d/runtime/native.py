@@ -29,19 +29,25 @@ import weakref
 import casadi as ca
 import numpy as np
 
-from . import cbuild
+from . import cbuild, ordering
 
 SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
              "sunlinsolsuperlumt", "sunlinsollapackdense", "core")
-SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2}
+SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2, "sparse-lu": 3}
 """IDA's linear solvers the driver can use: SUNDIALS' dense LU, LAPACK's
-dense LU, SuperLU_MT (sparse, one thread)."""
+dense LU, SuperLU_MT (sparse, one thread), the driver's own sparse LU
+(``native_lu.c``, in the order of :func:`~acausal2d.runtime.ordering.lu_order`)."""
 SPARSE_FROM = 64
-"""The driver's IDA uses SuperLU_MT from this many unknowns, SUNDIALS' dense
-LU below (benchmarks/bench_floor.py, IDA alone, CPU s: piston engine, 39
-unknowns: dense 0.0052, LAPACK 0.0061, sparse 0.0054; belt drive, 84:
-0.0193, 0.0188, 0.0163; chain of 20 links, 396: 0.348, 0.548, 0.089)."""
+"""The driver's IDA uses its own sparse LU (``native_lu.c``) from this many
+unknowns, SUNDIALS' dense LU below (benchmarks/bench_floor.py, IDA alone,
+CPU s, median of 5: piston engine, 39 unknowns: dense 0.0052, LAPACK 0.0058,
+SuperLU_MT 0.0052, sparse LU 0.0032; belt drive, 84: 0.0145, 0.0157,
+0.0129, 0.0107; chain of 20 links, 396: 0.333, 0.495, 0.078, 0.040).  The
+LU is also the faster one at 39 (the piston's warm simulate 0.0153 ->
+0.0129 s), but below 64 the native loop keeps the dense LU of the Python
+path, whose steps it takes exactly (piston engine 1463 steps, asserted in
+tests/test_native_runtime.py; 1437 with the LU)."""
 MAX_PASSES = 256
 OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
 NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
@@ -53,6 +59,7 @@ first simulate; chain of 100 links 787 kB 7.2 s at -O1, 2.3 s at -O0).
 -O0 code was 1.4x (chain) to 3.6x (belt drive) slower in warm runs, so -O1
 is kept; above :data:`NATIVE_BELOW` large models keep the Python path."""
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
+_LU = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_lu.c")
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
     ctypes.POINTER(ctypes.c_long)
@@ -125,7 +132,7 @@ def _source(form):
         if fn is not None:
             cg.add(eliminated(fn))
     flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
-    return cg.dump() + "\n" + flags + _text(_DRIVER)
+    return cg.dump() + "\n" + flags + _text(_LU) + _text(_DRIVER)
 
 
 def too_large(*functions):
@@ -151,7 +158,7 @@ def optimization(code):
 def _declare(lib):
     lib.a2d_create.restype = ctypes.c_void_p
     lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
-                               ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I]
+                               ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I, _I]
     lib.a2d_destroy.argtypes = [ctypes.c_void_p]
     lib.a2d_set_progress.argtypes = [ctypes.c_void_p, _PROGRESS]
     lib.a2d_steps.restype = ctypes.c_long
@@ -179,7 +186,7 @@ def library(form):
                 return cbuild.build({"a2d_model.c": code}, flags=optimization(code),
                                     libraries=linked, library_dirs=[folder], name="a2d_model")
             key = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
-                                     _text(_DRIVER), *linked)
+                                     _text(_LU), _text(_DRIVER), *linked)
             try:
                 lib = _declare(ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_model")))
             except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
@@ -204,14 +211,16 @@ class NativeIDA:
                       np.ascontiguousarray(direction or [0], dtype=np.intc),
                       np.ascontiguousarray(terminal or [0], dtype=np.intc)]
         self._pattern = _ccs(form.jac_sparsity)
+        solver = solver or default_solver(self.n)
+        self._order = lu_order(form) if solver == "sparse-lu" else None
         p, d = prob.res.args[3], prob.res.args[4]
         ab = prob.ab if len(prob.ab) else np.zeros(1)
         self._bound = [_backing(p), _backing(d), ab]
         self.handle = lib.a2d_create(
             self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
-            _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500,
-            SOLVERS[solver or ("sparse" if self.n >= SPARSE_FROM else "dense")],
-            *(_ptr(b) for b in self._bound), *(_ptr(a, _I) for a in self._pattern))
+            _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500, SOLVERS[solver],
+            *(_ptr(b) for b in self._bound), *(_ptr(a, _I) for a in self._pattern),
+            None if self._order is None else _ptr(self._order, _I))
         self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
         self.last = np.zeros(1 + 2 * self.n)
@@ -258,6 +267,23 @@ class NativeIDA:
         return (flag, T[:k], Y[:k], (PT[:q], PY[:q]), last, self.roots.copy(),
                 int(self.counters[0]), int(self.counters[1]),
                 int(self.lib.a2d_steps(self.handle) - steps0))
+
+
+def default_solver(n):
+    """The linear solver of a system of n unknowns (see :data:`SPARSE_FROM`)."""
+    return "sparse-lu" if n >= SPARSE_FROM else "dense"
+
+
+_orders = weakref.WeakKeyDictionary()     # formulation -> (q, prefer) of its iteration matrix
+
+
+def lu_order(form):
+    """The pivot order of ``native_lu.c`` for the iteration matrix of
+    ``form`` (column order then preferred rows, one C int array)."""
+    if form not in _orders:
+        colind, row = _ccs(form.jac_sparsity)
+        _orders[form] = np.concatenate(ordering.lu_order(form.n, colind, row))
+    return _orders[form]
 
 
 def _ccs(sparsity):

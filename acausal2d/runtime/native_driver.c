@@ -39,6 +39,23 @@ SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
 SUNLinearSolver SUNLinSol_LapackDense(N_Vector y, SUNMatrix a, SUNContext ctx);
 SUNLinearSolver SUNLinSol_SuperLUMT(N_Vector y, SUNMatrix a, int threads, SUNContext ctx);
 int SUNLinSolFree(SUNLinearSolver s);
+SUNLinearSolver SUNLinSolNewEmpty(SUNContext ctx);
+int SUNLinSolGetType(SUNLinearSolver s);
+int SUNLinSolSetup(SUNLinearSolver s, SUNMatrix a);
+int SUNLinSolSolve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol);
+sunindextype SUNLinSolLastFlag(SUNLinearSolver s);
+int SUNLinSolSpace(SUNLinearSolver s, long *lrw, long *liw);
+void SUNLinSolFreeEmpty(SUNLinearSolver s);
+/* the ops of SUNDIALS' dense solver: only their addresses are used (a2d_slots) */
+int SUNLinSolGetType_Dense(SUNLinearSolver s);
+int SUNLinSolGetID_Dense(SUNLinearSolver s);
+int SUNLinSolInitialize_Dense(SUNLinearSolver s);
+int SUNLinSolSetup_Dense(SUNLinearSolver s, SUNMatrix a);
+int SUNLinSolSolve_Dense(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b,
+                         sunrealtype t);
+sunindextype SUNLinSolLastFlag_Dense(SUNLinearSolver s);
+int SUNLinSolSpace_Dense(SUNLinearSolver s, long *lrw, long *liw);
+int SUNLinSolFree_Dense(SUNLinearSolver s);
 void *IDACreate(SUNContext ctx);
 int IDAInit(void *mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);
 int IDAReInit(void *mem, sunrealtype t0, N_Vector y0, N_Vector yp0);
@@ -71,8 +88,134 @@ typedef struct {
   casadi_real *w;
 } a2d_work;
 
+/* The sparse LU (native_lu.c, before this file) as IDA's linear solver:
+ * a SUNLinearSolver made by SUNLinSolNewEmpty whose ops are filled in.  The
+ * layouts change between SUNDIALS 7.x releases (7.9.0: {content, a field
+ * more, ops, sunctx} and a setoptions op), so they are found at run time:
+ * the ops field of the generic struct is the one non-NULL field before the
+ * context in a new empty solver, and the slot of each op is where the ops
+ * of a reference solver (SUNDIALS' dense solver, whose op functions are
+ * exported) hold its functions.  Where one is not found, SuperLU_MT is used. */
+typedef void (*a2d_op)(void);
+enum { A2D_GETTYPE, A2D_GETID, A2D_INIT, A2D_SETUP, A2D_SOLVE, A2D_LASTFLAG, A2D_SPACE,
+       A2D_FREE, A2D_OPS, A2D_MAX_SLOTS = 64, A2D_MAX_FIELDS = 8 };
+#define A2D_LUFACT_FAIL 9              /* SUNLS_LUFACT_FAIL: recoverable, IDA cuts its step */
+
 typedef struct {
-  int n, n_ev, sparse, nnz;
+  a2d_splu *lu;
+  double *w;
+  long last_flag;
+} a2d_ls;
+
+static int a2d_ops_field = -1;       /* index of the ops pointer in the generic struct */
+
+static a2d_op *a2d_ops(SUNLinearSolver s) { return ((a2d_op **)s)[a2d_ops_field]; }
+
+/* The index of the ops field (see above), or -1. */
+static int a2d_find_ops_field(SUNContext ctx) {
+  SUNLinearSolver e = SUNLinSolNewEmpty(ctx);
+  void **field = (void **)e;
+  int i, found = -1, count = 0;
+  if (!e) return -1;
+  for (i = 1; i < A2D_MAX_FIELDS && field[i] != (void *)ctx; ++i)
+    if (field[i]) { found = i; count++; }
+  if (i == A2D_MAX_FIELDS || count != 1) found = -1;
+  SUNLinSolFreeEmpty(e);
+  return found;
+}
+
+static int a2d_slots(SUNContext ctx, int *slot) {
+  a2d_op want[A2D_OPS] = {
+    (a2d_op)SUNLinSolGetType_Dense, (a2d_op)SUNLinSolGetID_Dense,
+    (a2d_op)SUNLinSolInitialize_Dense, (a2d_op)SUNLinSolSetup_Dense,
+    (a2d_op)SUNLinSolSolve_Dense, (a2d_op)SUNLinSolLastFlag_Dense,
+    (a2d_op)SUNLinSolSpace_Dense, (a2d_op)SUNLinSolFree_Dense};
+  int s, k, found = 0;
+  N_Vector v = N_VNew_Serial(1, ctx);
+  SUNMatrix m = SUNDenseMatrix(1, 1, ctx);
+  SUNLinearSolver ref = v && m ? SUNLinSol_Dense(v, m, ctx) : 0;
+  for (k = 0; k < A2D_OPS; ++k) slot[k] = -1;
+  if (a2d_ops_field < 0) a2d_ops_field = a2d_find_ops_field(ctx);
+  if (ref && a2d_ops_field > 0)   /* stops at the last op wanted: no slot past the struct */
+    for (s = 0; s < A2D_MAX_SLOTS && found < A2D_OPS; ++s)
+      for (k = 0; k < A2D_OPS; ++k)
+        if (slot[k] < 0 && a2d_ops(ref)[s] == want[k]) { slot[k] = s; found++; }
+  if (ref) SUNLinSolFree(ref);
+  if (m) SUNMatDestroy(m);
+  if (v) N_VDestroy(v);
+  return found == A2D_OPS ? 0 : -1;
+}
+
+static a2d_ls *a2d_ls_of(SUNLinearSolver s) { return *(a2d_ls **)s; }   /* content: first */
+
+static int a2d_ls_type(SUNLinearSolver s) { (void)s; return 0; }   /* SUNLINEARSOLVER_DIRECT */
+
+static int a2d_ls_init(SUNLinearSolver s) { a2d_ls_of(s)->last_flag = 0; return 0; }
+
+static int a2d_ls_setup(SUNLinearSolver s, SUNMatrix a) {
+  a2d_ls *c = a2d_ls_of(s);
+  const int *ap = SUNSparseMatrix_IndexPointers(a), *ai = SUNSparseMatrix_IndexValues(a);
+  const double *ax = SUNSparseMatrix_Data(a);
+  if (a2d_splu_refactor(c->lu, ap, ai, ax) == 0) return (int)(c->last_flag = 0);
+  c->last_flag = a2d_splu_factor(c->lu, ap, ai, ax);
+  return c->last_flag == 0 ? 0 : c->last_flag > 0 ? A2D_LUFACT_FAIL : -1;
+}
+
+static int a2d_ls_solve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, double tol) {
+  a2d_ls *c = a2d_ls_of(s);
+  (void)a; (void)tol;
+  return a2d_splu_solve(c->lu, N_VGetArrayPointer(b), N_VGetArrayPointer(x), c->w) ? -1 : 0;
+}
+
+static sunindextype a2d_ls_last(SUNLinearSolver s) {
+  return (sunindextype)a2d_ls_of(s)->last_flag;
+}
+
+static int a2d_ls_space(SUNLinearSolver s, long *lrw, long *liw) {
+  a2d_ls *c = a2d_ls_of(s);
+  *lrw = c->lu->lmax + c->lu->umax + 2L * c->lu->n;
+  *liw = c->lu->lmax + c->lu->umax + 10L * c->lu->n + c->lu->nnz;
+  return 0;
+}
+
+static int a2d_ls_free(SUNLinearSolver s) {
+  a2d_ls *c;
+  if (!s) return 0;
+  c = a2d_ls_of(s);
+  if (c) { a2d_splu_free(c->lu); free(c->w); free(c); }
+  *(a2d_ls **)s = 0;
+  SUNLinSolFreeEmpty(s);
+  return 0;
+}
+
+/* The LU solver for n x n matrices of nnz nonzeros in the order (q, prefer), or 0. */
+static SUNLinearSolver a2d_splu_solver(SUNContext ctx, int n, int nnz, const int *q,
+                                     const int *prefer) {
+  int slot[A2D_OPS];
+  a2d_ls *c;
+  a2d_op *ops;
+  SUNLinearSolver s;
+  if (!q || !prefer || a2d_slots(ctx, slot)) return 0;
+  s = SUNLinSolNewEmpty(ctx);
+  c = (a2d_ls *)calloc(1, sizeof(a2d_ls));
+  if (!s || !c) { free(c); if (s) SUNLinSolFreeEmpty(s); return 0; }
+  *(a2d_ls **)s = c;
+  c->lu = a2d_splu_new(n, nnz, q, prefer);
+  c->w = (double *)malloc(sizeof(double) * (n + 1));
+  if (!c->lu || !c->w) { a2d_ls_free(s); return 0; }
+  ops = a2d_ops(s);
+  ops[slot[A2D_GETTYPE]] = (a2d_op)a2d_ls_type;
+  ops[slot[A2D_INIT]] = (a2d_op)a2d_ls_init;
+  ops[slot[A2D_SETUP]] = (a2d_op)a2d_ls_setup;
+  ops[slot[A2D_SOLVE]] = (a2d_op)a2d_ls_solve;
+  ops[slot[A2D_LASTFLAG]] = (a2d_op)a2d_ls_last;
+  ops[slot[A2D_SPACE]] = (a2d_op)a2d_ls_space;
+  ops[slot[A2D_FREE]] = (a2d_op)a2d_ls_free;    /* getid stays empty: SUNDIALS says CUSTOM */
+  return s;
+}
+
+typedef struct {
+  int n, n_ev, sparse, superlu, nnz;
   const double *p, *d, *ab;       /* bound arrays of the Problem (owned by Python) */
   double t_last, cj[1], tbuf[1];
   long steps;
@@ -155,13 +298,16 @@ static int a2d_roots(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype *g, voi
 }
 #endif
 
-/* solver: 0 dense (SUNDIALS' own LU), 1 dense LAPACK, 2 sparse (SuperLU_MT) */
-static int a2d_linear_solver(a2d_driver *h, int solver) {
-  h->sparse = solver == 2;
+/* solver: 0 dense (SUNDIALS' own LU), 1 dense LAPACK, 2 sparse (SuperLU_MT),
+ * 3 sparse (native_lu.c in the order q, prefer; SuperLU_MT if it cannot be made) */
+static int a2d_linear_solver(a2d_driver *h, int solver, const int *q, const int *prefer) {
+  h->sparse = solver >= 2;
   if (h->sparse) {
     h->A = SUNSparseMatrix(h->n, h->n, h->nnz, 0, h->ctx);
     if (!h->A) return -1;
-    h->LS = SUNLinSol_SuperLUMT(h->y, h->A, 1, h->ctx);
+    h->LS = solver == 3 ? a2d_splu_solver(h->ctx, h->n, h->nnz, q, prefer) : 0;
+    h->superlu = !h->LS;
+    if (h->superlu) h->LS = SUNLinSol_SuperLUMT(h->y, h->A, 1, h->ctx);
   } else {
     h->A = SUNDenseMatrix(h->n, h->n, h->ctx);
     if (!h->A) return -1;
@@ -174,7 +320,7 @@ static int a2d_linear_solver(a2d_driver *h, int solver) {
 }
 
 static int a2d_setup(a2d_driver *h, double rtol, const double *atol, const double *id,
-                     const int *dir, long max_steps, int solver) {
+                     const int *dir, long max_steps, int solver, const int *order) {
   int i, n = h->n;
   if (SUNContext_Create(0, &h->ctx)) return -1;
   SUNContext_ClearErrHandlers(h->ctx);
@@ -191,7 +337,8 @@ static int a2d_setup(a2d_driver *h, double rtol, const double *atol, const doubl
     N_VGetArrayPointer(h->yp)[i] = 0.0;
   }
   if (IDAInit(h->mem, a2d_res, 0.0, h->y, h->yp) || IDASetUserData(h->mem, h) ||
-      IDASVtolerances(h->mem, rtol, h->atol) || a2d_linear_solver(h, solver) ||
+      IDASVtolerances(h->mem, rtol, h->atol) ||
+      a2d_linear_solver(h, solver, order, order ? order + n : 0) ||
       IDASetId(h->mem, h->id) || IDASetSuppressAlg(h->mem, 1) ||
       IDASetMaxNumSteps(h->mem, max_steps))
     return -1;
@@ -210,7 +357,7 @@ void a2d_destroy(a2d_driver *h);
 a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const double *id,
                        const int *dir, const int *terminal, long max_steps, int solver,
                        const double *p, const double *d, const double *ab,
-                       const int *colind, const int *row) {
+                       const int *colind, const int *row, const int *order) {
   a2d_driver *h = (a2d_driver *)calloc(1, sizeof(a2d_driver));
   if (!h) return 0;
   h->n = n; h->n_ev = n_ev; h->p = p; h->d = d; h->ab = ab;
@@ -228,7 +375,7 @@ a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const d
 #ifdef A2D_EVENTS
   a2d_alloc(&h->wev, events_work);
 #endif
-  if (a2d_setup(h, rtol, atol, id, dir, max_steps, solver)) {
+  if (a2d_setup(h, rtol, atol, id, dir, max_steps, solver, order)) {
     a2d_destroy(h);
     return 0;
   }
@@ -238,7 +385,7 @@ a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const d
 void a2d_destroy(a2d_driver *h) {
   if (!h) return;
   if (h->mem) IDAFree(&h->mem);
-  if (h->LS && (h->solved || !h->sparse)) SUNLinSolFree(h->LS);
+  if (h->LS && (h->solved || !h->superlu)) SUNLinSolFree(h->LS);
   if (h->A) SUNMatDestroy(h->A);
   if (h->y) N_VDestroy(h->y);
   if (h->yp) N_VDestroy(h->yp);
@@ -251,6 +398,36 @@ void a2d_destroy(a2d_driver *h) {
 }
 
 long a2d_steps(a2d_driver *h) { return h->steps; }
+
+/* For tests: IDA's linear solver called through SUNDIALS' generic functions
+ * (so through the op slots found) on the iteration matrix pattern with the
+ * values given; b := A^-1 b where setup succeeded.  info: type, setup flag,
+ * last flag, solve flag, real words of its space, 3 (own LU) or 2 (SuperLU_MT). */
+static void a2d_probe_with(a2d_driver *h, N_Vector x, N_Vector r, const double *values,
+                           double *b, long *info) {
+  long liw = 0;
+  int c;
+  for (c = 0; c <= h->n; ++c) SUNSparseMatrix_IndexPointers(h->A)[c] = h->jcol[c];
+  for (c = 0; c < h->nnz; ++c) SUNSparseMatrix_IndexValues(h->A)[c] = h->jrow[c];
+  memcpy(SUNSparseMatrix_Data(h->A), values, sizeof(double) * h->nnz);
+  memcpy(N_VGetArrayPointer(r), b, sizeof(double) * h->n);
+  info[0] = SUNLinSolGetType(h->LS);
+  info[1] = SUNLinSolSetup(h->LS, h->A);
+  info[2] = (long)SUNLinSolLastFlag(h->LS);
+  info[3] = info[1] ? -1 : SUNLinSolSolve(h->LS, h->A, x, r, 0.0);
+  if (!info[1]) memcpy(b, N_VGetArrayPointer(x), sizeof(double) * h->n);
+  SUNLinSolSpace(h->LS, info + 4, &liw);
+  info[5] = h->superlu ? 2 : 3;
+  h->solved = 1;
+}
+
+void a2d_probe(a2d_driver *h, const double *values, double *b, long *info) {
+  N_Vector x = N_VNew_Serial(h->n, h->ctx), r = N_VNew_Serial(h->n, h->ctx);
+  info[5] = -1;
+  if (h->sparse && x && r) a2d_probe_with(h, x, r, values, b, info);
+  if (x) N_VDestroy(x);
+  if (r) N_VDestroy(r);
+}
 
 void a2d_set_progress(a2d_driver *h, int (*progress)(double)) { h->progress = progress; }
 
