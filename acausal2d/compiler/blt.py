@@ -1,0 +1,100 @@
+"""Block lower-triangular (BLT) form of a square sparsity pattern: a
+perfect matching of rows to columns (:class:`~acausal2d.compiler.matching.Matching`)
+and the strongly connected components of the graph it induces (Tarjan,
+iterative), in the order in which they can be solved one after the other.
+
+Row i matched to column c(i) depends on row j when it holds column c(j);
+Tarjan's algorithm closes a component only after every component it
+depends on, so its output order is the solving order: with rows and
+columns permuted to it, every nonzero lies in a diagonal block or to the
+left of it.  The runtime's output rows (:mod:`acausal2d.runtime.projection`)
+factor the diagonal blocks one by one instead of the whole Jacobian.
+Pure Python on lists (no scipy or networkx: the native runtime path must
+not import them)."""
+from .matching import Matching
+
+
+class BLT:
+    """Row order ``rows`` and column order ``cols`` (permuted position ->
+    original index) and block boundaries ``starts`` (block b is positions
+    ``starts[b]:starts[b + 1]``) of a square pattern."""
+
+    def __init__(self, rows, cols, starts):
+        self.rows, self.cols, self.starts = rows, cols, starts
+
+    @property
+    def sizes(self):
+        """The size of each diagonal block, in solving order."""
+        return [b - a for a, b in zip(self.starts, self.starts[1:])]
+
+
+def _components(succ):
+    """Strongly connected components of the graph ``succ[v]`` (list of
+    successors of node v), each a list of nodes, every component after all
+    the components it reaches (Tarjan's algorithm, with an explicit stack)."""
+    n = len(succ)
+    index, low, on = [-1] * n, [0] * n, [False] * n
+    stack, out, count = [], [], 0
+    for root in range(n):
+        if index[root] >= 0:
+            continue
+        work = [(root, 0)]
+        while work:
+            v, k = work.pop()
+            if k == 0:
+                index[v] = low[v] = count
+                count += 1
+                stack.append(v)
+                on[v] = True
+            k = _descend(succ, v, k, work, index, low, on)
+            if k is not None:
+                continue
+            if low[v] == index[v]:
+                out.append(_pop_component(stack, on, v))
+            if work:
+                u = work[-1][0]
+                low[u] = min(low[u], low[v])
+    return out
+
+
+def _descend(succ, v, k, work, index, low, on):
+    """Go on with node v from its k-th successor: push (v, next k) and the
+    first unvisited successor and return its position, or None when v's
+    successors are all seen (their lowlinks folded into v's)."""
+    nxt = succ[v]
+    while k < len(nxt):
+        w = nxt[k]
+        k += 1
+        if index[w] < 0:
+            work.append((v, k))
+            work.append((w, 0))
+            return k
+        if on[w]:
+            low[v] = min(low[v], index[w])
+    return None
+
+
+def _pop_component(stack, on, v):
+    comp = []
+    while True:
+        w = stack.pop()
+        on[w] = False
+        comp.append(w)
+        if w == v:
+            return comp
+
+
+def blt(pattern_rows, n):
+    """The :class:`BLT` of the n x n pattern ``pattern_rows[i]`` = columns of
+    row i, or None where it is structurally singular (no perfect matching)."""
+    match = Matching(pattern_rows, n).match_all()
+    if not match.perfect:
+        return None
+    row_of = match.row_of
+    succ = [[row_of[c] for c in set(cols) if row_of[c] != i]
+            for i, cols in enumerate(pattern_rows)]
+    rows, starts = [], [0]
+    for comp in _components(succ):
+        rows.extend(sorted(comp))
+        starts.append(len(rows))
+    return BLT(rows, [match.col_of[i] for i in rows], starts)
