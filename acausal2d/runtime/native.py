@@ -29,7 +29,7 @@ import weakref
 import casadi as ca
 import numpy as np
 
-from . import cbuild, ordering
+from . import blt_layout, cbuild, ordering
 
 SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
@@ -348,10 +348,6 @@ def _projector_library(system):
         lib = False
         if enabled() and cbuild.find_compiler() and \
                 not too_large(system.residual_fn, system.jacobian_fn):
-            folder, libs = cbuild.sundials_libraries()
-            linked = [libs[k] for k in ("sunlinsolsuperlumt", "sunmatrixsparse",
-                                        "nvecserial", "core")]
-
             def make():
                 cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
                 cg.add(eliminated(system.residual_fn))
@@ -360,32 +356,35 @@ def _projector_library(system):
                 if optimization(code) is None:
                     raise cbuild.BuildFailed("too large")
                 return cbuild.build({"a2d_rows.c": code}, flags=optimization(code),
-                                    name="a2d_rows", libraries=linked, library_dirs=[folder])
-            key = cbuild.fingerprint((system.residual_fn,), _derived(system),
-                                     _text(_PROJECT), *linked)
+                                    name="a2d_rows")
+            key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_PROJECT))
             try:
                 lib = ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_rows"))
                 lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
                                             ctypes.c_int, _I, _P, ctypes.c_double,
-                                            ctypes.c_int, ctypes.c_int, _I, _I, _I]
+                                            ctypes.c_int, _I, _I, _I, _I]
             except (cbuild.BuildFailed, OSError, KeyError):
                 lib = False
         _projectors[system] = lib
     return lib or None
 
 
-def row_projector(system, free, sparse):
+def row_projector(system, free):
     """A function (T, Z, p, d, tol, max_iter) -> (Z solved for the unknowns
-    ``free``, converged rows) in C (``native_project.c``) with dense LU or
-    (``sparse``) SuperLU_MT, or None where it cannot be built."""
+    ``free``, converged rows) in C (``native_project.c``, LU of the
+    Jacobian's block lower-triangular form, :func:`~acausal2d.runtime.blt_layout.layout`),
+    or None where it cannot be built or dE/dz_free is structurally singular."""
     lib = _projector_library(system)
     if lib is None:
+        return None
+    colind, row = _ccs(system.jacobian_fn.sparsity_out(0))
+    ints = blt_layout.layout(system, free)
+    if ints is None:
         return None
     n_var, n_eq = system.structure.n_var, system.structure.n_eq
     col_of = np.full(n_var, -1, dtype=np.intc)
     col_of[free] = np.arange(len(free), dtype=np.intc)
     nominal = np.ascontiguousarray(system.nominal, dtype=float)
-    colind, row = _ccs(system.jacobian_fn.sparsity_out(0))
 
     def project(T, Z, p, d, tol, max_iter):
         T = np.ascontiguousarray(T, float)
@@ -394,6 +393,6 @@ def row_projector(system, free, sparse):
         p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
         lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
                         _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter),
-                        int(bool(sparse)), _ptr(colind, _I), _ptr(row, _I), _ptr(ok, _I))
+                        _ptr(colind, _I), _ptr(row, _I), _ptr(ints, _I), _ptr(ok, _I))
         return Z, ok.astype(bool)
     return project

@@ -19,22 +19,23 @@ from .buffered import Buffered
 from .native import compiled, row_projector, too_large
 
 DENSE_BELOW = 300
-"""Output rows of systems below this many unknowns are solved in C with
-dense LU (``native_project.c``), larger ones in C with SuperLU_MT.
-Measured (CPU s): compressor, 202 unknowns, 290 segments: dense C 0.34,
-mapped CasADi functions + scipy's sparse LU 1.03; chain of 20 links, 356
-unknowns, 5000 rows: dense C 1.27, mapped + scipy sparse 0.60."""
+"""Upper bound (exclusive) of the sizes that get the long reuse of an LU
+(:data:`LONG_REUSE_FROM`).  It was the bound between the dense and the
+SuperLU_MT rows; since the C projector solves every size through the
+block lower-triangular form of dE/dz_free (``native_project.c``), it only
+keeps the iteration policy measured with those solvers."""
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
 SIMPLIFIED_ITERATIONS = 6
-LONG_REUSE_FROM = 150           # dense C rows from this size: the reused LU for up to 16 iterations
+LONG_REUSE_FROM = 150           # C rows from this size: the reused LU for up to 16 iterations
 """The C projector takes a new LU after a row that needed more than half
-its iterations with the reused one.  Small systems and SuperLU_MT: at most
-6 iterations (a new LU after 3); dense systems of 150 to 299 unknowns: up
-to 16 (after 8), since there a dense LU costs far more than a residual
-(compressor, 202 unknowns: rows 0.205 -> 0.155 s CPU; on the piston engine,
-the belt drive and the chain 16 iterations were 8-15% slower)."""
+its iterations with the reused one.  Small systems and from
+:data:`DENSE_BELOW` on: at most 6 iterations (a new LU after 3); systems of
+150 to 299 unknowns: up to 16 (after 8), measured when their rows used a
+dense LU that cost far more than a residual (compressor, 202 unknowns:
+rows 0.205 -> 0.155 s CPU; on the piston engine, the belt drive and the
+chain 16 iterations were 8-15% slower)."""
 
 
 _MAPS = weakref.WeakKeyDictionary()     # system -> its mapped functions
@@ -95,7 +96,7 @@ class Projector:
         order = np.lexsort((self.jrows, self.jcols))
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
-        self.native = row_projector(system, self.free, self.n_eq >= DENSE_BELOW) \
+        self.native = row_projector(system, self.free) \
             if 0 < len(self.free) == self.n_eq else None
         self.native_iterations = 16 if LONG_REUSE_FROM <= self.n_eq < DENSE_BELOW \
             else SIMPLIFIED_ITERATIONS
@@ -209,8 +210,9 @@ class Projector:
     def project(self, T, Z, d):
         """Rows of Z (at times T, relation values d) solved for the
         non-state unknowns; rows that do not converge are left as given.
-        Dense systems go through the C projector (``native_project.c``,
-        Newton with an LU reused from row to row) first."""
+        Where it can be built, the C projector (``native_project.c``,
+        Newton with an LU of the block lower-triangular form reused from
+        row to row) goes first."""
         out = np.array(Z, dtype=float)
         if not len(self.free) or not len(T):
             return out
