@@ -5,13 +5,14 @@ system and set of free unknowns (a :class:`~acausal2d.runtime.projection.Project
 is made per simulate call; the analysis is not repeated per run).
 
 The array holds, one after the other: the number of blocks nb; the block
-starts (nb + 1 positions); the offsets of the blocks' dense storage (nb +
-1, block b of size s takes s * s doubles, column-major); the equation at
-each position; the unknown (index into z) at each position; the slot of
-each nonzero of dE/dz (all columns, CasADi's compressed-column order):
-its index in the dense blocks, -2 - its index among the below-block
-entries, or -1 for a state's column; the below-block entries by column
-position (n + 1 starts) and their row positions.
+starts (nb + 1 positions); the equation at each position; the unknown
+(index into z) at each position; the slot of each nonzero of dE/dz (all
+columns, in CasADi's compressed-column order): its index among the
+diagonal blocks' entries, -2 - its index among the below-block entries,
+or -1 for a state's column; the diagonal blocks' entries by column
+position (n + 1 starts) and their rows within their block; the
+below-block entries by column position (n + 1 starts) and their row
+positions.
 """
 import weakref
 
@@ -19,9 +20,10 @@ import numpy as np
 
 from ..compiler.blt import blt
 
-MAX_DENSE = 4_000_000
-"""Most doubles in the dense diagonal blocks (32 MB, one block of 2000
-unknowns); beyond, no C projector (the Python path with sparse LU)."""
+MAX_FILL = 4_000_000
+"""Most entries of L and of U the C projector makes room for (s(s + 1)/2
+per diagonal block of size s > 1: 2.8 blocks of 2000 unknowns, 96 MB in
+all); beyond, no C projector (the Python path with sparse LU)."""
 _LAYOUTS = weakref.WeakKeyDictionary()    # system -> {free unknowns (bytes): array or None}
 
 
@@ -29,7 +31,7 @@ def layout(system, free):
     """The int array (see module docstring) of ``system`` with the unknowns
     ``free`` solved for, or None where dE/dz_free is not square or is
     structurally singular (no perfect matching), or its diagonal blocks
-    are too large (:data:`MAX_DENSE`)."""
+    are too large (:data:`MAX_FILL`)."""
     free = np.asarray(free, dtype=np.intc)
     per_system = _LAYOUTS.setdefault(system, {})
     key = free.tobytes()
@@ -60,31 +62,26 @@ def _layout(system, free):
 def _arrays(form, rows, f, free, n):
     """The int array of a :class:`~acausal2d.compiler.blt.BLT` ``form``, for
     nonzeros at equation ``rows`` and free column ``f`` (-1: a state)."""
-    start = np.asarray(form.starts, dtype=np.intc)
+    start = np.asarray(form.starts, dtype=np.int64)
     sizes = np.diff(start)
-    off = np.r_[0, np.cumsum(sizes.astype(np.int64) ** 2)]
-    if off[-1] > MAX_DENSE:
+    if np.sum(np.where(sizes > 1, sizes * (sizes + 1) // 2, 0)) > MAX_FILL:
         return None
     block = np.repeat(np.arange(len(sizes)), sizes)          # position -> block
     pos_row = np.empty(n, dtype=np.int64)
     pos_row[form.rows] = np.arange(n)
     pos_col = np.empty(n, dtype=np.int64)
     pos_col[form.cols] = np.arange(n)
-    keep = f >= 0
-    pr, pc = pos_row[rows[keep]], pos_col[f[keep]]
-    br, bc = block[pr], block[pc]
-    if np.any(br < bc):
+    where = np.nonzero(f >= 0)[0]
+    pr, pc = pos_row[rows[where]], pos_col[f[where]]
+    if np.any(block[pr] < block[pc]):
         raise AssertionError("a nonzero above the block diagonal")
-    inside = br == bc
     slot = np.full(len(rows), -1, dtype=np.int64)
-    where = np.nonzero(keep)[0]
-    s0 = start[bc]
-    slot[where[inside]] = (off[bc] + (pc - s0) * sizes[bc] + (pr - s0))[inside]
-    below = np.nonzero(~inside)[0]
-    order = below[np.lexsort((pr[below], pc[below]))]
-    slot[where[order]] = -2 - np.arange(len(order))
-    bptr = np.searchsorted(pc[order], np.arange(n + 1))
-    parts = [[len(sizes)], start, off, form.rows, np.asarray(free)[form.cols], slot, bptr,
-             pr[order], [0]]
-    return np.ascontiguousarray(np.concatenate([np.asarray(a, dtype=np.int64) for a in parts])
+    parts = [[len(sizes)], start, form.rows, np.asarray(free)[form.cols], slot]
+    for inside, code in ((block[pr] == block[pc], 0), (block[pr] > block[pc], -2)):
+        k = np.nonzero(inside)[0]
+        k = k[np.lexsort((pr[k], pc[k]))]                    # by column, then row
+        slot[where[k]] = np.arange(len(k)) if code == 0 else -2 - np.arange(len(k))
+        rows_k = pr[k] - start[block[pc[k]]] if code == 0 else pr[k]
+        parts += [np.searchsorted(pc[k], np.arange(n + 1)), rows_k]
+    return np.ascontiguousarray(np.concatenate([np.asarray(a, dtype=np.int64) for a in parts + [[0]]])
                                 .astype(np.intc))

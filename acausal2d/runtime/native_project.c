@@ -4,24 +4,27 @@
  * converges fast, so that every equation holds to tol times its scale
  * (|dE_i/dz| times the unknowns' sizes, at the row).  The BLT form (row and
  * column permutations, diagonal blocks) is computed once per system in
- * Python (acausal2d/compiler/blt.py) and handed in as index arrays: each
- * Jacobian nonzero's slot in a dense diagonal block (column-major, factored
- * with partial pivoting inside the block) or in the below-block entries
- * (compressed by permuted column); a solve is forward block substitution.
- * Prepended: CasADi-generated "E" and "EJ" (E and dE/dz) of the system.
- * A row that does not converge is left as given (ok = 0). */
+ * Python (acausal2d/runtime/blt_layout.py) and handed in as index arrays:
+ * each Jacobian nonzero's slot among a diagonal block's entries (compressed
+ * by column) or among the below-block entries (also by column).  Each
+ * diagonal block is factored by a left-looking sparse LU with partial
+ * pivoting (Gilbert and Peierls; the steps of Davis' CSparse cs_lu), a
+ * solve is forward block substitution.  Prepended: CasADi-generated "E"
+ * and "EJ" (E and dE/dz) of the system.  A row that does not converge is
+ * left as given (ok = 0). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+
 typedef struct {             /* the BLT form (see a2d_project) */
   int nb;                    /* number of diagonal blocks */
   const int *start;          /* block b: positions start[b] .. start[b + 1] - 1 */
-  const int *off;            /* block b's dense storage at off[b] (size s * s) */
   const int *rperm;          /* position -> equation */
   const int *pvar;           /* position -> unknown (index into z) */
-  const int *slot;           /* nonzero -> block slot (>= 0), -2 - below slot, -1 (a state) */
-  const int *bptr, *brow;    /* below-block entries: by column position, their row positions */
+  const int *slot;           /* nonzero -> block entry (>= 0), -2 - below entry, -1 (a state) */
+  const int *aptr, *ai;      /* block entries by column position, their rows in the block */
+  const int *bptr, *brow;    /* below-block entries by column position, their row positions */
 } a2d_blt;
 
 typedef struct {
@@ -30,108 +33,171 @@ typedef struct {
   const int *colind, *row;      /* CCS pattern of dE/dz */
   const double *nominal;        /* nominal of each unknown */
   a2d_blt b;
-  double *jnz, *M, *lx, *ux, *dinv, *below, *e, *x, *scale, *z0, tbuf[1];
-  int *piv, *lp, *li, *up, *ui;   /* pivots; nonzero pattern of L (columns) and U (rows) per block */
+  double *jnz, *ax, *below, *lx, *ux, *dinv, *y, *e, *x, *scale, *z0, tbuf[1];
+  int *lp, *li, *up, *ui, *pinv, *xi, *mark;    /* L and U of each block, compressed by column */
+  size_t *cap;                  /* block b's L and U entries from cap[b] (room for s(s+1)/2 each) */
   const casadi_real **arg;
   casadi_real **res;
   casadi_int *iw;
   casadi_real *w;
 } a2d_proj;
 
-/* LU of one dense block (column-major, in place) with partial pivoting,
- * LINPACK's order (dgefa): step k swaps rows k and piv[k] in the columns
- * from k on only, so column k of L is final after step k.  The nonzero
- * rows of each column of L and the nonzero columns of each row of U are
- * listed as they are found (lp/li, up/ui): the updates and the solves run
- * over those only (a mechanism's Jacobian blocks are sparse). */
-static int a2d_lu(double *M, int n, int *piv, int *lp, int *li, int *up, int *ui) {
-  int i, j, k, p, q, ql = 0, qu = 0;
-  for (k = 0; k < n; ++k) {
-    double best = 0.0, *Mk = M + (size_t)k * n;
-    p = k;
-    for (i = k; i < n; ++i) if (fabs(Mk[i]) > best) { best = fabs(Mk[i]); p = i; }
-    if (!(best > 0.0) || !isfinite(best)) return -1;
-    piv[k] = p;
-    if (p != k) for (j = k; j < n; ++j) { double t = M[j * n + k]; M[j * n + k] = M[j * n + p]; M[j * n + p] = t; }
-    lp[k] = ql;
-    for (i = k + 1; i < n; ++i) if (Mk[i] != 0.0) { Mk[i] /= Mk[k]; li[ql++] = i; }
-    up[k] = qu;
-    for (j = k + 1; j < n; ++j) {
-      double f = M[j * n + k], *Mj = M + (size_t)j * n;
-      if (f == 0.0) continue;
-      ui[qu++] = j;
-      for (q = lp[k]; q < ql; ++q) Mj[li[q]] -= Mk[li[q]] * f;
+typedef struct {              /* one diagonal block of size s and its factors */
+  int s;
+  const int *ap, *ai;         /* its entries (ap: s + 1 offsets into ax, ai) */
+  const double *ax;
+  int *lp, *li, *up, *ui, *pinv;
+  double *lx, *ux, *dinv;
+} a2d_block;
+
+/* Depth-first search from row j in the graph of L: the rows found are put
+ * below top in xi, in reverse topological order (CSparse's cs_dfs). */
+static int a2d_dfs(int j, const a2d_block *B, int top, int *xi, int *pstack, int *mark, int stamp) {
+  const int *lp = B->lp, *li = B->li, *pinv = B->pinv;
+  int head = 0;
+  xi[0] = j;
+  while (head >= 0) {
+    int p, p2, done = 1, jn;
+    j = xi[head];
+    jn = pinv[j];
+    if (mark[j] != stamp) { mark[j] = stamp; pstack[head] = jn < 0 ? 0 : lp[jn] + 1; }
+    p2 = jn < 0 ? 0 : lp[jn + 1];
+    for (p = pstack[head]; p < p2; ++p) {
+      int i = li[p];
+      if (mark[i] == stamp) continue;
+      pstack[head] = p;
+      xi[++head] = i;
+      done = 0;
+      break;
     }
+    if (done) { --head; xi[--top] = j; }
   }
-  lp[n] = ql; up[n] = qu;
+  return top;
+}
+
+/* x = L \ A(:, k) on the rows reachable from A(:, k) (xi[top..s-1], in
+ * topological order); x is zero on entry outside them */
+static int a2d_lsolve_column(const a2d_block *B, int k, double *x, int *xi, int *mark, int stamp) {
+  const int *ap = B->ap, *ai = B->ai, *lp = B->lp, *li = B->li, *pinv = B->pinv;
+  const double *lx = B->lx;
+  int p, q, s = B->s, top = s;
+  for (p = ap[k]; p < ap[k + 1]; ++p)
+    if (mark[ai[p]] != stamp) top = a2d_dfs(ai[p], B, top, xi, xi + s, mark, stamp);
+  for (p = ap[k]; p < ap[k + 1]; ++p) x[ai[p]] = B->ax[p];
+  for (p = top; p < s; ++p) {
+    int j = xi[p], J = pinv[j];
+    double xj = x[j];
+    if (J < 0 || xj == 0.0) continue;
+    for (q = lp[J] + 1; q < lp[J + 1]; ++q) x[li[q]] -= lx[q] * xj;
+  }
+  return top;
+}
+
+/* Column k of L and U from x on xi[top..s-1] (partial pivoting: the row
+ * of the largest entry not yet a pivot); x is left zero there */
+static int a2d_lu_column(a2d_block *B, int k, double *x, const int *xi, int top, int *lnz, int *unz) {
+  int *pinv = B->pinv, *li = B->li, *ui = B->ui;
+  double *lx = B->lx, *ux = B->ux;
+  int p, ipiv = -1, s = B->s, ql = *lnz, qu = *unz;
+  double a = 0.0, pivot, inv;
+  for (p = top; p < s; ++p) {
+    int i = xi[p];
+    if (pinv[i] < 0) { if (fabs(x[i]) > a) { a = fabs(x[i]); ipiv = i; } }
+    else if (x[i] != 0.0) { ui[qu] = pinv[i]; ux[qu++] = x[i]; }
+  }
+  if (ipiv < 0 || !isfinite(a)) return -1;
+  if (pinv[k] < 0 && fabs(x[k]) >= a) ipiv = k;     /* a tie: the matched row */
+  pivot = x[ipiv];
+  inv = B->dinv[k] = 1.0 / pivot;
+  ui[qu] = k; ux[qu++] = pivot;       /* U's diagonal last in its column */
+  pinv[ipiv] = k;
+  li[ql] = ipiv; lx[ql++] = 1.0;      /* L's unit diagonal first */
+  for (p = top; p < s; ++p) {
+    int i = xi[p];
+    if (pinv[i] < 0 && x[i] != 0.0) { li[ql] = i; lx[ql++] = x[i] * inv; }
+    x[i] = 0.0;
+  }
+  *lnz = ql; *unz = qu;
   return 0;
 }
 
-/* The factors of a2d_lu packed along their pattern lists (lx, ux) with
- * the inverse of U's diagonal (dinv): the solves stream through them
- * instead of gathering from the dense block (which need not fit the cache). */
-static void a2d_lu_pack(const double *M, int n, const int *lp, const int *li, const int *up,
-                        const int *ui, double *lx, double *ux, double *dinv) {
-  int k, q;
-  for (k = 0; k < n; ++k) {
-    for (q = lp[k]; q < lp[k + 1]; ++q) lx[q] = M[(size_t)k * n + li[q]];
-    for (q = up[k]; q < up[k + 1]; ++q) ux[q] = M[(size_t)ui[q] * n + k];
-    dinv[k] = 1.0 / M[(size_t)k * n + k];
+/* LU of one diagonal block: P A = L U (partial pivoting), left-looking */
+static int a2d_block_lu(a2d_block *B, double *x, int *xi, int *mark) {
+  int k, p, lnz = 0, unz = 0;
+  for (k = 0; k < B->s; ++k) { B->pinv[k] = -1; mark[k] = -1; }
+  for (k = 0; k < B->s; ++k) {
+    int top;
+    B->lp[k] = lnz; B->up[k] = unz;
+    top = a2d_lsolve_column(B, k, x, xi, mark, k);
+    if (a2d_lu_column(B, k, x, xi, top, &lnz, &unz)) {
+      for (p = 0; p < B->s; ++p) x[p] = 0.0;
+      return -1;
+    }
   }
+  B->lp[B->s] = lnz; B->up[B->s] = unz;
+  for (p = 0; p < lnz; ++p) B->li[p] = B->pinv[B->li[p]];    /* rows of L in pivot order */
+  return 0;
 }
 
-/* Solve with the packed factors: pivots interleaved with the columns of L
- * (LINPACK's dgesl), then U by rows. */
-static void a2d_lu_solve(int n, const int *piv, const int *lp, const int *li, const double *lx,
-                         const int *up, const int *ui, const double *ux, const double *dinv,
-                         double *b) {
-  int q, k;
-  for (k = 0; k < n; ++k) {
-    double bk = b[piv[k]];
-    if (piv[k] != k) { b[piv[k]] = b[k]; b[k] = bk; }
-    if (bk != 0.0) for (q = lp[k]; q < lp[k + 1]; ++q) b[li[q]] -= lx[q] * bk;
+/* b = A^-1 b for a factored block (y: workspace of s) */
+static void a2d_block_solve(const a2d_block *B, double *b, double *y) {
+  const int *pinv = B->pinv, *lp = B->lp, *li = B->li, *up = B->up, *ui = B->ui;
+  const double *lx = B->lx, *ux = B->ux, *dinv = B->dinv;
+  int j, q, s = B->s;
+  for (j = 0; j < s; ++j) y[pinv[j]] = b[j];
+  for (j = 0; j < s; ++j) {
+    double yj = y[j];
+    for (q = lp[j] + 1; q < lp[j + 1]; ++q) y[li[q]] -= lx[q] * yj;
   }
-  for (k = n - 1; k >= 0; --k) {
-    double s = b[k];
-    for (q = up[k]; q < up[k + 1]; ++q) s -= ux[q] * b[ui[q]];
-    b[k] = s * dinv[k];
+  for (j = s - 1; j >= 0; --j) {
+    double yj = y[j] * dinv[j];
+    y[j] = yj;
+    for (q = up[j]; q < up[j + 1] - 1; ++q) y[ui[q]] -= ux[q] * yj;
   }
+  memcpy(b, y, sizeof(double) * s);
 }
 
-/* Factor the diagonal blocks (block b's pivots and pattern lists at
- * start[b], start[b] + b and off[b]); the below-block values are checked. */
+static a2d_block a2d_block_of(const a2d_proj *h, int k) {
+  const a2d_blt *b = &h->b;
+  int s0 = b->start[k];
+  size_t c = h->cap[k];
+  a2d_block B = {b->start[k + 1] - s0, b->aptr + s0, b->ai, h->ax, h->lp + s0 + k, h->li + c,
+                 h->up + s0 + k, h->ui + c, h->pinv + s0, h->lx + c, h->ux + c, h->dinv + s0};
+  return B;
+}
+
+/* Factor the diagonal blocks; all entries must be finite. */
 static int a2d_blt_factor(a2d_proj *h) {
   const a2d_blt *b = &h->b;
-  int k, s0, s;
-  for (k = 0; k < b->bptr[h->n_eq]; ++k) if (!isfinite(h->below[k])) return -1;
+  int k, n = h->n_eq;
+  for (k = 0; k < b->bptr[n]; ++k) if (!isfinite(h->below[k])) return -1;
+  for (k = 0; k < b->aptr[n]; ++k) if (!isfinite(h->ax[k])) return -1;
   for (k = 0; k < b->nb; ++k) {
-    double *M = h->M + b->off[k];
-    s0 = b->start[k]; s = b->start[k + 1] - s0;
-    int *lp = h->lp + s0 + k, *li = h->li + b->off[k], *up = h->up + s0 + k, *ui = h->ui + b->off[k];
-    if (s == 1) {
-      if (!(fabs(M[0]) > 0.0) || !isfinite(M[0])) return -1;
-      h->dinv[s0] = 1.0 / M[0];
-      continue;
-    }
-    if (a2d_lu(M, s, h->piv + s0, lp, li, up, ui)) return -1;
-    a2d_lu_pack(M, s, lp, li, up, ui, h->lx + b->off[k], h->ux + b->off[k], h->dinv + s0);
+    a2d_block B = a2d_block_of(h, k);
+    if (B.s == 1) {
+      if (!(fabs(B.ax[B.ap[0]]) > 0.0)) return -1;
+      B.dinv[0] = 1.0 / B.ax[B.ap[0]];
+    } else if (a2d_block_lu(&B, h->y, h->xi, h->mark)) return -1;
   }
   return 0;
 }
 
 /* x = (dE/dz_free)^-1 e in positions: forward block substitution */
 static void a2d_blt_solve(const a2d_proj *h, const double *e, double *x) {
-  const a2d_blt *b = &h->b;
-  int k, j, q, s0, s;
-  for (k = 0; k < h->n_eq; ++k) x[k] = e[b->rperm[k]];
-  for (k = 0; k < b->nb; ++k) {
-    s0 = b->start[k]; s = b->start[k + 1] - s0;
-    if (s == 1) x[s0] *= h->dinv[s0];
-    else a2d_lu_solve(s, h->piv + s0, h->lp + s0 + k, h->li + b->off[k], h->lx + b->off[k],
-                      h->up + s0 + k, h->ui + b->off[k], h->ux + b->off[k], h->dinv + s0, x + s0);
-    for (j = s0; j < s0 + s; ++j) {
+  const int *start = h->b.start, *rperm = h->b.rperm, *bptr = h->b.bptr, *brow = h->b.brow;
+  const double *below = h->below, *dinv = h->dinv;
+  int k, j, q, s0, s1, nb = h->b.nb;
+  for (k = 0; k < h->n_eq; ++k) x[k] = e[rperm[k]];
+  for (k = 0; k < nb; ++k) {
+    s0 = start[k]; s1 = start[k + 1];
+    if (s1 == s0 + 1) x[s0] *= dinv[s0];
+    else {
+      a2d_block B = a2d_block_of(h, k);
+      a2d_block_solve(&B, x + s0, h->y);
+    }
+    for (j = s0; j < s1; ++j) {
       double xj = x[j];
-      if (xj != 0.0) for (q = b->bptr[j]; q < b->bptr[j + 1]; ++q) x[b->brow[q]] -= h->below[q] * xj;
+      for (q = bptr[j]; q < bptr[j + 1]; ++q) x[brow[q]] -= below[q] * xj;
     }
   }
 }
@@ -151,22 +217,22 @@ static int a2d_eval(a2d_proj *h, int jac, double t, const double *z, const doubl
 /* dE/dz at z: the row's equation scales, and (if factor) the BLT LU of dE/dz_free */
 static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
                         const double *d, int factor) {
-  const int *colind = h->colind, *row = h->row, *slot = h->b.slot;
+  const int *colind = h->colind, *row = h->row, *slot = h->b.slot, *col_of = h->col_of;
+  const double *jnz = h->jnz, *nominal = h->nominal;
+  double *scale = h->scale, *ax = h->ax, *below = h->below;
   int c, k, n = h->n_eq;
   if (a2d_eval(h, 1, t, z, p, d, h->jnz)) return -1;
-  memset(h->scale, 0, sizeof(double) * n);
-  if (factor) memset(h->M, 0, sizeof(double) * h->b.off[h->b.nb]);
+  memset(scale, 0, sizeof(double) * n);
   for (c = 0; c < h->n_var; ++c) {
-    double size = h->nominal[c] + fabs(z[c]);
-    if (h->col_of[c] < 0) continue;
-    for (k = colind[c]; k < colind[c + 1]; ++k) {
-      h->scale[row[k]] += fabs(h->jnz[k]) * size;
-      if (!factor) continue;
-      if (slot[k] >= 0) h->M[slot[k]] = h->jnz[k];
-      else h->below[-2 - slot[k]] = h->jnz[k];
+    double size = nominal[c] + fabs(z[c]);
+    if (col_of[c] < 0) continue;
+    for (k = colind[c]; k < colind[c + 1]; ++k) scale[row[k]] += fabs(jnz[k]) * size;
+    if (factor) for (k = colind[c]; k < colind[c + 1]; ++k) {
+      if (slot[k] >= 0) ax[slot[k]] = jnz[k];
+      else below[-2 - slot[k]] = jnz[k];
     }
   }
-  for (k = 0; k < n; ++k) if (!(h->scale[k] > 1e-300)) h->scale[k] = 1e-300;
+  for (k = 0; k < n; ++k) if (!(scale[k] > 1e-300)) scale[k] = 1e-300;
   return factor ? a2d_blt_factor(h) : 0;
 }
 
@@ -174,46 +240,58 @@ static int a2d_jacobian(a2d_proj *h, double t, const double *z, const double *p,
  * left E(z) in h->e: iterations used, or -1 */
 static int a2d_newton(a2d_proj *h, double t, double *z, const double *p, const double *d,
                       double tol, int max_iter) {
+  const int *pvar = h->b.pvar;
+  const double *e = h->e, *x = h->x, *scale = h->scale;
   int it, i, n = h->n_eq;
   for (it = 0; it <= max_iter; ++it) {
     int done = 1;
     if (it > 0 && a2d_eval(h, 0, t, z, p, d, h->e)) return -1;
     for (i = 0; i < n; ++i) {
-      if (!isfinite(h->e[i])) return -1;
-      if (fabs(h->e[i]) > tol * h->scale[i]) done = 0;
+      if (!isfinite(e[i])) return -1;
+      if (fabs(e[i]) > tol * scale[i]) done = 0;
     }
     if (done) return it;
     if (it == max_iter) break;
     a2d_blt_solve(h, h->e, h->x);
-    for (i = 0; i < n; ++i) z[h->b.pvar[i]] -= h->x[i];
+    for (i = 0; i < n; ++i) z[pvar[i]] -= x[i];
   }
   return -1;
 }
 
 static void a2d_alloc(a2d_proj *h) {
   casadi_int sz_arg, sz_res, sz_iw, sz_w, a1, r1, i1, w1;
-  int n = h->n_eq, nd = h->b.off[h->b.nb];
+  int k, n = h->n_eq;
+  size_t nd;
   E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
   EJ_work(&a1, &r1, &i1, &w1);
   if (a1 > sz_arg) sz_arg = a1;
   if (r1 > sz_res) sz_res = r1;
   if (i1 > sz_iw) sz_iw = i1;
   if (w1 > sz_w) sz_w = w1;
+  h->cap = (size_t *)malloc(sizeof(size_t) * (h->b.nb + 1));
+  for (h->cap[0] = 0, k = 0; k < h->b.nb; ++k) {
+    size_t s = (size_t)(h->b.start[k + 1] - h->b.start[k]);
+    h->cap[k + 1] = h->cap[k] + (s > 1 ? s * (s + 1) / 2 : 0);
+  }
+  nd = h->cap[h->b.nb] + 1;
   h->jnz = (double *)malloc(sizeof(double) * (h->nnz + 1));
-  h->M = (double *)malloc(sizeof(double) * (nd + 1));
-  h->lx = (double *)malloc(sizeof(double) * (nd + 1));
-  h->ux = (double *)malloc(sizeof(double) * (nd + 1));
-  h->dinv = (double *)malloc(sizeof(double) * (n + 1));
+  h->ax = (double *)malloc(sizeof(double) * (h->b.aptr[n] + 1));
   h->below = (double *)malloc(sizeof(double) * (h->b.bptr[n] + 1));
+  h->lx = (double *)malloc(sizeof(double) * nd);
+  h->ux = (double *)malloc(sizeof(double) * nd);
+  h->li = (int *)malloc(sizeof(int) * nd);
+  h->ui = (int *)malloc(sizeof(int) * nd);
+  h->lp = (int *)malloc(sizeof(int) * (n + h->b.nb + 1));
+  h->up = (int *)malloc(sizeof(int) * (n + h->b.nb + 1));
+  h->pinv = (int *)malloc(sizeof(int) * (n + 1));
+  h->xi = (int *)malloc(sizeof(int) * (2 * n + 1));
+  h->mark = (int *)malloc(sizeof(int) * (n + 1));
+  h->dinv = (double *)malloc(sizeof(double) * (n + 1));
+  h->y = (double *)calloc(n + 1, sizeof(double));     /* zero: the LU's column workspace */
   h->e = (double *)malloc(sizeof(double) * (n + 1));
   h->x = (double *)malloc(sizeof(double) * (n + 1));
   h->scale = (double *)malloc(sizeof(double) * (n + 1));
   h->z0 = (double *)malloc(sizeof(double) * (h->n_var + 1));
-  h->piv = (int *)malloc(sizeof(int) * (n + 1));
-  h->lp = (int *)malloc(sizeof(int) * (n + h->b.nb + 1));
-  h->up = (int *)malloc(sizeof(int) * (n + h->b.nb + 1));
-  h->li = (int *)malloc(sizeof(int) * (nd + 1));
-  h->ui = (int *)malloc(sizeof(int) * (nd + 1));
   h->arg = (const casadi_real **)calloc(sz_arg + 1, sizeof(casadi_real *));
   h->res = (casadi_real **)calloc(sz_res + 1, sizeof(casadi_real *));
   h->iw = (casadi_int *)calloc(sz_iw + 1, sizeof(casadi_int));
@@ -221,8 +299,9 @@ static void a2d_alloc(a2d_proj *h) {
 }
 
 static void a2d_release(a2d_proj *h) {
-  free(h->jnz); free(h->M); free(h->lx); free(h->ux); free(h->dinv); free(h->below); free(h->e); free(h->x); free(h->scale);
-  free(h->z0); free(h->piv); free(h->lp); free(h->up); free(h->li); free(h->ui);
+  free(h->cap); free(h->jnz); free(h->ax); free(h->below); free(h->lx); free(h->ux);
+  free(h->li); free(h->ui); free(h->lp); free(h->up); free(h->pinv); free(h->xi); free(h->mark);
+  free(h->dinv); free(h->y); free(h->e); free(h->x); free(h->scale); free(h->z0);
   free(h->arg); free(h->res); free(h->iw); free(h->w);
 }
 
@@ -250,17 +329,18 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
   a2d_proj h;
   int r, c, have = 0, pred = 0;
   double *delta = (double *)calloc(n_var + 1, sizeof(double));
-  const int *q = blt_ints;       /* nb, start, off, rperm, pvar, slot, bptr, brow, in one array */
+  const int *q = blt_ints;       /* nb, start, rperm, pvar, slot, aptr, ai, bptr, brow in one array */
   memset(&h, 0, sizeof h);
   h.n_var = n_var; h.n_eq = n_eq; h.col_of = col_of; h.nominal = nominal;
   h.colind = colind; h.row = row;
   h.nnz = colind[n_var];
   h.b.nb = q[0]; q += 1;
   h.b.start = q; q += h.b.nb + 1;
-  h.b.off = q; q += h.b.nb + 1;
   h.b.rperm = q; q += n_eq;
   h.b.pvar = q; q += n_eq;
   h.b.slot = q; q += h.nnz;
+  h.b.aptr = q; q += n_eq + 1;
+  h.b.ai = q; q += h.b.aptr[n_eq];
   h.b.bptr = q; q += n_eq + 1;
   h.b.brow = q;
   a2d_alloc(&h);
