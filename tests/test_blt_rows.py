@@ -126,7 +126,8 @@ def test_the_c_projector_solves_every_row_to_1e_12(model, settings, largest):
     assert max(np.diff(ints[1:nb + 2])) == largest          # the largest diagonal block
     n_rows = 0
     for proj, T, Z, d in saved:
-        out, ok = proj.native(T, Z, proj.p, d, projection.RES_TOL, proj.native_iterations)
+        out, ok = proj.native(T, Z, proj.p, d, projection.RES_TOL, proj.native_iterations,
+                              proj.native_slow)
         assert ok.all()
         assert np.array_equal(out[:, ~np.isin(np.arange(Z.shape[1]), proj.free)],
                               Z[:, ~np.isin(np.arange(Z.shape[1]), proj.free)])

@@ -362,7 +362,7 @@ def _projector_library(system):
                 lib = ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_rows"))
                 lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
                                             ctypes.c_int, _I, _P, ctypes.c_double,
-                                            ctypes.c_int, _I, _I, _I, _I]
+                                            ctypes.c_int, ctypes.c_int, _I, _I, _I, _I]
             except (cbuild.BuildFailed, OSError, KeyError):
                 lib = False
         _projectors[system] = lib
@@ -370,10 +370,12 @@ def _projector_library(system):
 
 
 def row_projector(system, free):
-    """A function (T, Z, p, d, tol, max_iter) -> (Z solved for the unknowns
-    ``free``, converged rows) in C (``native_project.c``, LU of the
+    """A function (T, Z, p, d, tol, max_iter, slow) -> (Z solved for the
+    unknowns ``free``, converged rows) in C (``native_project.c``, LU of the
     Jacobian's block lower-triangular form, :func:`~acausal2d.runtime.blt_layout.layout`),
-    or None where it cannot be built or dE/dz_free is structurally singular."""
+    or None where it cannot be built or dE/dz_free is structurally singular.
+    Each row gets at most ``max_iter`` Newton iterations; after a row that
+    needed more than ``slow`` of them the next row takes a new LU."""
     lib = _projector_library(system)
     if lib is None:
         return None
@@ -386,13 +388,13 @@ def row_projector(system, free):
     col_of[free] = np.arange(len(free), dtype=np.intc)
     nominal = np.ascontiguousarray(system.nominal, dtype=float)
 
-    def project(T, Z, p, d, tol, max_iter):
+    def project(T, Z, p, d, tol, max_iter, slow):
         T = np.ascontiguousarray(T, float)
         Z = np.array(Z, dtype=float, order="C")
         ok = np.zeros(len(T), dtype=np.intc)
         p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
         lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
-                        _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter),
+                        _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter), int(slow),
                         _ptr(colind, _I), _ptr(row, _I), _ptr(ints, _I), _ptr(ok, _I))
         return Z, ok.astype(bool)
     return project

@@ -8,13 +8,16 @@
  * each Jacobian nonzero's slot among a diagonal block's entries (compressed
  * by column) or among the below-block entries (also by column).  Each
  * diagonal block is factored by a left-looking sparse LU with partial
- * pivoting (Gilbert and Peierls; the steps of Davis' CSparse cs_lu), a
- * solve is forward block substitution.  Prepended: CasADi-generated "E"
+ * pivoting (Gilbert and Peierls; the steps of Davis' CSparse cs_lu) and
+ * later refactored with the same pivots and pattern while they hold (KLU's
+ * refactor); a solve is forward block substitution.  Prepended: CasADi-generated "E"
  * and "EJ" (E and dE/dz) of the system.  A row that does not converge is
  * left as given (ok = 0). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define REFACTOR_PIVOT 0.1   /* see a2d_block_refactor */
 
 
 typedef struct {             /* the BLT form (see a2d_project) */
@@ -35,6 +38,7 @@ typedef struct {
   a2d_blt b;
   double *jnz, *ax, *below, *lx, *ux, *dinv, *y, *e, *x, *scale, *z0, tbuf[1];
   int *lp, *li, *up, *ui, *pinv, *xi, *mark;    /* L and U of each block, compressed by column */
+  int *pivoted;                 /* per block: its pivots and pattern are set (a2d_block_refactor) */
   size_t *cap;                  /* block b's L and U entries from cap[b] (room for s(s+1)/2 each) */
   const casadi_real **arg;
   casadi_real **res;
@@ -103,7 +107,7 @@ static int a2d_lu_column(a2d_block *B, int k, double *x, const int *xi, int top,
   for (p = top; p < s; ++p) {
     int i = xi[p];
     if (pinv[i] < 0) { if (fabs(x[i]) > a) { a = fabs(x[i]); ipiv = i; } }
-    else if (x[i] != 0.0) { ui[qu] = pinv[i]; ux[qu++] = x[i]; }
+    else { ui[qu] = pinv[i]; ux[qu++] = x[i]; }
   }
   if (ipiv < 0 || !isfinite(a)) return -1;
   if (pinv[k] < 0 && fabs(x[k]) >= a) ipiv = k;     /* a tie: the matched row */
@@ -114,7 +118,7 @@ static int a2d_lu_column(a2d_block *B, int k, double *x, const int *xi, int top,
   li[ql] = ipiv; lx[ql++] = 1.0;      /* L's unit diagonal first */
   for (p = top; p < s; ++p) {
     int i = xi[p];
-    if (pinv[i] < 0 && x[i] != 0.0) { li[ql] = i; lx[ql++] = x[i] * inv; }
+    if (pinv[i] < 0) { li[ql] = i; lx[ql++] = x[i] * inv; }
     x[i] = 0.0;
   }
   *lnz = ql; *unz = qu;
@@ -136,6 +140,40 @@ static int a2d_block_lu(a2d_block *B, double *x, int *xi, int *mark) {
   }
   B->lp[B->s] = lnz; B->up[B->s] = unz;
   for (p = 0; p < lnz; ++p) B->li[p] = B->pinv[B->li[p]];    /* rows of L in pivot order */
+  return 0;
+}
+
+/* LU of one diagonal block with the pivots and the pattern of its last LU
+ * (no search of the reach, no pivot search; KLU's refactor): -1 where a
+ * pivot is below REFACTOR_PIVOT times the largest entry of its column of L
+ * (then a2d_block_lu chooses new pivots).  x is indexed in pivot order. */
+static int a2d_block_refactor(a2d_block *B, double *x) {
+  const int *ap = B->ap, *ai = B->ai, *lp = B->lp, *li = B->li, *up = B->up, *ui = B->ui;
+  const int *pinv = B->pinv;
+  const double *ax = B->ax;
+  double *lx = B->lx, *ux = B->ux;
+  int k, p, q, s = B->s;
+  for (k = 0; k < s; ++k) {
+    double pivot, big = 0.0, inv;
+    for (p = ap[k]; p < ap[k + 1]; ++p) x[pinv[ai[p]]] = ax[p];
+    for (q = up[k]; q < up[k + 1] - 1; ++q) {     /* U's column in topological order */
+      int J = ui[q];
+      double xj = x[J];
+      x[J] = 0.0;
+      ux[q] = xj;
+      for (p = lp[J] + 1; p < lp[J + 1]; ++p) x[li[p]] -= lx[p] * xj;
+    }
+    pivot = x[k];
+    x[k] = 0.0;
+    for (p = lp[k] + 1; p < lp[k + 1]; ++p) if (fabs(x[li[p]]) > big) big = fabs(x[li[p]]);
+    if (!(fabs(pivot) >= REFACTOR_PIVOT * big) || !(fabs(pivot) > 0.0)) {
+      for (p = lp[k] + 1; p < lp[k + 1]; ++p) x[li[p]] = 0.0;
+      return -1;
+    }
+    ux[up[k + 1] - 1] = pivot;
+    inv = B->dinv[k] = 1.0 / pivot;
+    for (p = lp[k] + 1; p < lp[k + 1]; ++p) { lx[p] = x[li[p]] * inv; x[li[p]] = 0.0; }
+  }
   return 0;
 }
 
@@ -166,7 +204,8 @@ static a2d_block a2d_block_of(const a2d_proj *h, int k) {
   return B;
 }
 
-/* Factor the diagonal blocks; all entries must be finite. */
+/* Factor the diagonal blocks; all entries must be finite.  A block with
+ * an LU from an earlier row is refactored with its pivots first. */
 static int a2d_blt_factor(a2d_proj *h) {
   const a2d_blt *b = &h->b;
   int k, n = h->n_eq;
@@ -177,7 +216,11 @@ static int a2d_blt_factor(a2d_proj *h) {
     if (B.s == 1) {
       if (!(fabs(B.ax[B.ap[0]]) > 0.0)) return -1;
       B.dinv[0] = 1.0 / B.ax[B.ap[0]];
-    } else if (a2d_block_lu(&B, h->y, h->xi, h->mark)) return -1;
+      continue;
+    }
+    if (h->pivoted[k] && !a2d_block_refactor(&B, h->y)) continue;
+    h->pivoted[k] = !a2d_block_lu(&B, h->y, h->xi, h->mark);
+    if (!h->pivoted[k]) return -1;
   }
   return 0;
 }
@@ -286,6 +329,7 @@ static void a2d_alloc(a2d_proj *h) {
   h->pinv = (int *)malloc(sizeof(int) * (n + 1));
   h->xi = (int *)malloc(sizeof(int) * (2 * n + 1));
   h->mark = (int *)malloc(sizeof(int) * (n + 1));
+  h->pivoted = (int *)calloc(h->b.nb + 1, sizeof(int));
   h->dinv = (double *)malloc(sizeof(double) * (n + 1));
   h->y = (double *)calloc(n + 1, sizeof(double));     /* zero: the LU's column workspace */
   h->e = (double *)malloc(sizeof(double) * (n + 1));
@@ -300,7 +344,7 @@ static void a2d_alloc(a2d_proj *h) {
 
 static void a2d_release(a2d_proj *h) {
   free(h->cap); free(h->jnz); free(h->ax); free(h->below); free(h->lx); free(h->ux);
-  free(h->li); free(h->ui); free(h->lp); free(h->up); free(h->pinv); free(h->xi); free(h->mark);
+  free(h->li); free(h->ui); free(h->lp); free(h->up); free(h->pinv); free(h->xi); free(h->mark); free(h->pivoted);
   free(h->dinv); free(h->y); free(h->e); free(h->x); free(h->scale); free(h->z0);
   free(h->arg); free(h->res); free(h->iw); free(h->w);
 }
@@ -308,7 +352,7 @@ static void a2d_release(a2d_proj *h) {
 /* One row from z (its predicted start applied): iterations used, or -1 with
  * z restored; *have: whether the LU stays usable for the next row. */
 static int a2d_row(a2d_proj *h, double t, double *z, const double *p, const double *d,
-                   double tol, int max_iter, int *have) {
+                   double tol, int max_iter, int slow, int *have) {
   int its, fresh = !*have;
   if (a2d_jacobian(h, t, z, p, d, fresh)) { *have = 0; return -1; }
   *have = 1;
@@ -319,13 +363,13 @@ static int a2d_row(a2d_proj *h, double t, double *z, const double *p, const doub
     its = a2d_newton(h, t, z, p, d, tol, max_iter);
   }
   if (its < 0) *have = 0;
-  else if (its > max_iter / 2) *have = 0;   /* slow: a new LU at the next row (max_iter 6: after 3) */
+  else if (its > slow) *have = 0;      /* slow: a new LU at the next row */
   return its;
 }
 
 int a2d_project(int m, const double *T, double *Z, const double *p, const double *d, int n_var,
                 int n_eq, const int *col_of, const double *nominal, double tol, int max_iter,
-                const int *colind, const int *row, const int *blt_ints, int *ok) {
+                int slow, const int *colind, const int *row, const int *blt_ints, int *ok) {
   a2d_proj h;
   int r, c, have = 0, pred = 0;
   double *delta = (double *)calloc(n_var + 1, sizeof(double));
@@ -348,7 +392,7 @@ int a2d_project(int m, const double *T, double *Z, const double *p, const double
     double *z = Z + (size_t)r * n_var;
     memcpy(h.z0, z, sizeof(double) * n_var);
     if (pred) for (c = 0; c < n_var; ++c) z[c] += delta[c];   /* the last row's correction */
-    ok[r] = a2d_row(&h, T[r], z, p, d, tol, max_iter, &have) >= 0;
+    ok[r] = a2d_row(&h, T[r], z, p, d, tol, max_iter, slow, &have) >= 0;
     if (!ok[r]) { memcpy(z, h.z0, sizeof(double) * n_var); pred = 0; continue; }
     for (c = 0; c < n_var; ++c) delta[c] = z[c] - h.z0[c];
     pred = 1;

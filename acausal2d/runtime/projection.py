@@ -18,24 +18,22 @@ from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
 from .native import compiled, row_projector, too_large
 
-DENSE_BELOW = 300
-"""Upper bound (exclusive) of the sizes that get the long reuse of an LU
-(:data:`LONG_REUSE_FROM`).  It was the bound between the dense and the
-SuperLU_MT rows; since the C projector solves every size through the
-block lower-triangular form of dE/dz_free (``native_project.c``), it only
-keeps the iteration policy measured with those solvers."""
-
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
-SIMPLIFIED_ITERATIONS = 6
-LONG_REUSE_FROM = 150           # C rows from this size: the reused LU for up to 16 iterations
-"""The C projector takes a new LU after a row that needed more than half
-its iterations with the reused one.  Small systems and from
-:data:`DENSE_BELOW` on: at most 6 iterations (a new LU after 3); systems of
-150 to 299 unknowns: up to 16 (after 8), measured when their rows used a
-dense LU that cost far more than a residual (compressor, 202 unknowns:
-rows 0.205 -> 0.155 s CPU; on the piston engine, the belt drive and the
-chain 16 iterations were 8-15% slower)."""
+SIMPLIFIED_ITERATIONS = 6       # Newton iterations of a row with one LU, at most
+NEW_LU_FROM = 150
+"""The C projector (``native_project.c``) factors dE/dz_free in its block
+lower-triangular form and refactors it with the pivots of its last LU, so
+a new LU costs little more than the Jacobian each row evaluates anyway
+(for the equations' scales).  It takes a new LU at the next row after a
+row that needed more than one iteration with the LU it had; from this many
+unknowns after any row that needed an iteration at all.  Measured (rows
+alone, CPU s per run; a new LU after more than 0 / 1 / 2 / 3 iterations):
+piston engine, 37 unknowns, 0.0041 / 0.0032 / 0.0038 / 0.0042; belt
+drive, 80: 0.0206 / 0.0191 / 0.0208 / 0.0223; compressor, 202: 0.0236 /
+0.0322 / - / 0.0336 (up to 16 iterations: 0.0390); chain of 20 links,
+356: 0.0446 / 0.0469 / 0.0483 / 0.0502.  With a new LU a chain row takes
+one iteration, with the LU of an earlier row mostly 3 or 4."""
 
 
 _MAPS = weakref.WeakKeyDictionary()     # system -> its mapped functions
@@ -98,8 +96,8 @@ class Projector:
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         self.native = row_projector(system, self.free) \
             if 0 < len(self.free) == self.n_eq else None
-        self.native_iterations = 16 if LONG_REUSE_FROM <= self.n_eq < DENSE_BELOW \
-            else SIMPLIFIED_ITERATIONS
+        self.native_iterations = SIMPLIFIED_ITERATIONS
+        self.native_slow = 0 if self.n_eq >= NEW_LU_FROM else 1
         self._to_rows = None
 
     @property
@@ -217,7 +215,8 @@ class Projector:
         if not len(self.free) or not len(T):
             return out
         if self.native is not None:
-            out, ok = self.native(T, out, self.p, d, RES_TOL, self.native_iterations)
+            out, ok = self.native(T, out, self.p, d, RES_TOL, self.native_iterations,
+                                  self.native_slow)
             if ok.all():
                 return out
             rest = np.nonzero(~ok)[0]
