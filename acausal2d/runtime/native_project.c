@@ -212,12 +212,15 @@ static int a2d_blt_factor(a2d_proj *h) {
   for (k = 0; k < b->bptr[n]; ++k) if (!isfinite(h->below[k])) return -1;
   for (k = 0; k < b->aptr[n]; ++k) if (!isfinite(h->ax[k])) return -1;
   for (k = 0; k < b->nb; ++k) {
-    a2d_block B = a2d_block_of(h, k);
-    if (B.s == 1) {
-      if (!(fabs(B.ax[B.ap[0]]) > 0.0)) return -1;
-      B.dinv[0] = 1.0 / B.ax[B.ap[0]];
+    int s0 = b->start[k];
+    a2d_block B;
+    if (b->start[k + 1] == s0 + 1) {
+      double a = h->ax[b->aptr[s0]];
+      if (!(fabs(a) > 0.0)) return -1;
+      h->dinv[s0] = 1.0 / a;
       continue;
     }
+    B = a2d_block_of(h, k);
     if (h->pivoted[k] && !a2d_block_refactor(&B, h->y)) continue;
     h->pivoted[k] = !a2d_block_lu(&B, h->y, h->xi, h->mark);
     if (!h->pivoted[k]) return -1;
