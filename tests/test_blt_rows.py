@@ -1,8 +1,10 @@
 """Output rows through the block lower-triangular (BLT) form of dE/dz_free:
 the analysis (:mod:`acausal2d.compiler.blt`) on hand-made patterns - the
 permuted pattern is block lower triangular, its blocks are the strongly
-connected components, a structurally singular pattern is reported - and
-the C projector (``native_project.c``) on real runs: every row it returns
+connected components, a structurally singular pattern is reported - the
+layout handed to C (:mod:`acausal2d.runtime.blt_layout`: each nonzero in
+its diagonal block or below it, none for a singular Jacobian), and the C
+projector (``native_project.c``) on real runs: every row it returns
 as converged satisfies every equation to 1e-12 of the equation's scale."""
 import os
 import sys
@@ -135,3 +137,54 @@ def test_the_c_projector_solves_every_row_to_1e_12(model, settings, largest):
         n_rows += len(T)
     assert n_rows >= 100
     assert native.row_projector(proj.system, proj.free) is not None
+
+
+class _System:
+    """What :func:`blt_layout.layout` reads of a system: sizes and the
+    sparsity of dE/dz (a CasADi function of a given pattern)."""
+
+    def __init__(self, A):
+        import casadi as ca
+        self.structure = type("S", (), {"n_eq": A.shape[0], "n_var": A.shape[1]})()
+        rows, cols = np.nonzero(A)
+        sp = ca.Sparsity.triplet(A.shape[0], A.shape[1], rows.tolist(), cols.tolist())
+        self.jacobian_fn = ca.Function("dEdz", [], [ca.DM(sp, 1.0)])
+
+
+def test_the_layout_puts_each_nonzero_in_its_block_or_below():
+    rng = np.random.default_rng(3)
+    n, n_var = 40, 46
+    A = rng.random((n, n_var)) < 0.06
+    free = np.sort(rng.permutation(n_var)[:n])
+    A[np.arange(n), free[rng.permutation(n)]] = True       # structurally regular
+    ints = blt_layout._layout(_System(A), free)
+    nb = int(ints[0])
+    start, q = ints[1:nb + 2], nb + 2
+    rperm, pvar, q = ints[q:q + n], ints[q + n:q + 2 * n], q + 2 * n
+    rows, cols = (np.asarray(a) for a in _System(A).jacobian_fn.sparsity_out(0).get_triplet())
+    slot, q = ints[q:q + len(rows)], q + len(rows)
+    aptr, q = ints[q:q + n + 1], q + n + 1
+    ai, q = ints[q:q + aptr[-1]], q + aptr[-1]
+    bptr, q = ints[q:q + n + 1], q + n + 1
+    brow = ints[q:q + bptr[-1]]
+    assert sorted(rperm) == list(range(n)) and sorted(pvar) == sorted(free)
+    pos_row, pos_col = np.argsort(rperm), {v: k for k, v in enumerate(pvar)}
+    block = np.repeat(np.arange(nb), np.diff(start))
+    for k, (r, c) in enumerate(zip(rows, cols)):
+        if c not in pos_col:
+            assert slot[k] == -1                    # a state's column
+            continue
+        i, j = pos_row[r], pos_col[c]
+        assert block[i] >= block[j]                 # block lower triangular
+        if block[i] == block[j]:
+            assert aptr[j] <= slot[k] < aptr[j + 1] and ai[slot[k]] == i - start[block[j]]
+        else:
+            q = -2 - slot[k]
+            assert bptr[j] <= q < bptr[j + 1] and brow[q] == i
+    assert aptr[-1] + bptr[-1] == np.isin(cols, free).sum()
+
+
+def test_a_structurally_singular_jacobian_gets_no_layout():
+    A = np.eye(4, dtype=bool)
+    A[2] = A[1]                                     # rows 1 and 2 hold column 1 only
+    assert blt_layout._layout(_System(A), np.arange(4)) is None
