@@ -1,5 +1,5 @@
 """Output rows through the block lower-triangular (BLT) form of dE/dz_free:
-the analysis (:mod:`acausal2d.compiler.blt`) on hand-made patterns - the
+the analysis (:mod:`acausal2d.runtime.blt`) on hand-made patterns - the
 permuted pattern is block lower triangular, its blocks are the strongly
 connected components, a structurally singular pattern is reported - the
 layout handed to C (:mod:`acausal2d.runtime.blt_layout`: each nonzero in
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.compiler.blt import blt
+from acausal2d.runtime.blt import blt
 from acausal2d.runtime import blt_layout, native, projection
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "models"))

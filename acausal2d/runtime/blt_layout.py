@@ -1,6 +1,6 @@
 """Where the C projector of output rows (``native_project.c``) puts each
 nonzero of dE/dz: the block lower-triangular form of dE/dz_free
-(:func:`~acausal2d.compiler.blt.blt`) as one int array, computed once per
+(:func:`~acausal2d.runtime.blt.blt`) as one int array, computed once per
 system and set of free unknowns (a :class:`~acausal2d.runtime.projection.Projector`
 is made per simulate call; the analysis is not repeated per run).
 
@@ -18,7 +18,7 @@ import weakref
 
 import numpy as np
 
-from ..compiler.blt import blt
+from .blt import blt
 
 MAX_FILL = 4_000_000
 """Most entries of L and of U the C projector makes room for (s(s + 1)/2
@@ -60,7 +60,7 @@ def _layout(system, free):
 
 
 def _arrays(form, rows, f, free, n):
-    """The int array of a :class:`~acausal2d.compiler.blt.BLT` ``form``, for
+    """The int array of a :class:`~acausal2d.runtime.blt.BLT` ``form``, for
     nonzeros at equation ``rows`` and free column ``f`` (-1: a state)."""
     start = np.asarray(form.starts, dtype=np.int64)
     sizes = np.diff(start)

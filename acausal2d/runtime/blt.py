@@ -10,15 +10,16 @@ depends on, so its output order is the solving order: with rows and
 columns permuted to it, every nonzero lies in a diagonal block or to the
 left of it.  The runtime's output rows (:mod:`acausal2d.runtime.projection`)
 factor the diagonal blocks one by one instead of the whole Jacobian.
-The minimum-degree order (of the component's graph made symmetric, which
-keeps the matched entries on the diagonal) is for the fill of the block's
-LU: the block of 158 unknowns of the chain of 20 pendulum links had 1166
-entries in L and U besides the diagonal in the rows' own order and 657 in
-this one (partial pivoting, a row of a run).  Pure Python on lists (no
+The minimum-degree order (:func:`~acausal2d.runtime.ordering.minimum_degree`
+of the component's graph made symmetric, which keeps the matched entries on
+the diagonal, as :func:`~acausal2d.runtime.ordering.lu_order` does for
+IDA's matrix) is for the fill of the block's LU: the block of 158 unknowns
+of the chain of 20 pendulum links had 1166 entries in L and U besides the
+diagonal in the rows' own order and 657 in this one (partial pivoting, a
+row of a run).  Pure Python on lists (no
 scipy or networkx: the native runtime path must not import them)."""
-import heapq
-
-from .matching import Matching
+from ..compiler.matching import Matching
+from .ordering import minimum_degree
 
 
 class BLT:
@@ -91,28 +92,6 @@ def _pop_component(stack, on, v):
             return comp
 
 
-def _minimum_degree(adj):
-    """An elimination order of the symmetric graph ``adj`` (list of sets of
-    neighbours) that always takes a node of least degree in the graph left
-    (ties: the lower index); the neighbours of an eliminated node become
-    one clique (the fill)."""
-    heap = [(len(a), i) for i, a in enumerate(adj)]
-    heapq.heapify(heap)
-    done, order = [False] * len(adj), []
-    while heap:
-        deg, v = heapq.heappop(heap)
-        if done[v] or deg != len(adj[v]):
-            continue                        # eliminated, or an old degree
-        done[v] = True
-        order.append(v)
-        for u in adj[v]:
-            adj[u] |= adj[v]
-            adj[u].discard(u)
-            adj[u].discard(v)
-            heapq.heappush(heap, (len(adj[u]), u))
-    return order
-
-
 def _ordered(comp, succ):
     """The rows of a component in minimum-degree order (module docstring)."""
     nodes = sorted(comp)
@@ -125,7 +104,7 @@ def _ordered(comp, succ):
             if w in local:
                 adj[k].add(local[w])
                 adj[local[w]].add(k)
-    return [nodes[k] for k in _minimum_degree(adj)]
+    return [nodes[k] for k in minimum_degree(adj)]
 
 
 def blt(pattern_rows, n):
