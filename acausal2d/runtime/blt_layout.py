@@ -21,9 +21,9 @@ import numpy as np
 from .blt import blt
 
 MAX_FILL = 4_000_000
-"""Most entries of L and of U the C projector makes room for (s(s + 1)/2
-per diagonal block of size s > 1: 2.8 blocks of 2000 unknowns, 96 MB in
-all); beyond, no C projector (the Python path with sparse LU)."""
+"""Most entries that L (and U) of the diagonal blocks' LUs could reach (s(s +
+1)/2 for a block of size s > 1; 2.8 blocks of 2000 unknowns): beyond, no C
+projector (the Python path with sparse LU)."""
 _LAYOUTS = weakref.WeakKeyDictionary()    # system -> {free unknowns (bytes): array or None}
 
 

@@ -352,12 +352,13 @@ def _projector_library(system):
                 cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
                 cg.add(eliminated(system.residual_fn))
                 cg.add(_residual_and_jacobian(system))
-                code = cg.dump() + "\n" + _text(_PROJECT)
+                code = cg.dump() + "\n" + _text(_LU) + _text(_PROJECT)
                 if optimization(code) is None:
                     raise cbuild.BuildFailed("too large")
                 return cbuild.build({"a2d_rows.c": code}, flags=optimization(code),
                                     name="a2d_rows")
-            key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_PROJECT))
+            key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_LU),
+                                     _text(_PROJECT))
             try:
                 lib = ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_rows"))
                 lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
@@ -372,7 +373,7 @@ def _projector_library(system):
 def row_projector(system, free):
     """A function (T, Z, p, d, tol, max_iter, slow) -> (Z solved for the
     unknowns ``free``, converged rows) in C (``native_project.c``, LU of the
-    Jacobian's block lower-triangular form, :func:`~acausal2d.runtime.blt_layout.layout`),
+    Jacobian's block lower-triangular form with ``native_lu.c`` per block, :func:`~acausal2d.runtime.blt_layout.layout`),
     or None where it cannot be built or dE/dz_free is structurally singular.
     Each row gets at most ``max_iter`` Newton iterations; after a row that
     needed more than ``slow`` of them the next row takes a new LU."""
