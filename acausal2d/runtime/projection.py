@@ -28,11 +28,11 @@ a new LU costs little more than the Jacobian each row evaluates anyway
 (for the equations' scales).  It takes a new LU at the next row after a
 row that needed more than one iteration with the LU it had; from this many
 unknowns after any row that needed an iteration at all.  Measured (rows
-alone, CPU s per run; a new LU after more than 0 / 1 / 2 / 3 iterations):
-piston engine, 37 unknowns, 0.0041 / 0.0032 / 0.0038 / 0.0042; belt
-drive, 80: 0.0206 / 0.0191 / 0.0208 / 0.0223; compressor, 202: 0.0236 /
-0.0322 / - / 0.0336 (up to 16 iterations: 0.0390); chain of 20 links,
-356: 0.0446 / 0.0469 / 0.0483 / 0.0502.  With a new LU a chain row takes
+alone, CPU s per run, median of 3; a new LU after more than 0 / 1 / 3
+iterations): piston engine, 37 unknowns, 0.0039 / 0.0033 / 0.0045; belt
+drive, 80: 0.0198 / 0.0181 / 0.0210; compressor, 202: 0.0229 / 0.0326 /
+0.0338 (its old policy, up to 16 iterations: 0.0390 with the first block LU); chain of
+20 links, 356: 0.0398 / 0.0448 / 0.0496.  With a new LU a chain row takes
 one iteration, with the LU of an earlier row mostly 3 or 4."""
 
 
