@@ -55,23 +55,40 @@ def _read(fd, n):
     return b"".join(chunks)
 
 
-def _child(jobs_fd, answers_fd):
+def _child(jobs_fd, answers_fd, mask):
     """The child: import matplotlib, then draw each batch of jobs it is
-    sent and answer ("ok", paths) or ("error", text); ends at end of file."""
+    sent and answer ("ok", paths) or ("error", text); ends at end of file
+    or at SIGINT (a KeyboardInterrupt here, also where the parent ignores
+    SIGINT; ``mask``: the signal mask to restore)."""
     try:
-        from . import plotting
-        import matplotlib.backends.backend_agg  # noqa: F401  (the import this process is for)
-        import matplotlib.figure  # noqa: F401
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        draw = _drawing()
         while True:
             jobs = _receive(jobs_fd)
             if jobs is None:
                 break
             try:
-                _send(answers_fd, ("ok", plotting.draw_jobs(jobs)))
+                _send(answers_fd, ("ok", draw(jobs)))
             except Exception as exc:     # noqa: BLE001 - handed to the parent, which raises
                 _send(answers_fd, ("error", "%s: %s" % (type(exc).__name__, exc)))
     except BaseException:                # noqa: B036 - Ctrl-C or a broken pipe: just end
         pass
+
+
+def _drawing():
+    """:func:`~acausal2d.visual.plotting.draw_jobs` with matplotlib imported
+    (the import this process is for), or a function raising the import's
+    error for the parent to report."""
+    try:
+        from . import plotting
+        import matplotlib.backends.backend_agg  # noqa: F401
+        import matplotlib.figure  # noqa: F401
+        return plotting.draw_jobs
+    except Exception as exc:             # noqa: BLE001 - e.g. matplotlib missing
+        def fail(jobs, _exc=exc):
+            raise _exc
+        return fail
 
 
 class FigureProcess:
@@ -85,23 +102,33 @@ class FigureProcess:
     def start(cls):
         """A running :class:`FigureProcess`, or None where figures are drawn
         in-process (no ``fork``, other threads running, or fork failed)."""
-        if not hasattr(os, "fork") or threading.active_count() > 1:
+        if not hasattr(os, "fork") or not hasattr(signal, "pthread_sigmask") or \
+                threading.active_count() > 1:
             return None
         jobs_r, jobs_w = os.pipe()
         answers_r, answers_w = os.pipe()
+        # SIGINT blocked across the fork: one sent to the child at once (close()
+        # right after start()) must not raise before the child is in _child,
+        # or the child would go on running the caller's code
+        mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
         try:
             pid = os.fork()
         except OSError:
-            for fd in (jobs_r, jobs_w, answers_r, answers_w):
-                os.close(fd)
-            return None
-        if pid == 0:                     # the child never returns into the caller's code
-            os.close(jobs_w)
-            os.close(answers_r)
-            _child(jobs_r, answers_w)
-            os._exit(0)
+            pid = -1
+        if pid == 0:
+            try:
+                os.close(jobs_w)
+                os.close(answers_r)
+                _child(jobs_r, answers_w, mask)
+            finally:
+                os._exit(0)          # never back into the caller's code
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
         os.close(jobs_r)
         os.close(answers_w)
+        if pid < 0:
+            os.close(jobs_w)
+            os.close(answers_r)
+            return None
         return cls(pid, jobs_w, answers_r)
 
     def submit(self, jobs):
