@@ -18,13 +18,19 @@ Errors a user can act on are :class:`CompilerMissing` (names what to
 install) and :class:`BuildFailed` (carries the compiler's message).
 """
 import glob
-import hashlib
 import os
 import shutil
 import tempfile
-from dataclasses import dataclass
 
 from ..errors import Acausal2dError
+
+try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
+    from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
+except ImportError:     # start-up of importing hashlib (2.8 ms of a process's first run)
+    try:
+        from _sha256 import sha256 as _sha256
+    except ImportError:
+        from hashlib import sha256 as _sha256
 
 COMPILERS = ("cc", "gcc", "clang")
 DEFAULT_FLAGS = ("-O2", "-fPIC", "-shared")
@@ -71,7 +77,7 @@ def cache_dir():
 
 def build_key(sources, flags=(), compiler=""):
     """SHA-256 (hex) of the sources (name -> text), the flags and the compiler."""
-    h = hashlib.sha256()
+    h = _sha256()
     for name in sorted(sources):
         for part in (name, sources[name]):
             data = part.encode("utf-8")
@@ -107,7 +113,7 @@ def fingerprint(functions, *texts):
     without generating it (CasADi's code generator took 0.09 s of the belt
     drive's 0.23 s run; serializing takes a third of that)."""
     import casadi as ca
-    h = hashlib.sha256()
+    h = _sha256()
     parts = [fn.serialize() for fn in functions if fn is not None]
     for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS]:
         data = str(part).encode("utf-8")
@@ -167,15 +173,13 @@ def _compile(cc, sources, args, folder, target):
         os.replace(out, target)
 
 
-@dataclass
 class SundialsDirs:
     """Where the SUNDIALS of scikit-sundae is: ``include`` (headers),
     ``lib`` (the shipped shared libraries), ``libraries`` (short name, e.g.
     ``"ida"``, -> full path) and ``version``."""
-    include: str
-    lib: str
-    libraries: dict
-    version: str
+
+    def __init__(self, include, lib, libraries, version):
+        self.include, self.lib, self.libraries, self.version = include, lib, libraries, version
 
 
 def _sksundae_dir():

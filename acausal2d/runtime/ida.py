@@ -15,7 +15,6 @@ import os
 import sys
 import tempfile
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -292,37 +291,28 @@ class LazySolver:
         return getattr(self._solver, name)
 
 
-@dataclass
 class Reached:
     """IDA reached the stop time."""
-    t: float
-    y: np.ndarray
-    yp: np.ndarray
-    passes: list = None
+
+    def __init__(self, t, y, yp, passes=None):
+        self.t, self.y, self.yp, self.passes = t, y, yp, passes
 
 
-@dataclass
 class RootFound:
     """A relation crossed (``relations``: state-relation indices) or a
     watched block decayed (``monitors``: monitor indices) at t."""
-    t: float
-    y: np.ndarray
-    yp: np.ndarray
-    relations: list
-    monitors: list
-    near: bool = False
-    passes: list = None
+
+    def __init__(self, t, y, yp, relations, monitors, near=False, passes=None):
+        self.t, self.y, self.yp, self.passes = t, y, yp, passes
+        self.relations, self.monitors, self.near = relations, monitors, near
 
 
-@dataclass
 class Failed:
     """IDA stopped with an error; (t, y, yp) is the last point it reached."""
-    t: float
-    y: np.ndarray
-    yp: np.ndarray
-    status: int
-    message: str
-    passes: list = None
+
+    def __init__(self, t, y, yp, status, message, passes=None):
+        self.t, self.y, self.yp, self.passes = t, y, yp, passes
+        self.status, self.message = status, message
 
 
 def _passes(sol, prob, hit):

@@ -9,7 +9,6 @@ The relations start with the values the start point gives them and are
 settled by the event iteration (:mod:`~acausal2d.runtime.events`).  The
 dummy-derivative selection made here is handed on to the integration.
 """
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -22,13 +21,12 @@ from .newton import NoConvergence, solve_consistent
 from .selection import SINGULAR_CONDITION, select, worst_level
 
 
-@dataclass
 class InitialPoint:
     """Consistent node values ``z``, relation values ``d`` and the dummy
     selection ``selection`` at t0 (None if it must be made at z)."""
-    z: np.ndarray
-    d: np.ndarray
-    selection: object
+
+    def __init__(self, z, d, selection):
+        self.z, self.d, self.selection = z, d, selection
 
 
 def choose_initial_conditions(s, fixed_nodes, priority, has_start, states=()):

@@ -33,7 +33,14 @@ from . import blt_layout, cbuild, ordering
 
 SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
-             "sunlinsolsuperlumt", "sunlinsollapackdense", "core")
+             "core")
+OPTIONAL = (("sunlinsollapackdense", "SUNLinSol_LapackDense"),
+            ("sunlinsolsuperlumt", "SUNLinSol_SuperLUMT"))
+"""The linear solvers the driver is not linked against: their libraries load
+OpenBLAS, gfortran and libgomp (measured: the model library's load 5.4 ->
+0.9 ms of a process's first run without them).  :func:`_hand_in_optional`
+loads them where a run uses LAPACK's dense LU or SuperLU_MT (the bench
+tables, or the own LU's op slots not found)."""
 SOLVERS = {"dense": 0, "lapack": 1, "sparse": 2, "sparse-lu": 3}
 """IDA's linear solvers the driver can use: SUNDIALS' dense LU, LAPACK's
 dense LU, SuperLU_MT (sparse, one thread), the driver's own sparse LU
@@ -163,6 +170,8 @@ def _declare(lib):
     lib.a2d_set_progress.argtypes = [ctypes.c_void_p, _PROGRESS]
     lib.a2d_steps.restype = ctypes.c_long
     lib.a2d_steps.argtypes = [ctypes.c_void_p]
+    lib.a2d_set_optional.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+    lib.a2d_lu_usable.restype = ctypes.c_int
     lib.a2d_run.restype = ctypes.c_int
     lib.a2d_run.argtypes = [ctypes.c_void_p, _P, ctypes.c_int, _P, _P, _P, _P, _I, _P, _P,
                             _I, ctypes.c_int, _P, _I, _L]
@@ -195,6 +204,26 @@ def library(form):
     return lib or None
 
 
+def _hand_in_optional(lib, solver):
+    """Load the optional solvers' libraries (:data:`OPTIONAL`) into the
+    process and hand their constructors to ``lib``'s driver where ``solver``
+    needs one: "lapack", "sparse", or "sparse-lu" where the own LU cannot
+    be given to IDA (SuperLU_MT instead).  Done once per library."""
+    if solver == "dense" or getattr(lib, "a2d_optional", False) or \
+            (solver == "sparse-lu" and lib.a2d_lu_usable()):
+        return
+    libs = cbuild.sundials_libraries()[1]
+    found = []
+    for name, symbol in OPTIONAL:
+        try:
+            fn = getattr(ctypes.CDLL(libs[name], mode=ctypes.RTLD_GLOBAL), symbol)
+            found.append(ctypes.cast(fn, ctypes.c_void_p).value)
+        except (KeyError, OSError, AttributeError):
+            found.append(None)
+    lib.a2d_set_optional(*found)
+    lib.a2d_optional = True
+
+
 def _ptr(a, kind=_P):
     return a.ctypes.data_as(kind)
 
@@ -212,6 +241,7 @@ class NativeIDA:
                       np.ascontiguousarray(terminal or [0], dtype=np.intc)]
         self._pattern = _ccs(form.jac_sparsity)
         solver = solver or default_solver(self.n)
+        _hand_in_optional(lib, solver)
         self._order = lu_order(form) if solver == "sparse-lu" else None
         p, d = prob.res.args[3], prob.res.args[4]
         ab = prob.ab if len(prob.ab) else np.zeros(1)

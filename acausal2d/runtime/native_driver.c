@@ -36,8 +36,18 @@ sunindextype *SUNSparseMatrix_IndexValues(SUNMatrix a);
 sunindextype *SUNSparseMatrix_IndexPointers(SUNMatrix a);
 void SUNMatDestroy(SUNMatrix a);
 SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
-SUNLinearSolver SUNLinSol_LapackDense(N_Vector y, SUNMatrix a, SUNContext ctx);
-SUNLinearSolver SUNLinSol_SuperLUMT(N_Vector y, SUNMatrix a, int threads, SUNContext ctx);
+/* LAPACK's dense LU and SuperLU_MT are not linked (their libraries load OpenBLAS,
+ * gfortran and libgomp, 4-5 ms of a process's first run): native.py loads them
+ * only for a solver that needs them and hands their constructors in here */
+typedef SUNLinearSolver (*a2d_lapack_dense_fn)(N_Vector y, SUNMatrix a, SUNContext ctx);
+typedef SUNLinearSolver (*a2d_superlumt_fn)(N_Vector y, SUNMatrix a, int threads,
+                                            SUNContext ctx);
+static a2d_lapack_dense_fn a2d_lapack_dense = 0;
+static a2d_superlumt_fn a2d_superlumt = 0;
+void a2d_set_optional(void *lapack_dense, void *superlumt) {
+  a2d_lapack_dense = (a2d_lapack_dense_fn)lapack_dense;
+  a2d_superlumt = (a2d_superlumt_fn)superlumt;
+}
 int SUNLinSolFree(SUNLinearSolver s);
 SUNLinearSolver SUNLinSolNewEmpty(SUNContext ctx);
 int SUNLinSolGetType(SUNLinearSolver s);
@@ -147,6 +157,18 @@ static int a2d_slots(SUNContext ctx, int *slot) {
 }
 
 static a2d_ls *a2d_ls_of(SUNLinearSolver s) { return *(a2d_ls **)s; }   /* content: first */
+
+/* 1 if the own LU can be given to IDA here (its op slots are found), else 0:
+ * then native.py hands in SuperLU_MT for the sparse systems */
+int a2d_lu_usable(void) {
+  SUNContext ctx;
+  int slot[A2D_OPS], ok;
+  if (SUNContext_Create(0, &ctx)) return 0;
+  SUNContext_ClearErrHandlers(ctx);
+  ok = a2d_slots(ctx, slot) == 0;
+  SUNContext_Free(&ctx);
+  return ok;
+}
 
 static int a2d_ls_type(SUNLinearSolver s) { (void)s; return 0; }   /* SUNLINEARSOLVER_DIRECT */
 
@@ -307,12 +329,12 @@ static int a2d_linear_solver(a2d_driver *h, int solver, const int *q, const int 
     if (!h->A) return -1;
     h->LS = solver == 3 ? a2d_splu_solver(h->ctx, h->n, h->nnz, q, prefer) : 0;
     h->superlu = !h->LS;
-    if (h->superlu) h->LS = SUNLinSol_SuperLUMT(h->y, h->A, 1, h->ctx);
+    if (h->superlu) h->LS = a2d_superlumt ? a2d_superlumt(h->y, h->A, 1, h->ctx) : 0;
   } else {
     h->A = SUNDenseMatrix(h->n, h->n, h->ctx);
     if (!h->A) return -1;
-    h->LS = solver == 1 ? SUNLinSol_LapackDense(h->y, h->A, h->ctx)
-                   : SUNLinSol_Dense(h->y, h->A, h->ctx);
+    if (solver == 1) h->LS = a2d_lapack_dense ? a2d_lapack_dense(h->y, h->A, h->ctx) : 0;
+    else h->LS = SUNLinSol_Dense(h->y, h->A, h->ctx);
   }
   if (!h->LS) return -1;
   if (IDASetLinearSolver(h->mem, h->LS, h->A)) return -1;
