@@ -60,13 +60,41 @@ def test_a_drawing_error_is_raised_in_the_caller(tmp_path):
         drawer.close()
 
 
-def test_an_unused_child_is_ended_at_once():
-    drawer = _started()
+class _SlowImport:
+    """A finder that makes importing matplotlib's Agg backend take 5 s (the
+    child is a fork of this process, so it inherits the finder)."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name == "matplotlib.backends.backend_agg":
+            time.sleep(5.0)
+        return None
+
+
+def test_an_unused_child_is_interrupted_not_waited_for():
+    agg = sys.modules.pop("matplotlib.backends.backend_agg", None)   # the child imports it
+    sys.meta_path.insert(0, _SlowImport())
+    try:
+        drawer = _started()
+    finally:
+        del sys.meta_path[0]
+        if agg is not None:
+            sys.modules["matplotlib.backends.backend_agg"] = agg
+    time.sleep(0.05)                                # the child is importing now
     t = time.perf_counter()
-    drawer.close()                                  # interrupted, not waited for: its import
-    assert time.perf_counter() - t < 0.15           # alone takes about 0.2 s
+    drawer.close()                                  # SIGINT: its import is cut short
+    assert time.perf_counter() - t < 2.0            # (waiting would take the 5 s)
     with pytest.raises(ChildProcessError):
         os.waitpid(drawer.pid, os.WNOHANG)          # reaped: no zombie left
+
+
+def test_a_child_closed_at_once_never_runs_the_callers_code(tmp_path):
+    marker = tmp_path / "after_start"
+    for _ in range(20):                             # close right after the fork, repeatedly
+        drawer = _started()
+        drawer.close()
+        with open(marker, "a") as fh:               # only this process may get here
+            fh.write("%d\n" % os.getpid())
+    assert set(marker.read_text().split()) == {str(os.getpid())}
 
 
 def test_simulate_command_draws_without_importing_matplotlib(tmp_path):
