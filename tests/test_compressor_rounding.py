@@ -4,14 +4,22 @@ Newton: the motion is the same, only valve touches may differ.
 The event Newton polishes each event point down to rounding; how it gets
 there (a fresh LU per step, or reusing the last LU once the residual is
 below 1e-10, runtime/newton.py) changes the last bits of the event points.
-The compressor's intake valve sometimes only touches its threshold (cyl.p
-comes within rounding of cyl.p_in and turns back): such a touch is two
-relation flips a fraction of a millisecond apart in one run and none in the
-other.  Checked here: every event of either run has a partner within 1 us
-of time and with the same relation in the other, except such touch pairs
-(two flips of one relation less than 2 ms apart); the motion agrees to
-1e-6 of each signal's range at every output point; the delivered work
-agrees to 1e-6 relative."""
+The compressor's intake valve sometimes only touches its threshold: cyl.p
+comes to cyl.p_in within the integration tolerance and turns back.  Whether
+the relation flips there (twice: the valve opens and closes again within
+a few milliseconds), and exactly when, is decided below the tolerance, by
+rounding: one run has such a pair, the other none, or the same pair some
+microseconds away; after it the two motions differ by the integration
+tolerance.  Measured with two orderings of IDA's LU: such pairs last
+0.6-2.2 ms and differ in cyl.p - cyl.p_in from the other run by at most
+1e-5 of cyl.p's range; a real opening of the intake valve lasts a large
+part of a revolution.  Checked here: every event of either run has a
+partner within 1 us of time and with the same relation in the other, or
+belongs to a pair of flips of one relation less than 5 ms apart (at most
+5 such pairs); the motion agrees to 10 x rtol (1e-5) of each signal's
+range at every point of the output grid at least 1 ms away from an event
+(at an event the two runs' rows straddle the jump; measured: 1.6e-6 for
+cyl.p, 7.9e-7 for crank.w), and so does the state at the end."""
 import numpy as np
 import pytest
 
@@ -43,19 +51,20 @@ def _unpaired(a, b):
 
 
 def _touches(events):
-    """True if the events come in pairs of one relation less than 2 ms apart."""
+    """True if the events come in pairs of flips of one relation less than
+    5 ms apart (a valve opening and closing again at once)."""
     if len(events) % 2:
         return False
-    return all(events[k][1] == events[k + 1][1] and events[k + 1][0] - events[k][0] < 2e-3
+    return all(events[k][1] == events[k + 1][1] and events[k + 1][0] - events[k][0] < 5e-3
                for k in range(0, len(events), 2))
 
 
 def test_events_agree_but_for_valve_touches(runs):
     reused, fresh = runs
-    assert len(reused.events) > 280
+    assert len(reused.events) > 280 and len(fresh.events) > 280
     for a, b in ((reused, fresh), (fresh, reused)):
         extra = _unpaired(a, b)
-        assert _touches(extra), extra
+        assert len(extra) <= 10 and _touches(extra), extra
 
 
 def _on_grid(runs, name):
