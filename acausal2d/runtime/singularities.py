@@ -55,34 +55,35 @@ class DeterminantScan:
 
     def __call__(self, T, Y, YP, p, d):
         """Determinants (points x blocks) at times T with rows Y, YP."""
-        self.p[:] = p
-        self.d[:] = d
-        rows = []
-        for s in range(0, len(T), self.CHUNK):
-            m = min(self.CHUNK, len(T) - s)
-            self.t[:m] = T[s:s + m]
+        def fill(s, m):
             self.y[:m] = Y[s:s + m]
             self.yp[:m] = YP[s:s + m]
-            self.fn.eval()
-            rows.append(self.out[:m].copy())
-        return np.vstack(rows)
+        return self._evaluate(T, p, d, fill)
 
     def of_rows(self, T, Z, all_deriv, p, d):
         """Determinants (points x blocks) at output rows (T, Z) of the
         system's unknowns: Y = Z and Y' read from Z's derivative nodes
         (``all_deriv``: the derivative node of each unknown, or -1), filled
         chunk by chunk into the buffers (no array of the size of Z)."""
-        self.p[:] = p
-        self.d[:] = d
         st = np.nonzero(all_deriv >= 0)[0]
         src = all_deriv[st]
-        rows = []
         self.yp[:] = 0.0
+
+        def fill(s, m):
+            self.y[:m] = Z[s:s + m]
+            self.yp[:m, st] = Z[s:s + m, src]
+        return self._evaluate(T, p, d, fill)
+
+    def _evaluate(self, T, p, d, fill):
+        """The determinants at times T, chunk by chunk; ``fill(s, m)`` puts
+        rows s..s+m-1 into the buffers y, yp."""
+        self.p[:] = p
+        self.d[:] = d
+        rows = []
         for s in range(0, len(T), self.CHUNK):
             m = min(self.CHUNK, len(T) - s)
             self.t[:m] = T[s:s + m]
-            self.y[:m] = Z[s:s + m]
-            self.yp[:m, st] = Z[s:s + m, src]
+            fill(s, m)
             self.fn.eval()
             rows.append(self.out[:m].copy())
         return np.vstack(rows)
