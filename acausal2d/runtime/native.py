@@ -209,9 +209,13 @@ def _hand_in_optional(lib, solver):
     process and hand their constructors to ``lib``'s driver where ``solver``
     needs one: "lapack", "sparse", or "sparse-lu" where the own LU cannot
     be given to IDA (SuperLU_MT instead).  Done once per library."""
-    if solver == "dense" or getattr(lib, "a2d_optional", False) or \
-            (solver == "sparse-lu" and lib.a2d_lu_usable()):
+    if solver == "dense" or getattr(lib, "a2d_optional", False):
         return
+    if solver == "sparse-lu":
+        if not hasattr(lib, "a2d_lu_ok"):         # asked of SUNDIALS once per library
+            lib.a2d_lu_ok = bool(lib.a2d_lu_usable())
+        if lib.a2d_lu_ok:
+            return
     libs = cbuild.sundials_libraries()[1]
     found = []
     for name, symbol in OPTIONAL:
