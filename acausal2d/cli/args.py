@@ -61,3 +61,12 @@ def _positive_int(text):
     if value < 1:
         raise argparse.ArgumentTypeError("must be at least 1, got %d" % value)
     return value
+
+
+def add_dask_options(parser, scheduler_help):
+    """``--scheduler`` (its help, with the command's default, is
+    ``scheduler_help``) and ``--workers`` of a command that can run its
+    simulations on Dask."""
+    parser.add_argument("--scheduler", help=scheduler_help)
+    parser.add_argument("--workers", type=_positive_int, help="worker processes of the local "
+                        "cluster (default: one per core)")

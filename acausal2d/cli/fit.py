@@ -6,7 +6,7 @@ optimality check fails."""
 import sys
 
 from ..errors import Acausal2dError
-from .args import _parse_set, _positive_float, _positive_int
+from .args import _parse_set, _positive_float, _positive_int, add_dask_options
 
 
 def parse_mapping(items, option="--map"):
@@ -94,9 +94,7 @@ def add_parsers(sub):
     f.add_argument("--rtol", type=float)
     f.add_argument("--max-evaluations", type=_positive_int, default=100,
                    help="optimiser's budget of steps (default 100); exit 3 when used up")
-    f.add_argument("--scheduler", help="run the Jacobian's simulations on Dask: 'local' (a "
-                   "local cluster) or a scheduler address tcp://host:8786 (default: serial)")
-    f.add_argument("--workers", type=_positive_int, help="worker processes of the local "
-                   "cluster (default: one per core)")
+    add_dask_options(f, "run the Jacobian's simulations on Dask: 'local' (a "
+                     "local cluster) or a scheduler address tcp://host:8786 (default: serial)")
     f.add_argument("--out", default="out", help="output directory (default: out)")
     f.set_defaults(func=cmd_fit)

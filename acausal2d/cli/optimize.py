@@ -5,7 +5,7 @@ when the optimiser stops elsewhere (its budget, a failed line search)."""
 import os
 import sys
 
-from .args import _parse_set, _positive_float, _positive_int
+from .args import _parse_set, _positive_float, _positive_int, add_dask_options
 
 
 def cmd_optimize(args):
@@ -79,9 +79,7 @@ def add_parsers(sub):
     o.add_argument("--grid-span", type=_positive_float, default=0.01,
                    help="half-width of the grid relative to each parameter's scale "
                    "(default 0.01)")
-    o.add_argument("--scheduler", help="run the Jacobians' simulations on Dask: 'local' or a "
-                   "scheduler address (default: serial)")
-    o.add_argument("--workers", type=_positive_int, help="worker processes of the local "
-                   "cluster (default: one per core)")
+    add_dask_options(o, "run the Jacobians' simulations on Dask: 'local' or a "
+                     "scheduler address (default: serial)")
     o.add_argument("--out", default="out", help="output directory (default: out)")
     o.set_defaults(func=cmd_optimize)

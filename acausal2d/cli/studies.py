@@ -3,7 +3,7 @@
 import os
 
 from ..errors import Acausal2dError
-from .args import _check_names, _nonnegative, _parse_set, _positive_int
+from .args import _check_names, _nonnegative, _parse_set, _positive_int, add_dask_options
 
 
 def _sweep_settings(args, cm):
@@ -99,10 +99,8 @@ def add_parsers(sub):
     w.add_argument("--stop-time", type=float)
     w.add_argument("--rtol", type=float)
     w.add_argument("--intervals", type=_positive_int)
-    w.add_argument("--scheduler", help="address of a running Dask scheduler (tcp://host:8786);"
-                   " default: a local cluster; 'serial': run in this process")
-    w.add_argument("--workers", type=_positive_int, help="worker processes of the local "
-                   "cluster (default: one per core)")
+    add_dask_options(w, "address of a running Dask scheduler (tcp://host:8786);"
+                     " default: a local cluster; 'serial': run in this process")
     w.add_argument("--x", metavar="PARAM", help="varied parameter on the plot's x axis "
                    "(default: the first --vary)")
     w.add_argument("--out", default="out", help="output directory (default: out)")
@@ -113,9 +111,7 @@ def add_parsers(sub):
     t.add_argument("names", nargs="*", help="studies to run (default: all)")
     t.add_argument("--model")
     t.add_argument("--list", action="store_true", help="list the model's studies")
-    t.add_argument("--scheduler", help="Dask scheduler address for the studies' sweeps "
-                   "(default: a local cluster; 'serial': this process)")
-    t.add_argument("--workers", type=_positive_int, help="worker processes of the local "
-                   "cluster (default: one per core)")
+    add_dask_options(t, "Dask scheduler address for the studies' sweeps "
+                     "(default: a local cluster; 'serial': this process)")
     t.add_argument("--out", default="out", help="output directory (default: out)")
     t.set_defaults(func=cmd_study)
