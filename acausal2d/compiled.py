@@ -2,6 +2,7 @@
 :class:`CompiledModel`, which simulates many times with other parameter
 values without recompiling and returns :class:`~acausal2d.result.Result`
 objects."""
+import copy as _copy
 import time as _time
 
 import numpy as np
@@ -23,8 +24,40 @@ MAX_STEPS = 1000000
 
 
 def compile_model(model):
-    """Compile a model instance into a :class:`CompiledModel`."""
+    """Compile a model instance into a :class:`CompiledModel`.  The model
+    itself is left as it was: the compiler works on its own copy."""
     return CompiledModel(model)
+
+
+def own_copy(model):
+    """A deep copy of ``model`` for the compiler to bind its symbols, the
+    parameters' values and the resolved ``world`` into, so that compiling
+    never writes into the user's objects (compiling twice, or after a change
+    of a parameter, starts from the model as the user made it).  An
+    attribute that cannot be copied is named in a
+    :class:`~acausal2d.errors.ModelDefinitionError`."""
+    try:
+        return _copy.deepcopy(model)
+    except (TypeError, _copy.Error, RecursionError) as exc:
+        where = _uncopyable(model)
+        raise ModelDefinitionError(
+            "%s cannot be compiled: the compiler works on a copy of the model, and %s "
+            "cannot be copied (%s). Keep such objects out of the components (e.g. pass "
+            "numbers or functions instead of open files, locks or modules)."
+            % (model.describe(), where, exc)) from None
+
+
+def _uncopyable(model):
+    """'component.attribute' of the first attribute deepcopy refuses."""
+    for comp in model.components():
+        for name, value in vars(comp).items():
+            if name.startswith("_"):
+                continue
+            try:
+                _copy.deepcopy(value)
+            except (TypeError, _copy.Error, RecursionError):
+                return "%s.%s" % (comp.describe(), name)
+    return "an attribute"
 
 
 class CompiledModel:
@@ -34,6 +67,7 @@ class CompiledModel:
 
     def __init__(self, model):
         t0 = _time.perf_counter()
+        model = own_copy(model)
         self.model = model
         with translated("compiling %s" % type(model).__name__, StructuralError):
             self.system = compile_system(model)
