@@ -12,7 +12,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCRIPT = """
 import sys
 sys.meta_path = [f for f in sys.meta_path if 'editable' not in repr(f).lower()]
-sys.path = [p for p in sys.path if 'site-packages' in p or p in ('', '.')] or sys.path
 import acausal2d.library.planar, acausal2d.library.rotational
 print(acausal2d.library.planar.__name__)
 """
