@@ -8,6 +8,8 @@ import shutil
 import subprocess
 import sys
 
+import pytest
+
 import acausal2d
 from acausal2d import Component, Parameter, Variable
 from acausal2d.library.planar import Body, Revolute
@@ -79,3 +81,25 @@ def test_simulate_summary_names_the_states(tmp_path):
     driven = run("simulate", os.path.join(MODELS, "eight_link_vdi2729.py"), "--stop-time",
                  "0.5", "--out", str(tmp_path))
     assert "  states: none (the motion is prescribed)" in driven.stdout
+
+
+# ---------------------------------------------------------- connectors (issue 34)
+def test_help_of_a_component_lists_its_connectors_and_those_of_its_options():
+    from acausal2d.library import rotational
+    from acausal2d.library.planar import Body, Revolute
+    assert "frame_a  Frame (x, y, phi, fx, fy, t)" in Body.__doc__
+    assert Body.__doc__.index("Parameters") < Body.__doc__.index("Connectors")
+    assert "w_in" in rotational.Speed.__doc__ and "flange" in rotational.Speed.__doc__
+    doc = Revolute.__doc__
+    assert "flange_a  RotationalFlange (phi, tau)  [with use_flange=True]" in doc
+    assert "frame_b   Frame" in doc
+
+
+def test_an_unknown_connector_names_the_valid_ones_and_the_closest():
+    from acausal2d.library.planar import Revolute
+    with pytest.raises(AttributeError) as info:
+        Revolute().frame_c
+    text = str(info.value)
+    assert "did you mean 'frame_b'?" in text and "connectors frame_a, frame_b" in text
+    with pytest.raises(AttributeError, match=r"exists with use_flange=True"):
+        Revolute().flange_a

@@ -276,7 +276,8 @@ def add_declarations(cls, declarations):
     for name, decl in declarations.items():
         decl.__set_name__(cls, name)
         setattr(cls, name, decl)
-    cls.__doc__ = declaration_doc(cls)
+    from .connector_doc import LazyDoc          # (connector_doc imports nothing of ours but errors)
+    cls.__doc__ = LazyDoc(declaration_doc)
     return cls
 
 

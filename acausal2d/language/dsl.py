@@ -41,6 +41,7 @@ from .declarations import (STATE_SELECT, Parameter, Variable, VarInfo, start,  #
                            _check_nominal, _check_state_select, _creation_site,
                            _declarations, _join, add_declarations, declaration_doc)
 from .connectors import Connector
+from .connector_doc import LazyDoc, connector_rows
 
 
 class Outer:
@@ -82,6 +83,26 @@ class Outer:
         return found
 
 
+def _unknown_attribute(comp, name):
+    """The message of an unknown attribute: the names the component has,
+    by kind, and the closest one."""
+    import difflib
+    d = comp.__dict__
+    groups = [("connectors", list(d["_connectors"])), ("sub-components", list(d["_children"])),
+              ("parameters", list(d["_param_values"])), ("variables", list(d["_var_decls"]))]
+    names = [n for _, group in groups for n in group]
+    optional = {n: cond for n, _, _, cond in connector_rows(type(comp))
+                if cond and n not in d["_connectors"]}
+    close = difflib.get_close_matches(name, names, n=1)
+    text = "%s has no attribute %r" % (comp.describe(), name)
+    if name in optional:
+        text += " (the connector exists with %s)" % optional[name]
+    elif close:
+        text += "; did you mean %r?" % close[0]
+    return text + ". It has " + "; ".join("%s %s" % (kind, ", ".join(group))
+                                          for kind, group in groups if group) + "."
+
+
 class Component:
     """Base class of every component and model.
 
@@ -96,7 +117,7 @@ class Component:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         cls._written_doc = vars(cls).get("__doc__")
-        cls.__doc__ = declaration_doc(cls)
+        cls.__doc__ = LazyDoc(declaration_doc)
 
     def __init__(self, **kwargs):
         d = self.__dict__
@@ -229,7 +250,7 @@ class Component:
             return d["_connectors"][name]
         if name in d["_children"]:
             return d["_children"][name]
-        raise AttributeError("%s has no attribute %r" % (type(self).__name__, name))
+        raise AttributeError(_unknown_attribute(self, name))
 
     def _var_symbol(self, name):
         sym = self._var_syms.get(name)
