@@ -13,60 +13,82 @@ import casadi as ca
 
 from ..errors import StructuralError
 from ..language.symbols import time
+from .matching import Matching
 from .structure import DiffMap, NodeBuilder
 
 
 class _Work:
-    """Mutable working copy of the graph while the algorithm runs."""
+    """Mutable working copy of the graph while the algorithm runs.  The
+    matching is the code base's one :class:`~acausal2d.compiler.matching.Matching`
+    over the equations and the highest derivative nodes (its candidate
+    lists are renewed where a node gets a derivative)."""
 
     def __init__(self, s):
         self.nodes = NodeBuilder.of(s)
         self.eq_vars = [list(v) for v in s.eq_vars]
         self.eq_origin, self.eq_level = list(s.eq_origin), list(s.eq_level)
         self.B = list(s.eq_to_diff.to_diff)
-        self.assign = list(s.matching)
+        self.match = Matching([], len(self.nodes.sym))
+        self.match.row_of[:len(s.matching)] = list(s.matching)
+        self.eqs_of = [[] for _ in self.nodes.sym]        # node -> equations it appears in
+        for i, vs in enumerate(self.eq_vars):
+            for j in vs:
+                self.eqs_of[j].append(i)
+            self._append_row(i)
+        for j, i in enumerate(self.match.row_of):
+            if i >= 0:
+                self.match.col_of[i] = j
         self.colV, self.colE = set(), set()
 
     @property
     def A(self):
         return self.nodes.to_diff
 
+    @property
+    def assign(self):
+        """Node -> the equation matched to it (-1: none)."""
+        return self.match.row_of
+
+    def _append_row(self, i):
+        self.match.rows.append(self.highest(i))
+        self.match.col_of.append(-1)
+        self.match._look.append(0)
+
     def grow_assign(self):
-        self.assign.extend([-1] * (len(self.nodes.sym) - len(self.assign)))
+        more = len(self.nodes.sym) - len(self.match.row_of)
+        self.match.row_of.extend([-1] * more)
+        self.eqs_of.extend([] for _ in range(more))
 
     def highest(self, i):
         return [j for j in self.eq_vars[i] if self.A[j] < 0]
 
-    def augment(self, i0):
-        """Augmenting path from equation i0 (iterative DFS, coloring)."""
-        assign, colV = self.assign, self.colV
-        self.colE.add(i0)
-        stack, via = [[i0, 0, False, self.highest(i0)]], []
-        while stack:
-            top = stack[-1]
-            i, pos, checked, cands = top
-            if not checked:
-                top[2] = True
-                for j in cands:
-                    if assign[j] < 0:
-                        assign[j] = i
-                        for k in range(len(via) - 1, -1, -1):
-                            assign[via[k]] = stack[k][0]
-                        return True
-            while pos < len(cands) and cands[pos] in colV:
-                pos += 1
-            if pos < len(cands):
-                j = cands[pos]
-                top[1] = pos + 1
-                colV.add(j)
-                self.colE.add(assign[j])
-                via.append(j)
-                stack.append([assign[j], 0, False, self.highest(assign[j])])
-                continue
-            stack.pop()
-            if via:
-                via.pop()
-        return False
+    def renew_candidates(self, first_new_node):
+        """Candidate lists of the equations holding a node that got its
+        derivative since nodes numbered from ``first_new_node`` were made."""
+        changed = set()
+        for k in range(first_new_node, len(self.nodes.sym)):
+            j = self.nodes.base[k]
+            while self.A[j] != k:
+                j = self.A[j]
+            changed.update(self.eqs_of[j])
+        for i in changed:
+            self.match.rows[i] = self.highest(i)
+            self.match._look[i] = 0
+
+    def colour_search(self, i0):
+        """Augmenting path from equation i0; colours the nodes (colV) and
+        equations (colE) the search visited."""
+        seen = set()
+        found = self.match.augment(i0, seen)
+        self.colV = seen
+        self.colE = {i0} | {self.assign[j] for j in seen}
+        return found
+
+    def set_assign(self, j, i):
+        """Match node ``j`` to equation ``i``."""
+        self.match.row_of[j] = i
+        if i >= 0:
+            self.match.col_of[i] = j
 
     def differentiate(self, l):
         inc = set()
@@ -79,6 +101,10 @@ class _Work:
         self.eq_level.append(self.eq_level[l] + 1)
         self.B.append(-1)
         self.B[l] = n
+        self.grow_assign()
+        for j in self.eq_vars[n]:
+            self.eqs_of[j].append(n)
+        self._append_row(n)
 
 
 def _reduce(w, starts, max_differentiations):
@@ -92,17 +118,19 @@ def _reduce(w, starts, max_differentiations):
             w.colV.clear()
             w.colE.clear()
             w.grow_assign()
-            if w.augment(i):
+            if w.colour_search(i):
                 break
             if w.eq_level[i] >= max_differentiations:
                 return i
+            first_new = len(w.nodes.sym)
             for j in list(w.colV):
                 w.nodes.derivative(j)
+            w.grow_assign()
             for l in sorted(w.colE):
                 w.differentiate(l)
-            w.grow_assign()
+            w.renew_candidates(first_new)
             for j in w.colV:
-                w.assign[w.A[j]] = w.B[w.assign[j]]
+                w.set_assign(w.A[j], w.B[w.assign[j]])
             i = w.B[i]
     return None
 
@@ -146,9 +174,11 @@ def differentiate_further(s, equations, describe_equation, **fields):
     are further structure fields to set."""
     max_differentiations = s.n_original + 3
     w = _Work(s)
+    first_new = len(w.nodes.sym)
     for i in equations:
         w.differentiate(i)
     w.grow_assign()
+    w.renew_candidates(first_new)
     for j in range(len(w.assign)):          # matches of variables that are no longer highest
         if w.A[j] >= 0:
             w.assign[j] = -1

@@ -10,47 +10,19 @@ import heapq
 
 import numpy as np
 
-
-def _augment(col, rows_of, row_match, col_match, seen):
-    """Look for an augmenting path from the unmatched column ``col``
-    (depth first, without recursion); True where one was found and applied."""
-    stack = [(col, iter(rows_of[col]))]
-    path = []
-    while stack:
-        c, rows = stack[-1]
-        for r in rows:
-            if r in seen:
-                continue
-            seen.add(r)
-            if row_match[r] < 0:
-                path.append((c, r))
-                for cc, rr in path:
-                    row_match[rr], col_match[cc] = cc, rr
-                return True
-            path.append((c, r))
-            stack.append((row_match[r], iter(rows_of[row_match[r]])))
-            break
-        else:
-            stack.pop()
-            if path:
-                path.pop()
-    return False
+from ..compiler.matching import Matching
 
 
 def matching(n, colind, row):
     """The row matched to each column (a maximum matching; -1 where the
-    pattern is structurally singular), cheap assignments first."""
-    rows_of = [row[colind[c]:colind[c + 1]] for c in range(n)]
-    row_match, col_match = [-1] * n, [-1] * n
-    for c in range(n):                         # the diagonal, then any free row
-        free = [r for r in rows_of[c] if row_match[r] < 0]
-        if free:
-            r = c if c in free else free[0]
-            row_match[r], col_match[c] = c, r
+    pattern is structurally singular), the diagonal preferred: each column
+    lists its own row first (:class:`~acausal2d.compiler.matching.Matching`,
+    the code base's one matching)."""
+    candidates = []
     for c in range(n):
-        if col_match[c] < 0:
-            _augment(c, rows_of, row_match, col_match, set())
-    return col_match
+        rows = [int(r) for r in row[colind[c]:colind[c + 1]]]
+        candidates.append([c] + [r for r in rows if r != c] if c in rows else rows)
+    return list(Matching(candidates, n).match_all().col_of)
 
 
 def minimum_degree(adjacency):
