@@ -8,6 +8,11 @@ the branch that continues the motion
 (:func:`~acausal2d.runtime.singularities.step_over`), or, where it cannot
 continue, the run ends at a limit position with a report.  Anything else is
 an integration error naming the variable most involved.
+
+Hand-off: :class:`Approach` reads the simulation's state and returns a
+:class:`Decision` (where the run goes on, the rows, events and singular
+positions to add, why it stopped); the simulation applies it.  Nothing here
+writes into the simulation.
 """
 import numpy as np
 
@@ -48,20 +53,35 @@ def _take_steps(solver, form, start, t_next, keep, max_steps):
     return last, how, times, kept
 
 
+class Decision:
+    """What :class:`Approach` decided: ``go_on`` (False ends the run), the
+    point ``(t, z)`` the run continues from (None: unchanged), output
+    ``rows`` (t, z) to append, ``events`` (t, text) and ``singular``
+    position records to add, and ``stopped`` (why the run ended early, or
+    None)."""
+
+    def __init__(self, go_on, t=None, z=None, rows=(), events=(), singular=(), stopped=None):
+        self.go_on, self.t, self.z = go_on, t, z
+        self.rows, self.events, self.singular = list(rows), list(events), list(singular)
+        self.stopped = stopped
+
+
 class Approach:
     """Handles a :class:`~acausal2d.runtime.ida.Failed` outcome of the
-    simulation ``sim`` (see module docstring)."""
+    simulation ``sim`` whose current (formulation, problem, IDA) is
+    ``solver`` (see module docstring); :meth:`resolve` and :meth:`near`
+    return a :class:`Decision`."""
 
-    def __init__(self, sim, failed):
+    def __init__(self, sim, failed, solver):
         self.sim, self.failed = sim, failed
-        self.form, self.prob, self.solver, _ = sim._solver()
+        self.form, self.prob, self.solver = solver[:3]
         states = np.asarray(self.form.states, dtype=int)
         self.n_held = len(states)
         self.keep = np.concatenate([states, self.form.all_deriv[states]]).astype(int)
 
     def resolve(self):
-        """Continue the run (True), end it at a limit position (False) or
-        raise the integration error."""
+        """A :class:`Decision` to continue the run or to end it at a limit
+        position; or raise the integration error."""
         sim, f = self.sim, self.failed
         near = self._near_singular(f)
         if near:       # IDA crawls towards a singular position
@@ -95,7 +115,8 @@ class Approach:
         """The highest dummy block became nearly singular (a
         :class:`~acausal2d.runtime.ida.RootFound` with ``near``): step over
         the singular position ahead, or let IDA go on without this watch
-        (a limit position, or only a dip of the determinant)."""
+        (a limit position, or only a dip of the determinant); a
+        :class:`Decision`."""
         sim, f = self.sim, self.failed
         z = np.array(f.y)
         jump = sing.step_over(sim.system, sim.ev, sim.selection, self.form, sim.d, f.t, z,
@@ -104,11 +125,10 @@ class Approach:
             return self._passed(*jump)
         held = list(self.form.states)
         try:
-            sim.z = solve_consistent(sim.ev, f.t, z, sim.d, held, z[held])
+            z = solve_consistent(sim.ev, f.t, z, sim.d, held, z[held])
         except NoConvergence:
-            sim.z = z
-        sim.t = f.t            # the next segment watches from this |det| on
-        return True
+            pass
+        return Decision(True, f.t, z)      # the next segment watches from this |det| on
 
     def _near_singular(self, f):
         """True if the worst dummy block at IDA's last point is close to
@@ -120,15 +140,14 @@ class Approach:
     def _go_on(self, last, reached):
         """IDA used up its step budget on a run that goes on well."""
         sim = self.sim
-        sim.t = last[0]
+        t = last[0]
         held = list(self.form.states)
         try:
-            sim.z = solve_consistent(sim.ev, sim.t, last[1], sim.d, held, last[1][held])
+            z = solve_consistent(sim.ev, t, last[1], sim.d, held, last[1][held])
         except NoConvergence:
-            sim.z = np.array(last[1])
-        if reached and sim.t in sim.times:
-            sim.out.append((sim.t, sim.z.copy()))
-        return True
+            z = np.array(last[1])
+        rows = [(t, z.copy())] if reached and t in sim.times else []
+        return Decision(True, t, z, rows=rows)
 
     def _history(self, times, kept):
         """(times, values, derivatives) of the held states at the output
@@ -155,19 +174,12 @@ class Approach:
                               self._history(times, kept), sim.t_end, sim.times, passed[-1])
         if away is None:
             return None
-        sim.out.extend(away[2])
-        sim.t, sim.z = away[0], away[1]
-        return True
+        return Decision(True, away[0], away[1], rows=away[2])
 
     def _passed(self, t_land, z, record, filled):
         """A singular position the motion passes through: continue beyond it."""
-        sim = self.sim
-        sim.singular.append(record)
-        sim.events.append((record["time"], "singular position passed in %s"
-                           % ", ".join(record["elements"])))
-        sim.out.extend(filled)
-        sim.t, sim.z = t_land, z
-        return True
+        event = (record["time"], "singular position passed in %s" % ", ".join(record["elements"]))
+        return Decision(True, t_land, z, rows=filled, events=[event], singular=[record])
 
     def _limit(self, limit, t_f, z_f):
         """The run ends at a singular position: report it and keep the data
@@ -178,13 +190,10 @@ class Approach:
             z_f = solve_consistent(sim.ev, t_f, z_f, sim.d, held, z_f[held])
         except NoConvergence:
             pass
-        sim.out.append((t_f, np.array(z_f)))
-        self.sim.singular.append(limit)
-        self.sim.stopped = (
-            "stopped at t=%.6g: the mechanism reached a limit position in %s (its position "
-            "equations become singular; the drive cannot move further)"
-            % (limit["time"], ", ".join(limit["elements"])))
-        return False
+        stopped = ("stopped at t=%.6g: the mechanism reached a limit position in %s (its "
+                   "position equations become singular; the drive cannot move further)"
+                   % (limit["time"], ", ".join(limit["elements"])))
+        return Decision(False, rows=[(t_f, np.array(z_f))], singular=[limit], stopped=stopped)
 
 
 def _worst_variable(sim, form, prob, f):

@@ -285,7 +285,7 @@ class Simulation:
             self._state_event(outcome, rels)
             return True
         if outcome.near:
-            return Approach(self, outcome).near()
+            return self._apply(Approach(self, outcome, self._solver()).near())
         self.z = np.array(outcome.y)
         self._monitor(outcome.monitors)
         return True
@@ -389,4 +389,15 @@ class Simulation:
                 self.t, self.z = outcome.t, np.array(outcome.y)
                 self._switch(new)
                 return True
-        return Approach(self, outcome).resolve()
+        return self._apply(Approach(self, outcome, self._solver()).resolve())
+
+    def _apply(self, decision):
+        """Carry out a :class:`~acausal2d.runtime.failure.Decision`; False ends the run."""
+        self.out.extend(decision.rows)
+        self.events.extend(decision.events)
+        self.singular.extend(decision.singular)
+        if decision.t is not None:
+            self.t, self.z = decision.t, decision.z
+        if decision.stopped is not None:
+            self.stopped = decision.stopped
+        return decision.go_on
