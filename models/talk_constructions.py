@@ -18,7 +18,7 @@ Helpers in :mod:`acausal2d.library.nodes.constructions`;
 ``tests/test_talk_synthesis.py`` checks each on its defining property."""
 import math
 
-from acausal2d.language.nodes import NodeModel, speed
+from acausal2d.library.nodes import NodeModel, speed
 from acausal2d.library.nodes.constructions import (angle_bisector, parallel, parallel_equal,
                                                    perpendicular, perpendicular_bisector)
 

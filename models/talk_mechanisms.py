@@ -22,7 +22,7 @@ import math
 
 import casadi
 
-from acausal2d.language.nodes import NodeModel, drive, ref, speed
+from acausal2d.library.nodes import NodeModel, drive, ref, speed
 
 TURN = 2 * math.pi          # rad/s: one crank revolution per second
 _RUN = {"stop_time": 1.0, "intervals": 360, "rtol": 1e-8}

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from acausal2d.language.nodes import NodeModel, drive, ref
+from acausal2d.library.nodes import NodeModel, drive, ref
 from acausal2d.library.nodes.constructions import perpendicular, perpendicular_bisector
 
 TURN = 2 * math.pi

@@ -255,7 +255,7 @@ def test_singular_position_stops_the_fmu_with_a_named_element(fmus):
     turn through: acausal2d passes the singular position (the crank turns
     back); the FMU stops there with an error naming the element."""
     model = load("fourbar")
-    names = acausal2d.fmu.bind_inputs(model, {"tau": 0.2})
+    model, names = acausal2d.fmu.bind_inputs(model, {"tau": 0.2})
     res = acausal2d.compile_model(model).simulate(params={"dyad.lL1": 0.05}, stop_time=0.6)
     t_sing = res.singularities[0]["time"]
     messages = []

@@ -340,9 +340,11 @@ def test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia(degrees
 
 
 def test_top_level_input_becomes_a_parameter_input():
-    from acausal2d.language.inputs import bind_inputs
-    model = acausal2d.load_model(os.path.join(os.path.dirname(__file__), "data", "forced_mass.py"))
-    assert bind_inputs(model, {"u": 20.0}) == {"u": "u_source.k"}
+    from acausal2d.library.inputs import bind_inputs
+    given = acausal2d.load_model(os.path.join(os.path.dirname(__file__), "data", "forced_mass.py"))
+    model, names = bind_inputs(given, {"u": 20.0})
+    assert names == {"u": "u_source.k"}
+    assert "u" in given._connectors and not hasattr(given, "u_source")   # the user's model as it was
     cm = acausal2d.compile_model(model)
     lin = cm.linearize(equilibrium=True, inputs=["u"], outputs=["mass.s", "spring.f"])
     i, j = lin.states.index("mass.s"), lin.states.index("mass.v")

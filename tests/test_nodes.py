@@ -1,4 +1,4 @@
-"""The node/constraint front end (acausal2d/language/nodes.py, library/nodes.py):
+"""The node/constraint front end (library/nodes/model.py, library/nodes.py):
 every constraint kind compiles into the DAE and meets a closed form or an
 independent solution; eq. 1/2 counts; assembly from rough coordinates;
 ranges with events; loads; frames joining library elements."""
@@ -9,7 +9,7 @@ import pytest
 
 import acausal2d
 from acausal2d import ModelDefinitionError
-from acausal2d.language.nodes import (NodeAssemblyError, NodeModel, at_least, at_most, between,
+from acausal2d.library.nodes import (NodeAssemblyError, NodeModel, at_least, at_most, between,
                                       delta, drive, mec2_drive, ref, speed)
 from acausal2d.library.linkage import DAN, DDD, DDS
 from acausal2d.library.linkage.drives import Preset

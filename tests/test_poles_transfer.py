@@ -12,7 +12,7 @@ import pytest
 
 import acausal2d
 from acausal2d.analysis.poles import cartesian, directed_ratio, kennedy, pole_homogeneous
-from acausal2d.language.nodes import NodeModel, speed
+from acausal2d.library.nodes import NodeModel, speed
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TURN = 2 * math.pi

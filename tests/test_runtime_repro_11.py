@@ -7,7 +7,7 @@ driven mechanism is), was located on IDA's interpolant: x = sin(2 pi t)
 crosses 0.5 at t = 1/12 s, the run reported the event at 0.0852 s (2 ms late
 at rtol 1e-10) and added spurious events near t = 5/12.  For a driven
 mechanism this made a range that stops the drive
-(acausal2d.language.nodes.at_most without source) re-initialize the
+(acausal2d.library.nodes.at_most without source) re-initialize the
 positions away from the event point, which the runtime then reported as a
 jump needing an impulse.  The runtime now locates such events on the exact
 solution (acausal2d.runtime.locate)."""
@@ -53,7 +53,7 @@ def test_output_rows_around_located_events_are_exact():
 
 
 def _slider_stop_model():
-    from acausal2d.language.nodes import NodeModel, at_most, speed
+    from acausal2d.library.nodes import NodeModel, at_most, speed
 
     class SliderStopModel(NodeModel):
         """Slider-crank (crank 30 mm, rod 100 mm, slider on the x axis) whose

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.language.nodes import NodeAssemblyError
+from acausal2d.library.nodes import NodeAssemblyError
 from acausal2d.library.nodes.correction import PositionCorrection
 from acausal2d.cli import main
 from conftest import MODELS, load_model_class

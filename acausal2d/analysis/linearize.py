@@ -17,7 +17,7 @@ the state derivatives: A = dz/dx[der(x)], B = dz/du[der(x)]; an output y
 Inputs u are parameters (a ``Constant`` source's ``k`` feeding a
 ``RealInput``, a force or torque value, a preload).  The model's top-level
 ``RealInput``s that nothing inside drives become such parameters with
-:func:`acausal2d.language.inputs.bind_inputs` before compiling: each gets
+:func:`acausal2d.library.inputs.bind_inputs` before compiling: each gets
 a ``Constant`` source ``<input>_source`` (``k`` its value, default 0), and
 the input is named by its connector (``u``) or by the parameter
 (``u_source.k``).

@@ -66,9 +66,9 @@ def cmd_linearize(args):
     from ..analysis.equilibrium import NoEquilibrium
     from ..compiled import compile_model
     from ..io.loader import load_model
-    from ..language.inputs import bind_inputs
+    from ..library.inputs import bind_inputs
     model = load_model(args.model_file, args.model)
-    bind_inputs(model)                  # top-level RealInputs become parameters
+    model, _ = bind_inputs(model)       # top-level RealInputs become parameters
     cm = compile_model(model)
     outputs = _names(args.outputs) if args.outputs is not None else None
     _check_names(outputs or [], cm, "--outputs")

@@ -35,9 +35,9 @@ def cmd_modes(args):
     from ..io.files import write_text
     from ..io.loader import load_model
     from ..visual.mode_page import write_mode_page
-    from ..language.inputs import bind_inputs
+    from ..library.inputs import bind_inputs
     model = load_model(args.model_file, args.model)
-    bind_inputs(model)                  # top-level RealInputs held at 0
+    model, _ = bind_inputs(model)       # top-level RealInputs held at 0
     cm = compile_model(model)
     options = point_options(args)
     try:

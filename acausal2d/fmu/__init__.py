@@ -2,6 +2,6 @@
 models as native code: :func:`export_fmu`; :func:`bind_inputs` turns a
 model's top-level ``RealInput`` connectors into inputs."""
 from .export import DynamicStateSelectionError, export_fmu
-from ..language.inputs import bind_inputs
+from ..library.inputs import bind_inputs
 
 __all__ = ["export_fmu", "bind_inputs", "DynamicStateSelectionError"]

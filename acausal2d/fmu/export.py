@@ -23,7 +23,7 @@ from ..errors import ModelDefinitionError, translated
 from ..runtime import cbuild
 from .description import model_description
 from .generate import casadi_sources, model_data_header
-from ..language.inputs import bind_inputs
+from ..library.inputs import bind_inputs
 
 C_DIR = os.path.join(os.path.dirname(__file__), "c")
 C_FILES = ("a2d_core.c", "a2d_core.h", "a2d_fmi2.c", "a2d_cs.c", "a2d_cs.h",
@@ -107,11 +107,11 @@ def _may_turn_singular(system, level):
 
 def export_data(model, inputs=None, fixed_states=False):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
-    :func:`~acausal2d.language.inputs.bind_inputs`)."""
+    :func:`~acausal2d.library.inputs.bind_inputs`)."""
     from .. import __version__
     from ..compiled import compile_model, _experiment
     name = type(model).__name__
-    input_params = bind_inputs(model, inputs)
+    model, input_params = bind_inputs(model, inputs)
     compiled = compile_model(model)
     p = compiled.parameter_values()
     with translated("preparing %s for export" % name):

@@ -3,7 +3,7 @@
 
 :func:`load_mec2` reads a ``.json`` file (``acausal2d simulate|check
 model.json`` and ``acausal2d.load_model("x.json")`` call it) and returns a
-:class:`~acausal2d.language.nodes.NodeModel`.  The file is parsed with
+:class:`~acausal2d.library.nodes.NodeModel`.  The file is parsed with
 :mod:`json` (never evaluated); every field is checked, and an unknown or
 malformed field raises :class:`~acausal2d.errors.ModelDefinitionError`
 naming its JSON path (``$.constraints[2].ori.type``).
@@ -47,7 +47,7 @@ import os
 import re
 
 from ..errors import ModelDefinitionError
-from ..language.nodes import NodeModel, mec2_drive, ref
+from acausal2d.library.nodes import NodeModel, mec2_drive, ref
 from .mec2_views import check_cosmetics, vector_arrows, warn_once
 
 __all__ = ["load_mec2", "model_from_mec2", "Mec2Model"]

@@ -104,7 +104,7 @@ current frame index), ``nframes``, ``playing``, ``setFrame(i)``, ``play()``,
 Drag mode (node models)
 -----------------------
 A scene may carry ``"nodes"``: the description of a node/constraint model
-(:meth:`acausal2d.language.nodes.NodeModel.drag_system`: ``nodes`` with
+(:meth:`acausal2d.library.nodes.NodeModel.drag_system`: ``nodes`` with
 x, y, m, base; ``constraints`` with their length/angle values; ``lentol``,
 ``itrmax``; ``signals``, the result signals that are node coordinates or
 constraint lengths/angles).  The page then offers a "drag" check box

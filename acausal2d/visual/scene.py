@@ -274,7 +274,7 @@ def _available(shapes, names):
 
 def _drag_system(model):
     """The node description for the page's drag mode (the first node model
-    in ``model``, see :meth:`acausal2d.language.nodes.NodeModel.drag_system`),
+    in ``model``, see :meth:`acausal2d.library.nodes.NodeModel.drag_system`),
     or None."""
     for comp in model.components() if model is not None else ():
         if hasattr(comp, "drag_system"):

@@ -3,7 +3,7 @@
 cstr.js manual): a constraint whose length or angle is taken from another
 constraint by ``ref`` (cstr.js ``len.from``, ``ang.from``) or ``delta``
 (``ang.delta``).  Each helper adds constraints to a
-:class:`~acausal2d.language.nodes.NodeModel` and returns the new link(s):
+:class:`~acausal2d.library.nodes.NodeModel` and returns the new link(s):
 
 * :func:`parallel` - ``CD ang = from('AB')``;
 * :func:`parallel_equal` - the same with ``len = from('AB')`` (CD equals AB
@@ -19,7 +19,7 @@ the constructed line, as on the talk's pages.
 """
 import math
 
-from acausal2d.language.nodes import delta, ref
+from .specs import delta, ref
 
 __all__ = ["parallel", "parallel_equal", "perpendicular", "perpendicular_bisector",
            "angle_bisector"]

@@ -22,7 +22,7 @@ received in the current sweep (its "dynamic mass" ``dym``), a mass of 0
 counts as 1, a three-node constraint moves only its third node.
 
 :class:`PositionCorrection` works on the plain description of a node model
-(:meth:`acausal2d.language.nodes.NodeModel.node_system`) and serves as the
+(:meth:`acausal2d.library.nodes.NodeModel.node_system`) and serves as the
 kinematic solver (prescribe the drives, correct step by step) and as the
 assembly that turns rough coordinates into consistent start values."""
 import math
@@ -72,7 +72,7 @@ def _weights(n1, n2):
 class PositionCorrection:
     """The position correction of eq. 3-16 on a node system (see module
     doc).  ``system``: the dict of
-    :meth:`~acausal2d.language.nodes.NodeModel.node_system` (nodes with x,
+    :meth:`~acausal2d.library.nodes.NodeModel.node_system` (nodes with x,
     y, m, base; constraints with their len/ang specifications).
     ``lentol`` [m] and ``itrmax`` default to the system's values (cstr.js:
     0.1 length units, 256)."""

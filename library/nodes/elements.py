@@ -3,7 +3,7 @@ prototypal mechanism simulation on the web", Schnabel/Goessner; cstr.js
 and mec2): nodes are point masses, constraints the polar vector between two
 nodes (talk eq. 3: ``p2 - p1 = r e(w)``).
 
-Build models with :class:`acausal2d.language.nodes.NodeModel`; this module
+Build models with :class:`acausal2d.library.nodes.NodeModel`; this module
 holds what a node model compiles into:
 
 * :class:`NodePort` - the connector of a node: position x, y; force fx, fy

@@ -1,4 +1,4 @@
-"""The values a constraint of a :class:`~acausal2d.language.nodes.NodeModel`
+"""The values a constraint of a :class:`~acausal2d.library.nodes.NodeModel`
 can be given (talk: const, ref, drive, range; cstr.js and mec2 spellings):
 :func:`speed`, :func:`drive`, :func:`mec2_drive`, :func:`ref`,
 :func:`delta`, :func:`between`, :func:`at_least`, :func:`at_most`, and the
@@ -7,8 +7,9 @@ source laws and solver descriptions the node model builds from them.
 import math
 import numbers
 
+from acausal2d.errors import InitializationError, ModelDefinitionError
 
-from ..errors import InitializationError, ModelDefinitionError
+from .drives import mec2_law
 
 
 class NodeAssemblyError(InitializationError):
@@ -155,7 +156,6 @@ def _len_from_ang_source(q, get):
 
 
 def _mec2_law(func, repeat, bounce, join):
-    from acausal2d.library.nodes.drives import mec2_law
     return lambda t, get: mec2_law(t, get("z0"), get("Dz"), get("t0"), get("Dt"), func,
                                    repeat, bounce, join)
 

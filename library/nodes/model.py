@@ -59,13 +59,18 @@ coordinates, so rough coordinates are enough."""
 import math
 import re
 
+from acausal2d.errors import ModelDefinitionError
+from acausal2d.language.dsl import Component
+from acausal2d.library.planar import PlanarWorld
 
-from ..errors import ModelDefinitionError
-from .dsl import Component
-from .node_specs import (at_least, at_most, between, delta, drive, mec2_drive, NodeAssemblyError,
-                        ref, speed, _ang_from_len_source, _Delta, _delta_source, _Drive,
-                        _is_number, _len_from_ang_source, _linear_source, _link_start, _mec2_law,
-                        _quantity, _Range, _Ref, _relative_source, _scaled, _spec_dict)
+from .correction import PositionCorrection
+from .drives import BASE_FUNCTIONS, is_full_turn, seq_law
+from .elements import (AngleDrive, AngleHold, Coupling, IncludedAngle, LengthDrive, LengthHold,
+                       Link, Node, NodeForce, NodeSpring)
+from .specs import (at_least, at_most, between, delta, drive, mec2_drive, NodeAssemblyError,
+                    ref, speed, _ang_from_len_source, _Delta, _delta_source, _Drive,
+                    _is_number, _len_from_ang_source, _linear_source, _link_start, _mec2_law,
+                    _quantity, _Range, _Ref, _relative_source, _scaled, _spec_dict)
 
 __all__ = ["NodeModel", "speed", "drive", "mec2_drive", "ref", "delta", "between",
            "at_least", "at_most", "NodeAssemblyError"]
@@ -88,7 +93,6 @@ class NodeModel(Component):
     itrmax = 256
 
     def __init__(self, **kw):
-        from acausal2d.library.planar import PlanarWorld
         super().__init__(**kw)
         self.__dict__.update(_nodes={}, _cstrs={}, _lines=[], _ranges=[], _ports={})
         self.world = PlanarWorld(g=tuple(float(g) for g in self.gravity))
@@ -115,7 +119,6 @@ class NodeModel(Component):
         """Add the node ``nid`` at (x, y) (coordinate units); ``m`` [kg]
         (0: massless), ``base``: fixed to ground, ``counted=False``: left out
         of eq. 1/2 (see :class:`~acausal2d.library.nodes.Node`)."""
-        from acausal2d.library.nodes import Node
         self._check_id(nid, "node")
         u = self.length_unit
         node = Node(x0=float(x) * u, y0=float(y) * u, m=m, base=base, counted=counted)
@@ -136,7 +139,6 @@ class NodeModel(Component):
         eq. 3); ``len``/``ang``: see the module doc; ``dir``: +1/-1 with a
         held angle; ``draw``: 'bar', 'slider', None or 'auto' (a bar where
         the length is held, a slider on a guide where only the angle is)."""
-        from acausal2d.library.nodes import Link
         self._check_id(cid, "constraint")
         (id1, a), (id2, b) = self._node(n1), self._node(n2)
         if draw == "auto":
@@ -162,7 +164,6 @@ class NodeModel(Component):
         """Three-node constraint (cstr.js ``n3``): the angle from the line
         n1->n2 to the line n1->n3 is held at ``ang`` ('const': as the
         coordinates give it, or a number in rad)."""
-        from acausal2d.library.nodes import IncludedAngle
         self._check_id(cid, "constraint")
         ids = [self._node(n)[0] for n in (n1, n2, n3)]
         if ang == "const":
@@ -197,7 +198,6 @@ class NodeModel(Component):
         return self._source(rec, kind, spec, start)
 
     def _hold(self, link, kind, value):
-        from acausal2d.library.nodes import AngleHold, LengthHold
         elem = (LengthHold if kind == "len" else AngleHold)(value=value)
         setattr(link, kind + "_hold", elem)
         self.connect(getattr(link, kind), elem.flange)
@@ -227,7 +227,6 @@ class NodeModel(Component):
     def _law(self, rec, kind, spec):
         """(law, parameters) of a drive spec in SI units (see
         :class:`~acausal2d.library.nodes.AngleDrive`)."""
-        from acausal2d.library.nodes.drives import BASE_FUNCTIONS, is_full_turn, seq_law
         scale = self.length_unit if kind == "len" else 1.0
         params = {k: float(v) for k, v in spec.params.items() if v is not None}
         if "om" in params:
@@ -249,7 +248,6 @@ class NodeModel(Component):
         return _mec2_law(func, repeat, bounce, join), params
 
     def _drive(self, rec, kind, spec, start, clamp):
-        from acausal2d.library.nodes import AngleDrive, LengthDrive
         scale = self.length_unit if kind == "len" else 1.0
         law, params = self._law(rec, kind, spec)
         z0 = start if spec.extra.get("start") is None else float(spec.extra["start"]) * scale
@@ -270,7 +268,6 @@ class NodeModel(Component):
         return self._cstrs[cid]
 
     def _coupling(self, rec, kind, spec, clamp):
-        from acausal2d.library.nodes import Coupling
         link = rec["link"]
         if isinstance(spec, _Delta):
             refs = [self._ref_record(rec, spec.frm), self._ref_record(rec, spec.to)]
@@ -329,7 +326,6 @@ class NodeModel(Component):
         """Force load of ``value`` N on ``node`` in the direction ``w0``
         (rad), or ``w0`` against the angle of the constraint ``wref`` (mec2
         ``force``)."""
-        from acausal2d.library.nodes import NodeForce
         self._check_id(lid, "load")
         nid, n = self._node(node)
         elem = NodeForce(value=value, w0=w0, relative=wref is not None)
@@ -344,7 +340,6 @@ class NodeModel(Component):
         """Linear spring of rate ``k`` [N/m] between two nodes (mec2
         ``spring``); ``len0`` (coordinate units) defaults to the distance
         the coordinates give."""
-        from acausal2d.library.nodes import NodeSpring
         self._check_id(lid, "load")
         (id1, a), (id2, b) = self._node(n1), self._node(n2)
         length = self._geometry(id1, id2)[0] if len0 is None else float(len0) * self.length_unit
@@ -501,7 +496,6 @@ class NodeModel(Component):
         after ``correct()`` and its
         :class:`~acausal2d.library.nodes.correction.Correction`; raises
         :class:`NodeAssemblyError` if the mechanism cannot close."""
-        from acausal2d.library.nodes.correction import PositionCorrection
         system = self.node_system()
         xs = [n[k] for n in system["nodes"] for k in ("x", "y")]
         span = max(xs) - min(xs) if xs else 1.0

@@ -8,17 +8,22 @@ place in the model's connections, and its parameter ``k`` is the input (a
 parameter of the compiled functions, so it changes without recompiling:
 ``--set <connector>_source.k=...``, ``params``, ``fmi2SetReal``).  Used by
 the FMU export and by ``linearize``/``modes``.
+
+The user's model is left as it was: the sources go into a copy.
 """
-from ..errors import ModelDefinitionError
-from ..language.connectors import RealInput
+from acausal2d.compiled import own_copy
+from acausal2d.errors import ModelDefinitionError
+from acausal2d.language.connectors import RealInput
+from acausal2d.library.signals import Constant
 
 
 def bind_inputs(model, values=None):
-    """Replace the model's own ``RealInput`` connectors by constant sources
-    (in place); returns {input name: parameter name of its value}.
-    ``values``: {input name: start value} (default 0).  The mapping is also
-    kept as ``model.input_parameters``."""
-    from acausal2d.library.signals import Constant
+    """A copy of ``model`` whose own ``RealInput`` connectors are replaced by
+    constant sources, and {input name: parameter name of its value}:
+    ``(bound model, mapping)``.  ``values``: {input name: start value}
+    (default 0).  The mapping is also kept as the copy's
+    ``input_parameters``; ``model`` itself is not changed."""
+    model = own_copy(model)
     values = dict(values or {})
     inputs = {}
     for name, conn in list(model._connectors.items()):
@@ -38,4 +43,4 @@ def bind_inputs(model, values=None):
                                                         ", ".join(sorted(values)),
                                                         ", ".join(inputs) or "none"))
     model.input_parameters = dict(getattr(model, "input_parameters", {}), **inputs)
-    return inputs
+    return model, inputs
