@@ -29,24 +29,58 @@ from .analysis.study import study  # noqa: E402,F401
 Model = Component
 """Alias of :class:`Component` for top-level models."""
 
+__all__ = [
+    # modelling
+    "Component", "Model", "Parameter", "Variable", "start", "Outer", "der", "time",
+    "time_derivative", "Connector", "Frame", "RotationalFlange", "TranslationalFlange",
+    "BandPort", "RealInput", "RealOutput",
+    # symbolic functions for equations
+    "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "log", "fabs", "fmin",
+    "fmax", "sign", "if_else", "pi",
+    # running and analysing
+    "load_model", "compile_model", "CompiledModel", "simulate", "Result", "check", "compare",
+    "sweep", "study", "fit", "optimize", "export_fmu",
+    # errors
+    "Acausal2dError", "ModelDefinitionError", "StructuralError", "InitializationError",
+    "SimulationError",
+    "__version__",
+]
 
-def compile_model(model):
-    """Flatten, index-reduce and prepare ``model`` for simulation; returns a
-    :class:`~acausal2d.compiled.CompiledModel` that simulates many
-    times with different parameter values without recompiling."""
-    from .compiled import compile_model as _compile
-    from .arguments import check_model
-    check_model(model, "compile_model")
-    return _compile(model)
+_LAZY = {"CompiledModel": "compiled", "Result": "result"}
+
+
+def __getattr__(name):
+    """``CompiledModel`` and ``Result`` on first use: they import the
+    runtime (IDA, scikit-sundae), which ``import acausal2d`` alone does not
+    need."""
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module("." + _LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError("module 'acausal2d' has no attribute %r" % name)
+
+
+def compile_model(model, name=None):
+    """Flatten, index-reduce and prepare ``model`` (a model file's path with
+    ``name`` choosing its class, a Component subclass or instance) for
+    simulation; returns a :class:`~acausal2d.compiled.CompiledModel` that
+    simulates many times with different parameter values without
+    recompiling.  The model itself is not changed."""
+    from .compiled import CompiledModel, compile_model as _compile
+    from .arguments import model_argument
+    model = model_argument(model, "compile_model", name)
+    return model if isinstance(model, CompiledModel) else _compile(model)
 
 
 def simulate(model, stop_time=None, **options):
-    """Compile (if needed) and simulate ``model``; returns a
+    """Compile (if needed) and simulate ``model`` (a model file's path, a
+    Component subclass or instance, or a CompiledModel); returns a
     :class:`~acausal2d.result.Result`.  See
     :meth:`~acausal2d.compiled.CompiledModel.simulate`."""
     from .compiled import CompiledModel
-    from .arguments import check_model, check_simulate_options
-    check_model(model, "simulate")
+    from .arguments import model_argument, check_simulate_options
+    model = model_argument(model, "simulate")
     check_simulate_options(options)
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
     return compiled.simulate(stop_time=stop_time, **options)
@@ -90,6 +124,8 @@ def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
     2.0 FMU with native binaries; kind ``"me"`` (Model Exchange) or ``"cs"``
     (Co-Simulation); see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
     from .fmu import export_fmu as _export
-    if isinstance(model, str):
-        model = load_model(model)
+    from .arguments import model_argument
+    model = model_argument(model, "export_fmu")
+    if not isinstance(model, Component):
+        model = model.model          # a CompiledModel: the model it was compiled from
     return _export(model, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states)

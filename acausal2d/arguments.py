@@ -10,28 +10,39 @@ import numpy as np
 
 from .errors import Acausal2dError
 
-__all__ = ["check_model", "check_simulate_options", "check_load", "check_sweep"]
+__all__ = ["model_argument", "check_model", "check_simulate_options", "check_load", "check_sweep"]
+
+
+def model_argument(model, function, name=None):
+    """The model a public function was given, as a Component instance or a
+    CompiledModel: every public function takes a model file's path (with
+    ``name`` choosing the class in it), a Component subclass (instantiated
+    with its defaults), an instance or a CompiledModel.  Anything else is an
+    :class:`~acausal2d.errors.Acausal2dError` naming ``function``."""
+    from .compiled import CompiledModel
+    from .language.dsl import Component
+    if isinstance(model, (Component, CompiledModel)):
+        return model
+    if isinstance(model, (str, os.PathLike)):
+        from .io.loader import load_model
+        check_load(model, name, {})
+        return load_model(model, name)
+    if isinstance(model, type) and issubclass(model, Component):
+        try:
+            return model()
+        except TypeError as exc:
+            raise Acausal2dError("%s: the model class %s cannot be made with its defaults (%s); "
+                                 "give an instance: %s(%s(...))"
+                                 % (function, model.__name__, exc, function,
+                                    model.__name__)) from None
+    raise Acausal2dError("%s: model must be a model file's path, a Component subclass, an "
+                         "instance or a CompiledModel, not %s" % (function, type(model).__name__))
 
 
 def check_model(model, function):
-    """``model`` must be a Component instance (or, for ``simulate`` and
-    ``check``, a CompiledModel); a path or a class gets a hint how to make
-    one."""
-    from .compiled import CompiledModel
-    from .language.dsl import Component
-    takes_compiled = function in ("simulate", "check")
-    if isinstance(model, Component) or (takes_compiled and isinstance(model, CompiledModel)):
-        return
-    if isinstance(model, (str, os.PathLike)):
-        hint = "; for a model file use %s(acausal2d.load_model(%r))" % (function,
-                                                                        os.fspath(model))
-    elif isinstance(model, type) and issubclass(model, Component):
-        hint = "; instantiate the class: %s(%s())" % (function, model.__name__)
-    else:
-        hint = ""
-    raise Acausal2dError("%s: model must be a Component instance%s, not %s%s"
-                         % (function, " or a CompiledModel" if takes_compiled else "",
-                            type(model).__name__, hint))
+    """:func:`model_argument` for functions that take an instance only
+    (kept for the callers that resolve paths and classes themselves)."""
+    return model_argument(model, function)
 
 
 def check_simulate_options(options):

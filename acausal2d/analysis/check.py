@@ -61,7 +61,7 @@ def _terms(t):
 
 def _node_lines(c):
     """The talk's eq. 1/2 counts of the node models (see
-    :meth:`acausal2d.language.nodes.NodeModel.node_counts`)."""
+    :meth:`acausal2d.library.nodes.NodeModel.node_counts`)."""
     lines = ["  nodes (talk):      N = %d, N_base = %d, C1 = %d, C2 = %d: F = %d (eq. 1), "
              "m = %d loops (eq. 2)" % (c["N"], c["N_base"], c["C1"], c["C2"], c["F"], c["m"])]
     if c["driven"]:
@@ -184,11 +184,12 @@ def _index(structure, states):
 
 
 def check(model):
-    """Compile ``model`` (a Component instance or a CompiledModel) and return a
-    :class:`CheckReport`; raises the project's errors for a broken model."""
-    from ..arguments import check_model
+    """Compile ``model`` (a model file's path, a Component subclass or
+    instance, or a CompiledModel) and return a :class:`CheckReport`; raises
+    the project's errors for a broken model."""
+    from ..arguments import model_argument
     from ..compiled import CompiledModel
-    check_model(model, "check")
+    model = model_argument(model, "check")
     cm = model if isinstance(model, CompiledModel) else CompiledModel(model)
     root, system = cm.model, cm.system
     s = system.structure

@@ -95,8 +95,8 @@ class ModelSpec:
             return cls(path, name or model.__name__, kwargs)
         if isinstance(model, (str, os.PathLike)):
             return cls(model, name, kwargs)
-        raise Acausal2dError("sweep takes a model file path, a Component subclass or a "
-                             "CompiledModel, not %s" % type(model).__name__)
+        raise Acausal2dError("sweep takes a model file path, a Component subclass, an "
+                             "instance or a CompiledModel, not %s" % type(model).__name__)
 
     def local_path(self):
         """The model file on this machine: its path if it holds the same
@@ -443,12 +443,15 @@ def sweep(model, vary=None, points=None, outputs=None, metrics=None, at=None, st
     ``dask.distributed.Client`` (see :func:`cluster`).  progress: draw a
     bar on standard error.  Returns a :class:`SweepResult`.
     """
-    from ..compiled import CompiledModel
+    from ..compiled import CompiledModel, compile_model
+    from ..language.dsl import Component
     points = grid_points(vary) if points is None else [dict(p) for p in points]
     if params:
         points = [dict(params, **p) for p in points]
     if not points:
         raise Acausal2dError("the sweep has no points")
+    if isinstance(model, Component):         # an instance runs in this process, compiled once
+        model = compile_model(model)
     compiled = isinstance(model, CompiledModel)
     spec = model if compiled else ModelSpec.of(model, model_name, model_kwargs)
     settings = {"outputs": list(outputs or ()), "metrics": _picklable_metrics(metrics),

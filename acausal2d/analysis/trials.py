@@ -107,8 +107,8 @@ class Trials:
     """Runs of ``model`` at parameter points: ``run(points)`` returns the
     outcomes in order, ``jacobian(x)`` the finite-difference derivatives.
 
-    model: a model file path, a Component subclass or a CompiledModel;
-    ``names``: the varied columns; ``signals`` and ``times``: what every
+    model: a model file path, a Component subclass, an instance or a
+    CompiledModel; ``names``: the varied columns; ``signals`` and ``times``: what every
     run returns; ``fixed``: values held for every run; ``scheduler``: None
     (this process), ``"local"``/a number of workers (a LocalCluster), a
     Dask scheduler address, or ``client=`` an open Client.  Use it as a
@@ -117,7 +117,10 @@ class Trials:
 
     def __init__(self, model, names, signals, times, fixed=None, rtol=None, scheduler=None,
                  workers=None, client=None, model_name=None):
-        from ..compiled import CompiledModel
+        from ..compiled import CompiledModel, compile_model
+        from ..language.dsl import Component
+        if isinstance(model, Component):      # an instance runs in this process, compiled once
+            model = compile_model(model)
         self.names, self.fixed = list(names), dict(fixed or {})
         _check_fixed(self.fixed)
         self.settings = {"signals": list(signals), "times": np.asarray(times, dtype=float),
