@@ -10,9 +10,6 @@ __version__ = "0.1.0"
 
 _os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is imported
 
-from . import _moved  # noqa: E402  (old import paths, e.g. acausal2d.tools.cli)
-_moved.install()
-
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
                     fmin, fmax, sign, if_else, pi)
 

@@ -64,7 +64,7 @@ def test_summary_line_counts_steps_and_evaluations(engine_out):
 def test_progress_bar_is_visible_while_integrating(tmp_path, monkeypatch, capfd):
     """The bar is written while IDA runs (the integrator captures file
     descriptor 2 for the SUNDIALS messages; the bar must not vanish there)."""
-    from acausal2d.tools import cli
+    from acausal2d import cli
     monkeypatch.setattr(cli, "PROGRESS_DELAY", 0.0)
     monkeypatch.setattr(cli, "PROGRESS_INTERVAL", 0.0)
     code = cli.main(["simulate", os.path.join(ROOT, "models", "pendulum.py"), "--out",

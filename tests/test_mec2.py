@@ -1,4 +1,4 @@
-"""mec2 JSON import (acausal2d/tools/mec2.py): the verbatim examples of
+"""mec2 JSON import (acausal2d/io/mec2.py): the verbatim examples of
 goessner/mec2 (MIT, copied with their attribution into
 tests/data/mec2, see SOURCE.md there), the project's own models in models/mec2/ covering every constraint kind,
 and errors naming the JSON path."""

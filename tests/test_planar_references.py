@@ -17,7 +17,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import acausal2d
-from acausal2d.tools import cli
+from acausal2d import cli
 from conftest import load_model_class, ROOT
 from reference_data_planar import REFERENCES
 

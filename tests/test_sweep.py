@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.tools import sweep as sweep_module
+from acausal2d.analysis import sweep as sweep_module
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PENDULUM = os.path.join(ROOT, "models", "pendulum.py")
