@@ -7,7 +7,11 @@ A request is a JSON object::
      "intervals": 500,                                   # output intervals, 1 ... MAX_INTERVALS
      "signals": ["prismatic.s"],                         # columns answered (default: figures)
      "scene": true,                                      # also answer the animation page
-     "session": "tab-1"}                                 # runs of one session supersede
+     "session": "tab-1",                                 # runs of one session supersede
+     "start": {"revoluteDrive.phi": 0.5}}                # start values replaced
+
+``POST /api/start`` takes the same object with ``"drag": {"x": signal,
+"y": signal, "to": [X, Y]}``: the point (x, y) moved to (X, Y) at the start.
 
 Every field is optional.  Anything else -- malformed JSON, an unknown field,
 an unknown parameter or signal, NaN, a value breaking its parameter's rule,
@@ -15,6 +19,7 @@ a stop time beyond the limit -- raises :class:`BadRequest` whose message
 names the field (and the parameter) and what to change; the server answers
 it with HTTP 400 ``{"error": message, "field": field}``.
 """
+import difflib
 import json
 import math
 
@@ -26,7 +31,7 @@ MAX_INTERVALS = 20000
 MAX_BODY = 1 << 20
 """Largest request body in bytes."""
 
-_FIELDS = ("set", "stop_time", "intervals", "signals", "scene", "session")
+_FIELDS = ("set", "stop_time", "intervals", "signals", "scene", "session", "start", "drag")
 
 
 class BadRequest(Acausal2dError):
@@ -41,17 +46,19 @@ class BadRequest(Acausal2dError):
 class RunSpec:
     """A checked run request: ``params`` ({name: value} for
     :meth:`~acausal2d.compiled.CompiledModel.simulate`), ``stop_time``,
-    ``intervals``, ``signals`` (names answered), ``scene`` (bool) and
-    ``session`` (str or None)."""
+    ``intervals``, ``signals`` (names answered), ``scene`` (bool),
+    ``session`` (str or None), ``start`` ({unknown: value}) and ``drag``
+    (None, or {"x", "y", "to"} for ``/api/start``)."""
 
     def __init__(self, params, stop_time, intervals, signals, scene, session):
         self.params, self.stop_time, self.intervals = params, stop_time, intervals
         self.signals, self.scene, self.session = signals, scene, session
+        self.start, self.drag = {}, None
 
     def key(self):
         """What determines the run's numbers (not which columns are answered)."""
         return (tuple(sorted((k, str(v)) for k, v in self.params.items())), self.stop_time,
-                self.intervals)
+                self.intervals, tuple(sorted(self.start.items())))
 
 
 def parse_body(raw):
@@ -134,7 +141,7 @@ def signals_of(body, names, default):
     known = set(names)
     for name in chosen:
         if name not in known:
-            close = [n for n in names if name.split(".")[-1] in n][:8]
+            close = difflib.get_close_matches(name, names, 6, 0.6)
             raise BadRequest("signals", "no signal %r in the model%s" % (
                 name, "; similar: " + ", ".join(close) if close else ""))
     return list(dict.fromkeys(chosen))
@@ -151,15 +158,56 @@ def session_of(body):
     return s
 
 
-def parse_run(raw, compiled, defaults):
+def start_of(body, compiled):
+    """The checked ``start``: {unknown: value}, names among the model's
+    start values, values finite numbers."""
+    given = body.get("start") or {}
+    if not isinstance(given, dict):
+        raise BadRequest("start", 'must be an object {"joint.phi": value}, got %s'
+                         % json.dumps(given)[:60])
+    for name, value in given.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise BadRequest("start.%s" % name, "must be a number, got %s"
+                             % json.dumps(value)[:60])
+        try:
+            compiled.start_indices({name: value})
+        except Acausal2dError as exc:
+            raise BadRequest("start.%s" % name, str(exc)) from None
+    return {k: float(v) for k, v in given.items()}
+
+
+def drag_of(body, names):
+    """The checked ``drag``: {"x": signal, "y": signal, "to": [X, Y]}."""
+    drag = body.get("drag")
+    if not isinstance(drag, dict) or set(drag) != {"x", "y", "to"}:
+        raise BadRequest("drag", 'must be an object {"x": signal, "y": signal, "to": [X, Y]}, '
+                         "got %s" % json.dumps(drag)[:80])
+    for key in ("x", "y"):
+        if drag[key] not in names:
+            raise BadRequest("drag.%s" % key, "no signal %s in the model" % json.dumps(drag[key]))
+    to = drag["to"]
+    if not isinstance(to, list) or len(to) != 2:
+        raise BadRequest("drag.to", "must be [X, Y], got %s" % json.dumps(to)[:60])
+    return {"x": drag["x"], "y": drag["y"],
+            "to": [float(_finite_number("drag.to", v)) for v in to]}
+
+
+def parse_run(raw, compiled, defaults, drag=False):
     """A :class:`RunSpec` from the request body ``raw`` (bytes);
-    ``defaults``: {"stop_time", "max_stop_time", "intervals", "signals"}."""
+    ``defaults``: {"stop_time", "max_stop_time", "intervals", "signals"};
+    ``drag``: the body must have a ``drag`` (``/api/start``), else must not."""
     body = parse_body(raw)
     scene = body.get("scene", False)
     if not isinstance(scene, bool):
         raise BadRequest("scene", "must be true or false, got %s" % json.dumps(scene)[:60])
-    return RunSpec(params_of(body, compiled),
+    if not drag and "drag" in body:
+        raise BadRequest("drag", "only POST /api/start takes a drag")
+    spec = RunSpec(params_of(body, compiled),
                    stop_time_of(body, defaults["stop_time"], defaults["max_stop_time"]),
                    intervals_of(body, defaults["intervals"]),
                    signals_of(body, compiled.names, defaults["signals"]), scene,
                    session_of(body))
+    spec.start = start_of(body, compiled)
+    if drag:
+        spec.drag = drag_of(body, compiled.names)
+    return spec

@@ -20,6 +20,7 @@ import numpy as np
 from ..compiled import _experiment, compile_model
 from ..errors import Acausal2dError, SimulationError
 from ..io.loader import load_model
+from .drag import movable
 from .requests import parse_run
 
 MAX_SESSIONS = 256
@@ -121,14 +122,27 @@ class Explorer:
                 "parameters": self.parameters(), "figures": self.figures(),
                 "signals": [{"name": n, "unit": units.get(n, "")} for n in cm.names],
                 "outputs": list(cm.outputs), "stop_time": self.defaults["stop_time"],
+                "movable": movable(cm),
                 "max_stop_time": self.defaults["max_stop_time"],
                 "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time}
 
-    def parse(self, raw):
+    def parse(self, raw, drag=False):
         """A checked :class:`~acausal2d.explore.requests.RunSpec` from a
-        request body; :class:`~acausal2d.explore.requests.BadRequest`
-        naming the field otherwise."""
-        return parse_run(raw, self.compiled, self.defaults)
+        request body (with ``drag``: of ``/api/start``);
+        :class:`~acausal2d.explore.requests.BadRequest` naming the field
+        otherwise."""
+        return parse_run(raw, self.compiled, self.defaults, drag)
+
+    def submit_drag(self, spec):
+        """Queue the drag of ``spec`` (see :mod:`acausal2d.explore.drag`);
+        a future of the answer ``{"start": {unknown: value}}``."""
+        from .drag import drag_start
+        d = spec.drag
+
+        def move():
+            return {"start": drag_start(self.compiled, spec.params, spec.start,
+                                        (d["x"], d["y"]), d["to"])}
+        return self._worker.submit(move)
 
     # ---------------------------------------------------------------- runs
     def warm(self):
@@ -171,7 +185,7 @@ class Explorer:
         try:
             res = self.compiled.simulate(stop_time=spec.stop_time, params=spec.params,
                                          intervals=spec.intervals, progress=progress,
-                                         max_wall_time=self.max_wall_time)
+                                         max_wall_time=self.max_wall_time, start=spec.start)
         except SimulationError:
             if not self._current(spec.session, number):
                 raise Superseded("stopped: a newer run of session %r came" % spec.session) \
@@ -187,7 +201,7 @@ class Explorer:
                "elapsed_s": elapsed, "stopped": res.stopped,
                "events": len(res.events), "stop_time": spec.stop_time,
                "set": {k: list(v) if isinstance(v, tuple) else v
-                       for k, v in spec.params.items()}}
+                       for k, v in spec.params.items()}, "start": spec.start}
         if spec.scene:
             out["scene"] = scene_page(res)
         return out

@@ -7,6 +7,8 @@ Routes (the page uses nothing else)::
                        signals with units, figures, default and largest stop time
     POST /api/run      a run: {"time", "signals", "elapsed_s", "stopped", ...}
     POST /api/csv      the same run as CSV (every column), for the export button
+    POST /api/start    a run request with "drag": {"x", "y", "to"}: the start values
+                       ({"start": {unknown: value}}) that put that point at "to"
 
 Answers: 200 with the run; 400 ``{"error", "field"}`` for a bad request
 (:mod:`acausal2d.explore.requests`); 409 ``{"error"}`` for a run overtaken
@@ -77,15 +79,27 @@ def make_app(explorer):
         except Acausal2dError as exc:
             return _json({"error": str(exc)}, 422)
 
+    async def start(request):
+        try:
+            spec = explorer.parse(await request.body(), drag=True)
+        except BadRequest as exc:
+            return _json({"error": str(exc), "field": exc.field}, 400)
+        try:
+            return _json(await asyncio.wrap_future(explorer.submit_drag(spec)))
+        except Acausal2dError as exc:
+            return _json({"error": str(exc)}, 422)
+
     routes = [Route("/", index), Route("/api/params", params),
-              Route("/api/run", run, methods=["POST"]), Route("/api/csv", csv, methods=["POST"])]
+              Route("/api/run", run, methods=["POST"]), Route("/api/csv", csv, methods=["POST"]),
+              Route("/api/start", start, methods=["POST"])]
     return Starlette(routes=routes)
 
 
 def serve(explorer, host="127.0.0.1", port=8765, open_browser=False, announce=print):
     """Serve ``explorer`` on ``host``:``port`` (0: a free port) until
     Ctrl-C; ``announce(url)`` is called once the server accepts
-    connections, then the page is opened in a browser if ``open_browser``."""
+    connections, then the page is opened in a browser if ``open_browser``.
+    Returns 0 after Ctrl-C (the run in progress finished, nothing written)."""
     import uvicorn
 
     class _Server(uvicorn.Server):
@@ -105,6 +119,8 @@ def serve(explorer, host="127.0.0.1", port=8765, open_browser=False, announce=pr
     server = _Server(config)
     try:
         server.run()
+    except KeyboardInterrupt:    # uvicorn shut down cleanly, then raised Ctrl-C again
+        pass
     finally:
         explorer.close()
     return 0 if server.started else 2

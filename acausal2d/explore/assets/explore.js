@@ -2,10 +2,10 @@
   "use strict";
   // acausal2d explore: the page of `acausal2d explore` (see acausal2d/explore/server.py).
   var session = "tab-" + Math.random().toString(36).slice(2, 12);
-  var meta = null, values = {}, defaults = {}, units = {};
+  var meta = null, values = {}, defaults = {}, units = {}, starts = {};
   var current = null, previous = null, pins = [], figures = [];
   var inflight = null, pending = false, sent = 0, shown = 0, runs = 0, lastError = null;
-  var sceneLoads = 0, dragStart = null;
+  var sceneLoads = 0, dragStart = null, drags = 0;
   var LINE = ["#4682b4", "#e07b00", "#2e9e4f", "#8e44ad", "#c0392b", "#16a085"];
   var PIN = ["#d35400", "#27ae60", "#7f8c8d", "#9b59b6", "#2c3e50"];
   var WAIT_MS = 400;  // a run still going after this is overtaken by the next change
@@ -40,7 +40,7 @@
   }
   function request(scene) {
     return { set: changedSet(), stop_time: +$("stop").value, signals: wanted(), scene: scene,
-             session: session };
+             session: session, start: starts };
   }
 
   // ---- runs: one in flight, the newest change waits for it (or overtakes it after WAIT_MS) ----
@@ -86,7 +86,7 @@
   }
   function show(data, body, roundTrip) {
     previous = current;
-    current = { data: data, set: body.set, stop_time: body.stop_time };
+    current = { data: data, set: body.set, stop_time: body.stop_time, start: body.start };
     runs += 1;
     lastError = null;
     $("error").hidden = true;
@@ -148,9 +148,10 @@
       return r.json().then(function (d) { return { status: r.status, data: d }; });
     }).then(function (a) {
       if (a.status !== 200) { fail(a.data.error || "HTTP " + a.status); return; }
-      Object.keys(a.data.set).forEach(function (n) { setValue(n, [].concat(a.data.set[n])); });
+      starts = a.data.start;
+      drags += 1;
       send();
-    });
+    }, function (e) { fail("no answer from the server: " + e); });
   }
 
   // ---- figures: current run, the previous one faint, pinned runs dashed ----
@@ -274,7 +275,8 @@
       parts.push("--set " + n + "=" + [].concat(current.set[n]).map(fmt).join(","));
     });
     parts.push("--stop-time " + fmt(current ? current.stop_time : +$("stop").value));
-    return parts.join(" ");
+    var st = Object.keys(current ? current.start : {}).map(function (n) { return n + "=" + fmt(current.start[n]); });
+    return parts.join(" ") + (st.length ? "\n# start values (dragged): " + st.join(", ") : "");
   }
   function exportSet() {
     var box = $("export");
@@ -345,7 +347,9 @@
   $("export-set").addEventListener("click", exportSet);
   $("export-csv").addEventListener("click", exportCsv);
   $("reset").addEventListener("click", function () {
-    Object.keys(defaults).forEach(function (n) { setValue(n, defaults[n]); }); schedule();
+    Object.keys(defaults).forEach(function (n) { setValue(n, defaults[n]); });
+    starts = {};
+    schedule();
   });
   $("stop").addEventListener("change", schedule);
   $("add").addEventListener("click", function () {
@@ -361,7 +365,8 @@
     get runs() { return runs; }, get current() { return current; },
     get previous() { return previous; }, get pins() { return pins; },
     get error() { return lastError; }, get sceneLoads() { return sceneLoads; },
-    get busy() { return !!inflight || pending; },
+    get busy() { return !!inflight || pending; }, get drags() { return drags; },
+    get starts() { return starts; },
     session: session, values: values, figures: figures, setOptions: setOptions,
     send: send, moveStart: moveStart
   };
