@@ -53,7 +53,7 @@ class RunSpec:
     def __init__(self, params, stop_time, intervals, signals, scene, session):
         self.params, self.stop_time, self.intervals = params, stop_time, intervals
         self.signals, self.scene, self.session = signals, scene, session
-        self.start, self.drag = {}, None
+        self.start, self.drag, self.run = {}, None, None
 
     def key(self):
         """What determines the run's numbers (not which columns are answered)."""

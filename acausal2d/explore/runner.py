@@ -28,7 +28,12 @@ MAX_SESSIONS = 256
 
 
 class Superseded(Acausal2dError):
-    """A run overtaken by a newer run of its session (HTTP 409)."""
+    """A run overtaken by a newer run of its session (HTTP 409); ``run``:
+    its number."""
+
+    def __init__(self, message, run):
+        super().__init__(message)
+        self.run = run
 
 
 class _Cancel(Exception):
@@ -176,7 +181,7 @@ class Explorer:
     def _execute(self, spec, number, render):
         if not self._current(spec.session, number):
             raise Superseded("superseded by a newer run of session %r before it started"
-                             % spec.session)
+                             % spec.session, number)
 
         def progress(t, t_end):
             if not self._current(spec.session, number):
@@ -188,9 +193,10 @@ class Explorer:
                                          max_wall_time=self.max_wall_time, start=spec.start)
         except SimulationError:
             if not self._current(spec.session, number):
-                raise Superseded("stopped: a newer run of session %r came" % spec.session) \
-                    from None
+                raise Superseded("stopped: a newer run of session %r came" % spec.session,
+                                 number) from None
             raise
+        spec.run = number
         return render(res, time.perf_counter() - t0)
 
     def answer(self, spec, res, elapsed):
@@ -198,7 +204,7 @@ class Explorer:
         (the run's wall time), stopped, events and the page when asked."""
         out = {"time": _column(res.time),
                "signals": {n: _column(res[n]) for n in spec.signals},
-               "elapsed_s": elapsed, "stopped": res.stopped,
+               "elapsed_s": elapsed, "stopped": res.stopped, "run": spec.run,
                "events": len(res.events), "stop_time": spec.stop_time,
                "set": {k: list(v) if isinstance(v, tuple) else v
                        for k, v in spec.params.items()}, "start": spec.start}

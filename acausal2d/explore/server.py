@@ -10,7 +10,8 @@ Routes (the page uses nothing else)::
     POST /api/start    a run request with "drag": {"x", "y", "to"}: the start values
                        ({"start": {unknown: value}}) that put that point at "to"
 
-Answers: 200 with the run; 400 ``{"error", "field"}`` for a bad request
+Answers: 200 with the run (its "run" number counts the server's runs in
+the order they came); 400 ``{"error", "field"}`` for a bad request
 (:mod:`acausal2d.explore.requests`); 409 ``{"error"}`` for a run overtaken
 by a newer one of its session; 422 ``{"error"}`` with the run's own message
 when the model cannot run with these values (a geometry that cannot
@@ -75,7 +76,7 @@ def make_app(explorer):
         try:
             return respond(await asyncio.wrap_future(future))
         except Superseded as exc:
-            return _json({"error": str(exc), "superseded": True}, 409)
+            return _json({"error": str(exc), "superseded": True, "run": exc.run}, 409)
         except Acausal2dError as exc:
             return _json({"error": str(exc)}, 422)
 
