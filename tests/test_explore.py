@@ -374,3 +374,19 @@ def test_random_bodies_are_accepted_or_refused_naming_a_field():
             continue
         assert 0 < spec.stop_time <= 100.0 and 1 <= spec.intervals <= 20000
     assert 0 < refused < 300
+
+
+def test_cli_refuses_a_busy_port_and_a_bad_host(capsys):
+    """Checked before the model is compiled: exit code 2 naming the option."""
+    import socket
+    from acausal2d.cli import main
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        assert main(["explore", "models/piston_engine.py", "--port", str(port)]) == 2
+        assert "--port %d" % port in capsys.readouterr().err
+    assert main(["explore", "models/piston_engine.py", "--host", "no.such.host.invalid"]) == 2
+    assert "--host no.such.host.invalid" in capsys.readouterr().err
+    assert main(["explore", "models/piston_engine.py", "--port", "70000"]) == 2
+    assert "--port must be 0 ... 65535" in capsys.readouterr().err
