@@ -302,6 +302,14 @@ def test_page_slider_changes_curve_and_animation_pin_and_error(server, tmp_path)
         assert "--set crank.r=%s,0" % page.js("(+explore.values['crank.r'][0].toPrecision(6))") \
             in page.js("explore.setOptions()")
 
+        page.js("document.getElementById('export-set').click()")
+        assert page.js("document.getElementById('export').value").startswith(
+            "acausal2d simulate models/piston_engine.py --set crank.r=")
+        page.js("document.getElementById('export-csv').click()")
+        wait_for(page, "explore.csvBytes > 0")
+        # time + every column but derivatives, 501 rows of 17 digits each: far above 100 kB
+        assert page.js("explore.csvBytes") > 100000
+
         page.js("document.getElementById('pin').click()")
         assert page.js("explore.pins.length") == 1
         pinned = shot(page, "explore_pinned.png")

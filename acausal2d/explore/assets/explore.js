@@ -5,7 +5,7 @@
   var meta = null, values = {}, defaults = {}, units = {}, starts = {};
   var current = null, previous = null, pins = [], figures = [];
   var inflight = null, pending = false, sent = 0, shown = 0, runs = 0, lastError = null;
-  var sceneLoads = 0, dragStart = null, drags = 0;
+  var sceneLoads = 0, dragStart = null, drags = 0, csvBytes = 0;
   var LINE = ["#4682b4", "#e07b00", "#2e9e4f", "#8e44ad", "#c0392b", "#16a085"];
   var PIN = ["#d35400", "#27ae60", "#7f8c8d", "#9b59b6", "#2c3e50"];
   var WAIT_MS = 400;  // a run still going after this is overtaken by the next change
@@ -285,9 +285,12 @@
     box.select();
   }
   function exportCsv() {
-    post("/api/csv", request(false)).then(function (r) {
+    var body = request(false);
+    delete body.session;          // the export must not stop the page's own run
+    post("/api/csv", body).then(function (r) {
       if (!r.ok) return r.json().then(function (d) { fail(d.error); });
       return r.blob().then(function (b) {
+        csvBytes = b.size;
         var a = el("a", { href: URL.createObjectURL(b), download: meta.model + ".csv" });
         document.body.appendChild(a); a.click(); a.remove();
       });
@@ -366,7 +369,7 @@
     get previous() { return previous; }, get pins() { return pins; },
     get error() { return lastError; }, get sceneLoads() { return sceneLoads; },
     get busy() { return !!inflight || pending; }, get drags() { return drags; },
-    get starts() { return starts; },
+    get starts() { return starts; }, get csvBytes() { return csvBytes; },
     session: session, values: values, figures: figures, setOptions: setOptions,
     send: send, moveStart: moveStart
   };
