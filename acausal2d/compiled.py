@@ -89,6 +89,12 @@ class CompiledModel:
             self._units = units
         return self._units
 
+    @property
+    def parameter_declarations(self):
+        """{parameter name (vectors as a whole): (its declaration, indices
+        of its elements in :meth:`parameter_values`)}, in declaration order."""
+        return dict(self._whole)
+
     def parameters_table(self):
         """Every parameter (vectors as a whole) with its value, unit, rule
         and description, as a fixed-width text table (``acausal2d params``)."""

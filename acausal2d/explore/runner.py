@@ -111,11 +111,11 @@ class Explorer:
         cm = self.compiled
         vals = cm.parameter_values()
         out = []
-        for name, (decl, idx) in cm._whole.items():
+        for name, (decl, idx) in cm.parameter_declarations.items():
             v = [float(vals[i]) for i in idx]
             out.append({"name": name, "value": v, "unit": decl.unit or "", "rule": decl.rule,
                         "doc": decl.doc or "", "min": decl.min, "max": decl.max,
-                        "positive": decl.positive, "nonzero": bool(getattr(decl, "nonzero", 0)),
+                        "positive": decl.positive, "nonzero": bool(getattr(decl, "nonzero", False)),
                         "range": [list(_slider(decl, x)) for x in v]})
         return out
 
