@@ -123,6 +123,12 @@ class CompiledModel:
             self._units = units
         return self._units
 
+    @property
+    def parameter_declarations(self):
+        """{parameter name (vectors as a whole): (its declaration, indices
+        of its elements in :meth:`parameter_values`)}, in declaration order."""
+        return dict(self._whole)
+
     def parameters_table(self):
         """Every parameter (vectors as a whole) with its value, unit, rule
         and description, as a fixed-width text table (``acausal2d params``)."""
@@ -179,17 +185,42 @@ class CompiledModel:
         return _Scalar(decl).validated(value, comp)
 
     # ------------------------------------------------------------ analysis
-    def initial_point(self, t0=0.0, params=None):
+    def initial_point(self, t0=0.0, params=None, start=None):
         """Consistent values at t0: an
         :class:`~acausal2d.runtime.initialize.InitialPoint` with the
-        selection made there."""
+        selection made there; ``start`` as for :meth:`simulate`."""
         p = self.parameter_values(params)
+        start = self.start_indices(start)
         with translated("initializing %s" % type(self.model).__name__), cyclic_gc_paused():
             ev = Evaluator(self.system, p)
-            point = initial_point(self.system, ev, t0, p)
+            point = initial_point(self.system, ev, t0, p, start)
             if point.selection is None:
                 point.selection = select(self.system, ev, t0, point.z, point.d)
         return point
+
+    @property
+    def start_names(self):
+        """Names of the unknowns whose start values a run may replace
+        (``simulate(start=...)``): those of level 0 (no derivative of
+        another unknown), with the fixed ones."""
+        s = self.system
+        return [s.node_names[j] for j in s.level0]
+
+    def start_indices(self, start):
+        """``start`` ({unknown: value}) as {node index: value}, checked: the
+        names among :attr:`start_names`, the values finite numbers."""
+        if not start:
+            return None
+        if not isinstance(start, dict):
+            raise Acausal2dError("start must be a dict {'joint.phi': value}, got %r" % (start,))
+        index = {self.system.node_names[j]: int(j) for j in self.system.level0}
+        out = {}
+        for name, value in start.items():
+            if name not in index:
+                raise Acausal2dError("start %r: not an unknown that takes a start value; those "
+                                     "are %s" % (name, ", ".join(list(index)[:12])))
+            out[index[name]] = float(number("start %s" % name, value))
+        return out
 
     def linearize(self, at=None, equilibrium=False, params=None, inputs=(), outputs=None,
                   start=None):
@@ -239,7 +270,7 @@ class CompiledModel:
 
     def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
                  start_time=0.0, output_times=None, progress=None, max_steps=MAX_STEPS,
-                 max_wall_time=None):
+                 max_wall_time=None, start=None):
         """Simulate and return a :class:`~acausal2d.result.Result`.
 
         stop_time: end time (default: the model's ``experiment['stop_time']``
@@ -250,7 +281,9 @@ class CompiledModel:
         t_end), called as the run advances; max_steps, max_wall_time:
         budgets of integrator steps and wall-clock seconds, after which the
         run stops early with the data so far (``result.stopped`` says why;
-        default: 1,000,000 steps, no time limit).
+        default: 1,000,000 steps, no time limit); start: {unknown: value}
+        replacing start values of the model (a fixed one stays fixed, a
+        guess moves the assembly guess; names from :attr:`start_names`).
         """
         times, rtol, atol = self._settings(stop_time, rtol, atol, intervals, start_time,
                                            output_times)
@@ -258,12 +291,13 @@ class CompiledModel:
             raise Acausal2dError("progress must be a function progress(t, t_end) or None, got %r"
                                  % (progress,))
         p = self.parameter_values(params)
+        start = self.start_indices(start)
         self.system.check_fixed_values(p)
         try:
             with translated("simulating %s" % type(self.model).__name__):
                 log = Simulation(self.system, p, times, rtol, atol, progress,
                                  _budget(max_steps, "max_steps"),
-                                 _budget(max_wall_time, "max_wall_time")).run()
+                                 _budget(max_wall_time, "max_wall_time"), start).run()
         except SimulationError as exc:
             if getattr(exc, "partial", None) is not None:
                 exc.result = self._result(exc.partial, p)

@@ -88,16 +88,21 @@ class Result:
         """Write a CSV file with a ``time`` column and the given variables (all
         by default, derivatives excluded); creates the folder if needed and
         replaces an existing file atomically."""
-        if names is None:
-            names = [n for n in self._index if not n.startswith("der(")]
         with atomic_path(path) as tmp:
             with open(tmp, "w", newline="") as fh:
-                w = csv.writer(fh)
-                w.writerow(["time"] + list(names))
-                cols = [self.time] + [self[n] for n in names]
-                for row in zip(*cols):
-                    w.writerow(["%.17g" % v for v in row])
+                self.write_csv(fh, names)
         return path
+
+    def write_csv(self, fh, names=None):
+        """The CSV text of :meth:`to_csv` written to the open text stream
+        ``fh`` (a file opened with ``newline=""``, or an ``io.StringIO``)."""
+        if names is None:
+            names = [n for n in self._index if not n.startswith("der(")]
+        w = csv.writer(fh)
+        w.writerow(["time"] + list(names))
+        cols = [self.time] + [self[n] for n in names]
+        for row in zip(*cols):
+            w.writerow(["%.17g" % v for v in row])
 
     def plot(self, names=None, path=None, title=None, x=None):
         """Plot signals (default: the model's outputs) over time or over the

@@ -131,18 +131,24 @@ def _guess_selection(system, ev, t0, z, d):
         return None      # a singular or not finite guess: decided at the consistent point
 
 
-def initial_point(system, ev, t0, p):
-    """Consistent :class:`InitialPoint` at t0 for the parameter vector p."""
+def initial_point(system, ev, t0, p, start=None):
+    """Consistent :class:`InitialPoint` at t0 for the parameter vector p;
+    ``start`` ({level-0 node index: value}) replaces those start values
+    (a fixed one stays fixed, a guess counts as given)."""
     s = system.structure
     z = np.zeros(s.n_var)
     z[system.level0] = system.start_fn(p).full().ravel()
+    has_start = system.has_start
+    if start:
+        z[list(start)] = list(start.values())
+        has_start = tuple(h or j in start for j, h in enumerate(has_start))
     d = values_from(system, ev.crossings(t0, z, np.zeros(len(system.relations))))
     sel = None
     if len(system.fixed_nodes) < s.n_var - s.n_eq:
         sel = _guess_selection(system, ev, t0, z, d)
     states = s.state_nodes(sel) if sel is not None else ()
     held = choose_initial_conditions(s, system.fixed_nodes, system.priority_names,
-                                     system.has_start, states)
+                                     has_start, states)
     z = _first_consistent(system, ev, t0, z, d, held, p)
     d = values_from(system, ev.crossings(t0, z, d))
     z, d = EventIteration(system, ev,

@@ -80,11 +80,14 @@ def time_resolution(t_end):
 
 class Simulation:
     """One run of ``system`` with parameter vector ``p`` over ``times``
-    (the first is the start time); see module docstring."""
+    (the first is the start time); ``start``: {level-0 node index: value}
+    replacing those start values (see :func:`.initialize.initial_point`);
+    see module docstring."""
 
     def __init__(self, system, p, times, rtol, atol=None, progress=None, max_steps=None,
-                 max_wall_time=None):
+                 max_wall_time=None, start=None):
         self.system, self.p = system, np.asarray(p, dtype=float)
+        self.start = start
         self.max_steps, self.max_wall_time = max_steps, max_wall_time
         self.times = np.asarray(times, dtype=float)
         self.t_end = float(self.times[-1])
@@ -151,7 +154,7 @@ class Simulation:
 
     def _start(self):
         t0 = float(self.times[0])
-        point = initial_point(self.system, self.ev, t0, self.p)
+        point = initial_point(self.system, self.ev, t0, self.p, self.start)
         self.t, self.z, self.d = t0, point.z, point.d
         self.selection = point.selection or select(self.system, self.ev, t0, self.z, self.d)
         self.out.append((t0, self.z.copy()))
