@@ -7,7 +7,7 @@ import pathlib
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 RANK = {"language": 0, "compiler": 1, "runtime": 2, "analysis": 3, "visual": 3, "io": 3,
-        "library": 4, "fmu": 5, "cli": 5}
+        "library": 4, "fmu": 5, "explore": 5, "cli": 5}
 
 
 def _module_name(path):
