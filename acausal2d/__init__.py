@@ -20,11 +20,20 @@ from .errors import (Acausal2dError, InitializationError, ModelDefinitionError, 
                      SimulationError, StructuralError)
 from .language.symbols import der, time, time_derivative  # noqa: E402,F401
 from .analysis.check import check  # noqa: E402,F401
-from .analysis.compare import compare  # noqa: E402,F401
+from .analysis.compare import compare as _compare  # noqa: E402
 from .analysis.study import study  # noqa: E402,F401
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
+
+
+def compare(result, reference, signals=None, **options):
+    """Compare a result with a reference signal by signal, the planar
+    library's Modelica aliases included (``body.r[1]`` is our ``body.x``);
+    see :func:`acausal2d.analysis.compare.compare` for the options.
+    Returns a Comparison."""
+    import acausal2d.library.planar  # noqa: F401  (declares the aliases)
+    return _compare(result, reference, signals=signals, **options)
 
 __all__ = [
     # modelling

@@ -4,10 +4,10 @@ signals are compared.
 
 Every reference signal is either compared or reported: a reference column
 is matched to ours by its own name, by the user's ``mapping``, or by the
-Modelica array-name aliases the planar library declares (Body's
+Modelica array-name aliases the component classes declare (Body's
 ``r[1]``/``r[2]``/``v[1]``/``v[2]`` are our ``x``/``y``/``vx``/``vy``, a
 sensor's ``r[1]`` its output ``r_x.u``, see
-:func:`acausal2d.library.planar.modelica_names`).  The rest is returned as
+:func:`acausal2d.language.dsl.modelica_aliases`).  The rest is returned as
 *unmatched*; :func:`compare` names them and fails unless
 ``only_common=True``.  Wrong-typed arguments and NaN/inf values are errors
 that name the argument, the file, the signal and the row.
@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import Acausal2dError
 from ..io.tables import _check_time, _few, check_finite, read_csv
+from ..language.dsl import modelica_aliases
 
 __all__ = ["load_table", "check_options", "select_signals", "modelica_counterpart"]
 
@@ -111,8 +112,7 @@ def modelica_counterpart(name, our_cols, table=None):
     Modelica aliases (``body.r[1]`` -> ``body.x``), or None (also when two
     of our columns would fit)."""
     if table is None:
-        from ..library.planar import modelica_names
-        table = modelica_names()
+        table = modelica_aliases()
     found = []
     for key, ours in table.items():
         if name.endswith("." + key):

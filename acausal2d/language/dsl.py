@@ -445,3 +445,23 @@ class Component:
         ov = self._overrides.get(name)
         return isinstance(ov, start) and ov.value is not None or \
             isinstance(ov, numbers.Real) and not isinstance(ov, bool)
+
+
+def modelica_aliases():
+    """The Modelica array-name aliases the component classes defined so far
+    declare (class attribute ``modelica_names``, e.g. the planar Body's
+    ``r[1]`` -> ``x``): {Modelica name: [our names]}.  ``compare`` matches
+    reference columns such as ``body.r[1]`` by it; a library's aliases count
+    once the library is imported (``acausal2d.compare`` and the command
+    line import the planar library)."""
+    table, todo, seen = {}, list(Component.__subclasses__()), set()
+    while todo:
+        cls = todo.pop(0)
+        if cls in seen:
+            continue
+        seen.add(cls)
+        todo.extend(cls.__subclasses__())
+        for key, ours in (vars(cls).get("modelica_names") or {}).items():
+            if ours not in table.setdefault(key, []):
+                table[key].append(ours)
+    return table
