@@ -8,15 +8,17 @@ import os
 import sys
 import textwrap
 
+import casadi as ca
 import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d import Component, InitializationError, start
+from acausal2d import Component, InitializationError, ModelDefinitionError, start
 from acausal2d.cli import main
-from acausal2d.library.belt import Band, Belt, Pulley, connect_band
+from acausal2d.library.belt import Band, Belt, Contour, Pulley, connect_band
 from acausal2d.library.linkage import DDD
 from acausal2d.library.planar import Body, Fixed
+from acausal2d.library.planar.cam import CamFollower
 
 G = 9.81
 RTOL = 1e-8
@@ -155,3 +157,87 @@ def test_seen4_belt_library_ports_are_listed_too():
     report = acausal2d.check(Atwood(w=-1))
     assert report.grounded == {"pulley.ctr2D1": ["x", "y", "phi"], "band1.ctrB1": ["L"],
                                "band2.ctrB2": ["L"]}
+
+
+# ------------------------------------------------ Seen 5: a cam contour that does not close
+import cam_follower as cf  # noqa: E402
+
+SPIRAL_RATE = 0.005      # m/rad: r = R0 + 0.005 kappa, a gap of 2 pi 0.005 m after one turn
+
+
+class CamFromFunction(cf._Cam):
+    """models/cam_follower.py's knife edge on a contour from a function:
+    ``closed`` the harmonic cam r = R0 + H/2 - H/2 sin(kappa), else the
+    spiral r = R0 + 0.005 kappa of issue 29."""
+
+    def __init__(self, closed=True, **kw):
+        super().__init__(**kw)
+        if closed:
+            contour = Contour.from_function(lambda k: cf.R0 + cf.H / 2 - cf.H / 2 * ca.sin(k))
+        else:
+            contour = Contour.from_function(lambda k: cf.R0 + SPIRAL_RATE * k)
+        self._build(CamFollower(contour, follower="roller", r_roller=0.0, q=start(math.pi / 2)))
+
+
+def test_seen5_spiral_contour_is_refused_naming_the_gap():
+    with pytest.raises(ModelDefinitionError) as err:
+        CamFromFunction(closed=False)
+    text = str(err.value)
+    assert text.startswith("Contour.from_function: the contour does not close: ")
+    gap = float(text.split("a gap of ")[1].split(" m")[0])
+    assert gap == pytest.approx(2 * math.pi * SPIRAL_RATE, rel=1e-5)     # printed to 6 digits
+    assert "at kappa = 0," in text and "period 2 pi" in text
+
+
+def test_seen5_closed_contour_from_a_function_runs_the_design_law():
+    """The same follower on the closed harmonic contour: the lift is the
+    design law at every cam angle (so equal after one turn), to the
+    integration tolerance (rtol 1e-10, bound 1e-8 m as the model test)."""
+    res = acausal2d.simulate(CamFromFunction(closed=True), stop_time=1.0, intervals=20,
+                             rtol=1e-10)
+    lift = np.array([cf.harmonic_lift(t) for t in res["drive.phi"]])
+    assert np.max(np.abs(res["guide.s"] - lift)) < 1e-8
+    assert abs(res["guide.s"][-1] - res["guide.s"][0]) < 1e-8
+
+
+@pytest.mark.parametrize("func, symmetry, words", [
+    (lambda k: 0.03 + 0.005 * ca.fabs(ca.sin(k)), 1, "closes with a kink: its tangent turns "
+                                                     "by -9.46232 deg at kappa = 0 "),
+    (lambda k: 0.05 / ca.sqrt(1 + 0.5 * ca.cos(k) ** 2), 4, "r(kappa + 2 pi/4) = "),
+    (lambda k: 0.03 + 0.005 * ca.fabs(ca.sin(k - 1.0)), 1, "the contour is not smooth"),
+])
+def test_seen5_kinks_and_wrong_periods_are_refused(func, symmetry, words):
+    with pytest.raises(ModelDefinitionError) as err:
+        Contour.from_function(func, symmetry=symmetry)
+    assert words in str(err.value)
+    if "not smooth" in words:        # the kink at kappa = 1, found on a 4096-point grid
+        near = float(str(err.value).split("near kappa = ")[1].split(" ")[0])
+        assert abs(near - 1.0) < 2 * math.pi / 4096
+
+
+def test_seen5_table_angles_must_increase_monotonically():
+    k = np.linspace(0.0, 2 * math.pi, 12, endpoint=False)
+    r = 0.04 + 0.005 * np.cos(k)
+    bad = k.copy()
+    bad[5] = bad[4]
+    with pytest.raises(ModelDefinitionError, match=r"kappa\[4\] = 2.0943951 is followed by "
+                                                   r"kappa\[5\] = 2.0943951"):
+        Contour.from_table(bad, r)
+    over = np.linspace(0.0, 2 * math.pi, 12)            # repeats the first point
+    with pytest.raises(ModelDefinitionError, match="an overlap of 0 rad; drop the last point"):
+        Contour.from_table(over, r)
+
+
+# ------------------------------------------------ the fuzz classes' own expectations
+import fuzz_cases_geometry  # noqa: E402
+
+
+@pytest.mark.parametrize("case", fuzz_cases_geometry.unconnected_cases(),
+                         ids=lambda c: c["id"])
+def test_fuzz_unconnected_cases_list_exactly_their_grounded_ports(case, tmp_path):
+    path = tmp_path / "model.py"
+    path.write_text(case["model"], encoding="utf-8")
+    report = acausal2d.check(acausal2d.load_model(str(path)))
+    assert list(report.grounded) == case["grounded"]
+    for name in case["grounded"]:
+        assert name + " (x, y, phi)" in str(report).replace("\n" + " " * 21, " ")
