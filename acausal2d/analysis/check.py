@@ -59,11 +59,12 @@ def grounded_lines(grounded, head="  grounded ports:    "):
     :func:`~acausal2d.compiler.flatten.grounded_ports` returns it."""
     if not grounded:
         return []
-    names = ["%s (%s)" % (path, ", ".join(pots)) for path, pots in grounded.items()]
+    names = ["%s\xa0(%s)" % (path, ",\xa0".join(pots)) for path, pots in grounded.items()]
     text = "%d unconnected, so fixed to ground (seed Tabelle 4.1): %s" % (
         len(names), ", ".join(names))
-    return textwrap.wrap(text, 100, initial_indent=head, subsequent_indent=" " * len(head),
-                         break_on_hyphens=False)
+    lines = textwrap.wrap(text, 100, initial_indent=head, subsequent_indent=" " * len(head),
+                          break_on_hyphens=False)      # no break inside a port's entry
+    return [line.replace("\xa0", " ") for line in lines]
 
 
 def _with_grounded(grounded):
