@@ -1,9 +1,11 @@
 """Structure report of a model: sizes, states, structural index, closed
 loops and the degree of freedom by the seed's eq. 2.1 next to the
 structural one."""
+import textwrap
 from collections import Counter
 
 
+from ..compiler.flatten import grounded_ports
 from ..language.unionfind import UnionFind, connector_sets
 
 
@@ -28,13 +30,14 @@ class CheckReport:
                                                  if self.structural_index > 1 else ""),
                  "  states:            %s" % (", ".join(self.states) or "none"),
                  "  closed loops:      %d" % self.loops]
+        lines += grounded_lines(self.grounded)
         if self.nodes is not None:
             lines += _node_lines(self.nodes)
         if self.grubler is not None:
             lines.append("  degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, "
-                         "g = %d joints%s), %d structural (position states)"
+                         "g = %d joints%s), %d structural (position states)%s"
                          % (self.grubler, self.links, self.joints, _terms(self.dof_terms),
-                            self.structural_dof))
+                            self.structural_dof, _with_grounded(self.grounded)))
             if self.structural_dof < self.grubler:
                 lines.append("                     (%d prescribed: drives that give the motion "
                              "as a function of time, or constraints eq. 2.1 does not see)"
@@ -47,6 +50,28 @@ class CheckReport:
             lines.append("  degree of freedom: %d structural (position states); no planar "
                          "joints declared for eq. 2.1" % self.structural_dof)
         return "\n".join(lines)
+
+
+def grounded_lines(grounded, head="  grounded ports:    "):
+    """The ports fixed to ground because nothing is connected to them (seed
+    Tabelle 4.1), by name with the potentials fixed, as printed lines
+    (none when there are none); ``grounded`` as
+    :func:`~acausal2d.compiler.flatten.grounded_ports` returns it."""
+    if not grounded:
+        return []
+    names = ["%s\xa0(%s)" % (path, ",\xa0".join(pots)) for path, pots in grounded.items()]
+    text = "%d unconnected, so fixed to ground (seed Tabelle 4.1): %s" % (
+        len(names), ", ".join(names))
+    lines = textwrap.wrap(text, 100, initial_indent=head, subsequent_indent=" " * len(head),
+                          break_on_hyphens=False)      # no break inside a port's entry
+    return [line.replace("\xa0", " ") for line in lines]
+
+
+def _with_grounded(grounded):
+    """The degree-of-freedom line's note that both counts hold with the
+    grounded ports fixed (their links joined to ground)."""
+    n = len(grounded)
+    return "; both with the %d grounded port%s fixed" % (n, "s" if n > 1 else "") if n else ""
 
 
 def _terms(t):
@@ -214,6 +239,7 @@ def check(model):
         structural_index=_index(s, state_nodes),
         states=states, structural_dof=len(position_states),
         loops=_loops(topo, nodes), nodes=nodes,
+        grounded=grounded_ports(system.flat_equations),
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
         joints=topo[1] if topo else 0,
         dof_terms=topo[4] if topo else {})

@@ -44,7 +44,10 @@ def _animation_options(args, cm):
 
 def _print_summary(model, res, out, pngs, extra=()):
     """The run's summary: singular positions, early stop, solver counts,
-    the files written (``extra``: those the model wrote itself) and states."""
+    the files written (``extra``: those the model wrote itself), states and
+    the ports fixed to ground because nothing is connected to them."""
+    from ..analysis.check import grounded_lines
+    from ..compiler.flatten import grounded_ports
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -59,6 +62,9 @@ def _print_summary(model, res, out, pngs, extra=()):
               "".join(", " + os.path.basename(f) for f in extra)))
     states = getattr(res, "states", None) or []
     print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
+    for line in grounded_lines(grounded_ports(res.model.system.flat_equations),
+                               "  grounded ports: "):
+        print(line)
     _print_events(res.events)
 
 

@@ -220,13 +220,29 @@ def _set_equations(elems):
     return eqs
 
 
+GROUNDED = " (unconnected, fixed to ground)"
+"""Origin suffix of the equations that fix an unconnected ``ground=``
+connector (seed Tabelle 4.1: a triangle port left open is fixed to ground)."""
+
+
+def grounded_ports(equations):
+    """The connectors fixed to ground because nothing is connected to them,
+    from the flattened ``equations``: ``{path: [potentials fixed]}`` in
+    model order, e.g. ``{"dyad.ctr2D1": ["x", "y", "phi"]}``."""
+    ports = {}
+    for eq in equations:
+        if eq.origin.endswith(GROUNDED):
+            path = eq.origin[:-len(GROUNDED)]
+            ports.setdefault(path, []).append(eq.text.split(" == ")[0][len(path) + 1:])
+    return ports
+
+
 def _unconnected_equations(comp, conn):
     """An unconnected connector: fixed to ground (``ground=``), an error
     (``required=True``), or zero flows."""
     if conn.ground is not None:
         ground = conn.ground(comp) if callable(conn.ground) else conn.ground
-        return [_conn_eq(getattr(conn, pot) - value,
-                         "%s (unconnected, fixed to ground)" % conn.path,
+        return [_conn_eq(getattr(conn, pot) - value, conn.path + GROUNDED,
                          "%s.%s == %s" % (conn.path, pot, value)) for pot, value in ground.items()]
     if conn.required:
         raise ModelDefinitionError("connector %s must be connected (it is required by %s)"

@@ -59,6 +59,7 @@ class System:
         self._alias_maps()
         self.outputs = declared_outputs(model)
         self.assertions = self._assertions(model)
+        self.start_checks = self._start_checks(model)
         self._formulations = {}
 
     # ------------------------------------------------------------ setup
@@ -196,6 +197,19 @@ class System:
                     raise ModelDefinitionError("%s: assertions() names '%s', which is not a "
                                                "variable of it" % (comp.describe(), name))
                 out.append((comp, full, message))
+        return tuple(out)
+
+    def _start_checks(self, model):
+        """(component, check) of the components' ``start_checks()`` (see
+        :meth:`~acausal2d.language.dsl.Component.start_checks`)."""
+        from ..language.context import ModelContext
+        from ..language.dsl import Component
+        context, out = None, []
+        for comp in model.components():
+            if type(comp).start_checks is Component.start_checks:
+                continue
+            context = context or ModelContext(model)
+            out += [(comp, check) for check in comp.start_checks(context)]
         return tuple(out)
 
     def value(self, name, z, p):

@@ -325,6 +325,21 @@ class Component:
         none."""
         return []
 
+    def start_checks(self, context):
+        """Hook: checks of the consistent initial state, made once at t0
+        after initialization (by ``simulate``, ``check``, linearization and
+        FMU export), as a list of functions ``check(value)``: ``value(comp,
+        name)`` is the value of variable ``name`` (relative to ``comp``, e.g.
+        ``"ctrK1.x"``) of component ``comp`` at t0, and ``check`` returns
+        None or the text of the error (what is wrong and what to change),
+        which stops the run with an
+        :class:`~acausal2d.errors.InitializationError` naming this
+        component.  ``context`` is the
+        :class:`~acausal2d.language.context.ModelContext` (partners of a
+        port).  Unlike :meth:`assertions` it adds no relation to the model.
+        Default: none."""
+        return []
+
     def topology(self):
         """Planar topology for the degree-of-freedom count (seed eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames

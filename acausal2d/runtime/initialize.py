@@ -158,7 +158,22 @@ def initial_point(system, ev, t0, p, start=None):
         worst = worst_level(system, ev, sel, t0, z, d)
         if worst is not None and worst[0] < 1e2 * SINGULAR_CONDITION:
             sel = None          # the guess's choice is poor at the consistent point
+    check_start(system, p, z)
     return InitialPoint(z, d, sel)
+
+
+def check_start(system, p, z):
+    """Run the components' start checks
+    (:meth:`~acausal2d.language.dsl.Component.start_checks`) on the
+    consistent node values ``z``; the first that fails raises an
+    :class:`InitializationError` naming its component."""
+    def value(comp, name):
+        return system.value("%s.%s" % (comp.path, name) if comp.path else name, z, p)
+
+    for comp, check in system.start_checks:
+        message = check(value)
+        if message:
+            raise InitializationError("%s: %s" % (comp.describe(), message))
 
 
 def _contradicted_fixed(system, ev, t0, z, d, held):

@@ -73,6 +73,8 @@ import numpy as np
 
 from acausal2d.errors import ModelDefinitionError
 
+from .contour_checks import N_MAX, check_closed, check_increasing, not_converged
+
 
 
 _PI = math.pi
@@ -257,7 +259,9 @@ class Contour:
         from a CasADi SX symbol with CasADi operations (2 pi-periodic and
         smooth).  ``symmetry`` (optional) is the number of identical sectors
         (the function's period is 2 pi / symmetry); it only speeds up the
-        arc-length series."""
+        arc-length series.  A function that does not close after one sector
+        (a spiral), closes with a kink, or is not smooth is refused, naming
+        the gap (:mod:`~acausal2d.library.belt.contour_checks`)."""
         return cls(func, "function", symmetry=symmetry)
 
     @classmethod
@@ -308,9 +312,7 @@ class Contour:
         if kappa.ndim != 1 or kappa.shape != r.shape or len(kappa) < 4:
             raise ModelDefinitionError("Contour.from_table: kappa and r must be 1-D tables "
                                        "of equal length (at least 4 points)")
-        if np.any(np.diff(kappa) <= 0) or kappa[-1] - kappa[0] >= _TWO_PI:
-            raise ModelDefinitionError("Contour.from_table: kappa must increase strictly "
-                                       "over less than one revolution")
+        check_increasing(kappa)
         if np.any(r <= 0):
             raise ModelDefinitionError("Contour.from_table: radii must be positive")
         kk = np.append(kappa, kappa[0] + _TWO_PI)
@@ -372,6 +374,8 @@ class Contour:
 
     # ---------------------------------------------------------- arc length
     def _arc_length_series(self, symmetry, tol=1e-14):
+        if self.kind == "function":         # the other kinds are periodic series
+            check_closed(self, max(1, int(symmetry)))
         N = 256 * max(1, int(symmetry))
         while True:
             x = np.linspace(0.0, _TWO_PI, N, endpoint=False)
@@ -380,8 +384,10 @@ class Contour:
                 raise ModelDefinitionError("contour radius must be positive everywhere")
             v = np.sqrt(r * r + dr * dr)
             c0, A, B, mag = _series_from_samples(v, 0.0)
-            if mag[len(mag) // 2:].max() < tol * c0 or N >= 65536:
+            if mag[len(mag) // 2:].max() < tol * c0:
                 break
+            if N >= N_MAX:
+                raise not_converged(self, mag, c0, tol)
             N *= 2
         keep = np.nonzero(mag > tol * c0)[0]
         n = int(keep[-1]) + 1 if len(keep) else 0
@@ -407,7 +413,7 @@ class Contour:
         if F is getattr(self, "_S", None):
             vbar, base, s_const, sa, sb = self._s_np
             return vbar * x + self._np_series(x, s_const, sa, sb, base, 0)
-        out = F(x.reshape(1, -1))
+        out = (F.map(x.size) if x.size > 1 else F)(x.reshape(1, -1))   # map: ~10x faster
         if isinstance(out, (list, tuple)):
             out = out[i]
         return np.asarray(out).reshape(x.shape)

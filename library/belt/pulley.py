@@ -2,6 +2,8 @@
 machinery it shares with the drum and the curved wheels: mass, housing,
 flange, wrap angles and the Coulomb bearing friction of seed ch. 7.3.1.
 """
+import math
+
 import casadi as ca
 import numpy as np
 
@@ -128,6 +130,40 @@ class _Wheel(_BandElement):
         return items + [("rigid", contacts), ("joint", self.ctr2D1, contacts[0], 1)] \
             + self._contacts(1)
 
+    def start_checks(self, context):
+        """Winding-sign check at t0 of a pulley (circular or curved) (seed eq. 4.87-4.96 and the geometric
+        test of the winding sense, spec section 1.6): with ``w`` the bands
+        leave the contacts on the sides ``kappa1 = gamma1 + w pi/2``,
+        ``kappa2 = gamma2 - w pi/2``; when the two bands then cross each
+        other, the band passes through itself -- the sign contradicts how
+        the band ends are placed (a pulley between two hanging masses with
+        the wrong ``w`` swings them under it).  Bands that both run to other
+        wheels are not checked: a crossed belt drive crosses on purpose."""
+        if "ctrK2" not in self._connectors:      # a drum: one band, nothing to cross
+            return []
+        ends = [_band_end(context, getattr(self, "ctrK%d" % k)) for k in (1, 2)]
+        if None in ends or all(wheel for _, _, wheel in ends):
+            return []
+        return [lambda value: self._crossing_message(value, ends)]
+
+    def _crossing_message(self, value, ends):
+        """The error text if the bands at K1 and K2 cross at t0, else None."""
+        K = [(value(self, "ctrK%d.x" % k), value(self, "ctrK%d.y" % k)) for k in (1, 2)]
+        F = [(value(span, far + ".x"), value(span, far + ".y")) for span, far, _ in ends]
+        cross = _segments_cross(K[0], F[0], K[1], F[1])
+        if cross is None:
+            return None
+        w, where = self.w, [round(v, 4) + 0.0 for v in cross]
+        beta = math.degrees(value(self, "beta"))
+        return ("its bands %s (at K1) and %s (at K2) cross each other at (%.4f, %.4f) m at "
+                "t0: with w=%+d a positive turn winds the band up at K1 and pays it out at "
+                "K2, so the bands leave the pulley on the far sides of their ends and wrap it "
+                "by %.1f deg, passing through each other (seed eq. 4.91-4.96).  Use w=%+d "
+                "(%s(w=%d)) for the bands to leave it on the sides their ends are on, or "
+                "swap the bands between K1 and K2"
+                % (ends[0][0].describe(), ends[1][0].describe(), where[0], where[1], w, beta,
+                   -w, type(self).__name__, -w))
+
     def _contacts(self, f):
         """``("contact", band_port, f)`` of each band port: the band joints
         of inextensible spans ending here (seed Tab. 2.1: f = 1 rolling, 2
@@ -166,6 +202,13 @@ class Pulley(_Wheel):
 
     with ``phi`` the absolute (world) angle of the pulley.  They are absolute
     (not zero at t0); the spans only use their changes.
+
+    At t0 (after initialization) the pulley checks that ``w`` fits how its
+    bands are placed: if its two bands cross each other (the band would
+    pass through itself, e.g. an Atwood machine with the sign flipped), the
+    run stops with an error naming the pulley, the bands and the sign to
+    use (see :meth:`start_checks`; bands that both run to other wheels, a
+    crossed belt drive, are not checked).
 
     Forces (4.97-4.99): mass ``m`` at the centre of gravity ``cog`` (pulley
     frame), inertia ``J`` about it, gravity from the PlanarWorld, contact
@@ -208,6 +251,41 @@ class Pulley(_Wheel):
                self.ctrB1.L == -w * self.r * (self.phi - self.kappa1),
                self.ctrB2.L == w * self.r * (self.phi - self.kappa2)]
         return eqs + self._balance([(K1, x1, y1), (K2, x2, y2)])
+
+
+def _band_end(context, contact):
+    """(span, far frame name, far end on a wheel?) of the span connected to
+    the pulley contact frame ``contact``, or None: the far end is the span's
+    other end point (its nozzle for a :class:`NozzleBelt`)."""
+    for c in context.partners(contact):
+        kind = getattr(c.owner, "_layout_kind", None)
+        if kind == "span" and c._name in ("ctr2D1", "ctr2D2"):
+            far = "ctr2D2" if c._name == "ctr2D1" else "ctr2D1"
+        elif kind == "nozzle" and c._name in ("ctr2D1", "ctr2D2"):
+            far = "ctr2D3"
+        else:
+            continue
+        wheel = any(getattr(o.owner, "_layout_kind", None) == "wheel"
+                    and o._name.startswith("ctrK")
+                    for o in context.partners(getattr(c.owner, far)))
+        return c.owner, far, wheel
+    return None
+
+
+def _segments_cross(a, b, c, d):
+    """The point where the segments a-b and c-d cross (each strictly
+    between its ends, beyond round-off of the lengths), or None."""
+    def orient(p, q, r):
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+
+    scale = max(math.hypot(b[0] - a[0], b[1] - a[1]), math.hypot(d[0] - c[0], d[1] - c[1]))
+    tol = 1e-9 * scale * scale
+    o1, o2 = orient(a, b, c), orient(a, b, d)
+    o3, o4 = orient(c, d, a), orient(c, d, b)
+    if not (o1 * o2 < 0 and o3 * o4 < 0 and min(abs(o1), abs(o2), abs(o3), abs(o4)) > tol):
+        return None
+    s = o1 / (o1 - o2)
+    return c[0] + s * (d[0] - c[0]), c[1] + s * (d[1] - c[1])
 
 
 class GuideContour(Pulley):
