@@ -55,7 +55,10 @@ def _files(case, tmp_path):
     path = tmp_path / case["filename"]
     if case["model"] is not None:
         path.write_text(case["model"], encoding="utf-8")
-    return [str(path)]
+    data = [tmp_path / ("data%d.csv" % k) for k in range(len(case.get("csv") or ()))]
+    for p, text in zip(data, case.get("csv") or ()):       # e.g. a fit's measured data
+        p.write_text(text, encoding="utf-8")
+    return [str(path)] + [str(p) for p in data]
 
 
 def _finite_result(res):
@@ -71,6 +74,8 @@ def _fourbar_closes(res):
 
 
 def _api(case, paths):
+    if case.get("api") is not None:       # its own call and checks (fuzz_cases_fitopt)
+        return case["api"](paths)
     if case["command"] == "compare":
         return acausal2d.compare(paths[0], paths[1])
     model_name = case["args"][case["args"].index("--model") + 1] \
@@ -109,6 +114,8 @@ def test_api_gives_a_result_or_the_projects_error(case, tmp_path, capfd):
 
 
 def _argv(case, paths, out):
+    if case.get("argv") is not None:
+        return case["argv"](paths, str(out))
     if case["command"] == "compare":
         return ["compare"] + paths + ["--out", str(out)]
     if case["command"] == "check":

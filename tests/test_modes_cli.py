@@ -72,7 +72,7 @@ def test_no_equilibrium_exits_3_and_bad_options_2(tmp_path, capsys):
     path.write_text(TORQUE_PENDULUM)
     code = cli.main(["modes", str(path), "--equilibrium", "--out", str(tmp_path / "o")])
     assert code == 3
-    assert "TorquePendulum has no equilibrium" in capsys.readouterr().out
+    assert "TorquePendulum has no equilibrium" in capsys.readouterr().err   # issue 29, Seen 8
     code = cli.main(["modes", str(path), "--start", "revolute.phi=1", "--out",
                      str(tmp_path / "o")])
     assert code == 2 and "add --equilibrium" in capsys.readouterr().err

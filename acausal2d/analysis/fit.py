@@ -34,7 +34,8 @@ std`` with t the 97.5 % quantile of Student's t with m - n degrees of
 freedom: if the model is right and the noise as assumed, intervals built
 this way contain the true value in 95 % of repeated experiments.  The
 correlation matrix is ``C_ij / (std_i std_j)``; a pair with ``|corr| >
-0.99``, or a Jacobian of (relative) condition above 1e6, means the data
+0.99``, or a Jacobian whose columns scaled to unit length have a
+condition number above 1e6, means the data
 cannot separate those parameters (e.g. two that enter only as their
 product): they are named in ``warnings`` and their intervals are not
 meaningful.  With a robust loss the same formulas are applied to the
@@ -56,8 +57,8 @@ CORRELATION_LIMIT = 0.99
 """|corr| above which a pair of parameters is reported as not separable."""
 
 CONDITION_LIMIT = 1e6
-"""Condition number of the relatively scaled Jacobian above which the fit
-is reported as rank-deficient."""
+"""Condition number of the Jacobian with columns scaled to unit length
+above which the fit is reported as rank-deficient."""
 
 POLISH_STEPS = 3
 """Gauss-Newton steps after the optimiser at most (see :func:`_polish`)."""
@@ -170,13 +171,18 @@ def _check_free(cm, names):
 
 def statistics(J, r, x, names):
     """Standard errors, 95 % intervals, correlations and warnings at the
-    optimum (module documentation).  The Jacobian is scaled by
-    ``max(|x|, 1e-12)`` per column (relative sensitivities) for the rank
-    test; a direction of the null space names its parameters."""
+    optimum (module documentation).  The Jacobian's columns are scaled to
+    unit length for the rank test (column equilibration: units and sizes of
+    the parameters drop out, an estimate of 0 included; a column of zeros
+    stays zero); a direction of the null space names its parameters."""
     n, m = x.size, r.size
-    dof = max(m - n, 1)
+    if m <= n:
+        raise Acausal2dError("statistics: %d residuals for %d parameters; at least %d are "
+                             "needed" % (m, n, n + 1))
+    dof = m - n
     s2 = float(r @ r) / dof
-    d = np.maximum(np.abs(x), 1e-12)
+    norms = np.linalg.norm(J, axis=0)
+    d = np.where(norms > 0, 1.0 / np.where(norms > 0, norms, 1.0), 1.0)
     _, sv, vt = np.linalg.svd(J * d, full_matrices=False)
     good = sv > sv[0] / CONDITION_LIMIT if sv.size and sv[0] > 0 else np.zeros(n, bool)
     inv = np.where(good, 1.0 / np.where(good, sv, 1.0) ** 2, 0.0)
@@ -256,28 +262,62 @@ def _optimality(J, r, x, lo, hi, loss, f_scale, std):
     scale the largest ``D_j^2 (J^T J)_jj`` (the cost of moving one standard
     error).  Stationarity below ``KKT_TOL`` then means: a first-order step
     would move no estimate by more than about ``KKT_TOL`` standard errors --
-    independent of units, noise level and machine."""
+    independent of units, noise level and machine.
+
+    Returns (KKT result, held): ``held`` maps the index of each estimate a
+    bound holds to ``"lower"``/``"upper"``: its bound is active and its
+    multiplier above ``KKT_TOL`` times the cost scale, i.e. the data pull
+    the estimate more than ``KKT_TOL`` standard errors beyond the bound."""
     from .optimality import kkt_check
     w = _LOSS_WEIGHT[loss]((r / f_scale) ** 2)
     rel = np.maximum(np.abs(x), 1e-12)
     D = np.where(np.isfinite(std), np.maximum(std, 1e-8 * rel), rel)
     g = (J.T @ (w * r)) * D
-    scale = float(np.max(D ** 2 * np.einsum("ij,i,ij->j", J, w, J)))
-    return kkt_check(g, x / D, objective=max(scale, 1e-300), lower=lo / D, upper=hi / D,
-                     x_scale=1.0, tol=KKT_TOL)
+    scale = max(float(np.max(D ** 2 * np.einsum("ij,i,ij->j", J, w, J))), 1e-300)
+    kkt = kkt_check(g, x / D, objective=scale, lower=lo / D, upper=hi / D, x_scale=1.0,
+                    tol=KKT_TOL)
+    held = {int(j): kind for kind in ("lower", "upper") for j in kkt.active.get(kind, [])
+            if kkt.multipliers[kind][j] > KKT_TOL * scale}
+    return kkt, held
+
+
+def _interior_statistics(J, r, x, names, held):
+    """:func:`statistics` of the estimates no bound holds (the held ones
+    taken as fixed there: they have no standard error or interval, NaN)."""
+    n = x.size
+    free = [j for j in range(n) if j not in held]
+    std, ci95, corr = np.full(n, np.nan), np.full((n, 2), np.nan), np.full((n, n), np.nan)
+    np.fill_diagonal(corr, 1.0)
+    if not free:
+        return {"std": std, "ci95": ci95, "corr": corr, "s2": float(r @ r) / r.size,
+                "dof": r.size, "singular_values": np.zeros(0), "warnings": []}
+    part = statistics(J[:, free], r, x[free], [names[j] for j in free])
+    std[free], ci95[free] = part["std"], part["ci95"]
+    corr[np.ix_(free, free)] = part["corr"]
+    return dict(part, std=std, ci95=ci95, corr=corr)
+
+
+def held_message(names, x, lo, hi, held):
+    """Why a fit with estimates held by their bounds is not a regular optimum."""
+    items = ["%s at its %s bound %g" % (names[j], kind, (lo if kind == "lower" else hi)[j])
+             for j, kind in sorted(held.items())]
+    return ("the bounds hold %s (the data pull %s beyond; no standard "
+            "error or interval); check the data's units and signals, or widen the bound if it "
+            "is not physical" % (", ".join(items), "it" if len(held) == 1 else "them"))
 
 
 def _polish(problem, x, lo, hi, loss, f_scale, names, steps=POLISH_STEPS):
     """Up to ``steps`` (robustly weighted) Gauss-Newton steps from the
     optimiser's point while the KKT stationarity is above ``POLISH_TOL``
     and the cost does not grow (the optimiser stops on its own tolerances,
-    the check decides).  Returns (x, J, r, statistics, KKT result)."""
+    the check decides).  Returns (x, J, r, statistics, KKT result, the
+    estimates held by their bounds; see :func:`_optimality`)."""
     trials = problem.trials
     r = problem.vector(trials.run([x])[0][0])
     for k in range(steps + 1):
         J, _ = trials.jacobian(x, problem.vector, lo, hi)
         stats = statistics(J, r, x, names)
-        kkt = _optimality(J, r, x, lo, hi, loss, f_scale, stats["std"])
+        kkt, held = _optimality(J, r, x, lo, hi, loss, f_scale, stats["std"])
         if kkt.stationarity <= POLISH_TOL or k == steps:
             break
         sw = np.sqrt(_LOSS_WEIGHT[loss]((r / f_scale) ** 2))
@@ -288,7 +328,9 @@ def _polish(problem, x, lo, hi, loss, f_scale, names, steps=POLISH_STEPS):
         if r_new is None or r_new @ r_new > (r @ r) * (1.0 + 1e-6):   # 1e-6: the runs' noise
             break
         x, r = x_new, r_new
-    return x, J, r, stats, kkt
+    if held:
+        stats = _interior_statistics(J, r, x, names, held)
+    return x, J, r, stats, kkt, held
 
 
 def _final_run(cm, trials, x, times, rtol):
@@ -298,16 +340,36 @@ def _final_run(cm, trials, x, times, rtol):
     return cm.simulate(params=expand_params(trials.point(x)), rtol=rtol, output_times=grid)
 
 
+def _check_count(m, names):
+    """At least one measured value more than free parameters: the noise
+    (s^2 with m - n degrees of freedom) and the intervals need it."""
+    n = len(names)
+    if m < n + 1:
+        raise Acausal2dError(
+            "%d measured value%s for %d free parameter%s (%s): a fit needs at least %d (one more "
+            "than parameters) to estimate the noise and the intervals; add measured points or "
+            "signals, widen --t-range, or hold parameters with --set"
+            % (m, "" if m == 1 else "s", n, "" if n == 1 else "s", ", ".join(names), n + 1))
+
+
+def _check_abs_tol(abs_tol):
+    if abs_tol is not None and not (isinstance(abs_tol, (int, float)) and not
+                                    isinstance(abs_tol, bool) and 0 <= abs_tol < np.inf):
+        raise Acausal2dError("abs_tol (--abs-tol) must be a finite number >= 0 in the signals' "
+                             "units, got %r" % (abs_tol,))
+
+
 def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=None, fixed=None,
         loss="linear", f_scale=1.0, rtol=None, max_evaluations=100, scheduler=None,
-        workers=None, client=None, model_name=None):
+        workers=None, client=None, model_name=None, abs_tol=None):
     """Fit the parameters ``free`` of ``model`` to the measured ``data``.
 
     model: a model file path, a Component subclass or a CompiledModel (this
     process only); data: a CSV file (ours or Modelica's, as
     :func:`~acausal2d.analysis.compare.compare` reads) or a ``(time,
     columns)`` tuple.  free: ``{name: start}`` or ``{name: (start, lower,
-    upper)}`` (``"a.mu,b.mu"`` ties parameters to one value).  signals,
+    upper)}`` (``"a.mu,b.mu"`` ties parameters to one value; a parameter
+    given twice, or also in ``fixed``, is an error).  signals,
     mapping: the measured columns to fit and their names in the model, as
     for ``compare``; weights: ``{signal: w}`` (default 1); t_range: ``(t0,
     t1)`` measured times to use; fixed: parameter values held; loss:
@@ -316,14 +378,20 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
     ``"cauchy"``, ``"arctan"``) with ``f_scale``; max_evaluations: budget
     of optimiser steps; scheduler/workers/client: the Jacobian's runs on
     Dask (``"local"`` or a number of workers for a LocalCluster, a
-    scheduler address, or an open Client).  Returns a
-    :class:`~acausal2d.analysis.fit_report.FitResult`.
+    scheduler address, or an open Client); abs_tol: the tolerance (in the
+    signals' units) added to the comparison tube of the fitted run, which
+    is otherwise the noise estimated from the data
+    (:meth:`~acausal2d.analysis.fit_report.FitResult.compare`).  The
+    measured values (points times signals) must outnumber the free
+    parameters.  Returns a :class:`~acausal2d.analysis.fit_report.FitResult`.
     """
     import time as _time
-    from .fit_report import FitResult
+    from .trials import check_fixed_apart
     if loss not in _LOSS_WEIGHT:
         raise Acausal2dError("loss must be one of %s, got %r" % (", ".join(_LOSS_WEIGHT), loss))
+    _check_abs_tol(abs_tol)
     names, x0, lo, hi = parse_free(free)
+    check_fixed_apart(names, fixed)
     t, cols = _load_data(data, t_range)
     t0 = _time.perf_counter()
     with Trials(model, names, [], t, fixed, rtol, scheduler, workers, client,
@@ -331,20 +399,36 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
         cm = trials.compiled()
         _check_free(cm, names)
         pairs = _pairs(cm, cols, signals, mapping)
+        _check_count(t.size * len(pairs), names)
         trials.settings["signals"] = list(dict.fromkeys(our for _, our in pairs))
         problem = _Problem(trials, pairs, cols, _weights(pairs, weights))
-        r0 = problem.residuals(x0)
-        sol = _solve(problem, x0, lo, hi, loss, f_scale, max_evaluations)
-        x, J, r, stats, kkt = _polish(problem, sol.x, lo, hi, loss, f_scale, names,
-                                      POLISH_STEPS if sol.status != 0 else 0)   # 0: budget
-        ok, why = kkt.ok, kkt.message()
-        res = _final_run(cm, trials, x, t, rtol)
-        return FitResult(names=names, start=x0, estimate=x, stats=stats, pairs=pairs,
-                         data=(t, cols), residuals=r, cost=0.5 * float(r @ r),
-                         cost_start=0.5 * float(r0 @ r0), success=ok,
-                         message=why if ok or sol.status != 0 else "the optimiser's budget of "
-                         "%d evaluations ran out; %s" % (max_evaluations, why),
-                         budget_exhausted=sol.status == 0 and not ok,
-                         evaluations=trials.count, infeasible=list(trials.failures),
-                         result=res, wall_time=_time.perf_counter() - t0,
-                         workers=trials.workers)
+        return _run(problem, cm, (x0, lo, hi), (t, cols), loss, f_scale, rtol,
+                    max_evaluations, dict(abs_tol=abs_tol, t_start=t0))
+
+
+def _run(problem, cm, start, data, loss, f_scale, rtol, max_evaluations, extra):
+    """The fit's search, polish and verdict; the FitResult."""
+    import time as _time
+    from .fit_report import FitResult
+    (x0, lo, hi), (t, cols), trials = start, data, problem.trials
+    names = trials.names
+    r0 = problem.residuals(x0)
+    sol = _solve(problem, x0, lo, hi, loss, f_scale, max_evaluations)
+    x, J, r, stats, kkt, held = _polish(problem, sol.x, lo, hi, loss, f_scale, names,
+                                        POLISH_STEPS if sol.status != 0 else 0)   # 0: budget
+    for j, kind in held.items():     # within the KKT check's active distance of the bound
+        x[j] = (lo if kind == "lower" else hi)[j]
+    why = kkt.message()
+    if kkt.ok and held:
+        why = "%s; %s" % (held_message(names, x, lo, hi, held), why)
+    elif not kkt.ok and sol.status == 0:
+        why = "the optimiser's budget of %d evaluations ran out; %s" % (max_evaluations, why)
+    return FitResult(names=names, start=x0, estimate=x, stats=stats, pairs=problem.names,
+                     data=(t, cols), residuals=r, cost=0.5 * float(r @ r),
+                     cost_start=0.5 * float(r0 @ r0), success=kkt.ok and not held,
+                     message=why, budget_exhausted=sol.status == 0 and not kkt.ok,
+                     evaluations=trials.count, infeasible=list(trials.failures),
+                     result=_final_run(cm, trials, x, t, rtol),
+                     wall_time=_time.perf_counter() - extra["t_start"], workers=trials.workers,
+                     at_bound={names[j]: kind for j, kind in held.items()},
+                     abs_tol=extra["abs_tol"], rtol=rtol)

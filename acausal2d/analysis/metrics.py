@@ -9,10 +9,12 @@ Grammar (Python syntax, checked before any run): numbers; signal names
 t1)``; ``final(expr)``; ``at(expr, t)`` (linear interpolation).  The
 result must be a number.
 
-A top-level ``max(E[, t0, t1])`` (and ``-min(E)``, ``min(E)`` on the large
-side of a constraint) is kept as the vector ``E(t_i)`` so that the
-optimiser can treat it smoothly (epigraph form, see
-:mod:`acausal2d.analysis.optimize`).
+A top-level ``max(E[, t0, t1])`` (and ``min(E)`` on the large side of a
+constraint) is kept as the vector ``E(t_i)`` so that the optimiser can
+treat it smoothly (an objective in epigraph form, a constraint as one row,
+its largest, with the rows at every time for the KKT check; see
+:mod:`acausal2d.analysis.optimize`).  A division by zero gives inf or NaN
+without a warning: the optimiser names the metric that is not a number.
 """
 import ast
 
@@ -128,8 +130,9 @@ class _Evaluator:
         if isinstance(node, ast.UnaryOp):
             v = self.eval(node.operand)
             return -v if isinstance(node.op, ast.USub) else v
-        if isinstance(node, ast.BinOp):
-            return _BINARY[type(node.op)](self.eval(node.left), self.eval(node.right))
+        if isinstance(node, ast.BinOp):       # x/0 and 0/0 give inf and NaN, judged by the caller
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                return _BINARY[type(node.op)](self.eval(node.left), self.eval(node.right))
         return self.call(node.func.id, node.args)
 
     def call(self, fname, args):

@@ -277,11 +277,18 @@ def transfer(res, q, p, orders=(0, 1, 2)):
     ``p`` (eq. 2.2-2.4): order 0 is q itself, order 1 q' = q_dot / p_dot
     (eq. 2.3), order 2 q'' = (q_ddot - q' p_ddot) / p_dot^2 (eq. 2.4), from
     the run's first and second time derivatives.  Returns {order: array};
-    NaN where the drive stands (p_dot = 0)."""
+    NaN where the drive stands (p_dot = 0).  A drive coordinate that does
+    not move over the run is an error naming it (nothing to plot over)."""
     bad = [o for o in orders if o not in (0, 1, 2)]
     if bad:
         raise Acausal2dError("transfer function orders are 0, 1 and 2; got %s"
                              % ", ".join(map(str, bad)))
+    drive = np.asarray(res[p], dtype=float)
+    if not np.ptp(drive) > 0:
+        raise Acausal2dError("transfer functions of %s over %s: %s stays at %g over the whole "
+                             "run, so there is nothing to take them over; give a drive "
+                             "coordinate that moves (--x, e.g. the crank angle)"
+                             % (q, p, p, drive[0]))
     out = {0: np.asarray(res[q], dtype=float)} if 0 in orders else {}
     if any(o > 0 for o in orders):
         pd = derivative(res, p)

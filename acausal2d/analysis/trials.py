@@ -35,12 +35,19 @@ def parse_free(free, option="free"):
     ``NAME=START[:LO:HI]`` -> (names, start array, lower array, upper array).
     Tied parameters (``"a.mu,b.mu"``) form one column."""
     if isinstance(free, (list, tuple)):
-        free = dict(_parse_item(item, option) for item in free)
+        free = [_parse_item(item, option) for item in free]
+    elif isinstance(free, dict):
+        free = list(free.items())
+    elif free is not None:
+        raise Acausal2dError("%s must be a dict {name: start or (start, lower, upper)} or a "
+                             "list of NAME=START[:LO:HI], not %s" % (option, type(free).__name__))
     if not free:
         raise Acausal2dError("%s: nothing to vary; give NAME=START[:LO:HI]" % option)
     names, x0, lo, hi = [], [], [], []
-    for name, spec in dict(free).items():
+    seen = {}
+    for name, spec in free:
         name = ",".join(name) if isinstance(name, (tuple, list)) else str(name)
+        _once(name, seen, option)
         vals = [float(v) for v in np.atleast_1d(spec)]
         if len(vals) not in (1, 3) or not all(np.isfinite(vals)):
             raise Acausal2dError("%s %s: give a start value or (start, lower, upper) with "
@@ -54,6 +61,24 @@ def parse_free(free, option="free"):
         lo.append(low)
         hi.append(high)
     return names, np.array(x0), np.array(lo), np.array(hi)
+
+
+def _once(column, seen, option):
+    """A parameter may appear in one column only: given twice (also inside
+    tied columns ``a.p,b.p``) is an error naming it, never "the last wins"."""
+    for name in (n.strip() for n in column.split(",")):
+        if name in seen:
+            raise Acausal2dError("%s: %s is given twice (%s and %s); give each parameter once"
+                                 % (option, name, seen[name], column))
+        seen[name] = column
+
+
+def check_fixed_apart(names, fixed, option="free"):
+    """A parameter both varied and held fixed is an error naming it."""
+    both = sorted({n.strip() for column in names for n in column.split(",")} & set(fixed or {}))
+    if both:
+        raise Acausal2dError("%s %s: also given as a fixed value (--set / fixed=); give it "
+                             "once, as varied or as fixed" % (option, ", ".join(both)))
 
 
 def _parse_item(item, option):

@@ -17,8 +17,23 @@ def _parse_set(items):
         except ValueError:
             raise Acausal2dError("--set %s: %r is not a number (vectors: 1,0)" % (name, value)) \
                 from None
+        if name.strip() in params:
+            raise Acausal2dError("--set %s is given twice; give each parameter once"
+                                 % name.strip())
         params[name.strip()] = vals[0] if len(vals) == 1 else tuple(vals)
     return params
+
+
+class Once(argparse.Action):
+    """argparse action of an option that takes one value: given twice it is
+    a usage error (exit 2) naming it, never "the last one wins"."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        seen = namespace.__dict__.setdefault("_given_once", set())
+        if self.dest in seen:
+            parser.error("%s is given twice; give it once" % "/".join(self.option_strings))
+        seen.add(self.dest)
+        setattr(namespace, self.dest, values)
 
 
 def _check_names(names, cm, option):

@@ -4,6 +4,7 @@ at a time of its run or at its static equilibrium, written as
 import csv
 import json
 import os
+import sys
 
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
@@ -75,7 +76,7 @@ def cmd_linearize(args):
     try:
         lin = cm.linearize(inputs=_names(args.inputs), outputs=outputs, **point_options(args))
     except NoEquilibrium as exc:
-        print("error: %s" % exc)
+        print("error: %s" % exc, file=sys.stderr)
         return 3
     files = write_linearization(lin, args.out)
     where = "the static equilibrium" if lin.point.kind == "equilibrium" else \

@@ -4,6 +4,7 @@ of a model at a time of its run or at its static equilibrium: the table,
 Campbell-like diagram of the frequencies over a swept parameter."""
 import json
 import os
+import sys
 
 from ..errors import Acausal2dError
 from .args import _positive_int
@@ -43,7 +44,7 @@ def cmd_modes(args):
     try:
         result = cm.modes(**options)
     except NoEquilibrium as exc:
-        print("error: %s" % exc)
+        print("error: %s" % exc, file=sys.stderr)
         return 3
     out = args.out
     os.makedirs(out, exist_ok=True)

@@ -1,11 +1,14 @@
 """``acausal2d optimize``: choose parameter values that minimise a run
 metric (see :mod:`acausal2d.analysis.optimize`); writes optimize.json,
-optimize.csv and optimize.png.  Exit 0 at a KKT point, 2 for bad input, 3
-when the optimiser stops elsewhere (its budget, a failed line search)."""
+optimize.csv and optimize.png.  Exit 0 at a KKT point, 2 for bad input (a
+design parameter without bounds or given twice, an option given twice, an
+objective that is not a number at the start or on the whole grid), 3 when
+the optimiser stops elsewhere (its budget, a failed line search)."""
 import os
 import sys
 
-from .args import _parse_set, _positive_float, _positive_int, add_dask_options
+from ..errors import Acausal2dError
+from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_options
 
 
 def cmd_optimize(args):
@@ -41,7 +44,12 @@ def _grid_check(opt, args):
     path = os.path.join(args.out, "grid.csv")
     np.savetxt(path, np.column_stack([xs, values]), delimiter=",", comments="",
                header=",".join(opt.names + ["objective"]), fmt="%.12g")
-    k = int(np.nanargmin(values))
+    if not np.any(np.isfinite(values)):
+        raise Acausal2dError("--grid: the objective %s is not a number at any of the %d grid "
+                             "points around the optimum (every run failed or the metric is NaN "
+                             "there); grid.csv lists them; choose a smaller --grid-span or "
+                             "another objective" % (opt.objective_text, len(values)))
+    k = int(np.nanargmin(np.where(np.isfinite(values), values, np.nan)))
     # lower only by more than round-off of the re-run (1e-9 relative) counts as below
     below = values[k] < opt.objective - GRID_NOISE * max(abs(opt.objective), 1e-300)
     print("grid of %d points within +-%g around the optimum: smallest objective %.8g%s" % (
@@ -57,29 +65,33 @@ def add_parsers(sub):
     o = sub.add_parser("optimize", help="choose parameter values that minimise a run metric "
                        "(e.g. max(abs(drive.tau))) subject to bounds and constraints")
     o.add_argument("model_file")
-    o.add_argument("--model", help="model class in the file (default: the file's model)")
+    o.add_argument("--model", action=Once,
+                   help="model class in the file (default: the file's model)")
     o.add_argument("--vary", action="append", required=True, metavar="NAME=START:LO:HI",
-                   help="a design parameter with start value and bounds; repeatable")
-    o.add_argument("--objective", required=True, metavar="EXPR",
+                   help="a design parameter with start value and bounds; repeatable (each "
+                   "parameter once)")
+    o.add_argument("--objective", action=Once, required=True, metavar="EXPR",
                    help="metric to minimise: signals, + - * / **, abs, max, min, mean, rms, "
                    "integral (optionally over T0, T1), final, at(EXPR, T)")
     o.add_argument("--constraint", action="append", metavar="EXPR<=VALUE",
                    help="EXPR<=VALUE or EXPR>=VALUE; repeatable")
     o.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
                    help="a parameter value held fixed; repeatable")
-    o.add_argument("--stop-time", type=_positive_float)
-    o.add_argument("--intervals", type=_positive_int, help="output intervals of every run "
-                   "(the metrics are taken at the output points)")
-    o.add_argument("--rtol", type=float)
-    o.add_argument("--max-iterations", type=_positive_int, default=60,
+    o.add_argument("--stop-time", action=Once, type=_positive_float)
+    o.add_argument("--intervals", action=Once, type=_positive_int,
+                   help="output intervals of every run (the metrics are taken at the output "
+                   "points)")
+    o.add_argument("--rtol", action=Once, type=float)
+    o.add_argument("--max-iterations", action=Once, type=_positive_int, default=60,
                    help="optimiser's budget of iterations (default 60); exit 3 when used up")
-    o.add_argument("--grid", type=_positive_int, metavar="POINTS",
+    o.add_argument("--grid", action=Once, type=_positive_int, metavar="POINTS",
                    help="confirm the optimum on a grid of POINTS values per parameter around "
                    "it (writes grid.csv)")
-    o.add_argument("--grid-span", type=_positive_float, default=0.01,
+    o.add_argument("--grid-span", action=Once, type=_positive_float, default=0.01,
                    help="half-width of the grid relative to each parameter's scale "
                    "(default 0.01)")
     add_dask_options(o, "run the Jacobians' simulations on Dask: 'local' or a "
                      "scheduler address (default: serial)")
-    o.add_argument("--out", default="out", help="output directory (default: out)")
+    o.add_argument("--out", action=Once, default="out",
+                   help="output directory (default: out)")
     o.set_defaults(func=cmd_optimize)

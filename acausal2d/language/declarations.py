@@ -85,8 +85,10 @@ class Parameter:
         return float(arr[0]) if self.size == 1 else tuple(float(x) for x in arr)
 
     def _numbers(self, value, desc):
-        """``value`` as a flat float array of the declared size."""
-        if isinstance(value, (str, bytes, bool)) or value is None:
+        """``value`` as a flat float array of the declared size; strings,
+        booleans and None are refused alone, in a list or in a numpy array
+        (of strings, booleans or objects) alike."""
+        if _not_a_number(value):
             raise ModelDefinitionError("%s = %r is not a number%s" % (
                 desc, value, " (give %d numbers)" % self.size if self.size > 1 else ""))
         try:
@@ -109,6 +111,22 @@ class Parameter:
         if sym is not None:
             return sym
         return obj.parameter_value(self.name)
+
+
+def _not_a_number(value):
+    """True for a string, a boolean, None, a complex number, or a list,
+    tuple or numpy array holding any of them (a numpy array of booleans,
+    strings or objects is judged by its elements, not converted)."""
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind in "iuf":
+            return False
+        if value.dtype.kind != "O":
+            return True                            # bool, str, bytes, complex, datetime ...
+        return any(_not_a_number(v) for v in value.ravel())
+    if isinstance(value, (list, tuple)):
+        return any(_not_a_number(v) for v in value)
+    return value is None or isinstance(value, (str, bytes, bool, np.bool_, complex,
+                                               np.complexfloating))
 
 
 def _creation_site():

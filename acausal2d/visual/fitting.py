@@ -25,7 +25,8 @@ def fit_figure(fr):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     axes[-1, 0].set_xlabel(axis_label("time", "s"))
-    est = ", ".join("%s = %.5g +- %.2g" % (n, x, s)
+    est = ", ".join("%s = %.5g (at its %s bound)" % (n, x, fr.at_bound[n]) if n in fr.at_bound
+                    else "%s = %.5g +- %.2g" % (n, x, s)
                     for n, x, s in zip(fr.names, fr.estimate, fr.std))
     fig.suptitle("%s fit: %s" % (type(fr.result.model.model).__name__
                                  if hasattr(fr.result.model, "model") else "", est), fontsize=9)

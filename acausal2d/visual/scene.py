@@ -214,6 +214,9 @@ def parse_links(text):
         if not sep or not label.strip() or not spec.strip():
             raise Acausal2dError("--poles takes label=link pairs, e.g. 1=ground,2=A0A,"
                                  "3=crank.frame_b,4=B.x:B.y:GB.w; got %r" % item)
+        if label.strip() in links:
+            raise Acausal2dError("--poles: the label %s is given twice (%s); give each link "
+                                 "its own label" % (label.strip(), text))
         parts = [p.strip() for p in spec.split(":")]
         links[label.strip()] = tuple(parts) if len(parts) == 3 else spec.strip()
     return links
