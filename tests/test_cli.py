@@ -139,7 +139,7 @@ def test_simulate_with_parameter_and_stop_time(tmp_path):
 def test_check_explains_a_driven_mechanism_s_dof():
     proc = run("check", os.path.join(ROOT, "models", "four_link_mechanisms.py"), "--model", "DDDD")
     assert proc.returncode == 0, proc.stderr
-    assert ("degree of freedom: 1 by seed eq. 2.1 (n = 4 links with ground, g = 4 joints), "
+    assert ("degree of freedom: 1 by Ebert (2015) eq. 2.1 (n = 4 links with ground, g = 4 joints), "
             "0 structural (position states)") in proc.stdout
     assert "(1 prescribed: drives that give the motion as a function of time" in proc.stdout
 
@@ -151,7 +151,7 @@ def test_check_prints_structure_and_both_dof_counts():
     assert "states:            revoluteDrive.phi, revoluteDrive.w" in out
     assert "structural index:  3" in out
     assert "closed loops:      1" in out
-    assert ("degree of freedom: 1 by seed eq. 2.1 (n = 4 links with ground, g = 4 joints), "
+    assert ("degree of freedom: 1 by Ebert (2015) eq. 2.1 (n = 4 links with ground, g = 4 joints), "
             "1 structural") in out
 
 

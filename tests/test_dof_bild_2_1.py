@@ -25,7 +25,7 @@ import dof_bild_2_1 as b21  # noqa: E402
 def test_check_prints_the_seed_F(cls, links, joints, F, terms):
     report = check(cls())
     assert (report.links, report.joints, report.grubler) == (links, joints, F)
-    assert "degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, g = %d joints%s)" \
+    assert "degree of freedom: %d by Ebert (2015) eq. 2.1 (n = %d links with ground, g = %d joints%s)" \
         % (F, links, joints, terms) in str(report)
 
 
@@ -116,6 +116,6 @@ def test_check_and_simulate_from_the_cli(tmp_path, capsys):
     from acausal2d import cli
     path = os.path.join(os.path.dirname(__file__), os.pardir, "models", "dof_bild_2_1.py")
     assert cli.main(["check", path, "--model", "Bild21c"]) == 0
-    assert "degree of freedom: 2 by seed eq. 2.1" in capsys.readouterr().out
+    assert "degree of freedom: 2 by Ebert (2015) eq. 2.1" in capsys.readouterr().out
     assert cli.main(["simulate", path, "--model", "Bild21b", "--out", str(tmp_path)]) == 0
     assert (tmp_path / "transfer.png").exists()

@@ -99,7 +99,7 @@ import four_link_mechanisms as flm  # noqa: E402
 class DDDDForgotten(flm._CrankDriven):
     """The DDDD four-bar of models/four_link_mechanisms.py without
     ``connect(crank.ctr2D2, dyad.ctr2D1)``: the dyad's triangle port
-    ctr2D1 is then fixed to ground (seed Tabelle 4.1)."""
+    ctr2D1 is then fixed to ground (Ebert 2015, Tabelle 4.1)."""
     outputs = ["crank.phiL", "dyad.phiL2"]
 
     def __init__(self, **kw):
@@ -113,7 +113,7 @@ def test_seen4_check_lists_the_ports_grounded_because_unconnected():
                                "dyad.ctr2D1": ["x", "y", "phi"],
                                "dyad.ctr2D2": ["x", "y", "phi"]}
     text = str(report)
-    assert ("grounded ports:    3 unconnected, so fixed to ground (seed Tabelle 4.1): "
+    assert ("grounded ports:    3 unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1): "
             "crank.ctr2D1 (x, y, phi),\n                     dyad.ctr2D1 (x, y, phi), "
             "dyad.ctr2D2 (x, y, phi)") in text
     # eq. 2.1 counts with them: crank, two dyad links and ground, 4 joints:
@@ -143,7 +143,7 @@ def test_seen4_simulate_lists_the_grounded_ports(tmp_path, capfd):
                  "--out", str(tmp_path / "out")])
     out = capfd.readouterr().out
     assert code == 0
-    assert "  grounded ports: 3 unconnected, so fixed to ground (seed Tabelle 4.1): " in out
+    assert "  grounded ports: 3 unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1): " in out
     assert "dyad.ctr2D1 (x, y, phi)" in out
     # Tabelle 4.1 semantics: the crank turns, the grounded dyad stands still
     with open(tmp_path / "out" / "result.csv", newline="") as fh:

@@ -34,7 +34,7 @@ class CheckReport:
         if self.nodes is not None:
             lines += _node_lines(self.nodes)
         if self.grubler is not None:
-            lines.append("  degree of freedom: %d by seed eq. 2.1 (n = %d links with ground, "
+            lines.append("  degree of freedom: %d by Ebert (2015) eq. 2.1 (n = %d links with ground, "
                          "g = %d joints%s), %d structural (position states)%s"
                          % (self.grubler, self.links, self.joints, _terms(self.dof_terms),
                             self.structural_dof, _with_grounded(self.grounded)))
@@ -60,7 +60,7 @@ def grounded_lines(grounded, head="  grounded ports:    "):
     if not grounded:
         return []
     names = ["%s\xa0(%s)" % (path, ",\xa0".join(pots)) for path, pots in grounded.items()]
-    text = "%d unconnected, so fixed to ground (seed Tabelle 4.1): %s" % (
+    text = "%d unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1): %s" % (
         len(names), ", ".join(names))
     lines = textwrap.wrap(text, 100, initial_indent=head, subsequent_indent=" " * len(head),
                           break_on_hyphens=False)      # no break inside a port's entry

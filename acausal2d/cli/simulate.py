@@ -198,7 +198,7 @@ def add_parsers(sub):
                    "(coupler curves): frames (dyad.ctr2D3) or x:y signal pairs "
                    "(dyad.xP:dyad.yP)")
     s.add_argument("--transfer", metavar="ORDERS", help="with --x DRIVE: plot the transfer "
-                   "functions of these orders (0,1,2: q, dq/dDRIVE, d2q/dDRIVE2, seed eq. "
+                   "functions of these orders (0,1,2: q, dq/dDRIVE, d2q/dDRIVE2, Ebert 2015, eq. "
                    "2.2-2.4) of each plotted signal instead of the signals")
     s.add_argument("--poles", metavar="LINKS", help="draw the instantaneous poles of these "
                    "links on a layer of the animation: label=link pairs, e.g. "

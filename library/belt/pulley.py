@@ -158,7 +158,7 @@ class _Wheel(_BandElement):
         return ("its bands %s (at K1) and %s (at K2) cross each other at (%.4f, %.4f) m at "
                 "t0: with w=%+d a positive turn winds the band up at K1 and pays it out at "
                 "K2, so the bands leave the pulley on the far sides of their ends and wrap it "
-                "by %.1f deg, passing through each other (seed eq. 4.91-4.96).  Use w=%+d "
+                "by %.1f deg, passing through each other (Ebert 2015, eq. 4.91-4.96).  Use w=%+d "
                 "(%s(w=%d)) for the bands to leave it on the sides their ends are on, or "
                 "swap the bands between K1 and K2"
                 % (ends[0][0].describe(), ends[1][0].describe(), where[0], where[1], w, beta,

@@ -173,7 +173,7 @@ class Assessment:
         """Short text report of all criteria (seed ch. 5.3 order)."""
         v, syn = self.values, self.synthesis
         phi = syn.phi
-        lines = ["Band curve assessment (seed ch. 5) of %s over phi = %.4g .. %.4g (%d points)"
+        lines = ["Band curve assessment (Ebert 2015, ch. 5) of %s over phi = %.4g .. %.4g (%d points)"
                  % (syn.structure.name or "the structure", phi[0], phi[-1], len(phi))]
 
         def row(text, crit):
@@ -212,7 +212,7 @@ class Assessment:
         _plot_band_length(axes[0, 1], self)
         _plot_limit_functions(axes[1, 0], self)
         _plot_space(axes[1, 1], self)
-        fig.suptitle("Band curve assessment (seed ch. 5): %s"
+        fig.suptitle("Band curve assessment (Ebert 2015, ch. 5): %s"
                      % ("ok" if self.ok else "%d finding(s)" % len(self.findings)))
         fig.tight_layout()
         save_figure(fig, path, dpi=100)
