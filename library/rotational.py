@@ -194,8 +194,7 @@ class Clutch(Component):
     0`` transmits nothing.
 
     Outputs: ``phi_rel``, ``w_rel``, ``a_rel``, ``tau``, ``fn``, ``T_max``; the
-    friction power
-    dissipated in the clutch is ``tau * w_rel`` (>= 0).
+    friction power dissipated in the clutch is ``tau * w_rel`` (>= 0).
     """
     mu = Parameter(0.3, "1", "friction coefficient", min=0.0)
     fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1", min=0.0)

@@ -17,6 +17,8 @@ import math
 import random
 import textwrap
 
+import fuzz_cases_friction
+
 HEADER = textwrap.dedent("""
     import math
     import acausal2d
@@ -378,4 +380,5 @@ def trust_cases(seed=6):
 def all_cases():
     """Every fuzz case, in a fixed order."""
     return (structure_cases() + connection_cases() + parameter_cases() + geometry_cases()
-            + numeric_cases() + file_cases() + compare_cases() + trust_cases())
+            + numeric_cases() + file_cases() + compare_cases() + trust_cases()
+            + fuzz_cases_friction.cases())
