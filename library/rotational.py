@@ -159,10 +159,19 @@ class Clutch(Component):
     convention).
 
     Normal force ``fn = fn_max * f_normalized`` and friction torque capacity
-    ``T_max = mu * cgeo * fn`` (``cgeo``: effective friction radius times the
-    number of friction faces).  ``phi_rel = flange_b.phi - flange_a.phi``,
-    ``w_rel = der(phi_rel)``; the torque ``tau`` acts on flange_b like a
-    damper's (``flange_b.tau = tau``, ``flange_a.tau = -tau``).
+    ``T_max = mu * cgeo * max(fn, 0)`` (``cgeo``: effective friction radius
+    times the number of friction faces).  As in Modelica's
+    ``Rotational.Components.Clutch`` (``free = fn <= 0``) the clutch is free
+    for a normal force ``fn <= 0``: a negative ``f_normalized`` (a control
+    signal overshooting below "open") transmits no torque and never drives
+    the slip apart; ``fn`` crossing 0 is an event.
+    ``phi_rel = flange_b.phi - flange_a.phi``, ``w_rel = der(phi_rel)``,
+    ``a_rel = der(w_rel)``; the torque ``tau`` acts on flange_b like a
+    damper's (``flange_b.tau = tau``, ``flange_a.tau = -tau``).  As in
+    Modelica's ``PartialCompliantWithRelativeStates`` the relative angle and
+    speed are preferred states: the creep ``w_rel`` (down to 1e-9 rad/s) is
+    then integrated itself instead of being the difference of two flange
+    speeds, whose rounding (1e-15 of 10 rad/s) would be all of it.
 
     Coulomb friction with sticking is regularised by a linear zone of width
     ``w_s`` (Karnopp-like saturation)::
@@ -184,18 +193,20 @@ class Clutch(Component):
     (times a few for the exponential tail).  A clutch with ``f_normalized =
     0`` transmits nothing.
 
-    Outputs: ``phi_rel``, ``w_rel``, ``tau``, ``T_max``; the friction power
-    dissipated in the clutch is ``tau * w_rel`` (>= 0).
+    Outputs: ``phi_rel``, ``w_rel``, ``a_rel``, ``tau``, ``fn``, ``T_max``; the
+    friction power dissipated in the clutch is ``tau * w_rel`` (>= 0).
     """
     mu = Parameter(0.3, "1", "friction coefficient", min=0.0)
     fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1", min=0.0)
     cgeo = Parameter(0.1, "m", "effective friction radius x number of friction faces", positive=True)
     w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)", positive=True)
-    phi_rel = Variable(unit="rad", state_select="avoid",
+    phi_rel = Variable(unit="rad", state_select="prefer",
                        doc="relative angle flange_b - flange_a")
-    w_rel = Variable(unit="rad/s", doc="relative angular velocity")
+    w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
+    a_rel = Variable(unit="rad/s2", doc="relative angular acceleration der(w_rel)")
     tau = Variable(unit="N.m", doc="friction torque acting on flange_b")
-    T_max = Variable(unit="N.m", doc="friction torque capacity mu cgeo fn")
+    fn = Variable(unit="N", doc="normal force fn_max f_normalized (free for fn <= 0)")
+    T_max = Variable(unit="N.m", doc="friction torque capacity mu cgeo max(fn, 0)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -203,12 +214,21 @@ class Clutch(Component):
         self.flange_b = RotationalFlange()
         self.f_normalized = RealInput()
 
+    def sliding_mode_advice(self):
+        """The clutch models sticking itself: a sliding mode or chattering
+        of its zone relations means the zone is too narrow to resolve."""
+        return ("%s models sticking itself with its stick zone |w_rel| < w_s: a zone this "
+                "narrow cannot be resolved at the speeds of the run. Give it a larger w_s "
+                "(the lock time changes by about J_eff w_s / T_max only), or make its "
+                "f_normalized input continuous." % self.describe())
+
     def equations(self):
         x = self.w_rel / self.w_s
         sat = ca.fmin(ca.fmax(x, -1.0), 1.0)
         return [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
-                self.w_rel == der(self.phi_rel),
-                self.T_max == self.mu * self.cgeo * self.fn_max * self.f_normalized.u,
+                self.w_rel == der(self.phi_rel), self.a_rel == der(self.w_rel),
+                self.fn == self.fn_max * self.f_normalized.u,
+                self.T_max == self.mu * self.cgeo * ca.fmax(self.fn, 0.0),
                 self.tau == self.T_max * sat,
                 self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
 

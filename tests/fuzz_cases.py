@@ -17,6 +17,7 @@ import math
 import random
 import textwrap
 
+import fuzz_cases_friction
 import fuzz_cases_geometry
 
 HEADER = textwrap.dedent("""
@@ -382,4 +383,5 @@ def all_cases():
     import fuzz_cases_fitopt
     return (structure_cases() + connection_cases() + parameter_cases() + geometry_cases()
             + numeric_cases() + file_cases() + compare_cases() + trust_cases()
-            + fuzz_cases_geometry.cases() + fuzz_cases_fitopt.cases())
+            + fuzz_cases_geometry.cases() + fuzz_cases_fitopt.cases()
+            + fuzz_cases_friction.cases())

@@ -113,9 +113,9 @@ def test_seen4_check_lists_the_ports_grounded_because_unconnected():
                                "dyad.ctr2D1": ["x", "y", "phi"],
                                "dyad.ctr2D2": ["x", "y", "phi"]}
     text = str(report)
-    assert ("grounded ports:    3 unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1): "
-            "crank.ctr2D1 (x, y, phi),\n                     dyad.ctr2D1 (x, y, phi), "
-            "dyad.ctr2D2 (x, y, phi)") in text
+    line = " ".join(text.split("grounded ports:")[1].split("degree of freedom")[0].split())
+    assert line == ("3 unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1): "
+                    "crank.ctr2D1 (x, y, phi), dyad.ctr2D1 (x, y, phi), dyad.ctr2D2 (x, y, phi)")
     # eq. 2.1 counts with them: crank, two dyad links and ground, 4 joints:
     # 3 (4 - 1) - 4 (3 - 1) = 1 (a rigid truss dyad and a free crank)
     assert (report.links, report.joints, report.grubler) == (4, 4, 1)
@@ -143,7 +143,7 @@ def test_seen4_simulate_lists_the_grounded_ports(tmp_path, capfd):
                  "--out", str(tmp_path / "out")])
     out = capfd.readouterr().out
     assert code == 0
-    assert "  grounded ports: 3 unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1): " in out
+    assert "  grounded ports: 3 unconnected, so fixed to ground (Ebert 2015, Tabelle 4.1):" in out
     assert "dyad.ctr2D1 (x, y, phi)" in out
     # Tabelle 4.1 semantics: the crank turns, the grounded dyad stands still
     with open(tmp_path / "out" / "result.csv", newline="") as fh:

@@ -340,6 +340,16 @@ class Component:
         Default: none."""
         return []
 
+    def sliding_mode_advice(self):
+        """Hook: what to change when a relation in this component's
+        equations has no consistent value at an event (a sliding mode) or
+        chatters.  The runtime's error names the relation, this component
+        and the time and ends with this text; ``None`` (the default) gives
+        the general advice (model sticking in the element, as
+        ``rotational.Clutch`` does, or smooth the relation), which an
+        element that models sticking itself should replace."""
+        return None
+
     def topology(self):
         """Planar topology for the degree-of-freedom count (seed eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames

@@ -9,8 +9,12 @@ time derivative under the relation values being tried.  If no set of
 relation values agrees with its own motion - friction ``sign(v)`` at v = 0
 pushes v up with one value and down with the other - the motion is in a
 sliding mode (sticking), which the element must model itself (as
-``Clutch`` does with stick/slip): the run stops with an error naming the
-relation, its component and the time.  Many events in a vanishing time
+``rotational.Clutch`` does with its stick zone): the run stops with an
+error naming the relation, its component, the time and what to change (the
+component's own advice where it gives one,
+:meth:`~acausal2d.language.dsl.Component.sliding_mode_advice`).  A relation
+whose two values give the same motion (``max(fn, 0)`` while ``fn`` stays
+0) takes the value of its crossing function instead.  Many events in a vanishing time
 interval (chattering) stop the run the same way.  A re-initialization that
 makes a position with a velocity jump (a prescribed motion that steps)
 needs an impulse and is an error naming the components.
@@ -31,12 +35,29 @@ class EventError(SimulationError):
     """An event the motion cannot pass (sliding mode, chattering, impulse)."""
 
 
+def relation_owner(system, k):
+    """The component whose equation holds relation k (None: a connection)."""
+    rel = system.relations[k]
+    return system.owner_of_equation_flat(rel.equation) if rel.equation >= 0 else None
+
+
 def relation_text(system, k):
     """``'text' in Component 'path'`` of relation k."""
-    rel = system.relations[k]
-    owner = system.owner_of_equation_flat(rel.equation) if rel.equation >= 0 else None
+    owner = relation_owner(system, k)
     where = " in %s" % owner.describe() if owner is not None else ""
-    return "'%s'%s" % (rel.text, where)
+    return "'%s'%s" % (system.relations[k].text, where)
+
+
+def sliding_mode_advice(system, relations):
+    """What to change about the relations ``relations`` that have no
+    consistent value or chatter: each owner's own advice
+    (:meth:`~acausal2d.language.dsl.Component.sliding_mode_advice`), else
+    the general one."""
+    owners = {id(o): o for o in (relation_owner(system, k) for k in relations) if o is not None}
+    advice = [a for a in (o.sliding_mode_advice() for o in owners.values()) if a]
+    generic = ("Model sticking in the element (as rotational.Clutch does with its stick zone "
+               "|w_rel| < w_s) or smooth the relation.")
+    return " ".join(advice) if len(advice) == len(owners) and advice else generic
 
 
 def values_from(system, g):
@@ -59,30 +80,59 @@ def node_rates(ev, t, z, d, solve=True):
         Et = (ev.residual(t + h, z, d) - ev.residual(t, z, d)) / h
         J = ev.jacobian(t, z, d, dense=True)
         rhs = -(Et + J[:, known] @ zdot[known])
-        with np.errstate(all="ignore"):
-            zdot[unknown] = np.linalg.lstsq(J[:, unknown], rhs, rcond=1e-12)[0]
+        zdot[unknown] = equilibrated_lstsq(J[:, unknown], rhs)
     return zdot
+
+
+def equilibrated_lstsq(A, b):
+    """Least-squares solution of A x = b after scaling each column, then
+    each row, to a largest magnitude of 1.  A stiff element's gain (a
+    clutch's ``T_max / w_s`` = 1e7 next to the 1s of ``w = der(phi)``)
+    spreads the singular values of the unscaled matrix beyond the cut-off
+    ``rcond`` although every unknown is well determined; the truncated
+    solve then returns ~0 for the rate behind the gain (1e-8 instead of
+    2e7) and the event iteration decides on its sign.  Scaling the columns
+    makes the solution independent of the units of the unknowns."""
+    col = np.max(np.abs(A), axis=0, initial=0.0)
+    col[~(col > 0.0) | ~np.isfinite(col)] = 1.0
+    As = A / col
+    row = np.max(np.abs(As), axis=1, initial=0.0)
+    row[~(row > 0.0) | ~np.isfinite(row)] = 1.0
+    with np.errstate(all="ignore"):
+        y = np.linalg.lstsq(As / row[:, None], b / row, rcond=1e-12)[0]
+    return y / col
+
+
+def near_zero(g):
+    """Mask of the crossing values that may be at their zero."""
+    return np.abs(g) <= NEAR_ZERO * (1.0 + np.abs(g))
 
 
 def crossing_rates(ev, t, z, d):
     """(g, dg/dt) of all relations at a consistent point.  The rates of the
     nodes without derivative take a least-squares solve, done only when a
-    relation near zero depends on them."""
+    relation near zero depends on them (so dg/dt is only meant for those)."""
     g = ev.crossings(t, z, d)
-    near = np.abs(g) <= NEAR_ZERO * (1.0 + np.abs(g))
+    near = near_zero(g)
     zdot = node_rates(ev, t, z, d, solve=bool(np.any(near & ev.system.relation_needs_rates)))
     h = 1e-7 * max(1.0, abs(t)) / max(1.0, float(np.max(np.abs(zdot))) if zdot.size else 1.0)
     g2 = ev.crossings(t + h, z + h * zdot, d)
     return g, (g2 - g) / h
 
 
-def resolved_values(system, g, gdot, d, t):
+def resolved_values(system, g, gdot, d, t, pinned=()):
     """Relation values that agree with the motion: from g where it is clearly
-    nonzero, from the sign of dg/dt where g is (near) zero, else kept."""
+    nonzero, from the sign of dg/dt where g is (near) zero, else kept.  A
+    crossing value is clearly nonzero when it is not :func:`near_zero` (a
+    stiff relation's large rate, a clutch's 2e10/s at w_s = 1e-9, must not
+    make a far-off value look close) or would not reach zero within 1e-9 of
+    the time.  The relations ``pinned`` take the value of g alone."""
     tau = 1e-9 * max(1.0, abs(t))
     out = np.array(d, dtype=float)
+    near = near_zero(g)
     for k, rel in enumerate(system.relations):
-        if abs(g[k]) > abs(gdot[k]) * tau + 1e-13 * max(1.0, abs(g[k])):
+        if k in pinned or not near[k] or \
+                abs(g[k]) > abs(gdot[k]) * tau + 1e-13 * max(1.0, abs(g[k])):
             out[k] = rel.value(g[k])
         elif abs(gdot[k]) > 1e-12:
             out[k] = 1.0 if gdot[k] > 0 else 0.0
@@ -99,21 +149,49 @@ class EventIteration:
 
     def settle(self, t, z, d, held):
         """(z, d) consistent with each other at time t, starting from the
-        relation values ``d``."""
+        relation values ``d``.  When the values go round in a cycle, the
+        relations of the cycle that leave the motion unchanged (:meth:`idle`)
+        take the value of their crossing function; if there are none, the
+        motion is in a sliding mode (an error)."""
         seen = [np.array(d, dtype=float)]
+        pinned = set()
         for _ in range(MAX_ITERATIONS):
             z = self.consistent(t, z, d, held)
             if not len(d):
                 return z, d
             g, gdot = crossing_rates(self.ev, t, z, d)
-            d_new = resolved_values(self.system, g, gdot, d, t)
+            d_new = resolved_values(self.system, g, gdot, d, t, pinned)
+            if not np.array_equal(d_new, d) and any(np.array_equal(d_new, s) for s in seen):
+                idle = self.idle(t, z, d, d_new)
+                if not idle:
+                    self.sliding_mode(t, seen + [d_new])
+                pinned.update(idle)
+                d_new = resolved_values(self.system, g, gdot, d, t, pinned)
             if np.array_equal(d_new, d):
                 return z, d
-            if any(np.array_equal(d_new, s) for s in seen):
-                self.sliding_mode(t, seen + [d_new])
             seen.append(d_new)
             d = d_new
         self.sliding_mode(t, seen)
+
+    def idle(self, t, z, d, d_new):
+        """The relations that differ between ``d`` and ``d_new`` and leave
+        the motion at (t, z) unchanged: z stays consistent and the rates of
+        all nodes stay the same (to 1e-9 of the largest) with the value
+        flipped.  ``max(fn, 0)`` of a clutch while ``fn`` stays 0 is one:
+        the rate of ``fn`` is 0 up to rounding, and its sign must not decide
+        (nor stop the run as a sliding mode)."""
+        rates = node_rates(self.ev, t, z, d)
+        scale = float(np.max(np.abs(rates), initial=0.0))
+        out = []
+        for k in np.nonzero(np.asarray(d) != np.asarray(d_new))[0]:
+            other = np.array(d, dtype=float)
+            other[k] = 1.0 - other[k]
+            if np.max(np.abs(self.ev.residual(t, z, other)), initial=0.0) > 1e-10:
+                continue
+            if np.max(np.abs(node_rates(self.ev, t, z, other) - rates), initial=0.0) \
+                    <= 1e-9 * scale:
+                out.append(int(k))
+        return out
 
     def consistent(self, t, z, d, held):
         try:
@@ -127,8 +205,8 @@ class EventIteration:
         raise EventError(
             "At t=%.6g the relation %s has no consistent value: with either value the motion "
             "drives it to the other (a sliding mode, e.g. Coulomb friction at zero speed, "
-            "where the part should stick). Model sticking in the element (as Clutch does "
-            "with stick/slip states) or smooth the relation." % (t, names), time=t)
+            "where the part should stick). %s"
+            % (t, names, sliding_mode_advice(self.system, flipping)), time=t)
 
 
 class ChatterWatch:
@@ -151,10 +229,10 @@ class ChatterWatch:
             worst = sorted(counts, key=lambda k: -counts[k])[:3]
             raise EventError(
                 "Chattering at t=%.6g: %d events within %.3g s, from the relation %s. The "
-                "motion stays at the switching point of the relation (a sliding mode); model "
-                "sticking in the element or smooth the relation."
+                "motion stays at the switching point of the relation (a sliding mode). %s"
                 % (t, CHATTER_EVENTS, self.recent[-1][0] - self.recent[0][0],
-                   ", ".join(relation_text(self.system, k) for k in worst)), time=t)
+                   ", ".join(relation_text(self.system, k) for k in worst),
+                   sliding_mode_advice(self.system, worst)), time=t)
 
 
 def check_assertions(system, p, t, z):
