@@ -33,7 +33,7 @@ def cases(seed=35, n=12):
         out.append(_case("tx-mec2-depth-%d-%d" % (k, depth), "files", _nested(rng, depth),
                          filename="model.json", codes=(2,)))
     for k in range(4):
-        names = ",".join(rng.choice(["body.phi", "revolute.w", "revolute.phi", "body.w"])
+        names = ",".join(rng.choice(["joint.phi", "joint.w", "bob.frame_a.phi", "rod.frame_b.x"])
                          for _ in range(rng.randint(20, 60)))
         out.append(_case("tx-long-plot-%d" % k, "files", pendulum(), args=["--plot", names],
                          codes=(0,)))
