@@ -4,12 +4,14 @@ output phase (after the run's temporary folder received its first file;
 a random fraction, up to 1.2, of the phase's length measured in the
 same test) of one of them, and a second run may start into the same folder meanwhile.
 
-Whatever the timing: nothing crashes (no traceback, exit codes 0, 2 with
-the lock's message, or 130), nothing wrong is reported as success (exit 0
-only with the complete, listed files), nothing partial remains (the
-folder holds either one run's complete files with their manifest or
-nothing of any run, and no temporary folder or lock), and no file of the
-earlier run survives a failing run."""
+Whatever the timing: nothing crashes (no traceback, no death by the
+signal; exit codes 0, 2 with the lock's message, or 130), nothing wrong is
+reported as success (exit 0 only with the complete, listed files), nothing
+partial remains (the folder holds either one run's complete files with
+their manifest or nothing of any run, and no temporary folder or lock), and
+no file of the earlier run survives a failing run.  (An interrupt that
+comes after the files were moved in, while the summary is printed, exits
+130 with the run's complete files in place.)"""
 import csv
 import glob
 import json
@@ -101,8 +103,8 @@ def test_sigint_and_a_second_run_never_leave_partial_or_stale_files(plan, tmp_pa
     if proc.poll() is None:
         proc.send_signal(signal.SIGINT)
     codes = [_outcome(proc)] + ([_outcome(other)] if other is not None else [])
-    state = _state(out)
-    assert (state == "complete") == (0 in codes), (codes, state)
-    assert codes.count(0) <= 1 or state == "complete"
+    state = _state(out)                     # 'complete' or 'empty', never partial
+    if 0 in codes:                          # success only with the whole run in place
+        assert state == "complete", (codes, state)
     assert not os.path.exists(os.path.join(os.path.dirname(out),
                                            "." + os.path.basename(out) + LOCK_SUFFIX))

@@ -93,7 +93,17 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
 
 def main(argv=None):
     """Entry point of the ``acausal2d`` command; returns the exit code (see
-    the module docstring)."""
+    the module docstring).  Called as the program (``argv`` None), Ctrl-C is
+    ignored once the command has ended: the interpreter's shutdown must not
+    turn a finished command into a death by SIGINT."""
+    code = _main(argv)
+    if argv is None:
+        import signal
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    return code
+
+
+def _main(argv):
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:        # argparse: --help, --version, or a usage error (2)

@@ -35,7 +35,9 @@ The steps, each for a failure a user met (issue 35):
    :class:`Terminated` while the transaction is open), the temporary folder
    is removed and nothing of the run remains.  So exit 0 means the folder
    holds the run's complete files, and an interrupted or failed run leaves
-   none (nor those of the run before).
+   none (nor those of the run before) -- unless the interrupt came after
+   the renames (while the summary is printed): then the complete run is
+   in place.
 
 A SIGKILL between two renames of step 5 leaves the temporary folder with
 the manifest still in it; the next run into the folder reads it and removes
