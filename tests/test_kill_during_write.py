@@ -1,8 +1,9 @@
 """A ``simulate`` killed while it writes a large result never leaves a
 ``result.csv`` that looks complete: the file is written to a temporary name
-and renamed when whole, the previous run's files are removed when a run
-starts, and the temporary file of a killed run is removed by the next run
-(SIGINT: by the run itself, which exits 130)."""
+in the run's temporary sibling folder and moved in when the run is whole,
+the previous run's files are removed when a run starts, and the temporary
+folder of a killed run is removed by the next run (SIGINT: by the run
+itself, which exits 130)."""
 import glob
 import os
 import signal
@@ -24,7 +25,12 @@ def _simulate(out, intervals):
 
 
 def _temporary_csv(out):
-    return glob.glob(os.path.join(out, ".result.*.tmp.csv"))
+    """The CSV being written: in the run's temporary sibling folder
+    (acausal2d.io.output.OutputFolder), or a killed older run's in ``out``."""
+    out = str(out)
+    parts = os.path.join(os.path.dirname(out), "." + os.path.basename(out) + ".*.part")
+    return glob.glob(os.path.join(out, ".result.*.tmp.csv")) + \
+        glob.glob(os.path.join(parts, ".result.*.tmp.csv"))
 
 
 def _kill_while_writing(out, sig, delay):

@@ -157,5 +157,24 @@ def run_studies(model_file, model, names=None, out="out", sweep_options=None, st
     ctx = StudyContext(model_file, model, out, sweep_options, stream)
     for name in names or list(studies):
         print("%s.%s: %s" % (type(model).__name__, name, studies[name].doc), file=stream)
-        studies[name](ctx)
+        _run_study(studies[name], ctx, "%s.%s" % (type(model).__name__, name))
     return ctx.files
+
+
+def _run_study(st, ctx, label):
+    """Run one study; an error it raises is reported with its name
+    (``label``, e.g. ``PulleyBlock.efficiency``) and the exception's type,
+    without a traceback."""
+    try:
+        st(ctx)
+    except Acausal2dError as exc:       # the same kind of error, with the study's name
+        try:
+            named = type(exc)("study %s: %s" % (label, exc))
+        except TypeError:
+            named = Acausal2dError("study %s: %s" % (label, exc))
+        raise named from None
+    except (KeyboardInterrupt, SystemExit, MemoryError):
+        raise
+    except Exception as exc:           # noqa: BLE001 - the model author's code
+        raise Acausal2dError("study %s failed: %s: %s (fix the study in the model file)"
+                             % (label, type(exc).__name__, exc)) from exc

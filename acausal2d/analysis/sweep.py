@@ -201,6 +201,15 @@ def model_info(model, names):
 # ---------------------------------------------------------------------------
 # the points
 
+MAX_POINTS = 100000
+"""Budget of a parameter grid (:func:`grid_points`, ``acausal2d sweep``,
+``modes --vary``, a study's ``ctx.sweep``): the number of points, i.e. of
+simulations, of all combinations.  A larger grid is refused before anything
+is allocated, with its count in the message: its bookkeeping alone (a dict
+per point, a row per result, about 1 kB each) would take over 100 MB, and
+its simulations days."""
+
+
 def parse_values(text, name="--vary"):
     """``"0:0.4:21"`` (21 values from 0 to 0.4), ``"0,0.1,0.25"`` or
     ``"5"`` -> a list of floats; a bad spec raises with the accepted forms."""
@@ -213,6 +222,7 @@ def parse_values(text, name="--vary"):
             start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
             if count < 1:
                 raise ValueError
+            _check_budget(count, "%s %s" % (name, text))
             values = np.linspace(start, stop, count).tolist()
         else:
             values = [float(v) for v in text.split(",")]
@@ -238,7 +248,35 @@ def grid_points(vary):
             raise Acausal2dError("vary %s: no values" % column)
         columns.append(column)
         values.append(vals)
+    grid_size(dict(zip(columns, values)))
     return [dict(zip(columns, combo)) for combo in itertools.product(*values)]
+
+
+def grid_size(vary):
+    """Number of points of the grid of ``vary`` ({column: values}); raises
+    :class:`~acausal2d.errors.Acausal2dError` with the count when it exceeds
+    :data:`MAX_POINTS`."""
+    count = 1
+    for vals in vary.values():
+        count *= len(vals)
+    _check_budget(count, " x ".join("%s (%d)" % (c, len(v)) for c, v in vary.items()))
+    return count
+
+
+def _check_budget(count, what):
+    if count > MAX_POINTS:
+        raise Acausal2dError("the parameter grid %s has %d points (about %s of bookkeeping before "
+                             "the first run); the budget is %d points "
+                             "(acausal2d.analysis.sweep.MAX_POINTS): use fewer values"
+                             % (what, count, _bytes(count * 1024), MAX_POINTS))
+
+
+def _bytes(n):
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if n < 1024 or unit == "TB":
+            return "%.3g %s" % (n, unit)
+        n /= 1024.0
+    return ""
 
 
 def parse_vary(items):

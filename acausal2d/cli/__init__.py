@@ -6,9 +6,12 @@ Exit codes: 0 success; 1 comparison failed (outside the tube); 2 error in
 the model or the input, or a run that cannot go on (the message names what
 to change; no traceback); 3 run stopped early (a limit position, a step or
 wall-clock budget): its results up to there are written; 130 interrupted
-(Ctrl-C).  ``simulate`` lists the files it writes in the output folder's
-``acausal2d-run.json`` and removes those of the previous run there first,
-so a failed run never leaves earlier results that look like its own.
+(Ctrl-C), 143 terminated (SIGTERM).  Every command that writes a folder
+writes it as one transaction (:class:`~acausal2d.io.output.OutputFolder`):
+checked before the run, one run per folder at a time, written into a
+temporary sibling and moved in with its manifest ``acausal2d-run.json`` at
+the end; a failed or interrupted run leaves neither partial nor earlier
+results there.
 """
 import argparse
 import sys
@@ -90,7 +93,17 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
 
 def main(argv=None):
     """Entry point of the ``acausal2d`` command; returns the exit code (see
-    the module docstring)."""
+    the module docstring).  Called as the program (``argv`` None), Ctrl-C is
+    ignored once the command has ended: the interpreter's shutdown must not
+    turn a finished command into a death by SIGINT."""
+    code = _main(argv)
+    if argv is None:
+        import signal
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    return code
+
+
+def _main(argv):
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:        # argparse: --help, --version, or a usage error (2)
@@ -105,9 +118,11 @@ def main(argv=None):
     except OSError as exc:      # files: --out on an existing file, unreadable CSV ...
         print("error: %s" % exc, file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:      # Ctrl-C; SIGTERM in an output transaction
+        from ..io.output import Terminated
+        print("interrupted%s" % (" (SIGTERM)" if isinstance(exc, Terminated) else ""),
+              file=sys.stderr)
+        return 143 if isinstance(exc, Terminated) else 130
 
 
 if __name__ == "__main__":

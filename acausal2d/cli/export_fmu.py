@@ -7,8 +7,10 @@ def cmd_export_fmu(args):
     [--fixed-states]``."""
     from ..fmu import export_fmu
     from ..io.loader import load_model
-    model = load_model(args.model_file, args.model)
-    out = export_fmu(model, kind=args.kind, out=args.out, fixed_states=args.fixed_states)
+    from ..io.output import terminate_as_interrupt
+    with terminate_as_interrupt():         # SIGTERM cleans up like Ctrl-C
+        model = load_model(args.model_file, args.model)
+        out = export_fmu(model, kind=args.kind, out=args.out, fixed_states=args.fixed_states)
     print("%s: %s FMU (FMI 2.0) written to %s" % (
         type(model).__name__, "Model Exchange" if args.kind == "me" else "Co-Simulation", out))
     return 0

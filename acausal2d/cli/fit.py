@@ -61,15 +61,11 @@ def parse_range(text, option="--t-range"):
 
 def cmd_fit(args):
     """``acausal2d fit``: fit, print the report and the compare table, write the files."""
-    from ..analysis.fit import fit
-    signals = [s.strip() for s in args.signals.split(",") if s.strip()] if args.signals else None
-    fr = fit(args.model_file, args.data, free=args.free, signals=signals,
-             mapping=parse_mapping(args.map) or None, weights=parse_weights(args.weights),
-             t_range=parse_range(args.t_range), fixed=_parse_set(args.set), loss=args.loss,
-             f_scale=args.f_scale, rtol=args.rtol, max_evaluations=args.max_evaluations,
-             scheduler=args.scheduler, workers=args.workers, model_name=args.model,
-             abs_tol=args.abs_tol)
-    files = fr.write(args.out)
+    from ..io.output import OutputFolder
+    with OutputFolder(args.out, "fit") as tx:
+        fr = _fit(args)
+        files = fr.write(tx.path)
+        tx.info["converged"] = bool(fr.success)
     print(fr.report())
     print()
     cmp = fr.compare()
@@ -85,6 +81,19 @@ def cmd_fit(args):
                               ", ".join(r.name for r in cmp.failed)), file=sys.stderr)
         return 1
     return 0
+
+
+def _fit(args):
+    """The fit the command line asks for."""
+    from ..analysis.fit import fit
+    signals = [s.strip() for s in args.signals.split(",") if s.strip()] if args.signals else None
+    fr = fit(args.model_file, args.data, free=args.free, signals=signals,
+             mapping=parse_mapping(args.map) or None, weights=parse_weights(args.weights),
+             t_range=parse_range(args.t_range), fixed=_parse_set(args.set), loss=args.loss,
+             f_scale=args.f_scale, rtol=args.rtol, max_evaluations=args.max_evaluations,
+             scheduler=args.scheduler, workers=args.workers, model_name=args.model,
+             abs_tol=args.abs_tol)
+    return fr
 
 
 def add_parsers(sub):

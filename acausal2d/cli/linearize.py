@@ -68,17 +68,20 @@ def cmd_linearize(args):
     from ..compiled import compile_model
     from ..io.loader import load_model
     from ..library.inputs import bind_inputs
-    model = load_model(args.model_file, args.model)
-    model, _ = bind_inputs(model)       # top-level RealInputs become parameters
-    cm = compile_model(model)
-    outputs = _names(args.outputs) if args.outputs is not None else None
-    _check_names(outputs or [], cm, "--outputs")
-    try:
-        lin = cm.linearize(inputs=_names(args.inputs), outputs=outputs, **point_options(args))
-    except NoEquilibrium as exc:
-        print("error: %s" % exc, file=sys.stderr)
-        return 3
-    files = write_linearization(lin, args.out)
+    from ..io.output import OutputFolder
+    with OutputFolder(args.out, "linearize") as tx:
+        model = load_model(args.model_file, args.model)
+        model, _ = bind_inputs(model)       # top-level RealInputs become parameters
+        cm = compile_model(model)
+        outputs = _names(args.outputs) if args.outputs is not None else None
+        _check_names(outputs or [], cm, "--outputs")
+        try:
+            lin = cm.linearize(inputs=_names(args.inputs), outputs=outputs,
+                               **point_options(args))
+        except NoEquilibrium as exc:
+            print("error: %s" % exc, file=sys.stderr)
+            return 3
+        files = write_linearization(lin, tx.path)
     where = "the static equilibrium" if lin.point.kind == "equilibrium" else \
         "t = %g s" % lin.point.t
     print("%s linearised at %s: %d states, %d inputs, %d outputs -> %s" % (

@@ -11,14 +11,13 @@ from .args import _positive_int
 from .linearize import add_point_arguments, point_options
 
 
-def _campbell(args, options, out):
+def _campbell(args, vary, options, out):
     """``--vary``: the frequencies over the swept parameter(s) (serial sweep)."""
     from ..analysis.campbell import campbell
-    from ..analysis.sweep import parse_vary
     if options["at"] is not None:
         raise Acausal2dError("--vary linearises each point at the end of its run "
                              "(--stop-time) or at --equilibrium (of the start time), not at --at")
-    table = campbell(args.model_file, parse_vary(args.vary), count=args.count,
+    table = campbell(args.model_file, vary, count=args.count,
                      equilibrium=options["equilibrium"], stop_time=args.stop_time,
                      params=options["params"], scheduler="serial", model_name=args.model)
     files = [table.to_csv(os.path.join(out, "campbell.csv"))]
@@ -35,23 +34,28 @@ def cmd_modes(args):
     from ..compiled import compile_model
     from ..io.files import write_text
     from ..io.loader import load_model
+    from ..io.output import OutputFolder
     from ..visual.mode_page import write_mode_page
     from ..library.inputs import bind_inputs
-    model = load_model(args.model_file, args.model)
-    model, _ = bind_inputs(model)       # top-level RealInputs held at 0
-    cm = compile_model(model)
-    options = point_options(args)
-    try:
-        result = cm.modes(**options)
-    except NoEquilibrium as exc:
-        print("error: %s" % exc, file=sys.stderr)
-        return 3
+    from ..analysis.sweep import grid_size, parse_vary
+    vary = parse_vary(args.vary) if args.vary else None
+    if vary:
+        grid_size(vary)                 # a too large grid is refused before the run
+    with OutputFolder(args.out, "modes") as tx:
+        model = load_model(args.model_file, args.model)
+        model, _ = bind_inputs(model)       # top-level RealInputs held at 0
+        cm = compile_model(model)
+        options = point_options(args)
+        try:
+            result = cm.modes(**options)
+        except NoEquilibrium as exc:
+            print("error: %s" % exc, file=sys.stderr)
+            return 3
+        files = [write_text(tx.file("modes.json"), json.dumps(result.to_dict(), indent=1)),
+                 write_mode_page(result, tx.file("modes.html"))]
+        if vary:
+            files += _campbell(args, vary, options, tx.path)
     out = args.out
-    os.makedirs(out, exist_ok=True)
-    files = [write_text(os.path.join(out, "modes.json"), json.dumps(result.to_dict(), indent=1)),
-             write_mode_page(result, os.path.join(out, "modes.html"))]
-    if args.vary:
-        files += _campbell(args, options, out)
     lin = result.linearization
     where = "the static equilibrium" if lin.point.kind == "equilibrium" else \
         "t = %g s" % lin.point.t

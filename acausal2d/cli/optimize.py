@@ -14,15 +14,18 @@ from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_opt
 def cmd_optimize(args):
     """``acausal2d optimize``: optimise, print the report, write the files."""
     from ..analysis.optimize import optimize
-    opt = optimize(args.model_file, vary=args.vary, objective=args.objective,
-                   constraints=args.constraint or (), fixed=_parse_set(args.set),
-                   stop_time=args.stop_time, intervals=args.intervals, rtol=args.rtol,
-                   max_iterations=args.max_iterations, scheduler=args.scheduler,
-                   workers=args.workers, model_name=args.model)
-    files = opt.write(args.out)
-    print(opt.report())
-    if args.grid:
-        files.append(_grid_check(opt, args))
+    from ..io.output import OutputFolder
+    with OutputFolder(args.out, "optimize") as tx:
+        opt = optimize(args.model_file, vary=args.vary, objective=args.objective,
+                       constraints=args.constraint or (), fixed=_parse_set(args.set),
+                       stop_time=args.stop_time, intervals=args.intervals, rtol=args.rtol,
+                       max_iterations=args.max_iterations, scheduler=args.scheduler,
+                       workers=args.workers, model_name=args.model)
+        files = opt.write(tx.path)
+        print(opt.report())
+        if args.grid:
+            files.append(_grid_check(opt, args, tx.path))
+        tx.info["optimum"] = bool(opt.success)
     print("%d files written to %s" % (len(files), args.out))
     if not opt.success:
         print("error: no optimum found: %s (optimiser: %s)" % (opt.message, opt.optimizer_message),
@@ -36,12 +39,12 @@ GRID_NOISE = 1e-9
 re-runs of the grid differ from the optimiser's run by round-off)."""
 
 
-def _grid_check(opt, args):
+def _grid_check(opt, args, out):
     """Objective on a grid around the optimum (--grid POINTS, --grid-span);
     prints the smallest value found and writes grid.csv."""
     import numpy as np
     xs, values = opt.grid(rel=args.grid_span, points=args.grid)
-    path = os.path.join(args.out, "grid.csv")
+    path = os.path.join(out, "grid.csv")
     np.savetxt(path, np.column_stack([xs, values]), delimiter=",", comments="",
                header=",".join(opt.names + ["objective"]), fmt="%.12g")
     if not np.any(np.isfinite(values)):

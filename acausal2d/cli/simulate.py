@@ -78,21 +78,22 @@ def _print_events(events, first=5):
 
 
 def cmd_simulate(args):
-    """``acausal2d simulate``: run a model file; write the CSV, plots and animation."""
-    from ..io.files import clear_previous_run
+    """``acausal2d simulate``: run a model file; write the CSV, plots and
+    animation into ``--out`` as one transaction (:class:`~acausal2d.io.
+    output.OutputFolder`: checked and locked before the run, moved in with
+    its manifest at the end, nothing left on a failure)."""
+    from ..io.output import OutputFolder
     from ..visual.figure_process import FigureProcess
-    out = args.out
-    os.makedirs(out, exist_ok=True)        # before a long run: a bad --out fails now
-    clear_previous_run(out)                # first: a failure at any stage leaves nothing old
-    drawer = FigureProcess.start()         # imports matplotlib on the other core meanwhile
-    try:
-        res, settings = _run(args)
-        pngs, extra = _write_outputs(res, out, settings, args, drawer)
-    finally:
-        if drawer is not None:
-            drawer.close()
+    with OutputFolder(args.out, "simulate") as tx:
+        drawer = FigureProcess.start()     # imports matplotlib on the other core meanwhile
+        try:
+            res, settings = _run(args)
+            pngs, extra = _write_outputs(res, tx, settings, args, drawer)
+        finally:
+            if drawer is not None:
+                drawer.close()
     model = res.model.model
-    _print_summary(model, res, out, pngs, extra)
+    _print_summary(model, res, args.out, pngs, [tx.final(f) for f in extra])
     if res.stopped:
         print("stopped early: %s" % res.stopped, file=sys.stderr)
         return 3
@@ -131,13 +132,13 @@ def _simulate_settings(args, cm):
             "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
 
 
-def _write_outputs(res, out, settings, args, drawer=None):
+def _write_outputs(res, tx, settings, args, drawer=None):
     """CSV, figures (drawn by ``drawer``, a :class:`~acausal2d.visual.
-    figure_process.FigureProcess`, if given), animation, the files the model
-    writes itself and the run's manifest; returns the figures and the
-    model's files."""
-    from ..io.files import write_manifest
+    figure_process.FigureProcess`, if given), animation and the files the
+    model writes itself, into the transaction ``tx``'s folder (the manifest
+    lists every file there); returns the figures and the model's files."""
     from ..visual.plotting import draw_jobs, figure_jobs
+    out = tx.path
     if settings["transfer"]:
         from ..visual.plotting import write_transfer_figures
         jobs = None
@@ -147,29 +148,33 @@ def _write_outputs(res, out, settings, args, drawer=None):
         jobs = figure_jobs(res, out, settings["specs"], args.format)
         if drawer is not None:
             drawer.submit(jobs)             # drawn by the child while the files below are written
-    csv = res.to_csv(os.path.join(out, "result.csv"))
-    page = res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
-                       **settings["animation"])
+    res.to_csv(tx.file("result.csv"))
+    res.animate(tx.file("animation.html"), traces=settings["traces"], **settings["animation"])
     if jobs is not None:
         pngs = drawer.collect() if drawer is not None else draw_jobs(jobs)
     if not settings["specs"]:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
-    files = [csv] + pngs + [page]
-    extra = _model_files(res, out)
-    write_manifest(out, files + extra,
-                   model=type(res.model.model).__name__ if res.model else None,
+    tx.info.update(model=type(res.model.model).__name__ if res.model else None,
                    stopped=res.stopped)
-    return pngs, extra
+    return pngs, _model_files(res, out)
 
 
 def _model_files(res, out):
     """Files the model writes itself after a run: its optional method
     ``write_outputs(result, folder)`` returns their paths (e.g. the contour
     plots and cam contour files of the band synthesis models)."""
-    write = getattr(res.model.model if res.model else None, "write_outputs", None)
+    model = res.model.model if res.model else None
+    write = getattr(model, "write_outputs", None)
     if not callable(write):
         return []
-    return [os.fspath(p) for p in write(res, out) or ()]
+    try:
+        return [os.fspath(p) for p in write(res, out) or ()]
+    except (Acausal2dError, KeyboardInterrupt, MemoryError):
+        raise
+    except Exception as exc:            # noqa: BLE001 - the model author's code
+        raise Acausal2dError("%s.write_outputs failed: %s: %s (nothing of this run is kept; "
+                             "fix write_outputs in the model file)"
+                             % (type(model).__name__, type(exc).__name__, exc)) from None
 
 
 def add_parsers(sub):

@@ -1,16 +1,15 @@
 """``acausal2d sweep`` (parameter studies on Dask) and ``acausal2d study``
 (the studies a model declares)."""
-import os
 
 from ..errors import Acausal2dError
 from .args import _check_names, _nonnegative, _parse_set, _positive_int, add_dask_options
 
 
-def _sweep_settings(args, cm):
-    """Points, fixed values and outputs of ``acausal2d sweep``, checked
-    against the compiled model before anything runs."""
-    from ..analysis.sweep import expand_params, grid_points, parse_vary
-    vary = parse_vary(args.vary)
+def _sweep_settings(args, cm, vary):
+    """Points, fixed values and outputs of ``acausal2d sweep`` (``vary``:
+    the parsed --vary), checked against the compiled model before anything
+    runs."""
+    from ..analysis.sweep import expand_params, grid_points
     fixed = _parse_set(args.set)
     known = set(cm.parameter_names)
     for name in list(expand_params({c: 0 for c in vary})) + list(fixed):
@@ -44,21 +43,26 @@ def _check_run_settings(args, cm):
 
 def cmd_sweep(args):
     """``acausal2d sweep``: a parameter study on Dask; write sweep.csv and sweep.png."""
-    from ..analysis.sweep import ModelSpec, compiled_model, sweep
-    cm = compiled_model(ModelSpec(args.model_file, args.model))   # errors here exit with 2
-    points, fixed, outputs = _sweep_settings(args, cm)
-    name = type(cm.model).__name__
-    os.makedirs(args.out, exist_ok=True)
-    result = sweep(args.model_file, points=points, params=fixed, outputs=outputs, at=args.at,
-                   stop_time=args.stop_time, rtol=args.rtol, intervals=args.intervals,
-                   scheduler=args.scheduler, workers=args.workers, model_name=args.model)
-    csv_path = result.to_csv(os.path.join(args.out, "sweep.csv"))
-    files = [csv_path]
-    if outputs and len(result.failed) < len(result.rows):
-        files.append(result.plot(os.path.join(args.out, "sweep.png"), x=args.x))
+    from ..analysis.sweep import ModelSpec, compiled_model, grid_size, parse_vary, sweep
+    from ..io.output import OutputFolder
+    vary = parse_vary(args.vary)
+    grid_size(vary)                         # a too large grid is refused before anything
+    with OutputFolder(args.out, "sweep") as tx:
+        cm = compiled_model(ModelSpec(args.model_file, args.model))  # errors here exit with 2
+        points, fixed, outputs = _sweep_settings(args, cm, vary)
+        result = sweep(args.model_file, points=points, params=fixed, outputs=outputs,
+                       at=args.at, stop_time=args.stop_time, rtol=args.rtol,
+                       intervals=args.intervals, scheduler=args.scheduler,
+                       workers=args.workers, model_name=args.model)
+        files = [result.to_csv(tx.file("sweep.csv"))]
+        if outputs and len(result.failed) < len(result.rows):
+            files.append(result.plot(tx.file("sweep.png"), x=args.x))
+        tx.info.update(model=type(cm.model).__name__, points=len(result.rows),
+                       failed=len(result.failed))
     for row in result.failed:
         print("  point %d failed: %s" % (row["point"], row["error"]))
-    print("%s: %s -> %s" % (name, result.summary(), ", ".join(files)))
+    print("%s: %s -> %s" % (type(cm.model).__name__, result.summary(),
+                            ", ".join(tx.final(f) for f in files)))
     return 0
 
 
@@ -74,8 +78,12 @@ def cmd_study(args):
         if not studies:
             print("%s declares no studies" % type(model).__name__)
         return 0
-    files = run_studies(args.model_file, model, args.names, args.out,
-                        {"scheduler": args.scheduler, "workers": args.workers})
+    from ..io.output import OutputFolder
+    with OutputFolder(args.out, "study", merge=True) as tx:    # beside simulate's files
+        files = run_studies(args.model_file, model, args.names, tx.path,
+                            {"scheduler": args.scheduler, "workers": args.workers})
+        tx.info["model"] = type(model).__name__
+    files = [tx.final(f) for f in files]
     print("%s: %d file%s -> %s" % (type(model).__name__, len(files),
                                    "" if len(files) == 1 else "s", ", ".join(files)))
     return 0

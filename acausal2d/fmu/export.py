@@ -20,6 +20,7 @@ import casadi as ca
 import numpy as np
 
 from ..errors import ModelDefinitionError, translated
+from ..io.files import atomic_path
 from ..runtime import cbuild
 from .description import model_description
 from .generate import casadi_sources, model_data_header
@@ -183,19 +184,31 @@ def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
     if kind not in KINDS:
         raise ModelDefinitionError("kind must be 'me' (Model Exchange) or 'cs' (Co-Simulation), "
                                    "got %r" % (kind,))
+    if out is not None:
+        _check_target(out)                 # before the model is compiled and built
     data = export_data(model, inputs, fixed_states)
     out = out or data.identifier + ".fmu"
-    folder = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(folder):
-        raise ModelDefinitionError("cannot write %s: the folder %s does not exist" % (out, folder))
+    _check_target(out)
     with tempfile.TemporaryDirectory() as tmp:
         src = write_sources(data, tmp, kind)
         build_binary(data, tmp, src)
-        part = out + ".part"
-        with zipfile.ZipFile(part, "w", zipfile.ZIP_DEFLATED) as z:
-            for root, _, files in os.walk(tmp):
-                for f in files:
-                    full = os.path.join(root, f)
-                    z.write(full, os.path.relpath(full, tmp))
-        os.replace(part, out)
+        with atomic_path(out) as part:     # removed on any failure, Ctrl-C included
+            with zipfile.ZipFile(part, "w", zipfile.ZIP_DEFLATED) as z:
+                for root, _, files in os.walk(tmp):
+                    for f in files:
+                        full = os.path.join(root, f)
+                        z.write(full, os.path.relpath(full, tmp))
     return out
+
+
+def _check_target(out):
+    """The .fmu path ``out`` can be written: not a folder, in an existing,
+    writable folder (checked before the build)."""
+    from ..io.output import check_writable
+    if os.path.isdir(out):
+        raise ModelDefinitionError("--out %s is a folder; give the path of the .fmu file "
+                                   "(e.g. %s)" % (out, os.path.join(out, "Model.fmu")))
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        raise ModelDefinitionError("cannot write %s: the folder %s does not exist" % (out, folder))
+    check_writable(folder, "the folder of --out")

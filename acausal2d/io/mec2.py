@@ -396,13 +396,8 @@ def load_mec2(path):
     errors name line and column, wrong fields their JSON path."""
     if not os.path.isfile(path):
         raise ModelDefinitionError("model file %s does not exist" % path)
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise ModelDefinitionError("%s is no valid JSON: %s (line %d, column %d)"
-                                   % (path, exc.msg, exc.lineno, exc.colno)) from None
+    from .files import read_json
+    data = read_json(path, ModelDefinitionError, "mec2 model file")
     try:
         stem = os.path.splitext(os.path.basename(path))[0]
         return model_from_mec2(data, name=data.get("id") if isinstance(data, dict) and

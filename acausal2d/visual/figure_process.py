@@ -21,6 +21,7 @@ import os
 import pickle
 import signal
 import struct
+import sys
 import threading
 
 from ..errors import Acausal2dError
@@ -55,13 +56,30 @@ def _read(fd, n):
     return b"".join(chunks)
 
 
+def _interrupt_once(signum, frame):
+    """The child's SIGINT/SIGTERM handler: one KeyboardInterrupt, later
+    signals ignored (a second Ctrl-C must not cut the way out short)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    raise KeyboardInterrupt
+
+
+def _silent(unraisable):
+    """The child's ``sys.unraisablehook``: an interrupt that lands in a
+    finaliser or weakref callback (importlib's module-lock callback while
+    matplotlib is imported) is not printed: the child ends silently."""
+
+
 def _child(jobs_fd, answers_fd, mask):
     """The child: import matplotlib, then draw each batch of jobs it is
     sent and answer ("ok", paths) or ("error", text); ends at end of file
-    or at SIGINT (a KeyboardInterrupt here, also where the parent ignores
-    SIGINT; ``mask``: the signal mask to restore)."""
+    or at SIGINT/SIGTERM (one KeyboardInterrupt here, also where the parent
+    ignores SIGINT; ``mask``: the signal mask to restore), silently (issue
+    35, Seen 6: nothing on stderr)."""
+    sys.unraisablehook = _silent
     try:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGINT, _interrupt_once)
+        signal.signal(signal.SIGTERM, _interrupt_once)
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)
         draw = _drawing()
         while True:
@@ -110,7 +128,7 @@ class FigureProcess:
         # SIGINT blocked across the fork: one sent to the child at once (close()
         # right after start()) must not raise before the child is in _child,
         # or the child would go on running the caller's code
-        mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
         try:
             pid = os.fork()
         except OSError:
