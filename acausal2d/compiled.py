@@ -37,6 +37,7 @@ class CompiledModel:
         self.model = model
         with translated("compiling %s" % type(model).__name__, StructuralError):
             self.system = compile_system(model)
+        self.system.model_name = type(model).__name__     # named in the native runtime's notices
         self._whole = self._whole_parameters()
         self.derived = derived_signals(model, self.system.names)
         self.compile_time = _time.perf_counter() - t0
@@ -248,6 +249,7 @@ class CompiledModel:
         res.singularities = log.singularities
         res.stopped = log.stopped
         res.states = log.states
+        res.native_notes = getattr(log, "native_notes", [])
         return res
 
 
