@@ -9,7 +9,11 @@ generator, native drivers):
   folder (:func:`cache_dir`), named by the SHA-256 of the sources, the flags
   and the compiler, so that a model structure is compiled once per machine;
   the library is written under a temporary name and renamed into place
-  (atomic: concurrent processes never load a half-written file);
+  (atomic: concurrent processes never load a half-written file), with its
+  own SHA-256 beside it, checked before it is used again
+  (:mod:`~acausal2d.runtime.cstore`); :func:`load` loads it (a library the
+  loader refuses is built again); how the C is compiled (translation units
+  in parallel) is :mod:`~acausal2d.runtime.cunits`;
 - :func:`sundials_dirs` gives the SUNDIALS include and library folders of
   the scikit-sundae install, if its headers are there (the wheel ships the
   libraries; headers may come from ``$SUNDIALS_INCLUDE_DIR``).
@@ -85,6 +89,23 @@ def build(sources, flags=(), libraries=(), library_dirs=(), include_dirs=(), nam
         if not store.verified(target):          # another process may have built it meanwhile
             units.compile_library(cc, sources, args, folder, target)
     return target
+
+
+def copy_verified(path, dest):
+    """Copy the library ``path`` (from :func:`build`) to ``dest`` and check
+    the copy against the digest recorded at its build (``export-fmu`` packs
+    only a verified binary); :class:`BuildFailed` where it does not match
+    (the copy is removed and the cached library with it: the next build
+    compiles it again)."""
+    shutil.copy(path, dest)
+    want = store.recorded(path)
+    if want is None or store.file_digest(dest) != want:
+        os.remove(dest)
+        store.discard(path)
+        raise BuildFailed("the compiled library %s does not match the SHA-256 recorded when it "
+                          "was built (the cache was changed meanwhile); it was removed, run the "
+                          "command again to rebuild it" % path)
+    return dest
 
 
 def fingerprint(functions, *texts):

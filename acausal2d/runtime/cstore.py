@@ -89,7 +89,7 @@ def file_digest(path):
     return h.hexdigest()
 
 
-def _recorded(path):
+def recorded(path):
     """The digest recorded for ``path``, or None (missing or unreadable)."""
     try:
         with open(path + DIGEST, encoding="ascii") as fh:
@@ -105,7 +105,7 @@ def verified(path):
     be read) is removed, with one line on stderr; False then."""
     if not os.path.exists(path):
         return False
-    want = _recorded(path)
+    want = recorded(path)
     try:
         got = file_digest(path)
     except FileNotFoundError:
@@ -208,3 +208,67 @@ def sweep(folder, older_than=600.0):
             with contextlib.suppress(OSError):
                 if now - os.path.getmtime(path) > older_than:
                     os.remove(path)
+
+
+SUFFIXES = (".so", DIGEST, LOCK, ".idx", ".failed")
+
+
+def entries():
+    """([(library file name, bytes)] of the cache folder, total bytes of the
+    cache's files: libraries, digests, indexes, locks, failure markers and
+    leftovers of builds)."""
+    where = folder()
+    try:
+        names = sorted(os.listdir(where))
+    except OSError:
+        return [], 0
+    libs, total = [], 0
+    for name in names:
+        path = os.path.join(where, name)
+        if not _ours(name):
+            continue
+        size = _size(path)
+        total += size
+        if name.endswith(".so"):
+            libs.append((name, size))
+    return libs, total
+
+
+def _ours(name):
+    return name.endswith(SUFFIXES) or name.startswith((BUILD_PREFIX, TMP_PREFIX))
+
+
+def _size(path):
+    if os.path.isdir(path):
+        return sum(_size(os.path.join(path, n)) for n in os.listdir(path))
+    try:
+        return os.path.getsize(path)
+    except OSError:
+        return 0
+
+
+def clear():
+    """Remove the cache's files (not those of a build running now: their
+    library's lock is held); returns (files removed, files kept)."""
+    import shutil
+    where = folder()
+    try:
+        names = os.listdir(where)
+    except OSError:
+        return 0, 0
+    removed = kept = 0
+    for name in names:
+        if not _ours(name):
+            continue
+        path = os.path.join(where, name)
+        lib = name[len(BUILD_PREFIX):].rsplit("-", 1)[0] if name.startswith(BUILD_PREFIX) else \
+            name[:-len(LOCK)] if name.endswith(LOCK) else None
+        if lib is not None and busy(os.path.join(where, lib)):
+            kept += 1
+            continue
+        try:
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+            removed += 1
+        except OSError:
+            kept += 1
+    return removed, kept

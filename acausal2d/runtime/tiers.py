@@ -37,10 +37,22 @@ def set_label(label):
     _label[0] = label or "this model"
 
 
+_chosen = [None]         # the mode chosen by a command's --native, over the environment
+
+
+def choose(value):
+    """Use mode ``value`` (one of :data:`MODES`, or None: the environment's)
+    from now on; returns the previous choice (to restore it)."""
+    if value is not None and value not in MODES:
+        raise ValueError("native mode must be one of %s, got %r" % (", ".join(MODES), value))
+    previous, _chosen[0] = _chosen[0], value
+    return previous
+
+
 def mode():
-    """``auto``, ``now`` or ``off`` from ``$ACAUSAL2D_NATIVE`` (see the
-    module docstring; unset: auto)."""
-    value = os.environ.get(ENV, "auto").strip().lower()
+    """``auto``, ``now`` or ``off``: the mode chosen (:func:`choose`), else
+    ``$ACAUSAL2D_NATIVE`` (see the module docstring; unset: auto)."""
+    value = (_chosen[0] or os.environ.get(ENV, "auto")).strip().lower()
     if value in ("0", "off", "no", "false"):
         return "off"
     if value in ("now", "1", "on", "yes", "true"):
@@ -75,6 +87,9 @@ def obtain(key, recipe, loader):
             queue(key, recipe, _label[0])
         return None
     t0 = time.perf_counter()
+    if path is None and cbuild.find_compiler() is not None:
+        cstore.notice("compiling native code for %s before the run (native mode 'now')"
+                      % _label[0])
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)
     except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError):
