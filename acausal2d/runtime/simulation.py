@@ -209,7 +209,7 @@ class Simulation:
         if prob.native is not None:
             self.solvers[key] = (form, prob, solver, Projector(self.system, form, self.p))
             self.tiering.notes.append("native loop from t=%.6g (its library appeared during "
-                                      "the run)" % self.t)
+                                      "the run)" % self.out[-1][0])
 
     def _progress_hook(self):
         if self.progress is None:

@@ -80,9 +80,11 @@ def obtain(key, recipe, loader):
     if path is None and m == "auto":
         failed = _failed_before(key, recipe.name)
         if failed is not None:
-            cstore.notice("the background compile of native code for %s failed before (%s; "
-                          "'acausal2d cache clear' retries it); this run uses the Python path"
-                          % (_label[0], failure_path(key, recipe.name)))
+            cstore.notice("the background compile of native code for %s failed (%s; the "
+                          "messages are in %s*.failed, 'acausal2d cache clear' retries it); "
+                          "this run uses the Python path"
+                          % (_label[0], failed.splitlines()[0][:200],
+                             os.path.join(cstore.folder(), "")))
         else:
             queue(key, recipe, _label[0])
         return None
