@@ -74,7 +74,7 @@ def test_a_run_before_the_library_exists_takes_the_python_path(auto, capfd, monk
 
 
 def test_a_library_that_appears_during_a_run_is_taken_up(auto, monkeypatch):
-    def wait_for_it(self, t_done, t_left, wall, ready):      # as if the run were long
+    def wait_for_it(self, t, t_left, now, ready):      # as if the run were long
         self.decided = True
         assert background.wait(ready, WAIT)
         self.notes.append("waited")

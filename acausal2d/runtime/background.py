@@ -16,9 +16,11 @@ import time
 
 from . import cbuild, cstore
 
-SECONDS_PER_INSTRUCTION = 2e-5
-"""Expected compile time per CasADi instruction of a library (generated C
-and gcc, measured on a 2-core machine; see benchmarks/bench_cold.py)."""
+SECONDS_PER_INSTRUCTION = 2e-4
+"""Expected wall time of the compile per CasADi instruction of a library
+(measured, chain of 81 links: its formulation's 646 kB of C, about 25k
+instructions, 10.6 s of gcc's CPU at -O1 in two units on a loaded 2-core
+machine)."""
 WORKER_START = 1.0
 """Seconds a worker needs before it compiles (Python, CasADi, the code
 generator), high."""
@@ -119,6 +121,7 @@ class Tiering:
     def __init__(self):
         self.notes, self.decided, self.waited = [], False, 0.0
         self.waiting = False       # a library of this run may still appear
+        self.mark = None           # (simulated time, wall clock) at the end of the last piece
 
     def active(self):
         """True while a background compile of this process runs."""
@@ -129,18 +132,23 @@ class Tiering:
         size = max(1, -(-n_total // CHUNKS))
         return outputs[:size]
 
-    def decide(self, t_done, t_left, wall, ready):
-        """After ``t_done`` s of simulated time took ``wall`` s on the
-        Python path, with ``t_left`` s to go: wait (until ``ready()``) for
-        the compile if the Python path's estimated rest is longer than the
-        compile's plus the native rest."""
-        if self.decided or not self.active() or t_done <= 0 or wall <= 0:
+    def decide(self, t, t_left, now, ready):
+        """At the end of a piece on the Python path (simulated time ``t``,
+        ``t_left`` s to go, wall clock ``now``): from the second piece on
+        (the first carries the run's start-up), wait (until ``ready()``)
+        for the compile if the Python path's estimated rest is longer than
+        the compile's plus the native rest."""
+        if self.decided or not self.active():
+            return
+        mark, self.mark = self.mark, (t, now)
+        if mark is None or t <= mark[0] or now <= mark[1]:
             return
         self.decided = True
+        t_done, wall = t - mark[0], now - mark[1]
         rest, compile_left = t_left / t_done * wall, expected_left()
         if rest > compile_left + rest / NATIVE_SPEEDUP:
             t0 = time.perf_counter()
-            wait(ready, 4.0 * compile_left + 5.0)
+            wait(ready, min(rest / 2.0, 2.0 * compile_left + 1.0))
             self.waited = time.perf_counter() - t0
             self.notes.append("compile first: the Python path needs about %.3g s more, the "
                               "compile about %.3g s; waited %.3g s for it"

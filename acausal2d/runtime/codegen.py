@@ -41,10 +41,9 @@ def _residual_and_jacobian(residual_fn, jacobian_fn):
     return ca.Function("EJ", args, ca.cse(outs))
 
 
-CODEGEN = {"with_header": False, "avoid_stack": True}
-"""CasADi's code generator options: ``avoid_stack`` writes the bodies on
-the work vector, which :mod:`~acausal2d.runtime.csplit` cuts into pieces
-compiled in parallel (benchmarks/bench_cold.py)."""
+CODEGEN = {"with_header": False}
+"""CasADi's code generator options (``avoid_stack`` compiled faster but ran
+slower: :mod:`~acausal2d.runtime.csplit`)."""
 
 
 def generate(recipe):

@@ -107,7 +107,7 @@ class Simulation:
     # ------------------------------------------------------------ run
     def run(self):
         """Integrate to the stop time (or an early stop); returns a :class:`RunLog`."""
-        wall = self.wall0 = _time.perf_counter()
+        wall = _time.perf_counter()
         self.spent0 = tiers.spent()
         if self.system.structure.n_var == 0:     # everything is determined: evaluate
             self.selection = None
@@ -236,8 +236,7 @@ class Simulation:
         rows = projector.project(T, Y, self.d)
         self.out.add_block(T, rows)
         if prob.native is None and self.tiering.waiting and len(T):
-            self.tiering.decide(float(T[-1]) - float(self.times[0]), self.t_end - float(T[-1]),
-                                _time.perf_counter() - self.wall0,
+            self.tiering.decide(float(T[-1]), self.t_end - float(T[-1]), _time.perf_counter(),
                                 lambda: native_library(form) is not None)
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
