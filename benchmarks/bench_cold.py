@@ -66,6 +66,7 @@ def child(kind, n, stop):
         proc.wait()
         worker = max(worker or 0.0, time.perf_counter() - start)
     print(json.dumps({"run": t1 - t0, "worker": worker, "steps": res.stats["steps"],
+                      "notes": res.native_notes, "wall": res.stats["wall_time"],
                       "native": res.stats["native_compile_time"]}))
 
 

@@ -26,6 +26,11 @@ WORKER_START = 1.0
 generator), high."""
 NATIVE_SPEEDUP = 5.0
 """The native loop against the Python path, low (measured 5-12x)."""
+PAYS = 2.0
+"""Waiting for the compile is chosen where the Python path's estimated rest
+is this many times the compile's plus the native rest: the estimate is from
+one piece (measured, belt drive on a loaded machine: 23 s estimated, 9 s
+taken), and a wait that ends before the library is there is lost."""
 NICE = 10
 CHUNKS = 8
 """While a library is compiled in the background, a run advances in this
@@ -136,8 +141,8 @@ class Tiering:
         """At the end of a piece on the Python path (simulated time ``t``,
         ``t_left`` s to go, wall clock ``now``): from the second piece on
         (the first carries the run's start-up), wait (until ``ready()``)
-        for the compile if the Python path's estimated rest is longer than
-        the compile's plus the native rest."""
+        for the compile if the Python path's estimated rest is :data:`PAYS`
+        times the compile's plus the native rest."""
         if self.decided or not self.active():
             return
         mark, self.mark = self.mark, (t, now)
@@ -146,7 +151,7 @@ class Tiering:
         self.decided = True
         t_done, wall = t - mark[0], now - mark[1]
         rest, compile_left = t_left / t_done * wall, expected_left()
-        if rest > compile_left + rest / NATIVE_SPEEDUP:
+        if rest > PAYS * (compile_left + rest / NATIVE_SPEEDUP):
             t0 = time.perf_counter()
             wait(ready, min(rest / 2.0, 2.0 * compile_left + 1.0))
             self.waited = time.perf_counter() - t0
