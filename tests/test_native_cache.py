@@ -207,3 +207,22 @@ def test_units_compiled_apart_give_the_function_of_the_whole(tmp_path, monkeypat
         exact = np.array(fn(np.linspace(0.1, 0.6, 6))).ravel()
         assert np.max(np.abs(a - exact)) <= 1e-13 * (1 + np.max(np.abs(exact)))
         assert np.max(np.abs(b - exact)) <= 1e-13 * (1 + np.max(np.abs(exact)))
+
+
+def test_cache_command_lists_sizes_and_clears(tmp_path, monkeypatch, capsys):
+    from acausal2d.cli import main
+    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path))
+    path = cbuild.build({"poly.c": "double poly(double x) { return 3.0 * x; }\n"}, name="poly")
+    (tmp_path / "pulley-0123.npz").write_bytes(b"another cache's entry")
+    assert main(["cache", "path"]) == 0
+    assert capsys.readouterr().out.strip() == str(tmp_path)
+    assert main(["cache", "list"]) == 0
+    out = capsys.readouterr().out
+    assert os.path.basename(path) in out and "1 library" in out
+    assert main(["cache", "size"]) == 0
+    size = os.path.getsize(path) + os.path.getsize(path + cstore.DIGEST)
+    kb = float(capsys.readouterr().out.split()[0])
+    assert size / 1e3 <= kb <= size / 1e3 + 1.0          # digest, lock and library, in kB
+    assert main(["cache", "clear"]) == 0
+    assert "removed" in capsys.readouterr().out
+    assert sorted(os.listdir(tmp_path)) == ["pulley-0123.npz"]    # only the native cache's files
