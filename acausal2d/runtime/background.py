@@ -21,9 +21,10 @@ SECONDS_PER_INSTRUCTION = 2e-4
 (measured, chain of 81 links: its formulation's 646 kB of C, about 25k
 instructions, 10.6 s of gcc's CPU at -O1 in two units on a loaded 2-core
 machine)."""
-WORKER_START = 1.0
+WORKER_START = 2.0
 """Seconds a worker needs before it compiles (Python, CasADi, the code
-generator), high."""
+generator; measured 1.5-8 s for the piston engine's whole worker on a
+loaded machine: with 1.0 the piston's first run waited 1.3 s in vain)."""
 NATIVE_SPEEDUP = 5.0
 """The native loop against the Python path, low (measured 5-12x)."""
 PAYS = 2.0
@@ -31,8 +32,8 @@ PAYS = 2.0
 is this many times the compile's plus the native rest: the estimate is from
 one piece (measured, belt drive on a loaded machine: 23 s estimated, 9 s
 taken), and a wait that ends before the library is there is lost."""
-NICE = 10
-CHUNKS = 8
+NICE = 19                # the lowest priority: the run itself is never slowed for the compile
+CHUNKS = 4
 """While a library is compiled in the background, a run advances in this
 many pieces of its output grid and looks for the library between them."""
 _queue = []             # (key, recipe, label) not yet handed to a worker
