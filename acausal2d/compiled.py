@@ -71,6 +71,7 @@ class CompiledModel:
         self.model = model
         with translated("compiling %s" % type(model).__name__, StructuralError):
             self.system = compile_system(model)
+        self.system.model_name = type(model).__name__     # named in the native runtime's notices
         self._whole = self._whole_parameters()
         self.derived = derived_signals(model, self.system.names)
         self.compile_time = _time.perf_counter() - t0
@@ -316,6 +317,7 @@ class CompiledModel:
         res.singularities = log.singularities
         res.stopped = log.stopped
         res.states = log.states
+        res.native_notes = getattr(log, "native_notes", [])
         return res
 
 

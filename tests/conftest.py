@@ -5,6 +5,10 @@ import sys
 
 import pytest
 
+# The suite compiles native code before a run (as before issue 30's tiers), so that a test
+# sees the same path on a cold and a warm cache; tests/test_native_tiers.py sets "auto".
+os.environ.setdefault("ACAUSAL2D_NATIVE", "now")
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")
 

@@ -66,3 +66,11 @@ def test_small_modes_print_their_tables(script, labels):
         line = next((s for s in text.splitlines() if label in s), None)
         assert line is not None, (label, text)
         _numbers(line)
+
+
+def test_bench_cold_small():
+    text = _run("bench_cold.py", "--small")
+    row = next(s for s in text.splitlines() if s.startswith("chain of 3 links"))
+    assert len(_numbers(row)) == 5          # Python, first (auto), ratio, background, later
+    line = next(s for s in text.splitlines() if "piston_engine.py, whole process" in s)
+    assert len(_numbers(line)) == 3

@@ -56,7 +56,7 @@ class _Progress:
 
 
 COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",
-                   "export_fmu", "explore")
+                   "export_fmu", "explore", "cache")
 """The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
 
 

@@ -53,13 +53,16 @@ def _print_summary(model, res, out, pngs, extra=()):
     if res.stopped:
         print("  " + res.stopped)
     st = res.stats
-    print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d steps, %d output points, "
+    print("%s: simulated %.4g s in %.3f s (compile %.3f s%s); %d steps, %d output points, "
           "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
           "%d plot%s, animation.html%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
-              st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
-              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
+              st["compile_time"], ", native code %.3f s" % st["native_compile_time"]
+              if st.get("native_compile_time") else "", st["steps"], len(res.time),
+              st["events"], st["reselections"], st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
               "".join(", " + os.path.basename(f) for f in extra)))
+    for note in getattr(res, "native_notes", None) or []:
+        print("  native: " + note)
     states = getattr(res, "states", None) or []
     print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
     for line in grounded_lines(grounded_ports(res.model.system.flat_equations),
@@ -104,15 +107,18 @@ def _run(args):
     """Load, compile and simulate the model file: (result, settings)."""
     from ..compiled import compile_model
     from ..io.loader import load_model
+    from ..runtime import tiers
     cm = compile_model(load_model(args.model_file, args.model))
     settings = _simulate_settings(args, cm)
     progress = _Progress()
+    previous = tiers.choose(args.native)
     try:
         res = cm.simulate(stop_time=args.stop_time, params=settings["params"], rtol=args.rtol,
                           intervals=args.intervals, progress=progress,
                           max_steps=args.max_steps, max_wall_time=args.max_wall_time)
     finally:
         progress.close()
+        tiers.choose(previous)
     return res, settings
 
 
@@ -212,5 +218,9 @@ def add_parsers(sub):
                    help="step budget of the run (default 1000000); exit 3 when used up")
     s.add_argument("--max-wall-time", type=_positive_float, metavar="SECONDS",
                    help="wall-clock budget of the run; exit 3 when used up")
+    s.add_argument("--native", choices=("auto", "now", "off"), help="native code: auto (default, "
+                   "$ACAUSAL2D_NATIVE): a structure not compiled yet runs on the Python path "
+                   "while it is compiled in the background; now: compile first; off: the "
+                   "Python path only")
     s.add_argument("--out", default="out", help="output directory (default: out)")
     s.set_defaults(func=cmd_simulate)

@@ -156,7 +156,8 @@ def _platform_folder():
 def build_binary(data, folder, src):
     """Compile the sources into binaries/<platform>/<identifier>.<so|dylib|dll>
     (with :mod:`acausal2d.runtime.cbuild`: the compiler found at export time,
-    builds cached by content)."""
+    builds cached by content; the packed copy checked against the digest
+    recorded at the build, so a damaged cache is never packed)."""
     plat, ext = _platform_folder()
     out = os.path.join(folder, "binaries", plat)
     os.makedirs(out, exist_ok=True)
@@ -166,9 +167,8 @@ def build_binary(data, folder, src):
             with open(os.path.join(src, f), encoding="utf-8") as fh:
                 sources[f] = fh.read()
     target = os.path.join(out, data.identifier + ext)
-    shutil.copy(cbuild.build(sources, flags=HIDDEN, libraries=("m",),
-                             name="fmu-" + data.identifier), target)
-    return target
+    return cbuild.copy_verified(cbuild.build(sources, flags=HIDDEN, libraries=("m",),
+                                             name="fmu-" + data.identifier), target)
 
 
 def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):

@@ -9,7 +9,11 @@ generator, native drivers):
   folder (:func:`cache_dir`), named by the SHA-256 of the sources, the flags
   and the compiler, so that a model structure is compiled once per machine;
   the library is written under a temporary name and renamed into place
-  (atomic: concurrent processes never load a half-written file);
+  (atomic: concurrent processes never load a half-written file), with its
+  own SHA-256 beside it, checked before it is used again
+  (:mod:`~acausal2d.runtime.cstore`); :func:`load` loads it (a library the
+  loader refuses is built again); how the C is compiled (translation units
+  in parallel) is :mod:`~acausal2d.runtime.cunits`;
 - :func:`sundials_dirs` gives the SUNDIALS include and library folders of
   the scikit-sundae install, if its headers are there (the wheel ships the
   libraries; headers may come from ``$SUNDIALS_INCLUDE_DIR``).
@@ -20,31 +24,15 @@ install) and :class:`BuildFailed` (carries the compiler's message).
 import glob
 import os
 import shutil
-import tempfile
 
-from ..errors import Acausal2dError
-
-try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
-    from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
-except ImportError:     # start-up of importing hashlib (2.8 ms of a process's first run)
-    try:
-        from _sha256 import sha256 as _sha256
-    except ImportError:
-        from hashlib import sha256 as _sha256
+from . import cstore as store, cunits as units
+from .cstore import CACHE_ENV, _sha256, cache_dir  # noqa: F401 - names of this module
+from .cunits import BuildFailed, CompilerMissing  # noqa: F401 - names of this module
 
 COMPILERS = ("cc", "gcc", "clang")
 DEFAULT_FLAGS = ("-O2", "-fPIC", "-shared")
-CACHE_ENV = "ACAUSAL2D_CACHE_DIR"
 INSTALL_HINT = ("install a C compiler (Debian/Ubuntu: 'apt-get install gcc'; macOS: "
                 "'xcode-select --install'; or set $CC to one)")
-
-
-class CompilerMissing(Acausal2dError):
-    """No C compiler was found."""
-
-
-class BuildFailed(Acausal2dError):
-    """The C compiler refused the sources."""
 
 
 def find_compiler():
@@ -66,15 +54,6 @@ def require_compiler():
     return path
 
 
-def cache_dir():
-    """The folder of compiled libraries: ``$ACAUSAL2D_CACHE_DIR``, else
-    ``$XDG_CACHE_HOME/acausal2d/cbuild``, else ``~/.cache/acausal2d/cbuild``."""
-    if os.environ.get(CACHE_ENV):
-        return os.environ[CACHE_ENV]
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(base, "acausal2d", "cbuild")
-
-
 def build_key(sources, flags=(), compiler=""):
     """SHA-256 (hex) of the sources (name -> text), the flags and the compiler."""
     h = _sha256()
@@ -90,21 +69,43 @@ def build_key(sources, flags=(), compiler=""):
 
 def build(sources, flags=(), libraries=(), library_dirs=(), include_dirs=(), name="lib"):
     """Compile ``sources`` (file name -> C text) into a shared library and
-    return its path; an identical build found in :func:`cache_dir` is
-    reused.  ``libraries`` are full paths or ``-l`` names; each folder of
-    ``library_dirs`` is also put on the library's run path."""
+    return its path; an identical build found in the cache folder
+    (:func:`store.folder`) whose digest matches is reused, a damaged one is
+    rebuilt (one line on stderr).  ``libraries`` are full paths or ``-l``
+    names; each folder of ``library_dirs`` is also put on the library's run
+    path.  Concurrent builds of one library wait for each other (a lock per
+    key) and publish atomically."""
     cc = require_compiler()
     args = list(DEFAULT_FLAGS) + ["-I" + d for d in include_dirs] + list(flags)
     args += ["-L" + d for d in library_dirs] + ["-Wl,-rpath," + d for d in library_dirs]
     args += [lib if os.sep in lib else "-l" + lib for lib in libraries]
     key = build_key(sources, args, cc)
-    folder = cache_dir()
+    folder = store.folder()
     target = os.path.join(folder, "%s-%s.so" % (name, key[:32]))
-    if os.path.exists(target):
+    if store.verified(target):
         return target
-    os.makedirs(folder, exist_ok=True)
-    _compile(cc, sources, args, folder, target)
+    store.sweep(folder)
+    with store.locked(target):
+        if not store.verified(target):          # another process may have built it meanwhile
+            units.compile_library(cc, sources, args, folder, target)
     return target
+
+
+def copy_verified(path, dest):
+    """Copy the library ``path`` (from :func:`build`) to ``dest`` and check
+    the copy against the digest recorded at its build (``export-fmu`` packs
+    only a verified binary); :class:`BuildFailed` where it does not match
+    (the copy is removed and the cached library with it: the next build
+    compiles it again)."""
+    shutil.copy(path, dest)
+    want = store.recorded(path)
+    if want is None or store.file_digest(dest) != want:
+        os.remove(dest)
+        store.discard(path)
+        raise BuildFailed("the compiled library %s does not match the SHA-256 recorded when it "
+                          "was built (the cache was changed meanwhile); it was removed, run the "
+                          "command again to rebuild it" % path)
+    return dest
 
 
 def fingerprint(functions, *texts):
@@ -115,62 +116,67 @@ def fingerprint(functions, *texts):
     import casadi as ca
     h = _sha256()
     parts = [fn.serialize() for fn in functions if fn is not None]
-    for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS]:
+    for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS,
+                                       units.SCHEME]:
         data = str(part).encode("utf-8")
         h.update(len(data).to_bytes(8, "little"))
         h.update(data)
     return h.hexdigest()
 
 
+def index_path(key, name):
+    """The index file of fingerprint ``key``: it names the library."""
+    return os.path.join(store.folder(), "%s-%s.idx" % (name, key[:32]))
+
+
+def lookup(key, name="lib"):
+    """The verified library indexed by ``key`` (:func:`fingerprint`), or None
+    (no index, no library, or a damaged one: removed, one line on stderr)."""
+    folder = store.folder()
+    try:
+        with open(index_path(key, name), encoding="utf-8") as fh:
+            path = os.path.join(folder, os.path.basename(fh.read().strip()))
+    except (OSError, UnicodeDecodeError):
+        return None
+    return path if path.endswith(".so") and store.verified(path) else None
+
+
 def build_indexed(key, make, name="lib"):
     """The library built by ``make()`` (which returns its path, from
     :func:`build`), found again by ``key`` (:func:`fingerprint`) without
-    calling ``make``: an index file in :func:`cache_dir` names the library.
-    A missing or unreadable index, or a library that is gone, only costs the
-    call to ``make``."""
-    folder = cache_dir()
-    index = os.path.join(folder, "%s-%s.idx" % (name, key[:32]))
-    try:
-        with open(index, encoding="utf-8") as fh:
-            path = os.path.join(folder, os.path.basename(fh.read().strip()))
-        if path.endswith(".so") and os.path.exists(path):
-            return path
-    except OSError:
-        pass
+    calling ``make``: an index file in the cache folder names the library.
+    A missing or unreadable index, or a library that is gone or damaged,
+    only costs the call to ``make``."""
+    path = lookup(key, name)
+    if path is not None:
+        return path
     path = make()
-    try:
-        with tempfile.NamedTemporaryFile("w", dir=folder, prefix=".idx-", delete=False,
-                                         encoding="utf-8") as fh:
-            fh.write(os.path.basename(path))
-        os.replace(fh.name, index)
-    except OSError:
-        pass
+    publish_index(key, name, path)
     return path
 
 
-def _compile(cc, sources, args, folder, target):
-    """Compile in a temporary folder and rename the library into ``target``.
-    (``subprocess`` is imported here: a run that finds its library in the
-    cache never needs it.)"""
-    import subprocess
-    with tempfile.TemporaryDirectory(dir=folder, prefix=".build-") as tmp:
-        files = []
-        for fname, text in sorted(sources.items()):
-            path = os.path.join(tmp, os.path.basename(fname))
-            with open(path, "w", encoding="utf-8") as fh:
-                fh.write(text)
-            if path.endswith(".c"):
-                files.append(path)
-        out = os.path.join(tmp, "out.so")
-        cmd = [cc] + files + ["-o", out] + args
-        try:
-            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
-        except (OSError, subprocess.TimeoutExpired) as exc:
-            raise BuildFailed("The C compiler %s could not run: %s" % (cc, exc)) from None
-        if proc.returncode != 0:
-            raise BuildFailed("The C compiler %s failed (exit %d):\n%s"
-                              % (cc, proc.returncode, proc.stderr.strip()[-4000:]))
-        os.replace(out, target)
+def publish_index(key, name, path):
+    """Write the index of ``key`` naming the library ``path`` (atomically;
+    an unwritable folder only costs the next lookup)."""
+    try:
+        store.write_atomic(index_path(key, name), os.path.basename(path).encode("utf-8"))
+    except OSError:
+        pass
+
+
+def load(key, make, name, loader):
+    """``loader(path)`` of the library of ``key`` (:func:`build_indexed`).
+    A library the loader refuses (``OSError``: the dynamic loader, or
+    ``RuntimeError``: CasADi) is reported on stderr, removed and built
+    again once."""
+    path = build_indexed(key, make, name)
+    try:
+        return loader(path)
+    except (OSError, RuntimeError) as exc:
+        store.notice("the cached library %s could not be loaded (%s); rebuilding it"
+                     % (path, str(exc).strip().splitlines()[0] if str(exc).strip() else exc))
+        store.discard(path)
+        return loader(build_indexed(key, make, name))
 
 
 class SundialsDirs:

@@ -29,7 +29,10 @@ import weakref
 import casadi as ca
 import numpy as np
 
-from . import blt_layout, cbuild, ordering
+from . import blt_layout, cbuild, ordering, tiers
+from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
+                      optimization, too_large)
+from . import codegen
 
 SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
@@ -56,15 +59,6 @@ LU is also the faster one at 39 (the piston's warm simulate 0.0153 ->
 path, whose steps it takes exactly (piston engine 1463 steps, asserted in
 tests/test_native_runtime.py; 1437 with the LU)."""
 MAX_PASSES = 256
-OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
-NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
-CHARS_PER_INSTRUCTION = 20   # generated C per CasADi instruction, low (measured: 23-30)
-"""Compile time of the generated C grows with its size and is paid once per
-model structure and machine (gcc, measured: piston engine 36 kB 0.25 s at
--O1; chain of 20 links 157 kB 1.2 s; belt drive 856 kB about 3 s for its
-first simulate; chain of 100 links 787 kB 7.2 s at -O1, 2.3 s at -O0).
--O0 code was 1.4x (chain) to 3.6x (belt drive) slower in warm runs, so -O1
-is kept; above :data:`NATIVE_BELOW` large models keep the Python path."""
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
 _LU = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_lu.c")
 _libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
@@ -74,9 +68,9 @@ _PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
 
 
 def enabled():
-    """False where ``ACAUSAL2D_NATIVE=0`` or the shipped SUNDIALS is not the
-    version the driver is written for."""
-    if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0":
+    """False where ``ACAUSAL2D_NATIVE=0`` (or ``off``) or the shipped SUNDIALS
+    is not the version the driver is written for."""
+    if tiers.mode() == "off":
         return False
     return cbuild._shipped_version() == SUNDIALS_VERSION and \
         cbuild.sundials_libraries() is not None
@@ -107,59 +101,17 @@ def _generator():
     the combined EJ function, the size limits), part of every fingerprint,
     so a library generated differently is never found again."""
     if __file__ not in _module_texts:
-        _module_texts[__file__] = _text(__file__) + "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
+        _module_texts[__file__] = _text(__file__) + _text(codegen.__file__) + \
+            "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
     return _module_texts[__file__]
 
 
-def eliminated(fn):
-    """``fn`` with its common subexpressions merged (``casadi.cse``): the
-    same operations on the same inputs, so the same values to the last bit,
-    in fewer instructions (belt drive: residual 7374 -> 3737, iteration
-    matrix 24662 -> 9408; piston engine 268 -> 256, 322 -> 262).  Functions
-    other than SX functions are returned as they are."""
-    if not fn.is_a("SXFunction"):
-        return fn
-    args = fn.sx_in()
-    outs = fn(*args)
-    outs = [ca.cse(o) for o in (outs if isinstance(outs, (list, tuple)) else [outs])]
-    return ca.Function(fn.name(), args, outs, fn.name_in(), fn.name_out())
-
-
-def _residual_and_jacobian(system):
-    """E and dE/dz as one function "EJ" (their shared subexpressions once)."""
-    args = system.residual_fn.sx_in()
-    outs = [system.residual_fn(*args), system.jacobian_fn(*args)]
-    return ca.Function("EJ", args, ca.cse(outs))
-
-
-def _source(form):
-    """The C source of a formulation: generated functions, then the driver."""
-    cg = ca.CodeGenerator("a2d_model.c", {"with_header": False})
-    for fn in (form.res_fn, form.jac_fn, form.event_fn):
-        if fn is not None:
-            cg.add(eliminated(fn))
+def _model_recipe(form, libraries, folder):
+    """The recipe of a formulation's library: generated functions, then the driver."""
     flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
-    return cg.dump() + "\n" + flags + _text(_LU) + _text(_DRIVER)
-
-
-def too_large(*functions):
-    """True where the C of these CasADi functions would be too large to
-    compile at run time (estimated from their instruction counts)."""
-    count = 0
-    for fn in functions:
-        try:
-            count += fn.n_instructions()
-        except RuntimeError:       # not an SX/MX function (a map): judged by its code
-            pass
-    return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
-
-
-def optimization(code):
-    """The compiler flags for generated C of this size, or None: too large
-    to compile at run time (see :data:`NATIVE_BELOW`)."""
-    if len(code) >= NATIVE_BELOW:
-        return None
-    return ["-O1"] if len(code) < OPTIMIZE_BELOW else ["-O0"]
+    fns = [fn for fn in (form.res_fn, form.jac_fn, form.event_fn) if fn is not None]
+    return Recipe("a2d_model", [("cse", fns)], flags + _text(_LU) + _text(_DRIVER),
+                        libraries, [folder])
 
 
 def _declare(lib):
@@ -178,29 +130,27 @@ def _declare(lib):
     return lib
 
 
+_keys = weakref.WeakKeyDictionary()       # formulation -> its fingerprint
+
+
 def library(form):
-    """The compiled library of a formulation (built once, cached on disk),
-    or None where it cannot be built."""
+    """The compiled library of a formulation (cached on disk), or None where
+    it cannot be built, or is being built in the background
+    (:mod:`~acausal2d.runtime.tiers`: asked again later, it is found)."""
     lib = _libs.get(form)
     if lib is None:
-        lib = False
-        if enabled() and not too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
-            folder, libs = cbuild.sundials_libraries()
-            linked = [libs[k] for k in LIBRARIES if k in libs]
-
-            def make():
-                code = _source(form)
-                if optimization(code) is None:
-                    raise cbuild.BuildFailed("too large")
-                return cbuild.build({"a2d_model.c": code}, flags=optimization(code),
-                                    libraries=linked, library_dirs=[folder], name="a2d_model")
-            key = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
-                                     _text(_LU), _text(_DRIVER), *linked)
-            try:
-                lib = _declare(ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_model")))
-            except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
-                lib = False
-        _libs[form] = lib
+        if not enabled() or too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
+            _libs[form] = False
+            return None
+        folder, libs = cbuild.sundials_libraries()
+        linked = [libs[k] for k in LIBRARIES if k in libs]
+        if form not in _keys:
+            _keys[form] = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
+                                             _text(_LU), _text(_DRIVER), *linked)
+        lib = tiers.obtain(_keys[form], _model_recipe(form, linked, folder),
+                           lambda path: _declare(ctypes.CDLL(path)))
+        if lib is not None or not tiers.pending():
+            _libs[form] = lib or False
     return lib or None
 
 
@@ -350,25 +300,18 @@ _compiled = {}       # fingerprint of the functions -> {name: external Function}
 def compiled(functions):
     """CasADi functions (their names -> Function) as compiled C, loaded back
     as CasADi functions (``casadi.external``) of the same names and signatures,
-    or None where they cannot be built (the caller keeps its own)."""
-    if os.environ.get("ACAUSAL2D_NATIVE", "1") == "0" or cbuild.find_compiler() is None:
+    or None where they cannot be built or are being built in the background
+    (the caller keeps its own)."""
+    if tiers.mode() == "off":
         return None
-    def make():
-        cg = ca.CodeGenerator("a2d_functions.c", {"with_header": False})
-        for fn in functions.values():
-            cg.add(fn)
-        code = cg.dump()
-        if optimization(code) is None:
-            raise cbuild.BuildFailed("too large")
-        return cbuild.build({"a2d_functions.c": code}, flags=optimization(code),
-                            name="a2d_functions")
     key = cbuild.fingerprint(functions.values(), _generator(), *functions)
     if key not in _compiled:
-        try:
-            path = cbuild.build_indexed(key, make, "a2d_functions")
-            _compiled[key] = {name: ca.external(name, path) for name in functions}
-        except (cbuild.BuildFailed, RuntimeError, OSError):
-            _compiled[key] = None
+        recipe = Recipe("a2d_functions", [("plain", list(functions.values()))])
+        found = tiers.obtain(key, recipe, lambda path: {name: ca.external(name, path)
+                                                          for name in functions})
+        if found is None and tiers.pending():
+            return None
+        _compiled[key] = found
     return _compiled[key]
 
 
@@ -379,29 +322,25 @@ _PROJECT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_proj
 def _projector_library(system):
     lib = _projectors.get(system)
     if lib is None:
-        lib = False
-        if enabled() and cbuild.find_compiler() and \
-                not too_large(system.residual_fn, system.jacobian_fn):
-            def make():
-                cg = ca.CodeGenerator("a2d_rows.c", {"with_header": False})
-                cg.add(eliminated(system.residual_fn))
-                cg.add(_residual_and_jacobian(system))
-                code = cg.dump() + "\n" + _text(_LU) + _text(_PROJECT)
-                if optimization(code) is None:
-                    raise cbuild.BuildFailed("too large")
-                return cbuild.build({"a2d_rows.c": code}, flags=optimization(code),
-                                    name="a2d_rows")
-            key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_LU),
-                                     _text(_PROJECT))
-            try:
-                lib = ctypes.CDLL(cbuild.build_indexed(key, make, "a2d_rows"))
-                lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int,
-                                            ctypes.c_int, _I, _P, ctypes.c_double,
-                                            ctypes.c_int, ctypes.c_int, _I, _I, _I, _I]
-            except (cbuild.BuildFailed, OSError, KeyError):
-                lib = False
-        _projectors[system] = lib
+        if not enabled() or too_large(system.residual_fn, system.jacobian_fn):
+            _projectors[system] = False
+            return None
+        key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_LU),
+                                 _text(_PROJECT))
+        recipe = Recipe("a2d_rows", [("cse", [system.residual_fn]),
+                                           ("ej", [system.residual_fn, system.jacobian_fn])],
+                              _text(_LU) + _text(_PROJECT))
+        lib = tiers.obtain(key, recipe, _declare_projector)
+        if lib is not None or not tiers.pending():
+            _projectors[system] = lib or False
     return lib or None
+
+
+def _declare_projector(path):
+    lib = ctypes.CDLL(path)
+    lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int, ctypes.c_int, _I,
+                                _P, ctypes.c_double, ctypes.c_int, ctypes.c_int, _I, _I, _I, _I]
+    return lib
 
 
 def row_projector(system, free):

@@ -23,7 +23,9 @@ from .events import (ChatterWatch, EventIteration, check_assertions, check_jumps
 from .failure import Approach
 from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, advance,
                   make_solver, start_solver)
-from .native import native_ida
+from . import tiers
+from .background import Tiering, launch
+from .native import library as native_library, native_ida
 from .projection import Projector
 from .rows import OutputRows
 from .initialize import initial_point, initialization_error
@@ -48,7 +50,7 @@ class Stats:
     about 0.4 ms to create at import, on the path of a process's first run)."""
 
     COUNTERS = ("segments", "events", "time_events", "reselections", "steps", "nfev", "njev")
-    TIMES = ("wall_time", "event_time", "compile_time")
+    TIMES = ("wall_time", "event_time", "compile_time", "native_compile_time")
 
     def __init__(self):
         for name in self.COUNTERS:
@@ -102,11 +104,14 @@ class Simulation:
         self.n_singular, self.watch = 0, True
         self.chatter = ChatterWatch(system, self.t_end - float(self.times[0]))
         self.eps = time_resolution(self.t_end)
+        self.tiering = Tiering()
+        tiers.set_label(getattr(system, "model_name", None))
 
     # ------------------------------------------------------------ run
     def run(self):
         """Integrate to the stop time (or an early stop); returns a :class:`RunLog`."""
         wall = _time.perf_counter()
+        self.spent0 = tiers.spent()
         if self.system.structure.n_var == 0:     # everything is determined: evaluate
             self.selection = None
             self.out.add_block(self.times, np.zeros((len(self.times), 0)))
@@ -127,11 +132,18 @@ class Simulation:
         return self._log(wall)
 
     def _log(self, wall):
-        self.stats.wall_time = _time.perf_counter() - wall
+        """The run log; the time spent compiling native code (in this process,
+        or waiting for the background worker) is reported apart from the
+        simulation's wall time."""
+        native = tiers.spent() - getattr(self, "spent0", tiers.spent()) + self.tiering.waited
+        self.stats.native_compile_time = native
+        self.stats.wall_time = _time.perf_counter() - wall - native
         T, Z = self.out.arrays()
         states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
             self.selection)] if self.selection is not None else []
-        return RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
+        log = RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
+        log.native_notes = list(self.tiering.notes)
+        return log
 
     def _over_budget(self, wall):
         """True (and the reason in ``stopped``) when the step or wall-clock
@@ -179,12 +191,28 @@ class Simulation:
             atol = np.broadcast_to(np.asarray(atol, dtype=float), (form.n,)).copy()
             y0, yp0 = form.y_from(self.z)
             prob.native = native_ida(prob, self.rtol, atol)
+            prob.atol = atol
             solver = LazySolver(lambda t=self.t: start_solver(
                 make_solver(prob, self.rtol, atol), prob, t, y0, yp0, self.rtol, atol))
             if prob.native is None:
                 solver = solver._make()
             self.solvers[key] = (form, prob, solver, Projector(self.system, form, self.p))
+        elif self.solvers[key][1].native is None and self.tiering.waiting:
+            self._upgrade(key)
         return self.solvers[key]
+
+    def _upgrade(self, key):
+        """Switch the current formulation to the native loop (and the C
+        projector) where their libraries appeared during the run
+        (:mod:`~acausal2d.runtime.tiers`)."""
+        form, prob, solver, projector = self.solvers[key]
+        still = self.tiering.active()
+        prob.native = native_ida(prob, self.rtol, prob.atol)
+        self.tiering.waiting = still and prob.native is None
+        if prob.native is not None:
+            self.solvers[key] = (form, prob, solver, Projector(self.system, form, self.p))
+            self.tiering.notes.append("native loop from t=%.6g (its library appeared during "
+                                      "the run)" % self.out[-1][0])
 
     def _progress_hook(self):
         if self.progress is None:
@@ -194,6 +222,8 @@ class Simulation:
 
     def _segment(self):
         form, prob, solver, projector = self._solver()
+        if launch(getattr(self.system, "model_name", None)):
+            self.tiering.waiting = prob.native is None
         prob.set_relations(self.d)
         y0, yp0 = form.y_from(self.z)
         prob.reset_monitors(self.t, y0, yp0, self.watch)
@@ -208,6 +238,9 @@ class Simulation:
                                   time=self.t) from None
         rows = projector.project(T, Y, self.d)
         self.out.add_block(T, rows)
+        if prob.native is None and self.tiering.waiting and len(T):
+            self.tiering.decide(float(T[-1]), self.t_end - float(T[-1]), _time.perf_counter(),
+                                lambda: native_library(form) is not None)
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
         self.stats.nfev += nfev
@@ -223,6 +256,9 @@ class Simulation:
         do not depend on the output grid of ordinary runs)."""
         self.time_event = self._next_time_event()
         outputs = self.times[(self.times > self.t + self.eps) & (self.times <= self.time_event)]
+        if self.tiering.waiting and len(outputs) > 1:      # look for the library between pieces
+            outputs = self.tiering.outputs(outputs, len(self.times))
+            return float(outputs[-1]), outputs
         if len(outputs) > OUTPUTS_PER_CALL:
             outputs = outputs[:OUTPUTS_PER_CALL]
             return float(outputs[-1]), outputs

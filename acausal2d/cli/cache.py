@@ -1,0 +1,42 @@
+"""``acausal2d cache``: the native cache (compiled C of the models run on
+this machine, :mod:`acausal2d.runtime.cstore`): where it lives, what it
+holds, its size, and clearing it."""
+
+
+def _mb(n):
+    return "%.1f MB" % (n / 1e6) if n >= 1e5 else "%.1f kB" % (n / 1e3)
+
+
+def cmd_cache(args):
+    """``acausal2d cache [path|list|size|clear]``."""
+    from ..runtime import cstore
+    where = cstore.folder()
+    if args.action == "path":
+        print(where)
+    elif args.action == "list":
+        libs, total = cstore.entries()
+        for name, size in libs:
+            print("%10s  %s" % (_mb(size), name))
+        print("%d librar%s, %s in %s" % (len(libs), "y" if len(libs) == 1 else "ies", _mb(total),
+                                          where))
+    elif args.action == "size":
+        libs, total = cstore.entries()
+        print("%s (%d librar%s) in %s" % (_mb(total), len(libs), "y" if len(libs) == 1 else "ies",
+                                          where))
+    else:
+        removed, kept = cstore.clear()
+        print("removed %d file%s from %s%s" % (removed, "" if removed == 1 else "s", where,
+                                               "; kept %d of builds running now" % kept
+                                               if kept else ""))
+    return 0
+
+
+def add_parsers(sub):
+    """``acausal2d cache``."""
+    c = sub.add_parser("cache", help="the native cache: where it lives (path), its libraries "
+                       "(list), its size, or clear it")
+    c.add_argument("action", nargs="?", default="list", choices=("path", "list", "size", "clear"),
+                   help="path: the folder ($ACAUSAL2D_CACHE_DIR, else ~/.cache/acausal2d/"
+                   "cbuild); list (default): the libraries; size; clear: remove them (they are "
+                   "compiled again when needed)")
+    c.set_defaults(func=cmd_cache)

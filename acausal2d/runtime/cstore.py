@@ -1,0 +1,274 @@
+"""The native cache on disk, verified (issue 35): every compiled library
+has its SHA-256 beside it (``<library>.sha256``), written when it is
+published and checked before it is loaded, so a truncated file (SIGBUS at
+``dlopen``), a flipped byte in its code (SIGILL) or in its constants (wrong
+numbers, exit 0) is found before the dynamic loader sees it: the library is
+removed and built again, with one line on stderr.
+
+- :func:`folder`: the cache folder in use, the configured one
+  (:func:`cache_dir`) or, where that cannot be
+  written, a private folder under the temporary directory (one line on
+  stderr) - never the slow path because of a read-only home;
+- :func:`publish`: a library and its digest moved into place atomically;
+- :func:`locked`: one builder per library at a time (``fcntl.flock`` on
+  ``<library>.lock``; a second waits, then finds the library built);
+- :func:`sweep`: build folders and temporary files left by a killed build
+  removed (those whose lock nobody holds).
+"""
+import contextlib
+import os
+import sys
+
+try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
+    from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
+except ImportError:     # start-up of importing hashlib (2.8 ms of a process's first run)
+    try:
+        from _sha256 import sha256 as _sha256
+    except ImportError:
+        from hashlib import sha256 as _sha256
+
+CACHE_ENV = "ACAUSAL2D_CACHE_DIR"
+DIGEST = ".sha256"
+LOCK = ".lock"
+BUILD_PREFIX = ".build-"
+TMP_PREFIX = ".tmp-"
+_said = set()
+
+
+def notice(message):
+    """One line ``acausal2d: <message>`` on stderr, once per process."""
+    if message not in _said:
+        _said.add(message)
+        print("acausal2d: " + message, file=sys.stderr)
+        sys.stderr.flush()
+
+
+def cache_dir():
+    """The configured folder of compiled libraries: ``$ACAUSAL2D_CACHE_DIR``,
+    else ``$XDG_CACHE_HOME/acausal2d/cbuild``, else ``~/.cache/acausal2d/cbuild``
+    (:func:`folder` is the one used: this one, or a writable fallback)."""
+    if os.environ.get(CACHE_ENV):
+        return os.environ[CACHE_ENV]
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "acausal2d", "cbuild")
+
+
+def _writable(path):
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError:
+        return False
+    return os.path.isdir(path) and os.access(path, os.W_OK | os.X_OK)
+
+
+def fallback_folder():
+    """The folder used where the configured cache cannot be written."""
+    import tempfile
+    return os.path.join(tempfile.gettempdir(), "acausal2d-cbuild-%d" % os.getuid())
+
+
+def folder():
+    """The cache folder in use (see the module docstring)."""
+    want = cache_dir()
+    if _writable(want):
+        return want
+    other = fallback_folder()
+    if other != want and _writable(other):
+        notice("the native cache %s cannot be written; using %s instead (set $%s to a "
+               "writable folder)" % (want, other, "ACAUSAL2D_CACHE_DIR"))
+        return other
+    return want
+
+
+def file_digest(path):
+    """SHA-256 (hex) of a file's bytes."""
+    h = _sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def recorded(path):
+    """The digest recorded for ``path``, or None (missing or unreadable)."""
+    try:
+        with open(path + DIGEST, encoding="ascii") as fh:
+            text = fh.read(200).strip()
+    except (OSError, UnicodeDecodeError):
+        return None
+    return text if len(text) == 64 else None
+
+
+def verified(path):
+    """True where ``path`` exists and its bytes have the recorded digest.
+    A library that exists but does not match (or has no digest, or cannot
+    be read) is removed, with one line on stderr; False then."""
+    if not os.path.exists(path):
+        return False
+    want = recorded(path)
+    try:
+        got = file_digest(path)
+    except FileNotFoundError:
+        return False
+    except OSError as exc:
+        got, why = None, "unreadable: %s" % exc.strerror
+    if want is not None and got == want:
+        return True
+    if got is not None:
+        why = "no digest recorded" if want is None else "its SHA-256 does not match the " \
+            "recorded one"
+    notice("the cached library %s is damaged (%s); rebuilding it" % (path, why))
+    discard(path)
+    return False
+
+
+def discard(path):
+    """Remove a library and its digest (errors ignored)."""
+    for p in (path, path + DIGEST):
+        try:
+            os.remove(p)
+        except OSError:
+            pass
+
+
+def write_atomic(path, data):
+    """Write bytes to ``path`` through a temporary sibling and a rename."""
+    import tempfile
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), prefix=TMP_PREFIX)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.remove(tmp)
+        raise
+
+
+def publish(built, target):
+    """Move the library ``built`` to ``target`` with its digest (the digest
+    first: a reader never finds a library without one)."""
+    write_atomic(target + DIGEST, file_digest(built).encode("ascii"))
+    os.replace(built, target)
+
+
+@contextlib.contextmanager
+def locked(target, wait=True):
+    """Hold the lock of library ``target`` (yields True), or, with
+    ``wait=False`` where another process holds it, yield False at once.
+    A lock file that cannot be created (read-only folder) locks nothing."""
+    import fcntl
+    try:
+        fh = open(target + LOCK, "a")
+    except OSError:
+        yield True
+        return
+    with fh:
+        try:
+            fcntl.flock(fh, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+        except BlockingIOError:
+            yield False
+            return
+        try:
+            yield True
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def busy(target):
+    """True where a process holds the lock of ``target`` (builds it now)."""
+    with locked(target, wait=False) as got:
+        return not got
+
+
+def build_folder(folder, target):
+    """A new build folder for ``target`` (named by it: :func:`sweep`)."""
+    import tempfile
+    return tempfile.mkdtemp(dir=folder, prefix="%s%s-" % (BUILD_PREFIX, os.path.basename(target)))
+
+
+def sweep(folder, older_than=600.0):
+    """Remove build folders whose library's lock nobody holds, and
+    temporary files older than ``older_than`` seconds (a build killed
+    with SIGKILL leaves them)."""
+    import shutil
+    import time
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return
+    now = time.time()
+    for name in names:
+        path = os.path.join(folder, name)
+        if name.startswith(BUILD_PREFIX):
+            lib = name[len(BUILD_PREFIX):].rsplit("-", 1)[0]
+            if not busy(os.path.join(folder, lib)):
+                shutil.rmtree(path, ignore_errors=True)
+        elif name.startswith(TMP_PREFIX):
+            with contextlib.suppress(OSError):
+                if now - os.path.getmtime(path) > older_than:
+                    os.remove(path)
+
+
+SUFFIXES = (".so", DIGEST, LOCK, ".idx", ".failed")
+
+
+def entries():
+    """([(library file name, bytes)] of the cache folder, total bytes of the
+    cache's files: libraries, digests, indexes, locks, failure markers and
+    leftovers of builds)."""
+    where = folder()
+    try:
+        names = sorted(os.listdir(where))
+    except OSError:
+        return [], 0
+    libs, total = [], 0
+    for name in names:
+        path = os.path.join(where, name)
+        if not _ours(name):
+            continue
+        size = _size(path)
+        total += size
+        if name.endswith(".so"):
+            libs.append((name, size))
+    return libs, total
+
+
+def _ours(name):
+    return name.endswith(SUFFIXES) or name.startswith((BUILD_PREFIX, TMP_PREFIX))
+
+
+def _size(path):
+    if os.path.isdir(path):
+        return sum(_size(os.path.join(path, n)) for n in os.listdir(path))
+    try:
+        return os.path.getsize(path)
+    except OSError:
+        return 0
+
+
+def clear():
+    """Remove the cache's files (not those of a build running now: their
+    library's lock is held); returns (files removed, files kept)."""
+    import shutil
+    where = folder()
+    try:
+        names = os.listdir(where)
+    except OSError:
+        return 0, 0
+    removed = kept = 0
+    for name in names:
+        if not _ours(name):
+            continue
+        path = os.path.join(where, name)
+        lib = name[len(BUILD_PREFIX):].rsplit("-", 1)[0] if name.startswith(BUILD_PREFIX) else \
+            name[:-len(LOCK)] if name.endswith(LOCK) else None
+        if lib is not None and busy(os.path.join(where, lib)):
+            kept += 1
+            continue
+        try:
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+            removed += 1
+        except OSError:
+            kept += 1
+    return removed, kept

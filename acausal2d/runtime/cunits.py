@@ -1,0 +1,122 @@
+"""How a library's C is compiled (issue 30: a cheaper compile).
+
+:func:`compile_library` writes the sources into a build folder in the
+cache, compiles every ``.c`` file as its own translation unit - in parallel,
+one compiler process per core - links the objects into a shared library and
+publishes it with its digest (:mod:`~acausal2d.runtime.cstore`).  Large
+CasADi-generated files are first cut into several units by
+:func:`~acausal2d.runtime.csplit.split` (their function bodies spread over
+the units, the shared declarations repeated in each), so that the two cores
+of a small machine both compile.
+
+A compiler that cannot run, fails, or exits 0 without writing its output
+(e.g. ``CC=/bin/true``) is a :class:`BuildFailed`
+naming the compiler, the command and its output.
+"""
+import os
+import shutil
+
+from ..errors import Acausal2dError
+from . import cstore
+
+SCHEME = "units-2"
+"""Names how sources are cut and compiled: part of every fingerprint, so a
+library built another way is never found again."""
+TIMEOUT = 600.0   # s per compiler process
+
+
+class CompilerMissing(Acausal2dError):
+    """No C compiler was found."""
+
+
+class BuildFailed(Acausal2dError):
+    """The C compiler refused the sources, or wrote no library."""
+
+
+from . import cstore as store, cunits as units    # noqa: E402 - they use the errors above
+
+
+def workers():
+    """Compiler processes run at once: the cores this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def _failed(cc, cmd, why, output=""):
+    text = "The C compiler %s %s.\ncommand: %s" % (cc, why, " ".join(cmd))
+    if output.strip():
+        text += "\noutput:\n" + output.strip()[-4000:]
+    return BuildFailed(text)
+
+
+def _run_all(cc, commands):
+    """Run compiler commands, at most :func:`workers` at a time; each must
+    exit 0 and write its output file (the last argument after ``-o``)."""
+    import subprocess
+    pending, running = list(commands), []
+    try:
+        while pending or running:
+            while pending and len(running) < workers():
+                cmd = pending.pop(0)
+                try:
+                    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE,
+                                            stderr=subprocess.STDOUT, text=True)
+                except OSError as exc:
+                    raise _failed(cc, cmd, "could not run (%s)" % exc) from None
+                running.append((cmd, proc))
+            cmd, proc = running.pop(0)
+            try:
+                output = proc.communicate(timeout=TIMEOUT)[0]
+            except subprocess.TimeoutExpired:
+                raise _failed(cc, cmd, "did not finish within %g s" % TIMEOUT) from None
+            if proc.returncode != 0:
+                raise _failed(cc, cmd, "failed (exit %d)" % proc.returncode, output)
+            out = cmd[cmd.index("-o") + 1]
+            if not os.path.isfile(out) or os.path.getsize(out) == 0:
+                raise _failed(cc, cmd, "exited 0 but wrote no %s" % os.path.basename(out),
+                              output)
+    finally:
+        for _, proc in running:
+            proc.kill()
+            proc.wait()
+
+
+def _units(sources):
+    """(file name, text) of the translation units and headers to write."""
+    from .csplit import split
+    files = []
+    for fname, text in sorted(sources.items()):
+        base = os.path.basename(fname)
+        if base.endswith(".c"):
+            parts = split(text, workers())
+            files += [(base if len(parts) == 1 else "%s_%d.c" % (base[:-2], k), part)
+                      for k, part in enumerate(parts)]
+        else:
+            files.append((base, text))
+    return files
+
+
+def compile_library(cc, sources, args, folder, target):
+    """Compile ``sources`` (file name -> C text) with the flags ``args``
+    (optimisation, ``-fPIC -shared``, include and link options) into
+    ``target`` (see the module docstring)."""
+    tmp = cstore.build_folder(folder, target)
+    try:
+        objects, commands = [], []
+        compile_flags = [a for a in args if a.startswith("-") and a != "-shared" and
+                         not a.startswith(("-l", "-L", "-Wl,"))]
+        for fname, text in _units(sources):
+            path = os.path.join(tmp, fname)
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(text)
+            if fname.endswith(".c"):
+                objects.append(path[:-2] + ".o")
+                commands.append([cc, "-c", path, "-o", objects[-1]] + compile_flags)
+        _run_all(cc, commands)
+        out = os.path.join(tmp, "out.so")
+        _run_all(cc, [[cc] + objects + ["-o", out] + list(args)])
+        cstore.publish(out, target)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)

@@ -1,0 +1,148 @@
+"""Cold start (issue 30): the first run of a new model structure against the
+Python path, the background compile, and later runs at native speed.
+
+    python benchmarks/bench_cold.py            (the table of issue 30; medians of 3)
+    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run: the suite)
+    python benchmarks/bench_cold.py --classic  (also compile first, as before issue 30)
+
+Every figure is measured in a fresh process with a cache folder of its own:
+
+- "Python path": ``ACAUSAL2D_NATIVE=off``, compile_model + simulate;
+- "first run (auto)": an empty cache in mode auto: compile_model +
+  simulate while the worker compiles (target: <= 1.2x the Python path);
+- "background compile": from the worker's start to its end (target for
+  the chain of 81 links: <= 5 s);
+- "later run": the next process on the filled cache (native speed);
+- "compile first": mode now on an empty cache (the behaviour before issue
+  30; with --classic);
+- ``acausal2d simulate models/piston_engine.py``, whole process, with an
+  empty cache (auto) and with a full one (target: <= 1.2x).
+"""
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+MODELS = {
+    "chain of 81 links": ("chain", 81, 1.0),
+    "belt drive": ("belt", 0, None),
+    "compressor": ("compressor", 0, None),
+    "piston engine": ("piston", 0, None),
+}
+SMALL = {"chain of 3 links": ("chain", 3, 0.2)}
+
+
+def _model(kind, n):
+    sys.path[:0] = [HERE, os.path.join(ROOT, "models")]
+    if kind == "chain":
+        from bench_core import PendulumChain
+        return PendulumChain(n)
+    if kind == "belt":
+        import noncircular_belt_drive as nbd
+        return nbd.NonCircularBeltDrive(nbd.design())
+    if kind == "compressor":
+        from compressor import Compressor
+        return Compressor()
+    from piston_engine import PistonEngine
+    return PistonEngine()
+
+
+def child(kind, n, stop):
+    """One run in this process; prints its times as JSON."""
+    import acausal2d
+    from acausal2d.runtime import background
+    model = _model(kind, n)
+    t0 = time.perf_counter()
+    cm = acausal2d.compile_model(model)
+    res = cm.simulate(stop_time=stop)
+    t1 = time.perf_counter()
+    worker = None
+    for proc, start, _ in background._workers:
+        proc.wait()
+        worker = max(worker or 0.0, time.perf_counter() - start)
+    print(json.dumps({"run": t1 - t0, "worker": worker, "steps": res.stats["steps"],
+                      "notes": res.native_notes, "wall": res.stats["wall_time"],
+                      "native": res.stats["native_compile_time"]}))
+
+
+def _child(name, models, cache, mode):
+    kind, n, stop = models[name]
+    env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE=mode)
+    out = subprocess.run([sys.executable, __file__, "--child", kind, str(n), str(stop)],
+                         env=env, capture_output=True, text=True, check=True, timeout=1800)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def _settled(cache, timeout=600.0):
+    """Wait until no background worker works in ``cache`` (its job file is gone)."""
+    end = time.perf_counter() + timeout
+    while time.perf_counter() < end:
+        try:
+            if not any(f.startswith(".tmp-job-") and not f.endswith(".log")
+                       for f in os.listdir(cache)):
+                return
+        except OSError:
+            return
+        time.sleep(0.05)
+
+
+def measure(name, models, repeat, classic):
+    """Medians of the figures of one model."""
+    rows = {"python": [], "auto": [], "worker": [], "later": [], "now": []}
+    for _ in range(repeat):
+        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+            rows["python"].append(_child(name, models, b, "off")["run"])
+            first = _child(name, models, a, "auto")
+            rows["auto"].append(first["run"])
+            rows["worker"].append(first["worker"] or 0.0)
+            _settled(a)
+            rows["later"].append(_child(name, models, a, "auto")["run"])
+            if classic:
+                rows["now"].append(_child(name, models, b, "now")["run"])
+    return {k: statistics.median(v) for k, v in rows.items() if v}
+
+
+def whole_process(repeat):
+    """(empty cache, full cache) medians of ``acausal2d simulate`` of the piston engine."""
+    model = os.path.join(ROOT, "models", "piston_engine.py")
+    cold, warm = [], []
+    for _ in range(repeat):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
+            env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE="auto")
+            for times in (cold, warm):
+                t0 = time.perf_counter()
+                subprocess.run([sys.executable, "-m", "acausal2d", "simulate", model, "--out",
+                                out], env=env, capture_output=True, check=True, cwd=ROOT)
+                times.append(time.perf_counter() - t0)
+                _settled(cache)
+    return statistics.median(cold), statistics.median(warm)
+
+
+def main(models, repeat, classic, piston):
+    print("cold start (issue 30), medians of %d, fresh processes, s" % repeat)
+    print("%-22s %10s %12s %8s %12s %10s %14s" % ("model", "Python", "first(auto)", "ratio",
+                                                 "background", "later", "compile first"))
+    for name in models:
+        m = measure(name, models, repeat, classic)
+        print("%-22s %10.3f %12.3f %8.2f %12.3f %10.3f %14s" % (
+            name, m["python"], m["auto"], m["auto"] / m["python"], m["worker"], m["later"],
+            "%.3f" % m["now"] if "now" in m else "-"))
+    if piston:
+        cold, warm = whole_process(repeat)
+        print("acausal2d simulate models/piston_engine.py, whole process: empty cache %.3f s, "
+              "full cache %.3f s, ratio %.2f" % (cold, warm, cold / warm))
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    if args[:1] == ["--child"]:
+        child(args[1], int(args[2]), None if args[3] == "None" else float(args[3]))
+    elif "--small" in args:
+        main(SMALL, 1, "--classic" in args, True)
+    else:
+        main(MODELS, 3, "--classic" in args, True)
