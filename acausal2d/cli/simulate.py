@@ -42,20 +42,21 @@ def _animation_options(args, cm):
     return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay, "poles": poles}
 
 
-def _print_summary(model, res, out, pngs, extra=()):
+def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
     """The run's summary: singular positions, early stop, solver counts,
-    the files written (``extra``: those the model wrote itself) and states."""
+    the files written (``table``: the result file, ``extra``: those the
+    model wrote itself) and states."""
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
         print("  " + res.stopped)
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s); %d steps, %d output points, "
-          "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
+          "%d events, %d state re-selections, %d residual evaluations -> %s/ (%s, "
           "%d plot%s, animation.html%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], st["steps"], len(res.time), st["events"], st["reselections"],
-              st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
+              st["nfev"], out, table, len(pngs), "" if len(pngs) == 1 else "s",
               "".join(", " + os.path.basename(f) for f in extra)))
     states = getattr(res, "states", None) or []
     print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
@@ -86,7 +87,7 @@ def cmd_simulate(args):
         if drawer is not None:
             drawer.close()
     model = res.model.model
-    _print_summary(model, res, out, pngs, extra)
+    _print_summary(model, res, out, pngs, extra, _result_name(args))
     if res.stopped:
         print("stopped early: %s" % res.stopped, file=sys.stderr)
         return 3
@@ -125,6 +126,11 @@ def _simulate_settings(args, cm):
             "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
 
 
+def _result_name(args):
+    """``result.csv`` or ``result.mat`` (``--result-format``)."""
+    return "result.mat" if args.result_format == "mat" else "result.csv"
+
+
 def _write_outputs(res, out, settings, args, drawer=None):
     """CSV, figures (drawn by ``drawer``, a :class:`~acausal2d.visual.
     figure_process.FigureProcess`, if given), animation, the files the model
@@ -141,7 +147,8 @@ def _write_outputs(res, out, settings, args, drawer=None):
         jobs = figure_jobs(res, out, settings["specs"], args.format)
         if drawer is not None:
             drawer.submit(jobs)             # drawn by the child while the files below are written
-    csv = res.to_csv(os.path.join(out, "result.csv"))
+    table = os.path.join(out, _result_name(args))
+    csv = res.to_mat(table) if table.endswith(".mat") else res.to_csv(table)
     page = res.animate(os.path.join(out, "animation.html"), traces=settings["traces"],
                        **settings["animation"])
     if jobs is not None:
@@ -152,8 +159,14 @@ def _write_outputs(res, out, settings, args, drawer=None):
     extra = _model_files(res, out)
     write_manifest(out, files + extra,
                    model=type(res.model.model).__name__ if res.model else None,
-                   stopped=res.stopped)
+                   stopped=res.stopped, units=_units(res))
     return pngs, extra
+
+
+def _units(res):
+    """{signal: unit} of the declared units, kept in the manifest so that
+    ``compare`` labels its plot axes of a result CSV with them."""
+    return {n: u for n in res.names if (u := res.unit(n))}
 
 
 def _model_files(res, out):
@@ -201,5 +214,8 @@ def add_parsers(sub):
                    help="step budget of the run (default 1000000); exit 3 when used up")
     s.add_argument("--max-wall-time", type=_positive_float, metavar="SECONDS",
                    help="wall-clock budget of the run; exit 3 when used up")
+    s.add_argument("--result-format", choices=("csv", "mat"), default="csv",
+                   help="result.csv (default) or result.mat in Dymola's result format (MAT v4, "
+                   "read by Modelica plotting tools, DyMat, buildingspy)")
     s.add_argument("--out", default="out", help="output directory (default: out)")
     s.set_defaults(func=cmd_simulate)
