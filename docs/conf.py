@@ -41,3 +41,16 @@ html_title = "acausal2d %s" % release
 html_static_path = []
 html_extra_path = [os.path.join(HERE, "_build", "extra")]      # the gallery's animation pages
 os.makedirs(html_extra_path[0], exist_ok=True)
+
+
+def _absolute_values(app, what, name, obj, options, lines):
+    """Docstrings write absolute values and norms as ``|det|``, ``|t_end|``:
+    plain text, not reStructuredText substitutions, so the bars are
+    escaped before the docstring is parsed."""
+    import re
+    lines[:] = [re.sub(r"(?<![\\`|])\|([A-Za-z_][\w.]*)\|(?![`|])", r"\\|\1\\|", line)
+                for line in lines]
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _absolute_values)
