@@ -172,9 +172,11 @@ def _entry_text(path, name, entry):
     lines += ["```{raw} html",
               "<iframe src=\"../gallery-animations/%s\" loading=\"lazy\" "
               "style=\"width:100%%;height:520px;border:1px solid #ccc\" "
-              "title=\"animation of %s\"></iframe>" % (entry["animation"], title), "```", "",
-              "[The animation on a page of its own](../gallery-animations/%s)"
-              % entry["animation"], ""]
+              "title=\"animation of %s\"></iframe>" % (entry["animation"], title),
+              "<p><a href=\"../gallery-animations/%s\">The animation on a page of its own</a></p>"
+              % entry["animation"], "```", ""]
+    if entry.get("note"):
+        lines += [entry["note"], ""]
     if entry.get("stopped"):
         lines += ["The run stops early: %s" % entry["stopped"], ""]
     lines += ["*%s.*" % entry["summary"], ""]

@@ -7,15 +7,13 @@ import time
 
 import acausal2d
 from acausal2d.io.files import safe_filename
+from acausal2d.language.inputs import bind_inputs
 from acausal2d.visual.animation import render_html
 from acausal2d.visual.plotting import declared_figures, plot
 from acausal2d.visual.scene import build_scene
 
 MAX_FIGURES = 3
 ANIMATION_FRAMES = 200
-MAX_INTERVALS = 500
-"""Output intervals of a gallery run at most (the steps are the solver's;
-only the grid of the figures is coarser)."""
 
 
 def _figure_specs(res, model):
@@ -39,14 +37,16 @@ def run_model(path, name, folder, anim_folder):
     ``folder``, the animation page to ``anim_folder``.  Returns a dict:
     name, doc, figures, animation, summary (or error)."""
     start = time.perf_counter()
-    stem = safe_filename("%s_%s" % (os.path.splitext(os.path.basename(path))[0], name))
+    stem = safe_filename("_".join([os.path.splitext(os.path.basename(path))[0]] +
+                                  ([name] if name else [])))
     model = acausal2d.load_model(path, name)
     entry = {"name": name, "doc": _doc(type(model)), "figures": [], "animation": None}
+    inputs = bind_inputs(model)             # inputs of an FMU model: held at 0 here
+    if inputs:
+        entry["note"] = "Its inputs %s are held at 0 by constant sources here (as `linearize` " \
+            "does); an FMU of it takes them from the importing tool." % ", ".join(sorted(inputs))
     try:
-        experiment = getattr(model, "experiment", None) or {}
-        options = {"intervals": MAX_INTERVALS} if experiment.get("intervals", 0) > MAX_INTERVALS \
-            else {}
-        res = acausal2d.compile_model(model).simulate(**options)
+        res = acausal2d.compile_model(model).simulate()
     except acausal2d.SimulationError as exc:
         res = getattr(exc, "result", None)
         if res is None:
