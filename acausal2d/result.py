@@ -125,6 +125,52 @@ class Result:
         from .visual.scene import animate
         return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
+    def animation(self, traces=(), title=None, arrows=(), signal=None, autoplay=False,
+                  poles=None, height=560):
+        """The animation (options as for :meth:`animate`) as an object a
+        notebook displays inline (:class:`acausal2d.visual.notebook.Animation`,
+        whose ``save(path)`` writes the page)."""
+        from .visual.animation import render_html
+        from .visual.notebook import Animation
+        from .visual.scene import build_scene
+        scene = build_scene(self, traces, title, arrows, signal, autoplay, poles)
+        return Animation(render_html(scene), height)
+
+    # ------------------------------------------------- other formats
+    def to_pandas(self, names=None):
+        """A :class:`pandas.DataFrame` indexed by ``time`` with the given
+        columns (all by default, derivatives included); event instants
+        appear twice in the index, as in the result.  Needs pandas."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise Acausal2dError("Result.to_pandas needs pandas: pip install pandas") from None
+        names = self.names if names is None else list(names)
+        frame = pd.DataFrame({n: self[n] for n in names}, index=pd.Index(self.time, name="time"))
+        frame.attrs["units"] = {n: self.unit(n) for n in names}
+        return frame
+
+    def to_mat(self, path, names=None):
+        """Write the result in Dymola's result format (MAT v4 ``Aclass``,
+        ``name``, ``description``, ``dataInfo``, ``data_1`` with the
+        parameters, ``data_2`` with the trajectories; columns equal to
+        another or its negation shared) for Modelica plotting tools; every
+        column (derivatives included) unless ``names`` is given.  See
+        :mod:`acausal2d.io.dymola_mat`.  Returns ``path``."""
+        from .io.dymola_mat import write_mat
+        names = self.names if names is None else list(names)
+        units = {n: self.unit(n) for n in list(names) + list(self.parameters)}
+        return write_mat(path, self.time, {n: self[n] for n in names}, self.parameters,
+                         {n: "[%s]" % u for n, u in units.items() if u})
+
+    def __repr__(self):
+        from .visual.notebook import summary_text
+        return summary_text(self)
+
+    def _repr_html_(self):
+        """Jupyter's display: a summary table and a small figure of the outputs."""
+        from .visual.notebook import summary_html
+        return summary_html(self)
 
     # ------------------------------------------------- kinematics (ch. 2.6)
     def poles(self, links, joints=None):

@@ -26,13 +26,17 @@ def _import_statements(source):
                     yield a.name, []
 
 
-def _readme_code():
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
+def _readme_code(path="README.md"):
+    text = (ROOT / path).read_text(encoding="utf-8")
     return "\n".join(re.findall(r"```python\n(.*?)```", text, re.S))
 
 
 def _sources_users_copy():
     yield "README.md", _readme_code()
+    for path in sorted((ROOT / "docs").rglob("*.md")):      # the documentation site's pages
+        rel = str(path.relative_to(ROOT))
+        if not rel.startswith(("docs/_build", "docs/gallery", "docs/api")):
+            yield rel, _readme_code(rel)
     for path in sorted((ROOT / "models").glob("*.py")):
         yield path.name, path.read_text(encoding="utf-8")
 

@@ -29,13 +29,18 @@ def make_clone(base):
     return repo
 
 
+WORKFLOW_PAGE = os.path.join(ROOT, "docs", "user-guide", "workflow.md")
+"""The user guide's "Simulate, check and compare" page (the README's
+"Workflow" section until issue 31)."""
+
+
 def readme_commands():
-    """The ``$ acausal2d simulate|compare ...`` lines of the README's workflow
-    block (the first code block under "## Workflow"; every other command of
-    the README runs in tests/test_readme_commands.py)."""
-    with open(os.path.join(ROOT, "README.md")) as fh:
+    """The ``$ acausal2d simulate|compare ...`` lines of the workflow block
+    (the first code block of :data:`WORKFLOW_PAGE`; every other command of
+    the README and the user guide runs in tests/test_readme_commands.py)."""
+    with open(WORKFLOW_PAGE, encoding="utf-8") as fh:
         text = fh.read()
-    block = text.split("## Workflow", 1)[1].split("```", 2)[1]
+    block = text.split("```", 2)[1]
     return [shlex.split(m) for m in re.findall(r"^\$ (acausal2d (?:simulate|compare) .*)$",
                                                block, re.M)]
 

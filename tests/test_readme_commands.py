@@ -1,8 +1,10 @@
-"""Every command the README shows works in a plain clone.
+"""Every command the README and the user guide show works in a plain clone.
 
-The ``$ ...`` lines of the README's code blocks (continued over ``\\``
-line ends, a trailing ``# comment`` dropped) run in order, as a user types
-them, in a copy of the tracked files (no ``../shared``).  A command whose
+The ``$ ...`` lines of the code blocks of README.md and of the user-guide
+pages of the documentation (:data:`COMMAND_PAGES`, in the order the README
+had them before they moved there; continued over ``\\`` line ends, a
+trailing ``# comment`` dropped) run in order, as a user types them, in a
+copy of the tracked files (no ``../shared``).  A command whose
 shown output starts with ``error:`` must fail with exit 2 or 3 and print
 that message's first words; every other command must exit 0."""
 import os
@@ -14,10 +16,22 @@ import sys
 from test_plain_clone import ROOT, make_clone
 
 
+COMMAND_PAGES = ["README.md"] + ["docs/user-guide/%s.md" % page for page in (
+    "workflow", "studies-sweeps", "fit-optimize", "linearize-modes", "export-fmu", "kinematics",
+    "talk-constructions", "dof-cams-ropes", "writing-models", "nodes-mec2", "models", "library",
+    "band-synthesis", "layout", "compiler-runtime", "accuracy-speed")] + \
+    ["docs/guide/result-files.md"]
+"""The pages whose ``$`` lines run, in order (the README's sections moved to
+docs/user-guide/, issue 31)."""
+
+
 def readme_commands():
-    """[(argv, expected error start or None)] of the README's ``$`` lines."""
-    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as fh:
-        lines = fh.read().splitlines()
+    """[(argv, expected error start or None)] of the ``$`` lines of the
+    README and the user guide (:data:`COMMAND_PAGES`)."""
+    lines = []
+    for page in COMMAND_PAGES:
+        with open(os.path.join(ROOT, page), encoding="utf-8") as fh:
+            lines += fh.read().splitlines()
     out, i = [], 0
     while i < len(lines):
         if not lines[i].startswith("$ "):

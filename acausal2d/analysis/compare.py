@@ -68,7 +68,7 @@ import numpy as np
 from ..errors import Acausal2dError
 from ..io.files import safe_filename  # noqa: F401  (public here since 0.1)
 from ..io.tables import CELL_LIMIT, _check_time, _few, read_csv  # noqa: F401  (public here too)
-from .compare_inputs import check_options, load_table, select_signals
+from .compare_inputs import check_options, load_table, select_signals, table_units
 
 DEFAULT_ABS_TOL = 2e-3
 """Absolute tolerance used when neither ``abs_tol`` nor ``rel_tol`` is given."""
@@ -239,7 +239,9 @@ class SignalComparison:
     it was compared with, ``max_deviation`` the largest ``|ours - ref|`` and
     ``time`` the reference time where it occurs, ``tolerance`` the half-width
     of the tube, ``passed`` the verdict and ``message`` an explanation when a
-    check other than the tolerance failed (time range, NaN values).
+    check other than the tolerance failed (time range, NaN values), ``unit``
+    the signal's unit as the result or the reference declares it ('' if
+    neither does).
     """
     name: str
     our_name: str
@@ -248,6 +250,7 @@ class SignalComparison:
     tolerance: float
     passed: bool
     message: str = ""
+    unit: str = ""
     # data for plotting
     ref_time: np.ndarray = field(default=None, repr=False)
     ref_values: np.ndarray = field(default=None, repr=False)
@@ -509,6 +512,9 @@ def compare(result, reference, signals=None, mapping=None, abs_tol=None, rel_tol
                             (ref_name, our_name), _tolerance(ref_cols[ref_name], abs_tol, rel_tol),
                             time_tol, range_msg)
             for ref_name, our_name in pairs]
+    units = {**table_units(reference), **table_units(result)}
+    for r in rows:
+        r.unit = units.get(r.our_name) or units.get(r.name, "")
     cmp = Comparison(rows=rows, time_tol=time_tol, unmatched=unmatched, only_common=only_common)
     if plot_dir is not None:
         cmp.plots = plot_comparison(cmp, plot_dir)

@@ -21,14 +21,22 @@ from ..errors import Acausal2dError
 from ..io.tables import _check_time, _few, check_finite, read_csv
 from ..language.dsl import modelica_aliases
 
-__all__ = ["load_table", "check_options", "select_signals", "modelica_counterpart"]
+__all__ = ["load_table", "table_units", "check_options", "select_signals",
+           "modelica_counterpart"]
 
 
 def load_table(source, role):
     """``(time, columns)`` of the ``role`` argument ("result" or
-    "reference"): a CSV path, a Result (result only) or a ``(time,
+    "reference"): a CSV path, a Dymola result file (``.mat``, see
+    :mod:`acausal2d.io.dymola_mat`), a Result (result only) or a ``(time,
     columns)`` tuple with ``columns`` a dict of 1-D sequences."""
     if isinstance(source, (str, os.PathLike)):
+        if os.fspath(source).lower().endswith(".mat"):
+            from ..io.dymola_mat import read_mat
+            t, cols = read_mat(source)
+            _check_time(t, os.fspath(source))
+            check_finite(cols, t, os.fspath(source))
+            return t, cols
         return read_csv(source)
     if hasattr(source, "names") and hasattr(source, "time") and role == "result":
         t = np.asarray(source.time, dtype=float)
@@ -40,6 +48,29 @@ def load_table(source, role):
     raise Acausal2dError("compare: %s must be a %sCSV file path or a (time, columns) tuple, "
                          "not %s" % (role, "Result, a " if role == "result" else "",
                                      type(source).__name__))
+
+
+def table_units(source):
+    """{signal: unit} a table carries: a Result's declarations, a ``.mat``
+    file's descriptions, or the ``units`` of the run manifest that
+    ``acausal2d simulate`` wrote beside a result CSV; {} if none."""
+    if hasattr(source, "names") and hasattr(source, "unit"):
+        return {n: source.unit(n) for n in source.names}
+    if not isinstance(source, (str, os.PathLike)):
+        return {}
+    path = os.fspath(source)
+    if path.lower().endswith(".mat"):
+        from ..io.dymola_mat import mat_units
+        return mat_units(path)
+    import json
+    from ..io.files import MANIFEST
+    try:
+        with open(os.path.join(os.path.dirname(os.path.abspath(path)), MANIFEST),
+                  encoding="utf-8") as fh:
+            units = json.load(fh).get("units", {})
+    except (OSError, ValueError, AttributeError):
+        return {}
+    return units if isinstance(units, dict) else {}
 
 
 def _floats(values, what):

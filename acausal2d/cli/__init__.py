@@ -70,6 +70,8 @@ def build_parser():
     sub = p.add_subparsers(dest="command", required=True)
     for name in COMMAND_MODULES:
         importlib.import_module("." + name, __name__).add_parsers(sub)
+    from .examples import add_examples
+    add_examples(sub)
     return p
 
 

@@ -42,10 +42,11 @@ def _animation_options(args, cm):
     return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay, "poles": poles}
 
 
-def _print_summary(model, res, out, pngs, extra=()):
+def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
     """The run's summary: singular positions, early stop, solver counts,
-    the files written (``extra``: those the model wrote itself), states and
-    the ports fixed to ground because nothing is connected to them."""
+    the files written (``table``: the result file, ``extra``: those the
+    model wrote itself), states and the ports fixed to ground because nothing
+    is connected to them."""
     from ..analysis.check import grounded_lines
     from ..compiler.flatten import grounded_ports
     for sing in res.singularities:
@@ -54,12 +55,13 @@ def _print_summary(model, res, out, pngs, extra=()):
         print("  " + res.stopped)
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s%s); %d steps, %d output points, "
-          "%d events, %d state re-selections, %d residual evaluations -> %s/ (result.csv, "
+          "%d events, %d state re-selections, %d residual evaluations -> %s/ (%s, "
           "%d plot%s, animation.html%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], ", native code %.3f s" % st["native_compile_time"]
               if st.get("native_compile_time") else "", st["steps"], len(res.time),
-              st["events"], st["reselections"], st["nfev"], out, len(pngs), "" if len(pngs) == 1 else "s",
+              st["events"], st["reselections"], st["nfev"], out, table, len(pngs),
+              "" if len(pngs) == 1 else "s",
               "".join(", " + os.path.basename(f) for f in extra)))
     for note in getattr(res, "native_notes", None) or []:
         print("  native: " + note)
@@ -96,7 +98,7 @@ def cmd_simulate(args):
             if drawer is not None:
                 drawer.close()
     model = res.model.model
-    _print_summary(model, res, args.out, pngs, [tx.final(f) for f in extra])
+    _print_summary(model, res, args.out, pngs, [tx.final(f) for f in extra], _result_name(args))
     if res.stopped:
         print("stopped early: %s" % res.stopped, file=sys.stderr)
         return 3
@@ -138,6 +140,11 @@ def _simulate_settings(args, cm):
             "animation": _animation_options(args, cm), "params": _parse_set(args.set)}
 
 
+def _result_name(args):
+    """``result.csv`` or ``result.mat`` (``--result-format``)."""
+    return "result.mat" if args.result_format == "mat" else "result.csv"
+
+
 def _write_outputs(res, tx, settings, args, drawer=None):
     """CSV, figures (drawn by ``drawer``, a :class:`~acausal2d.visual.
     figure_process.FigureProcess`, if given), animation and the files the
@@ -154,15 +161,25 @@ def _write_outputs(res, tx, settings, args, drawer=None):
         jobs = figure_jobs(res, out, settings["specs"], args.format)
         if drawer is not None:
             drawer.submit(jobs)             # drawn by the child while the files below are written
-    res.to_csv(tx.file("result.csv"))
+    table = tx.file(_result_name(args))
+    if table.endswith(".mat"):
+        res.to_mat(table)
+    else:
+        res.to_csv(table)
     res.animate(tx.file("animation.html"), traces=settings["traces"], **settings["animation"])
     if jobs is not None:
         pngs = drawer.collect() if drawer is not None else draw_jobs(jobs)
     if not settings["specs"]:
         print("  (the model declares no outputs; choose signals to plot with --plot a,b)")
     tx.info.update(model=type(res.model.model).__name__ if res.model else None,
-                   stopped=res.stopped)
+                   stopped=res.stopped, units=_units(res))
     return pngs, _model_files(res, out)
+
+
+def _units(res):
+    """{signal: unit} of the declared units, kept in the manifest so that
+    ``compare`` labels its plot axes of a result CSV with them."""
+    return {n: u for n in res.names if (u := res.unit(n))}
 
 
 def _model_files(res, out):
@@ -222,5 +239,8 @@ def add_parsers(sub):
                    "$ACAUSAL2D_NATIVE): a structure not compiled yet runs on the Python path "
                    "while it is compiled in the background; now: compile first; off: the "
                    "Python path only")
+    s.add_argument("--result-format", choices=("csv", "mat"), default="csv",
+                   help="result.csv (default) or result.mat in Dymola's result format (MAT v4, "
+                   "read by Modelica plotting tools, DyMat, buildingspy)")
     s.add_argument("--out", default="out", help="output directory (default: out)")
     s.set_defaults(func=cmd_simulate)

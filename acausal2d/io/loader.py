@@ -38,17 +38,32 @@ def _import(path):
     return module, modname
 
 
-def _choose(path, module, modname, name):
-    """The model class: ``name`` if given, else the only model of the file."""
+def _classes(module, modname):
+    """(component classes of the file, its models): the models are the
+    classes with an ``experiment``, or all classes if none has one."""
     classes = [obj for _, obj in inspect.getmembers(module, inspect.isclass)
                if issubclass(obj, Component) and obj.__module__ == modname
                and not obj.__name__.startswith("_")]
+    return classes, [c for c in classes if getattr(c, "experiment", None) is not None] or classes
+
+
+def model_names(path):
+    """Names of the models a model file defines (those ``--model`` takes;
+    see :func:`load_model`), in source order."""
+    path = os.path.abspath(os.fspath(path))
+    module, modname = _import(path)
+    models = _classes(module, modname)[1]
+    return [c.__name__ for c in sorted(models, key=lambda c: inspect.getsourcelines(c)[1])]
+
+
+def _choose(path, module, modname, name):
+    """The model class: ``name`` if given, else the only model of the file."""
+    classes, models = _classes(module, modname)
     if name is not None:
         return _named(path, module, name, classes)
     if not classes:
         raise ModelDefinitionError("%s defines no model (a subclass of acausal2d.Component)"
                                    % path)
-    models = [c for c in classes if getattr(c, "experiment", None) is not None] or classes
     if len(models) > 1:
         raise ModelDefinitionError("%s defines several models (%s); choose one with --model NAME "
                                    "(load_model(path, name))"

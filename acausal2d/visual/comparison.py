@@ -5,7 +5,7 @@ import os
 import numpy as np
 
 from ..io.files import safe_filename
-from .plotting import save_figure
+from .plotting import axis_label, save_figure
 
 
 def plot_comparison(comparison, plot_dir):
@@ -40,7 +40,7 @@ def _plot_signal(r, path):
             label=label)
     if np.isfinite(r.time):
         ax.axvline(r.time, color="tab:red", linewidth=0.8, alpha=0.6)
-    ax.set_ylabel(r.name)
+    ax.set_ylabel(axis_label(r.name, r.unit))
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
     title = "%s: %s, max deviation %.3g at t=%.6g (tol %.3g)" % (
@@ -51,7 +51,7 @@ def _plot_signal(r, path):
     axd.plot(r.ref_time, r.our_on_ref - r.ref_values, color="tab:orange", linewidth=1.0)
     axd.axhline(r.tolerance, color="tab:blue", linewidth=0.8, linestyle=":")
     axd.axhline(-r.tolerance, color="tab:blue", linewidth=0.8, linestyle=":")
-    axd.set_ylabel("result \u2212 ref")
+    axd.set_ylabel(axis_label("result \u2212 ref", r.unit))
     axd.set_xlabel("time [s]")
     axd.grid(True, alpha=0.3)
     fig.tight_layout()
