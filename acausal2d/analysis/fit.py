@@ -50,7 +50,6 @@ alone; an optimiser stopped by its evaluation budget is reported with
 import numpy as np
 
 from ..errors import Acausal2dError
-from ..io.files import atomic_path
 from .trials import Trials, parse_free
 
 CORRELATION_LIMIT = 0.99

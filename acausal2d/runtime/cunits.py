@@ -33,9 +33,6 @@ class BuildFailed(Acausal2dError):
     """The C compiler refused the sources, or wrote no library."""
 
 
-from . import cstore as store, cunits as units    # noqa: E402 - they use the errors above
-
-
 def workers():
     """Compiler processes run at once: the cores this process may use."""
     try:

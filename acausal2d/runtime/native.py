@@ -346,7 +346,8 @@ def _declare_projector(path):
 def row_projector(system, free):
     """A function (T, Z, p, d, tol, max_iter, slow) -> (Z solved for the
     unknowns ``free``, converged rows) in C (``native_project.c``, LU of the
-    Jacobian's block lower-triangular form with ``native_lu.c`` per block, :func:`~acausal2d.runtime.blt_layout.layout`),
+    Jacobian's block lower-triangular form with ``native_lu.c`` per block,
+    :func:`~acausal2d.runtime.blt_layout.layout`),
     or None where it cannot be built or dE/dz_free is structurally singular.
     Each row gets at most ``max_iter`` Newton iterations; after a row that
     needed more than ``slow`` of them the next row takes a new LU."""

@@ -78,7 +78,8 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
     an instantaneous pole (ring and label; left out of the bounding box).
 
 Any shape may also have a ``"color"`` (a CSS colour string) that replaces its
-main colour, and a ``"layer"`` name: the page shows a check box per layer.  Other keys are ignored.  A signal value that is NaN (written
+main colour, and a ``"layer"`` name: the page shows a check box per layer.  Other keys are ignored.
+A signal value that is NaN (written
 as ``null`` in the JSON) hides the shape in that frame.
 
 The page
