@@ -1,5 +1,6 @@
-"""The code passes the project's linter (issue 34): ruff with the rules of
-pyproject.toml ([tool.ruff]) over the package and the library."""
+"""The code passes the project's linter and type checker (issue 34): ruff
+with the rules of pyproject.toml ([tool.ruff]) over the package and the
+library, and mypy as [tool.mypy] configures it."""
 import pathlib
 import shutil
 import subprocess
@@ -14,3 +15,10 @@ def test_ruff_passes_on_the_package_and_the_library():
     proc = subprocess.run([exe, "check", "acausal2d", "library"], cwd=ROOT, capture_output=True,
                           text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_mypy_passes_on_the_package():
+    proc = subprocess.run([sys.executable, "-m", "mypy"], cwd=ROOT, capture_output=True,
+                          text=True, timeout=900)
+    assert proc.returncode == 0, proc.stdout[-4000:] + proc.stderr[-2000:]
+    assert "Success: no issues found" in proc.stdout

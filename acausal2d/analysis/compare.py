@@ -61,6 +61,7 @@ curve from the reference's time window (0 inside it).  A step or an event
 shifted by less than ``time_tol`` therefore passes, a wrong level does not.
 ``until`` compares the reference points up to that time only.
 """
+from typing import Optional
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -252,13 +253,13 @@ class SignalComparison:
     message: str = ""
     unit: str = ""
     # data for plotting
-    ref_time: np.ndarray = field(default=None, repr=False)
-    ref_values: np.ndarray = field(default=None, repr=False)
-    our_on_ref: np.ndarray = field(default=None, repr=False)
-    our_time: np.ndarray = field(default=None, repr=False)
-    our_values: np.ndarray = field(default=None, repr=False)
-    tube_low: np.ndarray = field(default=None, repr=False)
-    tube_high: np.ndarray = field(default=None, repr=False)
+    ref_time: Optional[np.ndarray] = field(default=None, repr=False)
+    ref_values: Optional[np.ndarray] = field(default=None, repr=False)
+    our_on_ref: Optional[np.ndarray] = field(default=None, repr=False)
+    our_time: Optional[np.ndarray] = field(default=None, repr=False)
+    our_values: Optional[np.ndarray] = field(default=None, repr=False)
+    tube_low: Optional[np.ndarray] = field(default=None, repr=False)
+    tube_high: Optional[np.ndarray] = field(default=None, repr=False)
 
 
 @dataclass
@@ -270,7 +271,7 @@ class Comparison:
     """
     rows: list
     plots: list = field(default_factory=list)
-    time_tol: float = None
+    time_tol: Optional[float] = None
     unmatched: list = field(default_factory=list)
     only_common: bool = False
 

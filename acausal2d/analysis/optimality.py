@@ -37,6 +37,7 @@ also tests second-order necessity: the smallest eigenvalue of the Hessian
 reduced to the null space of the active constraints, scaled by gradient
 scale / x_scale, must not be below ``-tol``.
 """
+from typing import Optional
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -56,7 +57,7 @@ class KKTResult:
     feasibility: float
     complementarity: float
     tol: float
-    curvature: float = None
+    curvature: Optional[float] = None
     active: dict = field(default_factory=dict)
     multipliers: dict = field(default_factory=dict)
 

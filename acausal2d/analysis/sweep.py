@@ -57,7 +57,7 @@ import numpy as np
 from ..errors import Acausal2dError
 from ..io.files import atomic_path
 
-_COMPILED = {}
+_COMPILED: dict = {}
 """Worker-side cache: model key -> CompiledModel (or the exception its
 compilation raised)."""
 

@@ -101,7 +101,7 @@ class Structure:
     n_original: int = 0
     selection: Optional[Selection] = None
     velocity_of: tuple = ()
-    _var_index: dict = field(default=None, compare=False, repr=False)
+    _var_index: Optional[dict] = field(default=None, compare=False, repr=False)
 
     @property
     def n_eq(self):

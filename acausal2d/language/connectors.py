@@ -18,6 +18,7 @@ potential names to values or parameter expressions (a callable receiving the
 owning component is evaluated when the model is flattened).  A connector
 with ``required=True`` must be connected.
 """
+from typing import Optional
 from .declarations import Variable, VarInfo, _join
 from ..errors import ModelDefinitionError
 
@@ -25,12 +26,12 @@ from ..errors import ModelDefinitionError
 class Connector:
     """Base class of connector kinds (see module docstring)."""
 
-    kind = "connector"
-    potentials = ()
-    flows = ()
-    units = {}
+    kind: str = "connector"
+    potentials: tuple[str, ...] = ()
+    flows: tuple[str, ...] = ()
+    units: dict[str, str] = {}
     one_to_one = False
-    signal = None  # "input" / "output" for signal connectors
+    signal: Optional[str] = None  # "input" / "output" for signal connectors
 
     def __init__(self, ground=None, required=False, doc="", nominal=None):
         self._owner = None

@@ -23,7 +23,7 @@ VAR, PARAM, DISCRETE, TIME = "var", "param", "discrete", "time"
 time = ca.SX.sym("time")
 """The simulation time symbol; use it in equations of time-dependent sources."""
 
-_active = []        # stack of tables of flattenings in progress
+_active: list = []  # stack of tables of flattenings in progress
 
 
 def as_sx(expr):

@@ -36,9 +36,9 @@ NICE = 19                # the lowest priority: the run itself is never slowed f
 CHUNKS = 4
 """While a library is compiled in the background, a run advances in this
 many pieces of its output grid and looks for the library between them."""
-_queue = []             # (key, recipe, label) not yet handed to a worker
-_seen = set()           # keys queued by this process
-_workers = []           # (Popen, start time, expected seconds)
+_queue: list = []        # (key, recipe, label) not yet handed to a worker
+_seen: set = set()      # keys queued by this process
+_workers: list = []      # (Popen, start time, expected seconds)
 
 
 def failure_path(key, name):

@@ -24,7 +24,7 @@ MAX_FILL = 4_000_000
 """Most entries that L (and U) of the diagonal blocks' LUs could reach (s(s +
 1)/2 for a block of size s > 1; 2.8 blocks of 2000 unknowns): beyond, no C
 projector (the Python path with sparse LU)."""
-_LAYOUTS = weakref.WeakKeyDictionary()    # system -> {free unknowns (bytes): array or None}
+_LAYOUTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()    # system -> {free unknowns (bytes): array or None}
 
 
 def layout(system, free):

@@ -32,7 +32,7 @@ DIGEST = ".sha256"
 LOCK = ".lock"
 BUILD_PREFIX = ".build-"
 TMP_PREFIX = ".tmp-"
-_said = set()
+_said: set = set()
 
 
 def notice(message):

@@ -61,7 +61,7 @@ tests/test_native_runtime.py; 1437 with the LU)."""
 MAX_PASSES = 256
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
 _LU = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_lu.c")
-_libs = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
+_libs: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
     ctypes.POINTER(ctypes.c_long)
 _PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
@@ -81,7 +81,7 @@ def _text(path):
         return fh.read()
 
 
-_module_texts = {}
+_module_texts: dict = {}
 
 
 def _derived(owner):
@@ -130,7 +130,7 @@ def _declare(lib):
     return lib
 
 
-_keys = weakref.WeakKeyDictionary()       # formulation -> its fingerprint
+_keys: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()       # formulation -> its fingerprint
 
 
 def library(form):
@@ -258,7 +258,7 @@ def default_solver(n):
     return "sparse-lu" if n >= SPARSE_FROM else "dense"
 
 
-_orders = weakref.WeakKeyDictionary()     # formulation -> (q, prefer) of its iteration matrix
+_orders: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()   # formulation -> (q, prefer)
 
 
 def lu_order(form):
@@ -294,7 +294,7 @@ def native_ida(prob, rtol, atol, solver=None):
     return drv if drv.handle else None
 
 
-_compiled = {}       # fingerprint of the functions -> {name: external Function}
+_compiled: dict = {}     # fingerprint of the functions -> {name: external Function}
 
 
 def compiled(functions):
@@ -315,7 +315,7 @@ def compiled(functions):
     return _compiled[key]
 
 
-_projectors = weakref.WeakKeyDictionary()     # system -> loaded library (or False)
+_projectors: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> loaded library (or False)
 _PROJECT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_project.c")
 
 

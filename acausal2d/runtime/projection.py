@@ -36,7 +36,7 @@ drive, 80: 0.0198 / 0.0181 / 0.0210; compressor, 202: 0.0229 / 0.0326 /
 one iteration, with the LU of an earlier row mostly 3 or 4."""
 
 
-_MAPS = weakref.WeakKeyDictionary()     # system -> its mapped functions
+_MAPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> its mapped functions
 
 
 def _mapped_functions(system):

@@ -30,6 +30,7 @@ holds what a node model compiles into:
 
 All elements are massless except the nodes; each writes position-level
 equations and force balances only."""
+from typing import Optional
 import casadi as ca
 
 from acausal2d import (Component, Connector, der, Frame, Outer, Parameter, RotationalFlange,
@@ -311,8 +312,8 @@ class _Drive(Component):
     symbol and a parameter getter."""
     t0 = Parameter(0.0, "s", "drive start time (mec2 t0)")
     Dt = Parameter(1.0, "s", "drive duration (mec2 Dt)", positive=True)
-    _flange_class = None      # RotationalFlange or TranslationalFlange
-    _potential_name = None    # its potential, "phi" or "s"
+    _flange_class: Optional[type] = None      # RotationalFlange or TranslationalFlange
+    _potential_name: Optional[str] = None    # its potential, "phi" or "s"
 
     def __init__(self, law, clamp=(False, False), **kw):
         super().__init__(**kw)

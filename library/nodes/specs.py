@@ -4,6 +4,7 @@ can be given (talk: const, ref, drive, range; cstr.js and mec2 spellings):
 :func:`delta`, :func:`between`, :func:`at_least`, :func:`at_most`, and the
 source laws and solver descriptions the node model builds from them.
 """
+from typing import Optional
 import math
 import numbers
 
@@ -26,7 +27,7 @@ class NodeAssemblyError(InitializationError):
 # ---------------------------------------------------------------- value specs
 class _Spec:
     """A constraint value other than free/const/number."""
-    kind = None
+    kind: Optional[str] = None
 
     def __repr__(self):
         return "%s(%s)" % (type(self).__name__, ", ".join(

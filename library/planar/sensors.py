@@ -55,9 +55,9 @@ class _Sensor(Component):
     """Frames, outputs and the resolve option of a sensor.  Subclasses
     declare ``modelica_names`` (PlanarMechanics array names of their
     outputs, read by ``compare``) from their ``OUTPUTS``."""
-    FRAMES = ("frame_a",)
-    OUTPUTS = ()
-    CHOICES = _ABSOLUTE
+    FRAMES: tuple[str, ...] = ("frame_a",)
+    OUTPUTS: tuple[str, ...] = ()
+    CHOICES: tuple[str, ...] = _ABSOLUTE
 
     def __init_subclass__(cls, **kw):
         super().__init_subclass__(**kw)
