@@ -6,7 +6,6 @@ jumps is reported as needing an impulse; time events fall on their exact
 times; relations that are at zero when the motion restarts take the value
 their derivative gives."""
 import math
-import time as _time
 
 import numpy as np
 import pytest
@@ -66,10 +65,14 @@ def test_coulomb_block_decelerates_then_stops_with_a_sliding_mode_error():
 
 
 def test_sign_ode_reaches_zero_at_one_tenth_then_stops_within_two_seconds():
-    wall = _time.perf_counter()
     with pytest.raises(SimulationError) as err:
         acausal2d.simulate(SignODE(), stop_time=1.0, rtol=1e-8)
-    assert _time.perf_counter() - wall < 2.0
+    # stops instead of chattering at x = 0, bounded in work, not in wall time
+    # (a timed bound fails on a loaded machine): x = 0.1 - t is linear, so
+    # IDA's error estimate vanishes and each step at most doubles from the
+    # first (>= 1e-9 s at rtol 1e-8): log2(0.1 / 1e-9) = 27 steps to the
+    # switch, and a few to locate it; 100 leaves room (measured: 30)
+    assert err.value.result.stats["steps"] <= 100
     assert err.value.time == pytest.approx(0.1, abs=1e-6)
     assert "'sign(x)'" in str(err.value)
     res = err.value.result

@@ -17,6 +17,7 @@ optimiser can treat it smoothly (epigraph form, see
 import ast
 
 import numpy as np
+from scipy.integrate import trapezoid
 
 from ..errors import Acausal2dError
 
@@ -157,7 +158,7 @@ def _reduce(fname, t, y):
         return float(np.mean(y))
     if fname == "rms":
         return float(np.sqrt(np.mean(y ** 2)))
-    return float(np.trapezoid(y, t)) if t.size > 1 else 0.0
+    return float(trapezoid(y, t)) if t.size > 1 else 0.0
 
 
 def parse_constraint(text, known=None):
