@@ -28,8 +28,12 @@ def _cases():
 
 def test_same_as_scipy_bit_for_bit():
     for A in _cases():
-        _, r, piv = sla.qr(A, pivoting=True, mode="economic")
         r2, piv2 = qr_pivoted(A)
+        if A.size == 0:            # scipy >= 1.11's answer; 1.10's qr fails on it
+            assert r2.shape == (min(A.shape), A.shape[1]) and piv2.dtype == np.int32
+            assert (piv2 == np.arange(A.shape[1])).all()
+            continue
+        _, r, piv = sla.qr(A, pivoting=True, mode="economic")
         assert r.shape == r2.shape
         assert_copied(r, r2)                   # the same LAPACK routine
         assert piv.dtype == piv2.dtype and (piv == piv2).all()
