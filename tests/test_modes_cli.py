@@ -10,6 +10,7 @@ import os
 import numpy as np
 
 from acausal2d import cli
+from conftest import assert_copied
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")
@@ -18,7 +19,6 @@ TORQUE_PENDULUM = '''
 from acausal2d import Component, start
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute
 from acausal2d.library.rotational import ConstantTorque
-from conftest import assert_copied
 
 
 class TorquePendulum(Component):
