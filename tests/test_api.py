@@ -25,7 +25,9 @@ def test_check_and_compare_can_be_called_again(tmp_path):
     for _ in range(2):
         cmp = acausal2d.compare(path, path)
         assert cmp.passed
-        assert len(cmp.rows) >= 2 and all(r.max_deviation == 0.0 for r in cmp.rows)
+        # a file against itself: each sample is interpolated at its own time,
+        # exact up to a rounding of the value, far below a millionth of the tube
+        assert len(cmp.rows) >= 2 and all(r.max_deviation <= 1e-6 * r.tolerance for r in cmp.rows)
 
 
 def test_simulate_rejects_bad_settings():

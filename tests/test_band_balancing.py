@@ -78,7 +78,14 @@ def test_lever_arm_bound_and_free_spring_rate():
     h_max).  Success is the KKT check's verdict, not an optimiser's flag."""
     fit = spring_band_transfer(PHI, torque, C_S, ("poly", 3), x_start=X0, h_max=0.02)
     assert fit.success and np.max(fit.h) <= 0.02 + 1e-9
-    assert fit.kkt.stationarity < 1e-10 and fit.kkt.feasibility == 0.0
+    # Newton on the active set (balancing._polish) makes the active bounds
+    # hold to round-off, not exactly: feasibility is |h_i - h_max| over
+    # ||row_i||_2 ||z||_inf, and h_i = Dap_i + DN_i z evaluated twice (in the
+    # polish and in the check) carries at most 2 (n+2) eps (|Dap_i| + h_max +
+    # |DN_i| |z|); over ||row_i||_2 ||z||_inf that ratio is 1.6 here (n = 3
+    # free coefficients), so round-off is below 10 * 2.2e-16 * 1.6 = 3.6e-15.
+    # 1e-13 leaves 30x room and stays five decades under the KKT tol (1e-8).
+    assert fit.kkt.stationarity < 1e-10 and fit.kkt.feasibility < 1e-13
     assert fit.kkt.active["ineq"]                   # the bound is active ...
     assert fit.rms > 1e-2                           # ... and costs accuracy
     c = softest_spring(PHI, torque, X0, 0.02)

@@ -80,7 +80,9 @@ def test_sbds_cross_slider_balance():
     power = res["drive.tau"] * 0.05 - 10.0 * res["der(slider.xG)"]
     assert np.max(np.abs(power)) < 1e-8 * np.max(np.abs(res["drive.tau"]))
     assert np.ptp(res["drive.tau"]) > 1.0           # a non-constant ratio
-    assert np.all(res["drum.phi"] == 0.0)           # the plate does not turn
+    # the plate does not turn: drum.phi stays within the integrator's atol
+    # (rtol 1e-10 x nominal 1 rad)
+    assert np.max(np.abs(res["drum.phi"])) <= 1e-10
 
 
 def _wound_off(res):

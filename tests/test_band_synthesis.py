@@ -74,8 +74,10 @@ def test_constant_ratio_gives_circular_cam(R2, K, sense, crossed):
     lbf = res["bk.l_Bf"]
     assert np.max(np.abs(np.abs(lbf - lbf[0]) - R2 * res.time)) < 1e-8
     # all flows zero (Tabelle 4.3, 4.7): the drives need no torque
-    assert np.max(np.abs(res["cam.drive.flange.tau"])) == 0.0
-    assert np.max(np.abs(res["roller.drive.flange.tau"])) == 0.0
+    # (zero in exact arithmetic: within the solver's tolerance, rtol 1e-10 x
+    # nominal 1 N m)
+    assert np.max(np.abs(res["cam.drive.flange.tau"])) <= 1e-10
+    assert np.max(np.abs(res["roller.drive.flange.tau"])) <= 1e-10
     # the functional form gives the same contour
     syn = synthesize(BandStructure.dbbd((0, 0), (L1, 0), lambda p: sense * i * p, R4, K, XS0,
                                         cam_angle=lambda p: sense * p),

@@ -15,6 +15,7 @@ import pytest
 
 import acausal2d
 from acausal2d.analysis.compare import compare, read_csv
+from conftest import same_time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DP_REF = os.path.join(ROOT, "tests", "data", "references", "DoublePendulum.csv")
@@ -83,7 +84,7 @@ def _step_files(tmp_path, shift):
     tr = np.linspace(0.0, 1.0, 1001)
     ref_t = np.sort(np.r_[tr, 0.5])
     ref_y = (ref_t > 0.5).astype(float)
-    ref_y[np.flatnonzero(ref_t == 0.5)[-1]] = 1.0             # right limit row
+    ref_y[np.flatnonzero(same_time(ref_t, 0.5))[-1]] = 1.0             # right limit row
     to = np.linspace(0.0, 1.0, 101)
     te = 0.5 + shift
     our_t = np.sort(np.r_[to, te, te])

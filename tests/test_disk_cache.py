@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from acausal2d.io import cache
-from conftest import load_model_class
+from conftest import load_model_class, assert_copied
 
 synthesise = load_model_class("noncircular_belt_drive.py", "synthesise")
 design = load_model_class("noncircular_belt_drive.py", "design")
@@ -30,7 +30,8 @@ def test_entry_computed_once_then_read(cache_folder):
     a = cache.cached_arrays("t", ("k", 1.0), compute)
     b = cache.cached_arrays("t", ("k", 1.0), compute)
     assert len(calls) == 1
-    assert np.array_equal(a["x"], b["x"]) and float(b["s"]) == 2.5
+    assert_copied(a["x"], b["x"])
+    assert_copied(float(b["s"]), 2.5)
     cache.cached_arrays("t", ("k", 2.0), compute)          # another key: computed
     assert len(calls) == 2
     assert len(list(cache_folder.glob("t-*.npz"))) == 2
@@ -40,16 +41,15 @@ def test_corrupt_entry_is_recomputed(cache_folder):
     path = cache.cache_path("t", 7)
     cache_folder.joinpath(path.split("/")[-1]).write_bytes(b"not a zip file")
     out = cache.cached_arrays("t", 7, lambda: {"x": np.ones(2)})
-    assert np.array_equal(out["x"], np.ones(2))
-    assert np.array_equal(cache.cached_arrays("t", 7, lambda: {"x": np.zeros(2)})["x"],
-                          np.ones(2))
+    assert_copied(out["x"], np.ones(2))
+    assert_copied(cache.cached_arrays("t", 7, lambda: {"x": np.zeros(2)})["x"], np.ones(2))
 
 
 def test_unwritable_folder_only_costs_the_computation(tmp_path, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("a file where the folder should be")
     monkeypatch.setenv("ACAUSAL2D_CACHE_DIR", str(blocker / "sub"))
-    assert cache.cached_arrays("t", 1, lambda: {"x": np.ones(1)})["x"][0] == 1.0
+    assert_copied(cache.cached_arrays("t", 1, lambda: {"x": np.ones(1)})["x"], [1.0])
 
 
 def test_gauss_newton_matches_closed_forms():

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from acausal2d.runtime.rows import OutputRows
+from conftest import assert_copied
 
 
 def _filled():
@@ -18,13 +19,13 @@ def _filled():
 def test_points_come_back_in_order_as_pairs():
     rows = _filled()
     assert len(rows) == 7 and rows
-    assert rows[0][0] == 0.0 and list(rows[0][1]) == [1.0, 2.0]
-    assert rows[2][0] == 0.2 and list(rows[2][1]) == [5.0, 6.0]
-    assert rows[-1][0] == 0.6 and list(rows[-1][1]) == [13.0, 14.0]
-    assert [t for t, _ in rows[3:6]] == [0.3, 0.4, 0.5]
+    for k, t, z in ((0, 0.0, [1.0, 2.0]), (2, 0.2, [5.0, 6.0]), (-1, 0.6, [13.0, 14.0])):
+        assert_copied(rows[k][0], t)
+        assert_copied(rows[k][1], z)
+    assert_copied([t for t, _ in rows[3:6]], [0.3, 0.4, 0.5])
     T, Z = rows.arrays()
-    assert list(T) == [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6]
-    assert Z[:, 0].tolist() == [1.0, 3.0, 5.0, 7.0, 9.0, 11.0, 13.0]
+    assert_copied(T, [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+    assert_copied(Z[:, 0], [1.0, 3.0, 5.0, 7.0, 9.0, 11.0, 13.0])
     with pytest.raises(IndexError):
         rows[7]
 
@@ -33,7 +34,7 @@ def test_append_copies_the_row():
     rows, z = OutputRows(2), np.array([1.0, 2.0])
     rows.append((0.0, z))
     z[0] = 99.0
-    assert rows[0][1][0] == 1.0
+    assert_copied(rows[0][1][0], 1.0)
 
 
 @pytest.mark.parametrize("n", [0, 1, 2, 3, 4, 6, 7, 9])
@@ -42,16 +43,17 @@ def test_truncate_keeps_the_first_points(n):
     rows.truncate(n)
     assert len(rows) == min(n, 7)
     T, Z = rows.arrays()
-    assert list(T) == [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6][:n]
+    assert_copied(T, [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6][:n])
     assert Z.shape == (min(n, 7), 2)
     rows.append((1.0, [0.0, 0.0]))                  # still appendable after a cut
-    assert rows[-1][0] == 1.0 and len(rows) == min(n, 7) + 1
+    assert_copied(rows[-1][0], 1.0)
+    assert len(rows) == min(n, 7) + 1
 
 
 def test_keep_until_drops_the_later_points_of_a_segment():
     rows = _filled()
     rows.keep_until(0.25, start=1)
-    assert [t for t, _ in rows[:]] == [0.0, 0.1, 0.2]
+    assert_copied([t for t, _ in rows[:]], [0.0, 0.1, 0.2])
     rows.keep_until(-1.0, start=3)                  # nothing after the start: unchanged
     assert len(rows) == 3
 

@@ -6,6 +6,7 @@ import scipy.linalg as sla
 
 from acausal2d.compiler import pivoted_qr
 from acausal2d.compiler.pivoted_qr import qr_pivoted
+from conftest import assert_copied
 
 
 def _cases():
@@ -27,10 +28,15 @@ def _cases():
 
 def test_same_as_scipy_bit_for_bit():
     for A in _cases():
-        _, r, piv = sla.qr(A, pivoting=True, mode="economic")
         r2, piv2 = qr_pivoted(A)
-        assert r.shape == r2.shape and np.array_equal(r, r2)
-        assert piv.dtype == piv2.dtype and np.array_equal(piv, piv2)
+        if A.size == 0:            # scipy >= 1.11's answer; 1.10's qr fails on it
+            assert r2.shape == (min(A.shape), A.shape[1]) and piv2.dtype == np.int32
+            assert (piv2 == np.arange(A.shape[1])).all()
+            continue
+        _, r, piv = sla.qr(A, pivoting=True, mode="economic")
+        assert r.shape == r2.shape
+        assert_copied(r, r2)                   # the same LAPACK routine
+        assert piv.dtype == piv2.dtype and (piv == piv2).all()
 
 
 def test_without_the_wheels_lapack_scipy_is_called(monkeypatch):
@@ -38,4 +44,5 @@ def test_without_the_wheels_lapack_scipy_is_called(monkeypatch):
     A = np.array([[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]])
     _, r, piv = sla.qr(A, pivoting=True, mode="economic")
     r2, piv2 = qr_pivoted(A)
-    assert np.array_equal(r, r2) and np.array_equal(piv, piv2)
+    assert_copied(r, r2)
+    assert (piv == piv2).all()

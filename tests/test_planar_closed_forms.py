@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 import acausal2d
 from acausal2d import Component, der, start, Variable
 from acausal2d.library.planar import Body, IdealRolling, PlanarWorld
-from conftest import load_model_class
+from conftest import load_model_class, same_time
 
 G = 9.81
 
@@ -95,7 +95,8 @@ def test_spring_damper_demo_energy_balance():
     assert total[0] == pytest.approx(stored0 + m * G * 1.0, rel=1e-12)
     assert np.max(np.abs(total - total[0])) / total[0] < 1e-6
     assert res["dissipated"][-1] > 10.0                 # most of it is gone by 5 s
-    assert np.max(np.abs(res["body.phi"])) == 0.0 and np.max(np.abs(res["body.w"])) == 0.0
+    # the body does not turn: within the integrator's atol (rtol 1e-8 x nominal 1)
+    assert np.max(np.abs(res["body.phi"])) <= 1e-8 and np.max(np.abs(res["body.w"])) <= 1e-8
 
 
 def test_spring_damper_demo_closed_forms():
@@ -143,7 +144,7 @@ def test_pendulum_excited_against_ode_and_cut_force_by_hand():
     fx = -w ** 2 + G * np.sin(phi)                          # m = 1 kg
     fy = z + G * np.cos(phi) - _excitation(res.time)
     post = np.ones(len(res.time), dtype=bool)
-    post[np.nonzero(res.time == 1.8)[0][:-1]] = False       # left limits at the event
+    post[np.nonzero(same_time(res.time, 1.8))[0][:-1]] = False       # left limits at the event
     assert np.max(np.abs(res["cutForce.f_x.u"] - fx)) < 1e-8
     assert np.max(np.abs((res["cutForce.f_y.u"] - fy)[post])) < 1e-8
     assert np.max(np.abs(res["worldForce.fx"] + _excitation(res.time) * np.sin(phi))[post]) < 1e-9
@@ -191,7 +192,7 @@ def test_inverted_crane_crab_is_an_inverse_model():
     assert rhs(0.0, [0, 0])[1] == pytest.approx(19.033, abs=1e-3)
     assert s_dd[0] == pytest.approx(rhs(0.0, [0, 0])[1], rel=1e-8)
     assert z[0] == pytest.approx(10.0, rel=1e-8)
-    event = np.nonzero(t == 0.5)[0]
+    event = np.nonzero(same_time(t, 0.5))[0]
     # the first row at t = 0.5 is the left limit, the last the right one (an
     # output time on a time event gives one more row: tests/test_runtime_repro_14.py)
     assert len(event) >= 2 and z[event[0]] - z[event[-1]] == pytest.approx(10.0, rel=1e-8)

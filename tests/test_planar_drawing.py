@@ -10,7 +10,7 @@ from acausal2d import Component, compile_model, start
 from acausal2d.visual.animation import validate_scene
 from acausal2d.library.planar import Body, Fixed, Prismatic, fixed_of, is_connected
 from acausal2d.visual.scene import build_scene
-from conftest import load_model_class
+from conftest import load_model_class, assert_copied
 
 
 def _scene(model, stop_time, intervals=40):
@@ -41,7 +41,9 @@ def _check_guide(scene, sh, moving_x, moving_y):
     ends = []
     for pt in sh["guide"]:
         xs, ys = _values(scene, pt[0]), _values(scene, pt[1])
-        assert np.ptp(xs) == 0.0 and np.ptp(ys) == 0.0
+        # fixed points: constant up to rounding (4 ulps of the coordinate)
+        assert np.ptp(xs) <= 4 * np.spacing(np.max(np.abs(xs)))
+        assert np.ptp(ys) <= 4 * np.spacing(np.max(np.abs(ys)))
         ends.append(np.array([xs[0], ys[0]]))
     d = ends[1] - ends[0]
     L = np.hypot(*d)
@@ -65,7 +67,7 @@ def test_piston_engine_slider_at_piston_on_fixed_guide():
     assert (sh["x"], sh["y"], sh["phi"]) == ("prismatic.frame_a.x", "prismatic.frame_a.y",
                                              "prismatic.frame_a.phi")
     x, y = _values(scene, sh["x"]), _values(scene, sh["y"])
-    np.testing.assert_array_equal(x, res["bodyPiston.x"])
+    assert_copied(x, res["bodyPiston.x"])
     assert np.ptp(x) > 0.5                     # the piston strokes 0.5 .. 1.1
     ends = _check_guide(scene, sh, x, y)
     # the model gives the guide range s = -0.4 ... -1.2: the cylinder over the
@@ -83,7 +85,7 @@ def test_crane_crab_slider_at_trolley():
     sh = _slider(scene, "prismatic")
     assert (sh["x"], sh["y"]) == ("prismatic.frame_b.x", "prismatic.frame_b.y")
     x, y = _values(scene, sh["x"]), _values(scene, sh["y"])
-    np.testing.assert_array_equal(x, res["body1.x"])
+    assert_copied(x, res["body1.x"])
     assert np.ptp(x) > 0.1
     ends = _check_guide(scene, sh, x, y)
     np.testing.assert_allclose(ends, [[-0.5, 0.0], [0.5, 0.0]], atol=1e-12)
@@ -143,5 +145,5 @@ def test_connection_helpers():
     # through a chain of connections: revolutePiston.frame_b -> prismatic.frame_a
     assert fixed_of(model.revoluteDrive.frame_a) is model.fixed
     assert fixed_of(model.bodyPiston.frame_a) is None
-    assert model.prismatic.start_value("s") == -1.1
-    assert model.prismatic.start_value("v") == 0.0
+    assert_copied(model.prismatic.start_value("s"), -1.1)
+    assert_copied(model.prismatic.start_value("v"), 0.0)

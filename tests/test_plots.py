@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from conftest import load_model_class
+from conftest import load_model_class, assert_copied
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(ROOT, "models")
@@ -58,7 +58,7 @@ def test_overlay_is_one_axes_with_n_lines_and_a_legend():
     assert [t.get_text() for t in ax.get_legend().get_texts()] == names
     assert ax.get_ylabel() == "F [N]" and ax.get_xlabel() == "time [s]"
     assert fig._suptitle.get_text() == "PulleyBlock: rope forces"
-    np.testing.assert_array_equal(ax.get_lines()[2].get_ydata(), res["rope3.F"])
+    assert_copied(ax.get_lines()[2].get_ydata(), res["rope3.F"])
     # signals of another unit get their own axes below, sharing x
     fig2 = res.plot(["rope1.F", "load.y"])
     assert [a.get_ylabel() for a in fig2.axes] == ["rope1.F [N]", "load.y [m]"]

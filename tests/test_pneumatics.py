@@ -8,6 +8,7 @@ import acausal2d
 from acausal2d import Component, start
 from acausal2d.library import translational as tr
 from acausal2d.library.pneumatics import GasCylinder
+from conftest import assert_copied
 
 A = 5e-3          # piston area [m2]
 GAP0 = 0.1        # initial gap piston -> head [m]
@@ -65,7 +66,7 @@ def test_discharge_valve_opens_at_closed_form_volume():
     assert V_open == pytest.approx(V0 * (1e5 / p_out) ** (1 / 1.4), rel=1e-6)
     # valve flow only while p > p_out, and the mass balance holds
     p, mdot, m = res["cyl.p"], res["cyl.mdot_out"], res["cyl.m"]
-    assert np.all(mdot[p < p_out * (1 - 1e-9)] == 0.0)
+    assert_copied(mdot[p < p_out * (1 - 1e-9)], 0.0)        # the closed-valve branch
     assert np.all(mdot >= -1e-9 * mdot.max())   # round-off at the closing event
     t = res.time
     delivered = np.concatenate([[0.0], np.cumsum(0.5 * (mdot[1:] + mdot[:-1]) * np.diff(t))])

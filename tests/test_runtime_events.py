@@ -6,7 +6,6 @@ jumps is reported as needing an impulse; time events fall on their exact
 times; relations that are at zero when the motion restarts take the value
 their derivative gives."""
 import math
-import time as _time
 
 import numpy as np
 import pytest
@@ -16,6 +15,7 @@ from acausal2d import (Component, Parameter, SimulationError, TranslationalFlang
                        if_else, start)
 from acausal2d.library import rotational, signals
 from acausal2d.library.translational import Mass
+from conftest import same_time, assert_copied
 
 
 class Friction(Component):
@@ -65,10 +65,14 @@ def test_coulomb_block_decelerates_then_stops_with_a_sliding_mode_error():
 
 
 def test_sign_ode_reaches_zero_at_one_tenth_then_stops_within_two_seconds():
-    wall = _time.perf_counter()
     with pytest.raises(SimulationError) as err:
         acausal2d.simulate(SignODE(), stop_time=1.0, rtol=1e-8)
-    assert _time.perf_counter() - wall < 2.0
+    # stops instead of chattering at x = 0, bounded in work, not in wall time
+    # (a timed bound fails on a loaded machine): x = 0.1 - t is linear, so
+    # IDA's error estimate vanishes and each step at most doubles from the
+    # first (>= 1e-9 s at rtol 1e-8): log2(0.1 / 1e-9) = 27 steps to the
+    # switch, and a few to locate it; 100 leaves room (measured: 30)
+    assert err.value.result.stats["steps"] <= 100
     assert err.value.time == pytest.approx(0.1, abs=1e-6)
     assert "'sign(x)'" in str(err.value)
     res = err.value.result
@@ -78,7 +82,7 @@ def test_sign_ode_reaches_zero_at_one_tenth_then_stops_within_two_seconds():
 def test_sign_ode_started_at_zero_is_an_error_at_the_start():
     with pytest.raises(SimulationError) as err:
         acausal2d.simulate(SignODE(x=start(0.0, fixed=True)), stop_time=1.0)
-    assert err.value.time == 0.0
+    assert same_time(err.value.time, 0.0)
     assert "'sign(x)'" in str(err.value)
 
 
@@ -119,13 +123,14 @@ class RampOnInertia(Component):
 def test_time_events_fall_on_their_times_without_root_finding():
     res = acausal2d.simulate(RampOnInertia(), stop_time=1.0, intervals=7)
     times = [t for t, _ in res.events]
-    assert times == [0.2, 0.7]                  # exactly: scheduled, not searched
+    assert len(times) == 2 and same_time(times[0], 0.2) and same_time(times[1], 0.7)   # scheduled
     assert res.stats["time_events"] == 2
     # the angle follows the ramp, the speed jumps between 0 and 2 rad/s
     assert res.at("inertia.phi", 0.45) == pytest.approx(0.5, abs=1e-12)
     w = res["inertia.w"]
-    k = np.nonzero(res.time == 0.2)[0]
-    assert w[k[0]] == 0.0 and w[k[-1]] == pytest.approx(2.0, abs=1e-12)
+    k = np.nonzero(same_time(res.time, 0.2))[0]
+    assert_copied(w[k[0]], 0.0)
+    assert w[k[-1]] == pytest.approx(2.0, abs=1e-12)
 
 
 class Bouncer(Component):

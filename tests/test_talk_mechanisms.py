@@ -11,7 +11,7 @@ import acausal2d
 from acausal2d.library.nodes import NodeAssemblyError
 from acausal2d.library.nodes.correction import PositionCorrection
 from acausal2d.cli import main
-from conftest import MODELS, load_model_class
+from conftest import MODELS, load_model_class, same_time
 
 FILE = "talk_mechanisms.py"
 COUNTS = {   # N, N_base, C1, C2, F, m
@@ -41,7 +41,7 @@ def test_counts_and_closed_loops_over_the_run(name):
             % COUNTS[name]) in str(report)
     assert F == 2 * (N - Nb) - C1 - 2 * C2 and m == C1 + C2 - N + Nb
     res = cm.simulate(output_times=np.linspace(0.0, 1.0, 91), rtol=1e-10)
-    assert res.time[-1] == 1.0 and res.stopped is None
+    assert same_time(res.time[-1], 1.0) and res.stopped is None
     held = 0
     for rec in model._cstrs.values():
         for kind, var in (("len", "r"), ("ang", "w")):

@@ -19,6 +19,7 @@ without a warning: the optimiser names the metric that is not a number.
 import ast
 
 import numpy as np
+from scipy.integrate import trapezoid
 
 from ..errors import Acausal2dError
 
@@ -160,7 +161,7 @@ def _reduce(fname, t, y):
         return float(np.mean(y))
     if fname == "rms":
         return float(np.sqrt(np.mean(y ** 2)))
-    return float(np.trapezoid(y, t)) if t.size > 1 else 0.0
+    return float(trapezoid(y, t)) if t.size > 1 else 0.0
 
 
 def parse_constraint(text, known=None):

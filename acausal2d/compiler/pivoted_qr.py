@@ -23,18 +23,22 @@ _lapack = None
 
 def _find_dgeqp3():
     """``dgeqp3`` of the OpenBLAS in the scipy wheel (``scipy.libs``), or
-    False."""
+    False: ``scipy_dgeqp3_`` of ``libscipy_openblas-*.so`` (scipy >= 1.13)
+    or ``dgeqp3_`` of ``libopenblasp-*.so`` (older wheels, e.g. the floor
+    scipy 1.10; both 32-bit integers)."""
     spec = importlib.util.find_spec("scipy")
     if spec is None or not spec.submodule_search_locations:
         return False
-    root = os.path.dirname(list(spec.submodule_search_locations)[0])
-    for path in sorted(glob.glob(os.path.join(root, "scipy.libs", "libscipy_openblas-*.so"))):
-        try:
-            f = ctypes.CDLL(path).scipy_dgeqp3_
-        except (OSError, AttributeError):
-            continue
-        f.restype = None
-        return f
+    libs = os.path.join(os.path.dirname(list(spec.submodule_search_locations)[0]), "scipy.libs")
+    for pattern, symbol in (("libscipy_openblas-*.so", "scipy_dgeqp3_"),
+                            ("libopenblasp-*.so", "dgeqp3_")):
+        for path in sorted(glob.glob(os.path.join(libs, pattern))):
+            try:
+                f = getattr(ctypes.CDLL(path), symbol)
+            except (OSError, AttributeError):
+                continue
+            f.restype = None
+            return f
     return False
 
 
@@ -71,7 +75,9 @@ def qr_pivoted(M):
         _lapack = _find_dgeqp3()
     M = np.asarray(M, dtype=np.float64)
     m, n = M.shape
-    if not _lapack or M.size == 0:
+    if M.size == 0:                # as scipy >= 1.11 (1.10's qr fails on empty input)
+        return np.zeros((min(m, n), n)), np.arange(n, dtype=np.int32)
+    if not _lapack:
         import scipy.linalg as sla
         _, r, piv = sla.qr(M, pivoting=True, mode="economic")
         return r, piv
