@@ -71,7 +71,7 @@ def msd():
 
 
 def test_closed_form_of_the_reference():
-    assert round(d_star(), 4) == 33.0800           # the analytic optimum
+    assert d_star() == pytest.approx(33.0800, abs=5e-5)   # the analytic optimum (4 decimals)
     assert peak(d_star()) == pytest.approx(PEAK, rel=1e-12)
 
 

@@ -7,7 +7,7 @@ import time
 
 import acausal2d
 from acausal2d.io.files import safe_filename
-from acausal2d.language.inputs import bind_inputs
+from acausal2d.library.inputs import bind_inputs
 from acausal2d.visual.animation import render_html
 from acausal2d.visual.plotting import declared_figures, plot
 from acausal2d.visual.scene import build_scene
@@ -41,7 +41,7 @@ def run_model(path, name, folder, anim_folder):
                                   ([name] if name else [])))
     model = acausal2d.load_model(path, name)
     entry = {"name": name, "doc": _doc(type(model)), "figures": [], "animation": None}
-    inputs = bind_inputs(model)             # inputs of an FMU model: held at 0 here
+    model, inputs = bind_inputs(model)      # inputs of an FMU model: held at 0 here
     if inputs:
         entry["note"] = "Its inputs %s are held at 0 by constant sources here (as `linearize` " \
             "does); an FMU of it takes them from the importing tool." % ", ".join(sorted(inputs))
