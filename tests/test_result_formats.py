@@ -72,6 +72,22 @@ def test_piston_engine_mat_read_by_dymat_equals_the_csv(engine_run):
     assert "result.mat" in listing["files"] and "result.csv" not in listing["files"]
 
 
+def test_piston_engine_mat_read_by_buildingspy_equals_the_csv(engine_run):
+    """The issue's reader: buildingspy's Reader (Dymola format) gives every
+    signal of result.csv, at the same times, to 1e-12 relative of the
+    signal's largest magnitude (the file holds the doubles themselves)."""
+    from buildingspy.io.outputfile import Reader
+    ours = read_our_csv(engine_run / "csv" / "result.csv")
+    reader = Reader(str(engine_run / "mat" / "result.mat"), "dymola")
+    t = ours.pop("time")
+    assert set(ours) <= set(reader.varNames())
+    for name, values in ours.items():
+        when, got = reader.values(name)
+        np.testing.assert_allclose(when, t, rtol=1e-12, atol=0)
+        scale = max(np.max(np.abs(values)), 1e-300)
+        assert np.max(np.abs(got - values)) <= 1e-12 * scale, name
+
+
 def test_mat_aliases_share_their_column(engine_run):
     """Dymola's layout: trajectories equal to another (or to its negation)
     point at one column of data_2, with the sign in dataInfo."""
