@@ -67,17 +67,23 @@ def clear_previous_run(folder):
     (and the manifest) and temporary files a killed run left: a new run,
     successful or not, never leaves earlier results that look like its own.
     Other files are not touched."""
-    import shutil
     path = os.path.join(folder, MANIFEST)
-    for name in read_manifest(path, missing_ok=True):
+    remove_entries(folder, read_manifest(path, missing_ok=True))
+    with contextlib.suppress(OSError):
+        os.remove(path)
+
+
+def remove_entries(folder, names):
+    """Remove the files and folders ``names`` of ``folder`` (those gone already
+    are skipped)."""
+    import shutil
+    for name in names:
         target = os.path.join(folder, name)
         if os.path.isdir(target) and not os.path.islink(target):
             shutil.rmtree(target, ignore_errors=True)
         else:
             with contextlib.suppress(OSError):
                 os.remove(target)
-    with contextlib.suppress(OSError):
-        os.remove(path)
     with contextlib.suppress(OSError):
         for name in os.listdir(folder):
             if _TEMPORARY.match(name):          # left by a killed run (SIGKILL)

@@ -55,7 +55,7 @@ import time
 
 from ..errors import Acausal2dError
 from .files import (MANIFEST, _TEMPORARY, bounded_name, clear_previous_run, read_manifest,
-                    write_manifest)
+                    remove_entries, write_manifest)
 
 LOCK_SUFFIX = ".acausal2d-lock"
 """Suffix of the lock file next to an output folder (``.<name>`` + it)."""
@@ -320,7 +320,7 @@ class OutputFolder:
                 moved.append(name)
             _raise_held()                   # Ctrl-C during the renames: as before them
         except BaseException as exc:
-            _remove_entries(self.final_folder, moved)
+            remove_entries(self.final_folder, moved)
             if kept:
                 write_manifest(self.final_folder, kept, command="kept")
             if isinstance(exc, OSError):
@@ -342,14 +342,5 @@ class OutputFolder:
 def _remove_listed(folder, manifest):
     """Remove from ``folder`` the entries ``manifest`` (a killed run's, in
     its temporary folder) lists: moved in before the run was killed."""
-    _remove_entries(folder, read_manifest(manifest, missing_ok=True))
+    remove_entries(folder, read_manifest(manifest, missing_ok=True))
 
-
-def _remove_entries(folder, names):
-    for name in names:
-        target = os.path.join(folder, name)
-        if os.path.isdir(target) and not os.path.islink(target):
-            shutil.rmtree(target, ignore_errors=True)
-        else:
-            with contextlib.suppress(OSError):
-                os.remove(target)
