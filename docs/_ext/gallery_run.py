@@ -5,12 +5,16 @@ page.  Runs in a worker process of :mod:`gallery` (one model per call)."""
 import os
 import time
 
-import acausal2d
-from acausal2d.io.files import safe_filename
-from acausal2d.library.inputs import bind_inputs
-from acausal2d.visual.animation import render_html
-from acausal2d.visual.plotting import declared_figures, plot
-from acausal2d.visual.scene import build_scene
+# The gallery's runs are short and each model structure runs once: the Python path, no C
+# compiled for them (no background compiles outliving the build); set it to override.
+os.environ.setdefault("ACAUSAL2D_NATIVE", "off")
+
+import acausal2d  # noqa: E402
+from acausal2d.io.files import safe_filename  # noqa: E402
+from acausal2d.library.inputs import bind_inputs  # noqa: E402
+from acausal2d.visual.animation import render_html  # noqa: E402
+from acausal2d.visual.plotting import declared_figures, plot  # noqa: E402
+from acausal2d.visual.scene import build_scene  # noqa: E402
 
 MAX_FIGURES = 3
 ANIMATION_FRAMES = 200
