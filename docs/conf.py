@@ -7,6 +7,7 @@ and the gallery written by ``_ext/gallery.py`` (every model of ``models/``
 run at build time).
 """
 import os
+import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -43,13 +44,23 @@ html_extra_path = [os.path.join(HERE, "_build", "extra")]      # the gallery's a
 os.makedirs(html_extra_path[0], exist_ok=True)
 
 
+_BARS = re.compile(r"(?<![\\`|\w])\|(?=[^\s|])([^|`\n]*?[^\s|\\])\|(?![`|\w])")
+
+
+def _escape_bars(text):
+    """``text`` with every ``|x|`` outside inline literals escaped."""
+    parts = text.split("``")
+    for k in range(0, len(parts), 2):              # the even parts are outside ``...``
+        parts[k] = _BARS.sub(r"\\|\1\\|", parts[k])
+    return "``".join(parts)
+
+
 def _absolute_values(app, what, name, obj, options, lines):
-    """Docstrings write absolute values and norms as ``|det|``, ``|t_end|``:
+    """Docstrings write absolute values and norms as ``|det|``, ``|p2 - p1|``:
     plain text, not reStructuredText substitutions, so the bars are
-    escaped before the docstring is parsed."""
-    import re
-    lines[:] = [re.sub(r"(?<![\\`|])\|([A-Za-z_][\w.]*)\|(?![`|])", r"\\|\1\\|", line)
-                for line in lines]
+    escaped before the docstring is parsed (inside inline literals they
+    stay as written)."""
+    lines[:] = [_escape_bars(line) for line in lines]
 
 
 def setup(app):

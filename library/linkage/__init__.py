@@ -47,7 +47,7 @@ Conventions (common to all elements)
   includes the offset of the placed point (A.16-A.18).
 
 Assembly and the parameter K (ch. 4.2.1, Bild 4.3)
--------------------------------------------------
+--------------------------------------------------
 Before the first simulation the elements are assembled once, in the
 sequential order of VDI 2729, from the ground-fixed ports and the drives'
 start angles (parameters ``phiL0``/``xS0`` or a connected motion preset):

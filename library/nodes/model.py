@@ -67,13 +67,12 @@ from .correction import PositionCorrection
 from .drives import BASE_FUNCTIONS, is_full_turn, seq_law
 from .elements import (AngleDrive, AngleHold, Coupling, IncludedAngle, LengthDrive, LengthHold,
                        Link, Node, NodeForce, NodeSpring)
-from .specs import (at_least, at_most, between, delta, drive, mec2_drive, NodeAssemblyError,
-                    ref, speed, _ang_from_len_source, _Delta, _delta_source, _Drive,
+from .specs import (NodeAssemblyError,
+                    _ang_from_len_source, _Delta, _delta_source, _Drive,
                     _is_number, _len_from_ang_source, _linear_source, _link_start, _mec2_law,
                     _quantity, _Range, _Ref, _relative_source, _scaled, _spec_dict)
 
-__all__ = ["NodeModel", "speed", "drive", "mec2_drive", "ref", "delta", "between",
-           "at_least", "at_most", "NodeAssemblyError"]
+__all__ = ["NodeModel"]
 
 _ID = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 

@@ -53,9 +53,11 @@ must be C2 for the evolute and C3 for the criteria of ch. 5 (the compiler
 differentiates them exactly; the seed's fourth derivatives for the radius
 of curvature of the cam are avoided, see :class:`Bandkurve`).
 
-Differences from the printed equations (verified numerically against the
-spec transcription ``spec_synthesis.md`` and its checks)
------------------------------------------------------------------------
+Differences from the printed equations
+--------------------------------------
+Verified numerically against the spec transcription ``spec_synthesis.md``
+and its checks:
+
 - DB~BD: 4.12 ``H6 = sqrt(H5 - r4^2)``, 4.13 ``H7 = H6^2 - r4^2 + H5``, 4.16
   ``H10 = ...``, the swapped H13/H14 of 4.31-4.34 and the K-signed 4.24
   ``x_s = x_s0 + K r4 (dphi_P2 - dgamma_B)``.  The pole construction
