@@ -13,8 +13,8 @@ from scipy.integrate import solve_ivp
 import acausal2d
 from acausal2d import Component, start
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library import (planar, planar_forces, planar_sensors, rotational, signals,
-                               translational)
+from acausal2d.library import planar, rotational, signals, translational
+from acausal2d.library.planar import forces as planar_forces
 from acausal2d.library.planar import (Body, BodyShape, Fixed, FixedRotation, FixedTranslation,
                                       Prismatic, Revolute)
 from acausal2d.library.planar.forces import Damper, Spring
