@@ -60,7 +60,7 @@ def _absolute_values(app, what, name, obj, options, lines):
     plain text, not reStructuredText substitutions, so the bars are
     escaped before the docstring is parsed (inside inline literals they
     stay as written)."""
-    lines[:] = [_escape_bars(line) for line in lines]
+    lines[:] = _escape_bars("\n".join(lines)).split("\n")     # literals may span lines
 
 
 def setup(app):
