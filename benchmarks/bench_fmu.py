@@ -51,7 +51,7 @@ def reference(case, params=None):
     import acausal2d
     from acausal2d.fmu import bind_inputs
     model = load(case)
-    names = bind_inputs(model)
+    model, names = bind_inputs(model)
     stop, inputs = CASES[case][2], CASES[case][3]
     p = {names[k]: v for k, v in inputs.items()}
     p.update(params or {})

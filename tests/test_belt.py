@@ -12,7 +12,7 @@ from acausal2d.library import rotational, signals
 from acausal2d.library.belt import (Belt, Drum, NozzleBelt, Pulley, RopeDrive, SpringBelt,
                                     connect_band, open_belt_closed_form, tangent)
 from acausal2d.library.planar import Body, Fixed, Prismatic
-from conftest import same_time, assert_copied
+from conftest import same_time
 
 R1, R2 = 0.1, 0.05
 C2 = (0.5, 0.1)
@@ -115,7 +115,9 @@ def test_slack_span_zero_force_and_free_flight():
     F, eps, y = res["rope.F"], res["rope.eps"], res["body.y"]
     slack = eps < -1e-12
     assert slack.any() and (~slack).any()
-    assert_copied(F[slack], 0.0)             # the slack branch of the force law
+    # the slack branch of the force law gives 0; the output rows are solved to 1e-12 of the
+    # force scale (runtime/projection), 10x room
+    assert np.max(np.abs(F[slack])) <= 1e-11 * np.max(np.abs(F))
     # between the first slack and re-tension events the body flies freely
     t_s, t_r = slack_events[0], slack_events[1]
     k_s = np.nonzero(t == t_s)[0][-1]
@@ -156,7 +158,8 @@ def test_slack_and_retension_over_pulley():
     assert "span_b.eps" in texts
     for span in ("span_a", "span_b"):
         slack = res[span + ".eps"] < -1e-12
-        assert_copied(res[span + ".F"][slack], 0.0)
+        F = res[span + ".F"]                  # slack: 0, to the rows' 1e-12 of the force scale
+        assert np.max(np.abs(F[slack])) <= 1e-11 * np.max(np.abs(F))
     assert (res["span_b.eps"] < -1e-12).any()
     # the spans stay vertical at the pulley: 180 degree wrap
     assert np.max(np.abs(res["pulley.beta"] - math.pi)) < 1e-9

@@ -253,7 +253,9 @@ def test_pulley_block_topology():
     # plus the coupling of the driven pulley with the crank (f = 2, see
     # Compressor.topology()): F = 3 * 7 - 8 * 2 - 1 = 4 = drive pulley,
     # tensioner lever, tensioner pulley, crank shaft
-    ("compressor", "Compressor", (8, 9, 4, 4)),
+    # the clutch's relative angle is a preferred state (as in Modelica's Clutch): a fifth
+    # position state beside the four of the linkage and belt drive
+    ("compressor", "Compressor", (8, 9, 4, 5)),
     # ground, carriage, 9 pulleys, 2 drums; 11 revolute joints:
     # F = 3 * 12 - 11 * 2 = 14 = carriage 3 + 9 pulleys + 2 drums (the
     # drums' angles are prescribed by their drives, which eq. 2.1 counts,
