@@ -65,11 +65,19 @@ def _touches(events):
                for k in range(0, len(events), 2))
 
 
+T_OPEN = 10.0       # the clutch opens (models/compressor.py): fn is 0 from 10.05 s on
+
+
 def test_events_agree_but_for_valve_touches(runs):
+    """Up to the clutch's opening.  From there its normal force is exactly 0
+    and the relation max(clutch.fn, 0) flips on rounding noise (the runtime
+    then takes the crossing function's value, runtime/events.py), which
+    moves the later events of the two runs apart by the integration error;
+    the motion there is compared by the tests below."""
     reused, fresh, _ = runs
     assert len(reused.events) > 280 and len(fresh.events) > 280
     for a, b in ((reused, fresh), (fresh, reused)):
-        extra = _unpaired(a, b)
+        extra = [(t, text) for t, text in _unpaired(a, b) if t < T_OPEN]
         assert len(extra) <= 10 and _touches(extra), extra
 
 
