@@ -129,7 +129,7 @@ def test_seen7_grid_where_every_run_fails_is_an_error_naming_the_objective(msd, 
         grid, grid_span, out = 3, 0.01, str(tmp_path)
     opt.grid = lambda rel, points: (np.zeros((3, 1)), np.full(3, np.nan))   # every run failed
     with pytest.raises(acausal2d.Acausal2dError, match=r"--grid: the objective integral"):
-        _grid_check(opt, Args)
+        _grid_check(opt, Args, Args.out)
 
 
 def test_seen7_a_parameter_or_option_given_twice_is_an_error(msd, tmp_path, capsys):
