@@ -10,8 +10,7 @@ import pytest
 import acausal2d
 from acausal2d import Component, ModelDefinitionError, start
 from acausal2d.library import translational
-from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute
-from conftest import assert_copied
+from conftest import assert_copied, load_model_class
 
 RTOL = 1e-8
 
@@ -28,16 +27,7 @@ class Oscillator(Component):
         self.connect(self.spring.flange_b, self.mass.flange_a)
 
 
-class Pendulum(Component):
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.fixed = Fixed()
-        self.revolute = Revolute(phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.rod = FixedTranslation(r=(1.0, 0.0))
-        self.body = Body(m=1.0, I=0.1)
-        self.connect(self.fixed.frame, self.revolute.frame_a)
-        self.connect(self.revolute.frame_b, self.rod.frame_a)
-        self.connect(self.rod.frame_b, self.body.frame_a)
+Pendulum = load_model_class("pendulum.py", "Pendulum")      # the models/ example
 
 
 def _snapshot(value, depth=0):
