@@ -29,5 +29,7 @@
   :mod:`~acausal2d.library.synthesis.contour_export` cam contours as CSV/SVG/DXF and
   as a CurvedDrum/CurvedPulley contour.
 - :mod:`acausal2d.library.pneumatics`: gas cylinder with check valves.
+- :mod:`acausal2d.library.hydraulics`: hydrostatics (pressure source, pump,
+  motor, relief valve, volume, throttle, orifice).
 - :mod:`acausal2d.library.belt.crane`: carriage and hook of the cable crane.
 """
