@@ -21,14 +21,15 @@ REVOLUTION [m3/rev] as in data sheets (cm3/rev times 1e-6); the equations use
 Elements: :class:`PressureSource` (tank or constant-pressure supply),
 :class:`Pump`, :class:`Motor` (fixed or, with ``variable=True``,
 variable displacement), :class:`ReliefValve`, :class:`Volume`,
-:class:`Throttle` (laminar) and :class:`Orifice` (turbulent).
+:class:`Throttle` (laminar), :class:`Orifice` (turbulent) and
+:class:`PressureSensor`.
 """
 import casadi as ca
 
-from acausal2d import (Component, der, HydraulicPort, Parameter, RealInput, RotationalFlange,
-                       Variable)
+from acausal2d import (Component, der, HydraulicPort, Parameter, RealInput, RealOutput,
+                       RotationalFlange, Variable)
 
-__all__ = ["PressureSource", "Pump", "Motor", "ReliefValve", "Volume", "Throttle", "Orifice"]
+__all__ = ["PressureSource", "PressureSensor", "Pump", "Motor", "ReliefValve", "Volume", "Throttle", "Orifice"]
 
 _TWO_PI = 6.283185307179586
 
@@ -46,6 +47,18 @@ class PressureSource(Component):
 
     def equations(self):
         return [self.port.p == self.p0, self.P == self.port.p * self.port.q]
+
+
+class PressureSensor(Component):
+    """Pressure at ``port`` as the signal ``p`` [Pa]; takes no flow."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.port = HydraulicPort(nominal={"p": 1e6, "q": 1e-4})
+        self.p = RealOutput()
+
+    def equations(self):
+        return [self.p.u == self.port.p, self.port.q == 0]
 
 
 class _Machine(Component):

@@ -100,6 +100,20 @@ class AngleSensor(Component):
         return [self.phi.u == self.flange.phi, self.flange.tau == 0]
 
 
+class SpeedSensor(Component):
+    """Absolute angular velocity of the flange as the signal ``w``
+    (Modelica.Mechanics.Rotational.Sensors.SpeedSensor):
+    ``w = der(flange.phi)``; takes no torque.  Seed eq. 4.1 at the flange."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+        self.w = RealOutput()
+
+    def equations(self):
+        return [self.w.u == der(self.flange.phi), self.flange.tau == 0]
+
+
 class Torque(Component):
     """Torque from the signal tau_in acting on the flange (reaction on the
     fixed support)."""
