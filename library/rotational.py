@@ -289,3 +289,7 @@ class AsyncMotor(Component):
                 self.T_el == 2 * self.T_k * self.s * self.s_k / (self.s ** 2 + self.s_k ** 2),
                 self.J * der(self.w) == self.T_el + self.flange.tau,
                 self.P_mech == self.T_el * self.w]
+
+
+# Modelica.Mechanics.Rotational.Components' gears, where Modelica users look for them
+from acausal2d.library.gears import IdealGear, IdealPlanetary  # noqa: E402,F401
