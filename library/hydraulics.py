@@ -35,18 +35,24 @@ _TWO_PI = 6.283185307179586
 
 
 class PressureSource(Component):
-    """Constant pressure ``p0`` at ``port`` (a tank for ``p0 = 0`` gauge, or
-    a constant-pressure supply); takes or gives any flow.  ``P = p0 q`` is
-    the hydraulic power the source takes in (negative: it delivers)."""
+    """Pressure ``p0`` at ``port`` (a tank for ``p0 = 0`` gauge, or a
+    constant-pressure supply); with ``use_p_in=True`` the signal input
+    ``p_in`` [Pa] gives the pressure instead (Modelica.Fluid's
+    ``use_p_in``).  Takes or gives any flow; ``P = p q`` is the hydraulic
+    power the source takes in (negative: it delivers)."""
     p0 = Parameter(0.0, "Pa", "pressure at the port (0: tank, gauge pressure)")
-    P = Variable(unit="W", nominal=1e3, doc="hydraulic power into the source p0 q")
+    P = Variable(unit="W", nominal=1e3, doc="hydraulic power into the source p q")
 
-    def __init__(self, **kw):
+    def __init__(self, use_p_in=False, **kw):
         super().__init__(**kw)
+        self.use_p_in = bool(use_p_in)
         self.port = HydraulicPort(nominal={"p": 1e6, "q": 1e-4})
+        if self.use_p_in:
+            self.p_in = RealInput(doc="pressure at the port [Pa]")
 
     def equations(self):
-        return [self.port.p == self.p0, self.P == self.port.p * self.port.q]
+        p = self.p_in.u if self.use_p_in else self.p0
+        return [self.port.p == p, self.P == self.port.p * self.port.q]
 
 
 class PressureSensor(Component):

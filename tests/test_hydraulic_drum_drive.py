@@ -84,6 +84,10 @@ def test_controllers_reach_their_set_points(res):
     assert abs(res.final("line.p") - dd.P_SET) <= 1e-3 * dd.P_SET
     assert abs(res.final("diesel.w") - dd.W_DIESEL) <= 1e-3 * dd.W_DIESEL
     assert np.max(res["relief.q"]) <= 1e-12        # the relief valve never opened
+    # the measurements the controllers see: PressureSensor and SpeedSensor
+    assert np.allclose(res["pressure.p.u"], res["line.p"], rtol=10 * RTOL, atol=0)
+    assert np.allclose(res["hoist.speed.w.u"], res["hoist.drum.w"], rtol=10 * RTOL,
+                       atol=10 * RTOL)
 
 
 def test_steady_displacement_settings_follow_the_closed_forms(res):
