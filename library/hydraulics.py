@@ -23,13 +23,45 @@ Elements: :class:`PressureSource` (tank or constant-pressure supply),
 variable displacement), :class:`ReliefValve`, :class:`Volume`,
 :class:`Throttle` (laminar), :class:`Orifice` (turbulent) and
 :class:`PressureSensor`.
+
+Pumps and motors: one positive-displacement law (four quadrants) between
+``port_a`` and ``port_b``, shaft ``flange`` turning against the housing
+``support`` (fixed to ground when left unconnected).
+
+Geometric (loss-free) relations (Murrenhoff, Verdraengereinheiten)::
+
+    w = der(flange.phi - support.phi),   dp = port_b.p - port_a.p
+    D = alpha Vg / (2 pi),  q_g = D w   (displaced flow from a to b)
+    P_g = dp q_g = D w dp               (geometric power to the fluid)
+
+Constant volumetric efficiency ``eta_v`` (leakage) and mechanical-
+hydraulic efficiency ``eta_hm`` (friction) as in the textbook, applied
+in the direction of the power flow: pumping (``P_g > 0``, shaft power
+into the fluid) ``q = eta_v q_g``, ``tau = D dp / eta_hm``; motoring
+(``P_g < 0``) ``q = q_g / eta_v``, ``tau = eta_hm D dp``.  Written as
+one law ``q = q_g eta_v^s``, ``tau = D dp eta_hm^(-s)`` with the
+smooth power direction ``s = tanh(P_g / P_band)``: the textbook law up to
+``1 - tanh(10) = 4e-9`` in the exponent for ``|P_g| >= 10 P_band``, a
+smooth blend in between, so that flow and torque stay continuous and
+differentiable through standstill and zero pressure (no relation, no
+event; near standstill under pressure the blend acts as a stiff viscous
+friction of slope ``(D dp)^2 ln(1/eta_hm) / P_band``).  The loss
+``P_mech - P_hyd = P_g (eta_hm^-s - eta_v^s) >= 0`` in all four
+quadrants, since ``s`` has the sign of ``P_g``.
+
+Port flows: ``port_a.q = q``, ``port_b.q = -q`` (oil enters at a, leaves
+at b; the leakage is lumped into ``q``).  Torque ``tau`` is what the shaft
+takes: ``flange.tau = tau``, ``support.tau = -tau``.  Outputs: ``w``,
+``dp``, ``q``, ``q_g``, ``tau``, ``s``, ``P_mech = tau w`` (shaft power
+in), ``P_hyd = dp q`` (hydraulic power out), ``loss_power``.
 """
 import casadi as ca
 
 from acausal2d import (Component, der, HydraulicPort, Parameter, RealInput, RealOutput,
                        RotationalFlange, Variable)
 
-__all__ = ["PressureSource", "PressureSensor", "Pump", "Motor", "ReliefValve", "Volume", "Throttle", "Orifice"]
+__all__ = ["PressureSource", "PressureSensor", "Pump", "Motor", "ReliefValve", "Volume",
+           "Throttle", "Orifice"]
 
 _TWO_PI = 6.283185307179586
 
@@ -68,37 +100,8 @@ class PressureSensor(Component):
 
 
 class _Machine(Component):
-    """Positive-displacement machine (pump or motor, four quadrants) between
-    ``port_a`` and ``port_b``, shaft ``flange`` turning against the housing
-    ``support`` (fixed to ground when left unconnected).
-
-    Geometric (loss-free) relations (Murrenhoff, Verdraengereinheiten)::
-
-        w = der(flange.phi - support.phi),   dp = port_b.p - port_a.p
-        D = alpha Vg / (2 pi),  q_g = D w   (displaced flow from a to b)
-        P_g = dp q_g = D w dp               (geometric power to the fluid)
-
-    Constant volumetric efficiency ``eta_v`` (leakage) and mechanical-
-    hydraulic efficiency ``eta_hm`` (friction) as in the textbook, applied
-    in the direction of the power flow: pumping (``P_g > 0``, shaft power
-    into the fluid) ``q = eta_v q_g``, ``tau = D dp / eta_hm``; motoring
-    (``P_g < 0``) ``q = q_g / eta_v``, ``tau = eta_hm D dp``.  Written as
-    one law ``q = q_g eta_v^s``, ``tau = D dp eta_hm^(-s)`` with the
-    smooth power direction ``s = tanh(P_g / P_band)``: the textbook law up to
-    ``1 - tanh(10) = 4e-9`` in the exponent for ``|P_g| >= 10 P_band``, a
-    smooth blend in between, so that flow and torque stay continuous and
-    differentiable through standstill and zero pressure (no relation, no
-    event; near standstill under pressure the blend acts as a stiff viscous
-    friction of slope ``(D dp)^2 ln(1/eta_hm) / P_band``).  The loss
-    ``P_mech - P_hyd = P_g (eta_hm^-s - eta_v^s) >= 0`` in all four
-    quadrants, since ``s`` has the sign of ``P_g``.
-
-    Port flows: ``port_a.q = q``, ``port_b.q = -q`` (oil enters at a, leaves
-    at b; the leakage is lumped into ``q``).  Torque ``tau`` is what the shaft
-    takes: ``flange.tau = tau``, ``support.tau = -tau``.  Outputs: ``w``,
-    ``dp``, ``q``, ``q_g``, ``tau``, ``s``, ``P_mech = tau w`` (shaft power
-    in), ``P_hyd = dp q`` (hydraulic power out), ``loss_power``.
-    """
+    """Positive-displacement machine, the law :class:`Pump` and :class:`Motor`
+    share (module docstring, "Pumps and motors")."""
     Vg = Parameter(1e-4, "m3/rev", "displacement per revolution (at alpha = 1)", positive=True)
     eta_v = Parameter(0.95, "1", "volumetric efficiency", positive=True, max=1.0)
     eta_hm = Parameter(0.9, "1", "mechanical-hydraulic efficiency", positive=True, max=1.0)
@@ -147,7 +150,7 @@ class Pump(_Machine):
     positive shaft speed displaces oil from a to b.  Fixed displacement
     ``Vg``, or with ``variable=True`` the signal input ``alpha`` sets the
     displacement ``alpha Vg`` (swash plate, over centre for alpha < 0).
-    Equations, efficiencies and outputs: see :class:`_Machine` (pumping:
+    Equations, efficiencies and outputs: module docstring (pumping:
     ``q = eta_v D w``, ``tau = D dp / eta_hm``)."""
     _port_docs = ("suction side", "pressure side")
 
@@ -158,8 +161,8 @@ class Motor(_Machine):
     drives its load (``tau < 0``: the flange takes a negative torque, i.e.
     the motor gives ``-tau = eta_hm D (p_a - p_b)``).  Fixed displacement
     ``Vg``, or with ``variable=True`` the signal input ``alpha`` sets the
-    displacement ``alpha Vg`` (secondary control).  Equations: see
-    :class:`_Machine` (motoring: ``q = D w / eta_v``)."""
+    displacement ``alpha Vg`` (secondary control).  Equations: module
+    docstring (motoring: ``q = D w / eta_v``)."""
     _port_docs = ("supply (high pressure)", "return")
 
 

@@ -126,7 +126,8 @@ class DrumString(Component):
                      (self.rotor.flange_b, self.planetary.sun),
                      (self.planetary.ring, self.ring.flange),
                      (self.planetary.carrier, self.drum.flange_a),
-                     (self.drum.flange_b, self.rope.flange), (self.drum.flange_a, self.speed.flange),
+                     (self.drum.flange_b, self.rope.flange),
+                     (self.drum.flange_a, self.speed.flange),
                      (self.set.y, self.control.u_s), (self.speed.w, self.control.u_m),
                      (self.control.y, self.motor.alpha)]:
             self.connect(a, b)
