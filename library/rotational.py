@@ -102,6 +102,21 @@ class AngleSensor(Component):
         return [self.phi.u == self.flange.phi, self.flange.tau == 0]
 
 
+class SpeedSensor(Component):
+    """Absolute angular velocity of the flange as the signal ``w``
+    (Modelica.Mechanics.Rotational.Sensors.SpeedSensor: ``w =
+    der(flange.phi)``, ``0 = flange.tau``); takes no torque.  Feeds the
+    measurement input ``u_m`` of a :class:`~acausal2d.library.controllers.LimPID`."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+        self.w = RealOutput()
+
+    def equations(self):
+        return [self.w.u == der(self.flange.phi), self.flange.tau == 0]
+
+
 class Torque(Component):
     """Torque from the signal tau_in acting on the flange (reaction on the
     fixed support)."""
