@@ -67,7 +67,7 @@ _BAD = [({"gear": "ratio=0.0"}, ("IdealGear", "ratio")),
         ({"pid": "yMax=1.0, yMin=2.0"}, ("LimPID", "yMax", "yMin")),
         ({"pid": "k=0.0"}, ("LimPID", "k")),
         ({"pid": "Nd=0.0"}, ("LimPID", "Nd")),
-        ({"pid": "Td=0.0"}, ("LimPID", "Td")),
+        ({"pid": "Td=-0.1"}, ("LimPID", "Td")),
         ({"pid": "initType='Steady'"}, ("LimPID", "initType")),
         ({"pid": "controllerType='PIDD'"}, ("LimPID", "controllerType")),
         ({"pid": "wp=-1.0"}, ("LimPID", "wp"))]

@@ -88,15 +88,18 @@ class OpenPID(Component):
         self.connect(self.u.y, self.pid.u)
 
 
-def test_pid_step_response_is_the_closed_form():
+@pytest.mark.parametrize("Td", (0.1, 0.0))
+def test_pid_step_response_is_the_closed_form(Td):
     """From InitialState (I.y = D.x = 0): y = k (1 + (t - T0)/Ti + Nd
-    exp(-(t - T0) Nd / Td)) after the step, 0 before it."""
-    k, Ti, Td, Nd = 2.0, 0.5, 0.1, 10.0
+    exp(-(t - T0) Nd / Td)) after the step, 0 before it; Td = 0 is
+    Modelica's zero-gain derivative: a PI controller."""
+    k, Ti, Nd = 2.0, 0.5, 10.0
     res = acausal2d.simulate(OpenPID(k, Ti, Td, Nd), stop_time=1.0, rtol=RTOL,
                              output_times=np.linspace(0.0, 1.0, 101))
     t = res.time
     s = t - OpenPID.T0
-    want = np.where(s < 0, 0.0, k * (1 + s / Ti + Nd * np.exp(-np.maximum(s, 0) * Nd / Td)))
+    d = Nd * np.exp(-np.maximum(s, 0) * Nd / Td) if Td > 0 else 0.0
+    want = np.where(s < 0, 0.0, k * (1 + s / Ti + d))
     scale = k * (1 + Nd)
     ok = away_from_events(res)
     assert np.max(np.abs(res["pid.y.u"][ok] - want[ok])) <= 100 * RTOL * scale
@@ -158,7 +161,8 @@ def test_limpid_clips_and_its_anti_windup_recovers():
     (signals.PID, {"Ti": -1.0}, ("PID", "parameter Ti")),
     (signals.LimPID, {"Ti": 0.0}, ("LimPID", "parameter Ti")),
     (signals.LimPID, {"yMax": 1.0, "yMin": 2.0}, ("LimPID", "yMax", "yMin")),
-    (signals.LimPID, {"Td": 0.0}, ("LimPID", "Td", "controllerType")),
+    (signals.LimPID, {"Td": -1.0}, ("LimPID", "parameter Td")),
+    (signals.LimPID, {"initType": "InitialOutput", "y_start": 2.0}, ("LimPID", "y_start")),
     (signals.LimPID, {"controllerType": "PIDD"}, ("LimPID", "controllerType")),
     (signals.PID, {"initType": "Steady"}, ("PID", "initType")),
     (signals.Limiter, {"uMax": -1.0, "uMin": 0.0}, ("Limiter", "uMax", "uMin")),
