@@ -31,6 +31,11 @@ def _choice(comp, name, value, allowed):
 
 
 class _SISO(Component):
+    # Modelica's result names of the connectors' signals (``gain.y``) ->
+    # ours (``gain.y.u``), for compare; collected from every class
+    modelica_names = {name: name + ".u" for name in ("y", "u", "u1", "u2", "u3", "u_s",
+                                                     "u_m", "u_ff", "f_normalized")}
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.u = RealInput()
@@ -155,7 +160,6 @@ class Integrator(_SISO):
     k = Parameter(1.0, "1", "integrator gain")
     y_start = Parameter(0.0, "", "initial or guess value of the output (= state)")
     y_value = Variable(doc="output (= state)")
-    modelica_names = {"y": "y_value"}
 
     def __init__(self, initType="InitialState", **kw):
         super().__init__(**kw)
@@ -207,7 +211,6 @@ class Derivative(_SISO):
     y_start = Parameter(0.0, "", "start value of the output (initType='InitialOutput')")
     x = Variable(doc="state of the block")
     y_value = Variable(doc="output")
-    modelica_names = {"y": "y_value"}
 
     def __init__(self, initType="NoInit", **kw):
         super().__init__(**kw)

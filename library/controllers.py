@@ -108,7 +108,7 @@ class PID(_Controller):
     xi_start = Parameter(0.0, "", "start value of the integrator state")
     xd_start = Parameter(0.0, "", "start value of the derivative block's state")
     y_start = Parameter(0.0, "", "start value of the output (initType='InitialOutput')")
-    modelica_names = {"I.y": "I_y", "D.x": "D_x", "D.y": "D_y", "Gain.y": "y_value"}
+    modelica_names = {"I.y": "I_y", "D.x": "D_x", "D.y": "D_y"}
 
     def __init__(self, initType="InitialState", **kw):
         super().__init__(**kw)
@@ -167,7 +167,7 @@ class LimPID(_Controller):
     gainPID_y = Variable(doc="unlimited PID output k (P + I + D) (Modelica gainPID.y)")
     addFF_y = Variable(doc="unlimited output with feed-forward (Modelica addFF.y)")
     modelica_names = {"I.y": "I_y", "D.x": "D_x", "D.y": "D_y", "gainPID.y": "gainPID_y",
-                      "addFF.y": "addFF_y", "limiter.y": "y_value"}
+                      "addFF.y": "addFF_y"}
 
     def __init__(self, controllerType="PID", initType="NoInit", withFeedForward=False, **kw):
         if "yMax" in kw and "yMin" not in kw and isinstance(kw["yMax"], (int, float)):

@@ -13,6 +13,7 @@ import pytest
 
 import acausal2d
 from acausal2d import Component
+from acausal2d.analysis.compare_inputs import modelica_counterpart
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library import signals
 
@@ -104,6 +105,10 @@ def test_pid_step_response_is_the_closed_form(Td):
     ok = away_from_events(res)
     assert np.max(np.abs(res["pid.y.u"][ok] - want[ok])) <= 100 * RTOL * scale
     assert np.max(np.abs(res["pid.I_y"][ok] - np.maximum(s, 0)[ok] / Ti)) <= 100 * RTOL * scale
+    # compare finds Modelica's result names of the controller
+    names = res.names
+    assert [modelica_counterpart(n, names) for n in ("pid.y", "pid.I.y", "pid.D.x", "u.y")] \
+        == ["pid.y.u", "pid.I_y", "pid.D_x", "u.y.u"]
 
 
 class Windup(Component):
