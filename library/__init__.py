@@ -13,7 +13,7 @@
   the friction elements of :mod:`~acausal2d.library.friction1d`
   (BearingFriction, Brake, OneWayClutch) re-exported under Modelica's names.
 - :mod:`acausal2d.library.translational`: 1D translational elements, with
-  friction1d's SupportFriction.
+  friction1d's SupportFriction and MassWithStopAndFriction.
 - :mod:`acausal2d.library.signals`: signal sources, FirstOrder,
   InverseBlockConstraints, and Modelica.Blocks' Step, Gain, Add, Add3,
   Feedback, Limiter, Integrator, Derivative (:mod:`~acausal2d.library.blocks`),

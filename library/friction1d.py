@@ -281,3 +281,66 @@ class SupportFriction(Component):
                 self.v == der(self.s), self.a == der(self.v),
                 0 == self.flange_a.f + self.flange_b.f - self.f,
                 self.support.f == -self.flange_a.f - self.flange_b.f, self.f == f]
+
+
+class MassWithStopAndFriction(Component):
+    """Sliding mass with Stribeck friction (Modelica.Mechanics.Translational.
+    Components.MassWithStopAndFriction, MSL 4.0), friction part::
+
+        flange_a.s = s - L/2,  flange_b.s = s + L/2,  v = der(s),  a = der(v)
+        0 = flange_a.f + flange_b.f - f - m * der(v)
+        f0 = F_Coulomb + F_Stribeck,  f0_max = 1.001 * f0
+        f = F_prop * v + sign(v) * (F_Coulomb + F_Stribeck * exp(-fexp * |v|))  sliding,
+            stuck (f from the balance) while |f| <= f0_max
+
+    Sticking by the stick zone ``|v| < v_s`` (module docstring).  The hard
+    stops at ``smin`` and ``smax`` (Modelica: ``s`` and ``v`` re-initialised
+    at the stop, an impact) are not modelled: a run in which the mass's end
+    reaches a stop (``s - L/2 <= smin`` or ``s + L/2 >= smax``) ends there
+    with an error naming the element; the motion up to it is Modelica's.
+    Start with ``s=start(..., fixed=True)``, ``v=start(..., fixed=True)``."""
+    m = Parameter(1.0, "kg", "mass", min=0.0)
+    L = Parameter(0.0, "m", "length of the mass (distance of the flanges)", min=0.0)
+    F_prop = Parameter(1.0, "N.s/m", "velocity dependent friction", min=0.0)
+    F_Coulomb = Parameter(5.0, "N", "constant friction: Coulomb force")
+    F_Stribeck = Parameter(10.0, "N", "Stribeck effect")
+    fexp = Parameter(2.0, "s/m", "exponential decay", min=0.0)
+    smax = Parameter(25.0, "m", "right stop for (the right end of) the mass")
+    smin = Parameter(-25.0, "m", "left stop for (the left end of) the mass")
+    v_s = Parameter(1e-4, "m/s", "width of the stick zone (creep speed)", positive=True)
+    v_small = Parameter(1e-3, "m/s", "Modelica's reinit threshold (no effect)", positive=True)
+    s = Variable(unit="m", state_select="always", doc="position of the centre")
+    v = Variable(unit="m/s", state_select="always", doc="velocity")
+    a = Variable(unit="m/s2", doc="acceleration")
+    f = Variable(unit="N", doc="friction force (against v)")
+    stopped = Variable(unit="1", doc="1 when an end of the mass is at a stop")
+    sliding_mode_advice = _Friction.sliding_mode_advice
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        if self.parameter_value("smax") - self.parameter_value("smin") <= self.parameter_value("L"):
+            raise ModelDefinitionError("%s: the stops smin = %g, smax = %g leave no room for the "
+                                       "length L = %g; give smax - smin > L" % (
+                                           self.describe(), self.parameter_value("smin"),
+                                           self.parameter_value("smax"),
+                                           self.parameter_value("L")))
+        self.flange_a = TranslationalFlange()
+        self.flange_b = TranslationalFlange()
+
+    def assertions(self):
+        """Reaching a hard stop ends the run (the impact is not modelled)."""
+        return [("stopped", "reached a hard stop (s - L/2 <= smin or s + L/2 >= smax): the stops' "
+                            "impact (Modelica's reinit of s and v) is not modelled; give smin/smax "
+                            "outside the travel, or limit the travel by a spring or a force")]
+
+    def equations(self):
+        f0 = self.F_Coulomb + self.F_Stribeck
+        slide = lambda v: self.F_prop * v + self.F_Coulomb \
+            + self.F_Stribeck * ca.exp(-self.fexp * v)  # noqa: E731
+        at_stop = ca.if_else(self.s - self.L / 2 <= self.smin, 1.0,
+                             ca.if_else(self.s + self.L / 2 >= self.smax, 1.0, 0.0))
+        return [self.flange_a.s == self.s - self.L / 2, self.flange_b.s == self.s + self.L / 2,
+                self.v == der(self.s), self.a == der(self.v),
+                0 == self.flange_a.f + self.flange_b.f - self.f - self.m * self.a,
+                self.f == friction_law(self.v, self.v_s, 1.001 * f0, slide),
+                self.stopped == at_stop]

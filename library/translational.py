@@ -130,4 +130,4 @@ class PositionSensor(Component):
 
 
 # Modelica.Mechanics.Translational.Components' friction, where Modelica users look for it
-from acausal2d.library.friction1d import SupportFriction  # noqa: E402,F401
+from acausal2d.library.friction1d import MassWithStopAndFriction, SupportFriction  # noqa: E402,F401

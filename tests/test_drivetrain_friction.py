@@ -239,6 +239,8 @@ def test_support_friction_breaks_away_then_slides_at_coulomb():
     (lambda: rot.Clutch(mu=0.3, mu_pos=[[0, 0.3]]), ("Clutch", "mu_pos")),
     (lambda: rot.OneWayClutch(cgeo=0.0), ("OneWayClutch", "cgeo")),
     (lambda: tr.SupportFriction(f_pos=[[0.0, -1.0]]), ("SupportFriction", "f_pos")),
+    (lambda: tr.MassWithStopAndFriction(L=60.0), ("MassWithStopAndFriction", "smax", "L")),
+    (lambda: tr.MassWithStopAndFriction(fexp=-1.0), ("MassWithStopAndFriction", "fexp")),
 ])
 def test_bad_friction_parameters_are_refused_naming_them(make, words):
     with pytest.raises(ModelDefinitionError) as err:
