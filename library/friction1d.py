@@ -99,11 +99,14 @@ class _Friction(Component):
     w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect, see module)",
                         positive=True)
 
+    ZONE = "w_s"
+
     def sliding_mode_advice(self):
-        """Sticking is modelled by the stick zone w_s."""
-        return ("%s models sticking itself with its stick zone |w| < w_s: a zone this narrow "
-                "cannot be resolved at the speeds of the run. Give it a larger w_s, or make "
-                "its inputs continuous." % self.describe())
+        """Sticking is modelled by the stick zone (w_s, or v_s for the
+        translational elements)."""
+        return ("%s models sticking itself with its stick zone of width %s: a zone this narrow "
+                "cannot be resolved at the speeds of the run. Give it a larger %s, or make "
+                "its inputs continuous." % (self.describe(), self.ZONE, self.ZONE))
 
 
 class _SupportFriction(_Friction):
@@ -265,6 +268,7 @@ class SupportFriction(Component):
     v = Variable(unit="m/s", doc="velocity relative to the support")
     a = Variable(unit="m/s2", doc="acceleration relative to the support")
     f = Variable(unit="N", doc="friction force (flange_a.f + flange_b.f)")
+    ZONE = "v_s"
     sliding_mode_advice = _Friction.sliding_mode_advice
 
     def __init__(self, f_pos=None, **kw):
@@ -314,6 +318,7 @@ class MassWithStopAndFriction(Component):
     a = Variable(unit="m/s2", doc="acceleration")
     f = Variable(unit="N", doc="friction force (against v)")
     stopped = Variable(unit="1", doc="1 when an end of the mass is at a stop")
+    ZONE = "v_s"
     sliding_mode_advice = _Friction.sliding_mode_advice
 
     def __init__(self, **kw):

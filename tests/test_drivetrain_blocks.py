@@ -111,6 +111,36 @@ def test_pid_step_response_is_the_closed_form(Td):
         == ["pid.y.u", "pid.I_y", "pid.D_x", "u.y.u"]
 
 
+class HeldPID(Component):
+    """PID or LimPID (u_s = u_m = 0) with input 0 from the start."""
+
+    def __init__(self, limited, pid, **kw):
+        super().__init__(**kw)
+        self.zero = signals.Constant(k=0.0)
+        if limited:
+            self.pid = signals.LimPID(yMax=5.0, **pid)
+            self.connect(self.zero.y, self.pid.u_s)
+            self.connect(self.zero.y, self.pid.u_m)
+        else:
+            self.pid = signals.PID(**pid)
+            self.connect(self.zero.y, self.pid.u)
+
+
+@pytest.mark.parametrize("limited", (False, True))
+@pytest.mark.parametrize("init, y0", [("InitialOutput", 1.5), ("InitialState", 0.75),
+                                      ("NoInit", 0.75)])
+def test_controller_init_types_hold_their_start(limited, init, y0):
+    """Input 0: InitialOutput holds y (LimPID: gainPID.y) = y_start = 1.5
+    (I.y = y_start / k, D steady); InitialState and NoInit keep xi_start =
+    0.375, so y = k xi_start = 0.75; the output stays for the whole run.
+    (SteadyState with the input held at 0 leaves I.y undetermined, the
+    singular case Modelica's PID documentation warns of.)"""
+    pid = dict(k=2.0, initType=init, y_start=1.5, xi_start=0.375)
+    res = acausal2d.simulate(HeldPID(limited, pid=pid), stop_time=0.5, rtol=RTOL,
+                             output_times=np.linspace(0.0, 0.5, 11))
+    assert np.max(np.abs(res["pid.y.u"] - y0)) <= 100 * RTOL * 2.0
+
+
 class Windup(Component):
     """Set point 1 from t = 0, -1 from T2; measurement 0; LimPID as PI
     with wp = 0 (the output is the integrator's state while unlimited)."""
