@@ -31,6 +31,11 @@ def _choice(comp, name, value, allowed):
 
 
 class _SISO(Component):
+    # Modelica's result names of the connectors' signals (``gain.y``) ->
+    # ours (``gain.y.u``), for compare; collected from every class
+    modelica_names = {name: name + ".u" for name in ("y", "u", "u1", "u2", "u3", "u_s",
+                                                     "u_m", "u_ff", "f_normalized")}
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.u = RealInput()
@@ -155,7 +160,6 @@ class Integrator(_SISO):
     k = Parameter(1.0, "1", "integrator gain")
     y_start = Parameter(0.0, "", "initial or guess value of the output (= state)")
     y_value = Variable(doc="output (= state)")
-    modelica_names = {"y": "y_value"}
 
     def __init__(self, initType="InitialState", **kw):
         super().__init__(**kw)
@@ -195,17 +199,18 @@ class Derivative(_SISO):
         der(x) = (u - x) / T
         y = (k / T) * (u - x)
 
-    i.e. the transfer function ``k s / (T s + 1)``.  ``initType``:
+    i.e. the transfer function ``k s / (T s + 1)``; for ``k = 0``
+    (Modelica's zeroGain) ``der(x) = 0`` and ``y = 0`` (the factor ``k^2 /
+    (k^2 + 1e-300)`` is exactly 1 for every normal k).  ``initType``:
     ``"NoInit"`` (default, ``x_start`` a guess), ``"SteadyState"``
     (``der(x) = 0``), ``"InitialState"`` (``x = x_start``),
     ``"InitialOutput"`` (``y = y_start``)."""
-    k = Parameter(1.0, "1", "gain", nonzero=True)
+    k = Parameter(1.0, "1", "gain")
     T = Parameter(0.01, "s", "time constant (T > 0)", positive=True)
     x_start = Parameter(0.0, "", "start value of the state x")
     y_start = Parameter(0.0, "", "start value of the output (initType='InitialOutput')")
     x = Variable(doc="state of the block")
     y_value = Variable(doc="output")
-    modelica_names = {"y": "y_value"}
 
     def __init__(self, initType="NoInit", **kw):
         super().__init__(**kw)
@@ -222,5 +227,6 @@ class Derivative(_SISO):
         return {"x": self.x_start, "y_value": self.y_start}
 
     def equations(self):
-        return [der(self.x) == (self.u.u - self.x) / self.T, self.y.u == self.y_value,
+        gain = self.k * self.k / (self.k * self.k + 1e-300)
+        return [der(self.x) == gain * (self.u.u - self.x) / self.T, self.y.u == self.y_value,
                 self.y_value == self.k / self.T * (self.u.u - self.x)] + _steady_equation(self, "x")

@@ -15,7 +15,8 @@ from acausal2d.errors import ModelDefinitionError
 from acausal2d.library.blocks import (_check_limits, _choice, _limit, CONTROLLER_TYPES,
                                       INIT_TYPES)
 
-EPS_T = 1e-14        # Modelica's max([Td/Nd, 1.e-14]) floor of the derivative's time constant
+EPS_PID = 100 * 2.220446049250313e-16   # PID's floor max([Td/Nd, 100*eps]) of the D block's T
+EPS_LIMPID = 1e-14                     # LimPID's floor max([Td/Nd, 1.e-14])
 
 
 def _sub_init(init_type):
@@ -66,11 +67,14 @@ class _Controller(Component):
 
     def _dynamics(self, e_i, e_d):
         """der(I.y) = e_i / Ti; the derivative block on e_d with k = Td and
-        T = max(Td/Nd, 1e-14) (Modelica's D)."""
+        T = max(Td/Nd, floor) (Modelica's D); with Td = 0 (Modelica's
+        zeroGain) der(D.x) = 0 and D.y = 0: ``Td / (Td + 1e-300)`` is
+        exactly 1 for every normal Td > 0 and 0 for Td = 0."""
         eqs = [der(self.I_y) == e_i / self.Ti] if self.with_I else [self.I_y == 0]
         if self.with_D:
-            t_d = ca.fmax(self.Td / self.Nd, EPS_T)
-            eqs += [der(self.D_x) == (e_d - self.D_x) / t_d,
+            t_d = ca.fmax(self.Td / self.Nd, self.T_FLOOR)
+            gain = self.Td / (self.Td + 1e-300)
+            eqs += [der(self.D_x) == gain * (e_d - self.D_x) / t_d,
                     self.D_y == self.Td / t_d * (e_d - self.D_x)]
         else:
             eqs += [self.D_x == 0, self.D_y == 0]
@@ -92,16 +96,19 @@ class PID(_Controller):
     i.e. ``y = k (1 + 1/(Ti s) + Td s/((Td/Nd) s + 1)) u``.  ``initType``
     (default ``"InitialState"``: ``I.y = xi_start``, ``D.x = xd_start``),
     ``"SteadyState"`` (``der(I.y) = der(D.x) = 0``), ``"InitialOutput"``
-    (``y = y_start``, D steady) or ``"NoInit"``.  Connectors ``u``, ``y``."""
-    k = Parameter(1.0, "1", "gain", nonzero=True)
+    (``y = y_start``, D steady) or ``"NoInit"``.  ``Td = 0`` removes the
+    derivative part (Modelica's zero-gain Derivative).  Connectors ``u``,
+    ``y``."""
+    T_FLOOR = EPS_PID
+    k = Parameter(1.0, "1", "gain")
     Ti = Parameter(0.5, "s", "time constant of the integrator", positive=True)
-    Td = Parameter(0.1, "s", "time constant of the derivative block", positive=True)
+    Td = Parameter(0.1, "s", "time constant of the derivative block", min=0.0)
     Nd = Parameter(10.0, "1", "the higher Nd, the more ideal the derivative block",
                    positive=True)
     xi_start = Parameter(0.0, "", "start value of the integrator state")
     xd_start = Parameter(0.0, "", "start value of the derivative block's state")
     y_start = Parameter(0.0, "", "start value of the output (initType='InitialOutput')")
-    modelica_names = {"I.y": "I_y", "D.x": "D_x", "D.y": "D_y", "Gain.y": "y_value"}
+    modelica_names = {"I.y": "I_y", "D.x": "D_x", "D.y": "D_y"}
 
     def __init__(self, initType="InitialState", **kw):
         super().__init__(**kw)
@@ -135,9 +142,12 @@ class LimPID(_Controller):
     ``controllerType`` ``"P"``, ``"PI"``, ``"PD"`` or ``"PID"`` (default)
     drops the integrator (``I.y = 0``) and/or the derivative (``D.y = 0``).
     ``yMin`` defaults to ``-yMax``.  ``withFeedForward=True`` adds the input
-    ``u_ff``.  ``initType`` as for :class:`PID` (default
-    ``"InitialState"``); ``"InitialOutput"`` holds ``gainPID.y = y_start``.
+    ``u_ff``.  ``initType`` as for :class:`PID`, but Modelica's default here
+    is ``"NoInit"`` (the start values ``xi_start``, ``xd_start`` then hold
+    unless the model's initial equations decide otherwise);
+    ``"InitialOutput"`` holds ``gainPID.y = y_start`` (within the limits).
     Connectors ``u_s`` (set point), ``u_m`` (measurement), ``y``."""
+    T_FLOOR = EPS_LIMPID
     k = Parameter(1.0, "1", "gain of the controller", positive=True)
     Ti = Parameter(0.5, "s", "time constant of the integrator", positive=True)
     Td = Parameter(0.1, "s", "time constant of the derivative block", min=0.0)
@@ -157,23 +167,17 @@ class LimPID(_Controller):
     gainPID_y = Variable(doc="unlimited PID output k (P + I + D) (Modelica gainPID.y)")
     addFF_y = Variable(doc="unlimited output with feed-forward (Modelica addFF.y)")
     modelica_names = {"I.y": "I_y", "D.x": "D_x", "D.y": "D_y", "gainPID.y": "gainPID_y",
-                      "addFF.y": "addFF_y", "limiter.y": "y_value"}
+                      "addFF.y": "addFF_y"}
 
-    def __init__(self, controllerType="PID", initType="InitialState", withFeedForward=False,
-                 **kw):
+    def __init__(self, controllerType="PID", initType="NoInit", withFeedForward=False, **kw):
         if "yMax" in kw and "yMin" not in kw and isinstance(kw["yMax"], (int, float)):
             kw["yMin"] = -kw["yMax"]
         super().__init__(**kw)
         self.controllerType = _choice(self, "controllerType", controllerType,
                                       CONTROLLER_TYPES)
-        with_d = self.controllerType in ("PD", "PID")
-        if with_d and not self.parameter_value("Td") > 0:
-            raise ModelDefinitionError(
-                "%s: parameter Td = %g must be > 0 for controllerType %r; give Td > 0 or "
-                "controllerType 'P' or 'PI'" % (self.describe(), self.parameter_value("Td"),
-                                                self.controllerType))
         _check_limits(self, "yMax", "yMin")
-        self._setup_init(initType, "I" in self.controllerType, with_d)
+        self._setup_init(initType, "I" in self.controllerType, "D" in self.controllerType)
+        self._check_y_start()
         self._fix_output("gainPID_y")
         self.withFeedForward = bool(withFeedForward)
         self.u_s = RealInput(doc="set point")
@@ -181,6 +185,15 @@ class LimPID(_Controller):
         self.y = RealOutput()
         if self.withFeedForward:
             self.u_ff = RealInput(doc="feed-forward input")
+
+    def _check_y_start(self):
+        """Modelica's error for initType InitialOutput with y_start outside
+        [yMin, yMax]."""
+        y0, lo, hi = (self.parameter_value(n) for n in ("y_start", "yMin", "yMax"))
+        if self.initType == "InitialOutput" and not lo <= y0 <= hi:
+            raise ModelDefinitionError("%s: parameter y_start = %g is outside the limits yMin = "
+                                       "%g, yMax = %g; give a y_start between them"
+                                       % (self.describe(), y0, lo, hi))
 
     def equations(self):
         u_s, u_m = self.u_s.u, self.u_m.u

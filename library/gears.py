@@ -7,7 +7,7 @@ convention is Modelica's and the library's: ``flange.tau`` is the torque
 acting on the element from the connected part (seed eq. 4.1 at the
 flanges).  Gears are massless and lossless: the power flowing in equals
 the power flowing out at every instant."""
-from acausal2d import Component, Parameter, RotationalFlange
+from acausal2d import Component, Parameter, RotationalFlange, Variable
 
 
 class IdealGear(Component):
@@ -30,6 +30,8 @@ class IdealGear(Component):
     ``support.tau`` there.  The power balance ``flange_a.tau * w_a +
     flange_b.tau * w_b + support.tau * w_support = 0`` holds exactly."""
     ratio = Parameter(1.0, "1", "transmission ratio (flange_a.phi/flange_b.phi)", nonzero=True)
+    phi_a = Variable(unit="rad", doc="angle of flange_a relative to the support")
+    phi_b = Variable(unit="rad", doc="angle of flange_b relative to the support")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -39,9 +41,9 @@ class IdealGear(Component):
                                         doc="housing (fixed at 0 if unconnected)")
 
     def equations(self):
-        phi_a = self.flange_a.phi - self.support.phi
-        phi_b = self.flange_b.phi - self.support.phi
-        return [phi_a == self.ratio * phi_b,
+        return [self.phi_a == self.flange_a.phi - self.support.phi,
+                self.phi_b == self.flange_b.phi - self.support.phi,
+                self.phi_a == self.ratio * self.phi_b,
                 0 == self.ratio * self.flange_a.tau + self.flange_b.tau,
                 self.support.tau == -self.flange_a.tau - self.flange_b.tau]
 

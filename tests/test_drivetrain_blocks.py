@@ -13,6 +13,7 @@ import pytest
 
 import acausal2d
 from acausal2d import Component
+from acausal2d.analysis.compare_inputs import modelica_counterpart
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library import signals
 
@@ -88,19 +89,56 @@ class OpenPID(Component):
         self.connect(self.u.y, self.pid.u)
 
 
-def test_pid_step_response_is_the_closed_form():
+@pytest.mark.parametrize("Td", (0.1, 0.0))
+def test_pid_step_response_is_the_closed_form(Td):
     """From InitialState (I.y = D.x = 0): y = k (1 + (t - T0)/Ti + Nd
-    exp(-(t - T0) Nd / Td)) after the step, 0 before it."""
-    k, Ti, Td, Nd = 2.0, 0.5, 0.1, 10.0
+    exp(-(t - T0) Nd / Td)) after the step, 0 before it; Td = 0 is
+    Modelica's zero-gain derivative: a PI controller."""
+    k, Ti, Nd = 2.0, 0.5, 10.0
     res = acausal2d.simulate(OpenPID(k, Ti, Td, Nd), stop_time=1.0, rtol=RTOL,
                              output_times=np.linspace(0.0, 1.0, 101))
     t = res.time
     s = t - OpenPID.T0
-    want = np.where(s < 0, 0.0, k * (1 + s / Ti + Nd * np.exp(-np.maximum(s, 0) * Nd / Td)))
+    d = Nd * np.exp(-np.maximum(s, 0) * Nd / Td) if Td > 0 else 0.0
+    want = np.where(s < 0, 0.0, k * (1 + s / Ti + d))
     scale = k * (1 + Nd)
     ok = away_from_events(res)
     assert np.max(np.abs(res["pid.y.u"][ok] - want[ok])) <= 100 * RTOL * scale
     assert np.max(np.abs(res["pid.I_y"][ok] - np.maximum(s, 0)[ok] / Ti)) <= 100 * RTOL * scale
+    # compare finds Modelica's result names of the controller
+    names = res.names
+    assert [modelica_counterpart(n, names) for n in ("pid.y", "pid.I.y", "pid.D.x", "u.y")] \
+        == ["pid.y.u", "pid.I_y", "pid.D_x", "u.y.u"]
+
+
+class HeldPID(Component):
+    """PID or LimPID (u_s = u_m = 0) with input 0 from the start."""
+
+    def __init__(self, limited, pid, **kw):
+        super().__init__(**kw)
+        self.zero = signals.Constant(k=0.0)
+        if limited:
+            self.pid = signals.LimPID(yMax=5.0, **pid)
+            self.connect(self.zero.y, self.pid.u_s)
+            self.connect(self.zero.y, self.pid.u_m)
+        else:
+            self.pid = signals.PID(**pid)
+            self.connect(self.zero.y, self.pid.u)
+
+
+@pytest.mark.parametrize("limited", (False, True))
+@pytest.mark.parametrize("init, y0", [("InitialOutput", 1.5), ("InitialState", 0.75),
+                                      ("NoInit", 0.75)])
+def test_controller_init_types_hold_their_start(limited, init, y0):
+    """Input 0: InitialOutput holds y (LimPID: gainPID.y) = y_start = 1.5
+    (I.y = y_start / k, D steady); InitialState and NoInit keep xi_start =
+    0.375, so y = k xi_start = 0.75; the output stays for the whole run.
+    (SteadyState with the input held at 0 leaves I.y undetermined, the
+    singular case Modelica's PID documentation warns of.)"""
+    pid = dict(k=2.0, initType=init, y_start=1.5, xi_start=0.375)
+    res = acausal2d.simulate(HeldPID(limited, pid=pid), stop_time=0.5, rtol=RTOL,
+                             output_times=np.linspace(0.0, 0.5, 11))
+    assert np.max(np.abs(res["pid.y.u"] - y0)) <= 100 * RTOL * 2.0
 
 
 class Windup(Component):
@@ -158,7 +196,8 @@ def test_limpid_clips_and_its_anti_windup_recovers():
     (signals.PID, {"Ti": -1.0}, ("PID", "parameter Ti")),
     (signals.LimPID, {"Ti": 0.0}, ("LimPID", "parameter Ti")),
     (signals.LimPID, {"yMax": 1.0, "yMin": 2.0}, ("LimPID", "yMax", "yMin")),
-    (signals.LimPID, {"Td": 0.0}, ("LimPID", "Td", "controllerType")),
+    (signals.LimPID, {"Td": -1.0}, ("LimPID", "parameter Td")),
+    (signals.LimPID, {"initType": "InitialOutput", "y_start": 2.0}, ("LimPID", "y_start")),
     (signals.LimPID, {"controllerType": "PIDD"}, ("LimPID", "controllerType")),
     (signals.PID, {"initType": "Steady"}, ("PID", "initType")),
     (signals.Limiter, {"uMax": -1.0, "uMin": 0.0}, ("Limiter", "uMax", "uMin")),

@@ -80,6 +80,8 @@ def test_ideal_gear_on_a_free_housing_keeps_the_angular_momentum():
     assert np.max(np.abs(L - T * t)) <= 100 * RTOL * T * T_END
     rel = (res["in_.phi"] - res["house.phi"]) - ratio * (res["out.phi"] - res["house.phi"])
     assert np.max(np.abs(rel)) <= 100 * RTOL * scale * T_END
+    assert np.max(np.abs(res["gear.phi_a"] - (res["in_.phi"] - res["house.phi"]))) \
+        <= 100 * RTOL * scale * T_END
     power = res["gear.flange_a.tau"] * res["in_.w"] + res["gear.flange_b.tau"] * res["out.w"] \
         + res["gear.support.tau"] * res["house.w"]
     assert np.max(np.abs(power)) <= 10 * RTOL * T * scale
