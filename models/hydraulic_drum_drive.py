@@ -54,7 +54,8 @@ controllers start at the holding displacement.
 
 What follows (tests/test_hydraulic_drum_drive.py): the controllers reach
 their set speeds and pressure (the pump and diesel controllers start at
-the values that feed the leakage at rest); the diesel's work equals the hoisting and
+the values that feed the leakage at rest: initType "InitialState" with
+xi_start); the diesel's work equals the hoisting and
 haul work plus the kinetic and oil energy plus the losses in pump, motors
 and valve; at 25 MPa the load drum needs alpha = 0.75 of its motor (about
 3.5e-3 m3/s), i.e. the pressure level and the planetary ratio fix the
@@ -120,8 +121,8 @@ class DrumString(Component):
         self.rope = rotational.ConstantTorque(tau=-force * R_DRUM)
         self.speed = rotational.SpeedSensor()
         self.set = Ramp(height=w_set, duration=2.0, startTime=t_start)
-        self.control = LimPID(controllerType="PI", k=K_DRUM, Ti=0.3, yMax=1.0, yMin=-1.0,
-                              xi_start=holding_alpha(vg, force) / K_DRUM)
+        self.control = LimPID(controllerType="PI", initType="InitialState", k=K_DRUM, Ti=0.3,
+                              yMax=1.0, yMin=-1.0, xi_start=holding_alpha(vg, force) / K_DRUM)
         for a, b in [(self.motor.flange, self.rotor.flange_a),
                      (self.rotor.flange_b, self.planetary.sun),
                      (self.planetary.ring, self.ring.flange),
@@ -158,8 +159,9 @@ class HydraulicDrumDrive(Component):
         self.engine = rotational.Torque()
         self.diesel_speed = rotational.SpeedSensor()
         self.diesel_set = Constant(k=W_DIESEL)
-        self.diesel_control = LimPID(controllerType="PI", k=K_DIESEL, Ti=0.5, yMax=1200.0,
-                                     yMin=0.0, xi_start=rest_start()[1] / K_DIESEL)
+        self.diesel_control = LimPID(controllerType="PI", initType="InitialState", k=K_DIESEL,
+                                     Ti=0.5, yMax=1200.0, yMin=0.0,
+                                     xi_start=rest_start()[1] / K_DIESEL)
         self.splitter = IdealGear(ratio=GEAR)
         for a, b in [(self.engine.flange, self.diesel.flange_a),
                      (self.diesel.flange_b, self.diesel_speed.flange),
@@ -178,8 +180,8 @@ class HydraulicDrumDrive(Component):
         self.pressure = hydraulics.PressureSensor()
         self.p_norm = Gain(k=1 / P_SET)
         self.p_set = Constant(k=1.0)
-        self.pump_control = LimPID(controllerType="PI", k=K_PUMP, Ti=0.1, yMax=1.0, yMin=0.0,
-                                   xi_start=rest_start()[0] / K_PUMP)
+        self.pump_control = LimPID(controllerType="PI", initType="InitialState", k=K_PUMP,
+                                   Ti=0.1, yMax=1.0, yMin=0.0, xi_start=rest_start()[0] / K_PUMP)
         for a, b in [(self.splitter.flange_b, self.pump.flange),
                      (self.tank.port, self.pump.port_a), (self.pump.port_b, self.line.port),
                      (self.line.port, self.relief.port_a), (self.relief.port_b, self.tank.port),
