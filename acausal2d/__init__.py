@@ -14,7 +14,7 @@ from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs
                     fmin, fmax, sign, if_else, pi)
 
 from .language.connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
-                         RotationalFlange, TranslationalFlange)
+                         RotationalFlange, TranslationalFlange, HydraulicPort)
 from .language.dsl import Component, Outer, Parameter, Variable, start  # noqa: E402,F401
 from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
                      SimulationError, StructuralError)
@@ -39,7 +39,7 @@ __all__ = [
     # modelling
     "Component", "Model", "Parameter", "Variable", "start", "Outer", "der", "time",
     "time_derivative", "Connector", "Frame", "RotationalFlange", "TranslationalFlange",
-    "BandPort", "RealInput", "RealOutput",
+    "BandPort", "RealInput", "RealOutput", "HydraulicPort",
     # symbolic functions for equations
     "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "log", "fabs", "fmin",
     "fmax", "sign", "if_else", "pi",

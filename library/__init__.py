@@ -8,10 +8,16 @@
 - :mod:`acausal2d.library.planar.sensors`: PlanarMechanics' absolute and
   relative position/velocity/acceleration sensors, CutForce, CutTorque,
   Power, Distance.
-- :mod:`acausal2d.library.rotational`: 1D rotational elements.
-- :mod:`acausal2d.library.translational`: 1D translational elements.
+- :mod:`acausal2d.library.rotational`: 1D rotational elements, with the
+  gears of :mod:`~acausal2d.library.gears` (IdealGear, IdealPlanetary) and
+  the friction elements of :mod:`~acausal2d.library.friction1d`
+  (BearingFriction, Brake, OneWayClutch) re-exported under Modelica's names.
+- :mod:`acausal2d.library.translational`: 1D translational elements, with
+  friction1d's SupportFriction and MassWithStopAndFriction.
 - :mod:`acausal2d.library.signals`: signal sources, FirstOrder,
-  InverseBlockConstraints.
+  InverseBlockConstraints, and Modelica.Blocks' Step, Gain, Add, Add3,
+  Feedback, Limiter, Integrator, Derivative (:mod:`~acausal2d.library.blocks`),
+  PID and LimPID (:mod:`~acausal2d.library.controllers`).
 - :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (seed Anhang B).
 - :mod:`acausal2d.library.linkage.drives`: motion presets, sources and
   measuring modules for the linkage elements.
@@ -29,5 +35,7 @@
   :mod:`~acausal2d.library.synthesis.contour_export` cam contours as CSV/SVG/DXF and
   as a CurvedDrum/CurvedPulley contour.
 - :mod:`acausal2d.library.pneumatics`: gas cylinder with check valves.
+- :mod:`acausal2d.library.hydraulics`: hydrostatics (pressure source, pump,
+  motor, relief valve, volume, throttle, orifice).
 - :mod:`acausal2d.library.belt.crane`: carriage and hook of the cable crane.
 """

@@ -5,6 +5,8 @@ import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
                        Variable)
+from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.friction1d import friction_law, interpolate, table_rows
 
 
 class Fixed(Component):
@@ -100,6 +102,21 @@ class AngleSensor(Component):
         return [self.phi.u == self.flange.phi, self.flange.tau == 0]
 
 
+class SpeedSensor(Component):
+    """Absolute angular velocity of the flange as the signal ``w``
+    (Modelica.Mechanics.Rotational.Sensors.SpeedSensor: ``w =
+    der(flange.phi)``, ``0 = flange.tau``); takes no torque.  Feeds the
+    measurement input ``u_m`` of a :class:`~acausal2d.library.controllers.LimPID`."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+        self.w = RealOutput()
+
+    def equations(self):
+        return [self.w.u == der(self.flange.phi), self.flange.tau == 0]
+
+
 class Torque(Component):
     """Torque from the signal tau_in acting on the flange (reaction on the
     fixed support)."""
@@ -153,63 +170,72 @@ class Position(Component):
 
 
 class Clutch(Component):
-    """Friction clutch (disc clutch, seed ch. 8.2 "discClutch1") between
-    ``flange_a`` and ``flange_b``, engaged by the signal input
-    ``f_normalized`` (0 = open, 1 = fully closed; Modelica's Clutch
-    convention).
+    """Friction clutch (Modelica.Mechanics.Rotational.Components.Clutch;
+    the seed's disc clutch, ch. 8.2 "discClutch1") between ``flange_a`` and
+    ``flange_b``, engaged by the signal input ``f_normalized`` (0 = open,
+    1 = fully closed)::
 
-    Normal force ``fn = fn_max * f_normalized`` and friction torque capacity
-    ``T_max = mu * cgeo * max(fn, 0)`` (``cgeo``: effective friction radius
-    times the number of friction faces).  As in Modelica's
-    ``Rotational.Components.Clutch`` (``free = fn <= 0``) the clutch is free
-    for a normal force ``fn <= 0``: a negative ``f_normalized`` (a control
-    signal overshooting below "open") transmits no torque and never drives
-    the slip apart; ``fn`` crossing 0 is an event.
-    ``phi_rel = flange_b.phi - flange_a.phi``, ``w_rel = der(phi_rel)``,
-    ``a_rel = der(w_rel)``; the torque ``tau`` acts on flange_b like a
-    damper's (``flange_b.tau = tau``, ``flange_a.tau = -tau``).  As in
-    Modelica's ``PartialCompliantWithRelativeStates`` the relative angle and
-    speed are preferred states: the creep ``w_rel`` (down to 1e-9 rad/s) is
-    then integrated itself instead of being the difference of two flange
-    speeds, whose rounding (1e-15 of 10 rad/s) would be all of it.
+        phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
+        flange_b.tau = tau,  flange_a.tau = -tau
+        fn = fn_max * f_normalized,  free = fn <= 0
+        tau0 = mu0 * cgeo * fn,  tau0_max = peak * tau0
+        tau = cgeo * fn * mu(w_rel) sliding forward, -cgeo * fn * mu(-w_rel) backward,
+              stuck (tau from the balance) while |tau| <= tau0_max
 
-    Coulomb friction with sticking is regularised by a linear zone of width
-    ``w_s`` (Karnopp-like saturation)::
+    The sliding friction coefficient is the constant ``mu`` or, as in
+    Modelica, the table ``mu_pos`` (rows ``[w_rel, mu]``, linear, extrapolated
+    by the last two points; give one of the two); ``mu0`` is its value at
+    ``w_rel = 0``.  ``cgeo`` is the effective friction radius times the
+    number of friction faces.  The torque capacity used is ``T_max = mu0 *
+    cgeo * max(fn, 0)``: as in Modelica (``free = fn <= 0``) a negative
+    ``f_normalized`` (a control signal overshooting below "open") transmits
+    no torque and never drives the slip apart; ``fn`` crossing 0 is an
+    event.  As in Modelica's ``PartialCompliantWithRelativeStates`` the
+    relative angle and speed are preferred states: the creep ``w_rel`` (down
+    to 1e-9 rad/s) is then integrated itself instead of being the
+    difference of two flange speeds, whose rounding would be all of it.
 
-        tau = T_max * sat(w_rel / w_s),  sat(x) = min(max(x, -1), 1).
-
-    The two kinks of ``sat`` are relations, so entering and leaving the
-    linear zone are events: while slipping (``|w_rel| > w_s``) the torque is
-    exactly Coulomb, ``T_max sign(w_rel)``.  Inside the zone the clutch
-    behaves as a very stiff viscous coupling with the coefficient
-    ``T_max / w_s``: "sticking" means that both flanges turn at the same speed
-    up to ``w_rel = w_s * tau / T_max`` (``|w_rel| < w_s``, the creep), and the
-    clutch slips again (an event) when the torque it has to transmit exceeds
-    ``T_max``.  The relative speed decays inside the zone with the time
-    constant ``J_eff * w_s / T_max`` (``J_eff = J_a J_b/(J_a + J_b)``), so a
-    small ``w_s`` makes the model stiff but not slower for IDA (implicit).
-    The time from engagement to sticking therefore matches the Coulomb
-    closed form ``J_eff * w_rel0 / T_max`` up to about ``J_eff * w_s / T_max``
-    (times a few for the exponential tail).  A clutch with ``f_normalized =
-    0`` transmits nothing.
+    Sticking is a stick zone ``|w_rel| < w_s`` (the law of
+    :func:`acausal2d.library.friction1d.friction_law`): a stiff viscous
+    coupling ``peak T_max / w_s`` inside, the sliding characteristic outside,
+    joined continuously; entering and leaving the zone are events.  With
+    ``peak = 1`` and a constant ``mu`` this is the Karnopp saturation
+    ``tau = T_max sat(w_rel / w_s)``: Coulomb while slipping, "stuck"
+    (both flanges at one speed up to the creep ``w_s tau / T_max``) until
+    the torque to transmit exceeds ``peak T_max`` (an event).  The time from
+    engagement to sticking matches the Coulomb closed form ``J_eff w_rel0 /
+    T_max`` up to about ``J_eff w_s / T_max`` (``J_eff = J_a J_b/(J_a +
+    J_b)``); a small ``w_s`` makes the model stiff but not slower for IDA.
+    ``w_small`` is Modelica's reinit threshold, accepted for transcription
+    (speeds never jump here, so it has no effect).  A clutch with
+    ``f_normalized = 0`` transmits nothing.
 
     Outputs: ``phi_rel``, ``w_rel``, ``a_rel``, ``tau``, ``fn``, ``T_max``; the
     friction power dissipated in the clutch is ``tau * w_rel`` (>= 0).
     """
-    mu = Parameter(0.3, "1", "friction coefficient", min=0.0)
+    mu = Parameter(0.3, "1", "friction coefficient (constant; or give the table mu_pos)",
+                   min=0.0)
+    peak = Parameter(1.0, "1", "peak of the friction at w_rel = 0: tau0_max = peak tau0",
+                     min=1.0)
     fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1", min=0.0)
     cgeo = Parameter(0.1, "m", "effective friction radius x number of friction faces", positive=True)
     w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)", positive=True)
+    w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect here)",
+                        positive=True)
     phi_rel = Variable(unit="rad", state_select="prefer",
                        doc="relative angle flange_b - flange_a")
     w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
     a_rel = Variable(unit="rad/s2", doc="relative angular acceleration der(w_rel)")
     tau = Variable(unit="N.m", doc="friction torque acting on flange_b")
     fn = Variable(unit="N", doc="normal force fn_max f_normalized (free for fn <= 0)")
-    T_max = Variable(unit="N.m", doc="friction torque capacity mu cgeo max(fn, 0)")
+    T_max = Variable(unit="N.m", doc="sliding torque at w_rel = 0: mu0 cgeo max(fn, 0)")
 
-    def __init__(self, **kw):
+    def __init__(self, mu_pos=None, **kw):
         super().__init__(**kw)
+        if mu_pos is not None and "mu" in kw:
+            raise ModelDefinitionError("%s: give mu (a constant) or mu_pos (a table), not both"
+                                       % self.describe())
+        self.mu_pos = None if mu_pos is None else table_rows(self, "mu_pos", mu_pos, None)
         self.flange_a = RotationalFlange()
         self.flange_b = RotationalFlange()
         self.f_normalized = RealInput()
@@ -222,14 +248,20 @@ class Clutch(Component):
                 "(the lock time changes by about J_eff w_s / T_max only), or make its "
                 "f_normalized input continuous." % self.describe())
 
+    def _slide(self, v):
+        """Sliding torque at the speed magnitude v: T_max for a constant mu,
+        cgeo max(fn, 0) mu_pos(v) for a table."""
+        if self.mu_pos is None:
+            return self.T_max
+        return interpolate(self.mu_pos, v) * self.cgeo * ca.fmax(self.fn, 0.0)
+
     def equations(self):
-        x = self.w_rel / self.w_s
-        sat = ca.fmin(ca.fmax(x, -1.0), 1.0)
+        mu0 = self.mu if self.mu_pos is None else interpolate(self.mu_pos, 0.0)
         return [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
                 self.w_rel == der(self.phi_rel), self.a_rel == der(self.w_rel),
                 self.fn == self.fn_max * self.f_normalized.u,
-                self.T_max == self.mu * self.cgeo * ca.fmax(self.fn, 0.0),
-                self.tau == self.T_max * sat,
+                self.T_max == mu0 * self.cgeo * ca.fmax(self.fn, 0.0),
+                self.tau == friction_law(self.w_rel, self.w_s, self.peak * self.T_max, self._slide),
                 self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
 
 
@@ -275,3 +307,8 @@ class AsyncMotor(Component):
                 self.T_el == 2 * self.T_k * self.s * self.s_k / (self.s ** 2 + self.s_k ** 2),
                 self.J * der(self.w) == self.T_el + self.flange.tau,
                 self.P_mech == self.T_el * self.w]
+
+
+# Modelica.Mechanics.Rotational.Components' gears, where Modelica users look for them
+from acausal2d.library.gears import IdealGear, IdealPlanetary  # noqa: E402,F401
+from acausal2d.library.friction1d import BearingFriction, Brake, OneWayClutch  # noqa: E402,F401

@@ -25,36 +25,61 @@ class Constant(_Source):
         return [self.y.u == self.k]
 
 
+def _former_start_time(kw):
+    """``start_time``, the former name of Modelica's ``startTime``, still
+    accepted as a keyword (one name in the model: ``startTime``)."""
+    if "start_time" in kw:
+        if "startTime" in kw:
+            raise ModelDefinitionError("give startTime only (start_time is its former name)")
+        kw["startTime"] = kw.pop("start_time")
+    return kw
+
+
 class Sine(_Source):
-    """Sine wave (Modelica.Blocks.Sources.Sine): ``y = offset`` before
-    ``start_time`` and ``offset + amplitude sin(2 pi f (t - start_time) +
-    phase)`` from then on (the switch at ``start_time`` is a time event).
-    With the default ``start_time = 0`` the wave is the same for every
-    t >= 0 as before the option existed."""
+    """Sine wave (Modelica.Blocks.Sources.Sine, MSL 4.0)::
+
+        y = offset + (if time < startTime then 0
+                      else amplitude * sin(2 pi f (time - startTime) + phase))
+
+    The switch at ``startTime`` is a time event.  ``start_time`` is accepted
+    as the former name of ``startTime``."""
     amplitude = Parameter(1.0, "", "amplitude")
     f = Parameter(1.0, "Hz", "frequency", min=0.0)
     phase = Parameter(0.0, "rad", "phase")
     offset = Parameter(0.0, "", "offset")
-    start_time = Parameter(0.0, "s", "output = offset before this time")
+    startTime = Parameter(0.0, "s", "output = offset before this time")
+
+    def __init__(self, **kw):
+        super().__init__(**_former_start_time(kw))
 
     def equations(self):
-        wave = self.amplitude * ca.sin(2 * ca.pi * self.f * (time - self.start_time) + self.phase)
-        return [self.y.u == self.offset + ca.if_else(time < self.start_time, 0, wave)]
+        wave = self.amplitude * ca.sin(2 * ca.pi * self.f * (time - self.startTime) + self.phase)
+        return [self.y.u == self.offset + ca.if_else(time < self.startTime, 0, wave)]
 
 
 class Ramp(_Source):
-    """Linear ramp (Modelica.Blocks.Sources.Ramp): ``offset`` before
-    ``start_time``, rising linearly by ``height`` over ``duration``, then
-    ``offset + height``; both kinks are time events."""
+    """Linear ramp (Modelica.Blocks.Sources.Ramp, MSL 4.0)::
+
+        y = offset + (if time < startTime then 0
+                      else if time < startTime + duration
+                      then (time - startTime) * height / duration
+                      else height)
+
+    Both kinks are time events.  ``duration`` must be > 0 here (Modelica's 0
+    is a step: use :class:`~acausal2d.library.blocks.Step`).  ``start_time``
+    is accepted as the former name of ``startTime``."""
     height = Parameter(1.0, "", "height of the ramp")
-    duration = Parameter(1.0, "s", "duration", positive=True)
-    offset = Parameter(0.0, "", "value before the ramp")
-    start_time = Parameter(0.0, "s", "start of the ramp")
+    duration = Parameter(1.0, "s", "duration of the ramp", positive=True)
+    offset = Parameter(0.0, "", "offset of the output")
+    startTime = Parameter(0.0, "s", "output = offset for time < startTime")
+
+    def __init__(self, **kw):
+        super().__init__(**_former_start_time(kw))
 
     def equations(self):
-        tau = (time - self.start_time) / self.duration
-        ramp = ca.if_else(time < self.start_time, 0,
-                          ca.if_else(time < self.start_time + self.duration, tau, 1))
+        tau = (time - self.startTime) / self.duration
+        ramp = ca.if_else(time < self.startTime, 0,
+                          ca.if_else(time < self.startTime + self.duration, tau, 1))
         return [self.y.u == self.offset + self.height * ramp]
 
 
@@ -137,3 +162,9 @@ class InverseBlockConstraints(Component):
 
     def equations(self):
         return [self.u1.u == self.u2.u, self.y2.u == self.y1.u]
+
+
+# Modelica.Blocks' sources, math blocks and controllers, where Modelica users look for them
+from acausal2d.library.blocks import (Add, Add3, Derivative, Feedback, Gain,  # noqa: E402,F401
+                                      Integrator, Limiter, Step)
+from acausal2d.library.controllers import LimPID, PID  # noqa: E402,F401

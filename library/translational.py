@@ -127,3 +127,7 @@ class PositionSensor(Component):
 
     def equations(self):
         return [self.s.u == self.flange.s, self.flange.f == 0]
+
+
+# Modelica.Mechanics.Translational.Components' friction, where Modelica users look for it
+from acausal2d.library.friction1d import MassWithStopAndFriction, SupportFriction  # noqa: E402,F401

@@ -10,6 +10,7 @@ forces/torques acting *on* the component from outside.
 - :class:`TranslationalFlange`: s; f.
 - :class:`BandPort`: wound length and belt angle; connects to exactly one
   other band port (seed ch. 4.1).
+- :class:`HydraulicPort`: pressure p; volume flow q into the component.
 - :class:`RealInput`, :class:`RealOutput`: a signal ``u``.
 
 A connector created with ``ground=...`` is fixed to ground while it is left
@@ -124,6 +125,16 @@ class BandPort(Connector):
     flows = ()
     units = {"L": "m", "gamma": "rad"}
     one_to_one = True
+
+
+class HydraulicPort(Connector):
+    """Hydrostatic port: pressure p [Pa] (potential), volume flow q [m3/s]
+    (flow, positive INTO the component, Modelica's sign convention); the
+    hydraulic power entering the component through the port is ``p q``."""
+    kind = "HydraulicPort"
+    potentials = ("p",)
+    flows = ("q",)
+    units = {"p": "Pa", "q": "m3/s"}
 
 
 class RealInput(Connector):

@@ -36,7 +36,7 @@ GROUPS = [
      ["eight_link_vdi2729", "cabinet_door", "db_ds_synthesis", "pulley_block",
       "noncircular_belt_drive"]),
     ("Dissertation ch. 8: cable crane and belt-driven compressor",
-     ["cable_crane", "compressor", "clutch_motor", "belt_span_rig"]),
+     ["cable_crane", "hydraulic_drum_drive", "compressor", "clutch_motor", "belt_span_rig"]),
     ("Modelica PlanarMechanics references (Dymola results in tests/data/references)",
      ["pendulum", "double_pendulum", "crane_crab", "piston_engine", "piston_engine_dynamic",
       "planar_examples"]),
