@@ -1,4 +1,7 @@
-"""Modelica.Mechanics.Rotational.Examples.CoupledClutches (MSL 4.0)
+"""Examples of Modelica.Mechanics.Rotational (MSL 4.0), transcribed one to
+one with the library's Modelica names and defaults.
+
+Modelica.Mechanics.Rotational.Examples.CoupledClutches:
 transcribed with the library's Modelica names and defaults: four inertias
 coupled by three clutches (peak 1.1, fn_max 20, Modelica's default
 mu_pos = [0, 0.5] and cgeo = 1), J1 driven by a 5 Hz sine torque, the
@@ -68,3 +71,42 @@ def test_coupled_clutches_keep_the_momentum_balance_and_dissipate():
     assert np.max(np.abs(res["J4.w"][open3])) <= 1e-12
     # the drive and clutch1 pass momentum down the chain: J4 turns after T3
     assert res.final("J4.w") > 0.5
+
+
+class OneWayClutchExample(Component):
+    """Modelica.Mechanics.Rotational.Examples.OneWayClutch."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.inertiaIn = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(-0.5, fixed=True))
+        self.inertiaOut = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.oneWayClutch = rot.OneWayClutch(peak=25.0, fn_max=3.0)
+        self.torque = rot.Torque()
+        self.signalTorque = signals.Sine(amplitude=10.0, f=3.0)
+        self.signalEngagement = signals.Pulse(amplitude=1.0, width=50.0, period=1.3,
+                                              startTime=0.3)
+        self.connect(self.torque.flange, self.inertiaIn.flange_a)
+        self.connect(self.signalTorque.y, self.torque.tau_in)
+        self.connect(self.inertiaIn.flange_b, self.oneWayClutch.flange_a)
+        self.connect(self.oneWayClutch.flange_b, self.inertiaOut.flange_a)
+        self.connect(self.signalEngagement.y, self.oneWayClutch.f_normalized)
+
+
+def test_one_way_clutch_example_never_runs_backwards():
+    """Modelica's OneWayClutch example (2 s): the momentum sum follows the
+    drive's impulse -0.5 + 10 (1 - cos(6 pi t)) / (6 pi); the relative speed
+    w_rel = inertiaOut.w - inertiaIn.w never falls below the freewheel's
+    creep (w_s |tau| / tau_lock, tau_lock = peak mu0 cgeo fn_max = 37.5 N m);
+    the clutch dissipates."""
+    res = acausal2d.simulate(OneWayClutchExample(), stop_time=2.0, rtol=RTOL,
+                             output_times=np.linspace(0.0, 2.0, 401))
+    t = res.time
+    momentum = res["inertiaIn.w"] + res["inertiaOut.w"]
+    impulse = -0.5 + 10.0 * (1.0 - np.cos(6 * math.pi * t)) / (6 * math.pi)
+    assert np.max(np.abs(momentum - impulse)) <= 100 * RTOL * 2.0
+    tau = res["oneWayClutch.tau"]
+    assert np.min(res["oneWayClutch.w_rel"]) >= -1e-4 * np.max(np.abs(tau)) / 37.5 - 10 * RTOL
+    assert np.min(tau * res["oneWayClutch.w_rel"]) >= 0.0 - 1e-12
+    # the engagement makes the output follow: both speeds meet while engaged
+    engaged = (t > 0.35) & (t < 0.95)
+    assert np.min(np.abs(res["oneWayClutch.w_rel"][engaged])) <= 1e-4
