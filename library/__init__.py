@@ -15,7 +15,7 @@
 - :mod:`acausal2d.library.translational`: 1D translational elements, with
   friction1d's SupportFriction and MassWithStopAndFriction.
 - :mod:`acausal2d.library.signals`: signal sources, FirstOrder,
-  InverseBlockConstraints, and Modelica.Blocks' Step, Gain, Add, Add3,
+  InverseBlockConstraints, and Modelica.Blocks' Step, Pulse, Gain, Add, Add3,
   Feedback, Limiter, Integrator, Derivative (:mod:`~acausal2d.library.blocks`),
   PID and LimPID (:mod:`~acausal2d.library.controllers`).
 - :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (seed Anhang B).

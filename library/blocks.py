@@ -1,5 +1,5 @@
 """Signal blocks of Modelica.Blocks (MSL 4.0) with Modelica's names,
-parameters and equations: Sources.Step, Math.Gain, Math.Add, Math.Add3,
+parameters and equations: Sources.Step, Sources.Pulse, Math.Gain, Math.Add, Math.Add3,
 Math.Feedback, Nonlinear.Limiter, Continuous.Integrator,
 Continuous.Derivative, Continuous.PID and Continuous.LimPID.
 
@@ -58,6 +58,44 @@ class Step(Component):
 
     def equations(self):
         return [self.y.u == self.offset + ca.if_else(time < self.startTime, 0, self.height)]
+
+
+class Pulse(Component):
+    """Pulse signal (Modelica.Blocks.Sources.Pulse)::
+
+        y = offset + (amplitude during [T_start, T_start + width/100 * period)
+                      of every period from startTime on, else 0)
+
+    for ``nperiod`` periods (-1: for ever).  Each edge is a time event; the
+    crossing function ``sin(pi tau) sin(pi (tau - width/100))``, ``tau = (time
+    - startTime) / period``, is negative exactly while the pulse is on and
+    crosses zero at the edges.  ``0 < width < 100`` (a width of 100 is a
+    :class:`Step`)."""
+    amplitude = Parameter(1.0, "", "amplitude of the pulse")
+    width = Parameter(50.0, "1", "width of the pulse in % of the period", positive=True,
+                      max=100.0)
+    period = Parameter(1.0, "s", "time for one period", positive=True)
+    offset = Parameter(0.0, "", "offset of the output")
+    startTime = Parameter(0.0, "s", "output = offset for time < startTime")
+
+    def __init__(self, nperiod=-1, **kw):
+        super().__init__(**kw)
+        if not self.parameter_value("width") < 100.0:
+            raise ModelDefinitionError("%s: parameter width = 100 %% is a step; give width < 100 "
+                                       "or use Step" % self.describe())
+        if not (isinstance(nperiod, int) and (nperiod == -1 or nperiod > 0)):
+            raise ModelDefinitionError("%s: nperiod must be -1 (for ever) or a whole number > 0, "
+                                       "not %r" % (self.describe(), nperiod))
+        self.nperiod = nperiod
+        self.y = RealOutput()
+
+    def equations(self):
+        tau = (time - self.startTime) / self.period
+        on = ca.sin(ca.pi * tau) * ca.sin(ca.pi * (tau - self.width / 100.0)) < 0
+        end = self.startTime + self.nperiod * self.period
+        active = time >= self.startTime if self.nperiod < 0 else \
+            ca.logic_and(time >= self.startTime, time < end)
+        return [self.y.u == self.offset + ca.if_else(active, ca.if_else(on, self.amplitude, 0), 0)]
 
 
 class Gain(_SISO):

@@ -38,14 +38,12 @@ def _pairs(comp, name, table):
     try:
         if len(table) and isinstance(table[0], (int, float)):
             table = [table]
-        return [(float(r[0]), float(r[1])) for r in table if len(r) == 2 or _bad_row(r)]
-    except (TypeError, ValueError, IndexError):
+        if any(len(row) != 2 for row in table):
+            raise ValueError(table)
+        return [(float(x), float(y)) for x, y in table]
+    except (TypeError, ValueError):
         raise ModelDefinitionError("%s: %s must be a table of rows [x, y] (Modelica's %s[:, 2]), "
                                    "not %r" % (type(comp).__name__, name, name, table)) from None
-
-
-def _bad_row(row):
-    raise ValueError(row)
 
 
 def table_rows(comp, name, table, default):

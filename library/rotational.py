@@ -185,7 +185,8 @@ class Clutch(Component):
     The sliding friction coefficient is the constant ``mu`` or, as in
     Modelica, the table ``mu_pos`` (rows ``[w_rel, mu]``, linear, extrapolated
     by the last two points; give one of the two); ``mu0`` is its value at
-    ``w_rel = 0``.  ``cgeo`` is the effective friction radius times the
+    ``w_rel = 0``.  The defaults are Modelica's (``mu_pos = [0, 0.5]``,
+    ``cgeo = 1``, ``fn_max``'s start value 1).  ``cgeo`` is the effective friction radius times the
     number of friction faces.  The torque capacity used is ``T_max = mu0 *
     cgeo * max(fn, 0)``: as in Modelica (``free = fn <= 0``) a negative
     ``f_normalized`` (a control signal overshooting below "open") transmits
@@ -213,12 +214,12 @@ class Clutch(Component):
     Outputs: ``phi_rel``, ``w_rel``, ``a_rel``, ``tau``, ``fn``, ``T_max``; the
     friction power dissipated in the clutch is ``tau * w_rel`` (>= 0).
     """
-    mu = Parameter(0.3, "1", "friction coefficient (constant; or give the table mu_pos)",
+    mu = Parameter(0.5, "1", "friction coefficient (constant; or give the table mu_pos)",
                    min=0.0)
     peak = Parameter(1.0, "1", "peak of the friction at w_rel = 0: tau0_max = peak tau0",
                      min=1.0)
-    fn_max = Parameter(1000.0, "N", "normal force at f_normalized = 1", min=0.0)
-    cgeo = Parameter(0.1, "m", "effective friction radius x number of friction faces", positive=True)
+    fn_max = Parameter(1.0, "N", "normal force at f_normalized = 1", min=0.0)
+    cgeo = Parameter(1.0, "m", "effective friction radius x number of friction faces", positive=True)
     w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)", positive=True)
     w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect here)",
                         positive=True)

@@ -166,5 +166,5 @@ class InverseBlockConstraints(Component):
 
 # Modelica.Blocks' sources, math blocks and controllers, where Modelica users look for them
 from acausal2d.library.blocks import (Add, Add3, Derivative, Feedback, Gain,  # noqa: E402,F401
-                                      Integrator, Limiter, Step)
+                                      Integrator, Limiter, Pulse, Step)
 from acausal2d.library.controllers import LimPID, PID  # noqa: E402,F401

@@ -78,6 +78,32 @@ def test_integrator_from_its_initial_state():
     assert np.max(np.abs(res["integ.y_value"] - (0.25 + 3.0 * res.time ** 2))) <= 100 * RTOL * 3
 
 
+class Pulsed(Component):
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.p = signals.Pulse(amplitude=2.0, width=30.0, period=0.4, offset=0.5,
+                               startTime=0.3, nperiod=3)
+        self.i = signals.Integrator()
+        self.connect(self.p.y, self.i.u)
+
+
+def test_pulse_law_and_its_integral():
+    """Modelica's Pulse: offset + amplitude on [0.3 + 0.4 k, 0.42 + 0.4 k)
+    for k = 0, 1, 2; its integral over 2 s is 0.5 * 2 + 3 * 2 * 0.12."""
+    res = acausal2d.simulate(Pulsed(), stop_time=2.0, rtol=RTOL,
+                             output_times=np.linspace(0.0, 2.0, 201) + 0.001)
+    t = res.time
+    k = np.floor((t - 0.3) / 0.4)
+    on = (t >= 0.3) & (k < 3) & (t - 0.3 - 0.4 * k < 0.12)
+    ok = away_from_events(res)
+    assert np.max(np.abs(res["p.y.u"][ok] - (0.5 + 2.0 * on[ok]))) <= RTOL
+    # the run starts at the first output time 0.001 and lasts 2 s
+    assert res.final("i.y_value") == pytest.approx(0.5 * 2.0 + 3 * 2.0 * 0.12, abs=100 * RTOL)
+    edges = sorted(0.3 + 0.4 * k + d for k in range(3) for d in (0.0, 0.12))
+    got = [tt for tt, _ in res.events if 0.25 < tt < 1.3]
+    assert np.max(np.abs(np.array(got) - edges)) <= 1e-9
+
+
 class OpenPID(Component):
     """A unit step at T0 into a PID."""
     T0 = 0.105
@@ -201,6 +227,9 @@ def test_limpid_clips_and_its_anti_windup_recovers():
     (signals.LimPID, {"controllerType": "PIDD"}, ("LimPID", "controllerType")),
     (signals.PID, {"initType": "Steady"}, ("PID", "initType")),
     (signals.Limiter, {"uMax": -1.0, "uMin": 0.0}, ("Limiter", "uMax", "uMin")),
+    (signals.Pulse, {"width": 100.0}, ("Pulse", "width")),
+    (signals.Pulse, {"period": 0.0}, ("Pulse", "period")),
+    (signals.Pulse, {"nperiod": 0}, ("Pulse", "nperiod")),
 ])
 def test_bad_block_parameters_are_refused_naming_them(cls, kw, words):
     with pytest.raises(ModelDefinitionError) as err:
