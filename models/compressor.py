@@ -14,7 +14,7 @@ t = 2 s and opens at t = 10 s; the span forces (Bild 8.9) show the start-up
 peaks, the periodic steady state of the running compressor and the run-out.
 
 Layout (x to the right, y up, metres; all pulleys turn counter-clockwise
-when driven, all winding directions w = +1, the belt loop is traversed
+when driven, all winding directions w_i = -1 (eq. 4.95), the belt loop is traversed
 counter-clockwise: drive -> span2 -> tensioner -> span3 -> driven -> span1
 -> drive):
 
@@ -223,13 +223,14 @@ class Compressor(Component):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        T, B, C = tensioner_geometry()
-        self._motor_and_belt(T)
+        _, _, C = tensioner_geometry()
+        self._motor_and_belt()
         self._tensioner(C)
         self._crank_drive()
 
-    def _motor_and_belt(self, T):
-        """Motor, clutch and the three-pulley belt drive (tensioner at T)."""
+    def _motor_and_belt(self):
+        """Motor, clutch and the three-pulley belt drive (the tensioner
+        pulley placed by the lever, :meth:`_tensioner`)."""
         # --- motor and clutch
         self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2,
                                            phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
@@ -238,10 +239,11 @@ class Compressor(Component):
         self.connect(self.engage.y, self.clutch.f_normalized)
         self.connect(self.motor.flange, self.clutch.flange_a)
         # --- belt drive
-        self.drive = Pulley(r=R1, x0=P1[0], y0=P1[1], w=1, J=2e-3)
-        self.driven = Pulley(r=R2, x0=P2[0], y0=P2[1], w=1, J=0.25, friction=True,
+        self.drive = Pulley(r=R1, x10=P1[0], y10=P1[1], w_i=-1, J=2e-3)
+        self.driven = Pulley(r=R2, x10=P2[0], y10=P2[1], w_i=-1, J=0.25, friction=True,
                              mu=0.1, r_pin=0.025, omega_s=0.01)
-        self.tens = Pulley(r=R3, x0=T[0], y0=T[1], w=1, m=M_TENS, J=1e-4)
+        # on the lever's arm: its start position comes from the lever (T)
+        self.tens = Pulley(r=R3, w_i=-1, m=M_TENS, J=1e-4)
         self.connect(self.clutch.flange_b, self.drive.ctrR)
         eps0 = F0 / C_BELT
         for k in (1, 2, 3):

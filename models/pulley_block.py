@@ -108,11 +108,16 @@ class PulleyBlock(Component):
         yS = yL - 0.3
         common = dict(J=1e-5, mu=mu, r_pin=0.004, friction=friction)
         # upper block: rope runs over the top, K1 on the left, K2 on the right
-        self.U1 = Pulley(r=r["U1"], x0=xU1, y0=yU, w=-1, **common)
-        self.U3 = Pulley(r=r["U3"], x0=xU3, y0=yU, w=-1, **common)
-        # lower block: rope runs under the bottom, K1 left, K2 right
-        self.L2 = Pulley(r=r["L2"], x0=xL2, y0=yL, w=1, **common)
-        self.L4 = Pulley(r=r["L4"], x0=xL4, y0=yL, w=1, **common)
+        # (w_i = +1: a positive turn pays the rope out at K1, eq. 4.95)
+        self.U1 = Pulley(r=r["U1"], x10=xU1, y10=yU, w_i=1, enumHE1="left", enumHE2="right",
+                         **common)
+        self.U3 = Pulley(r=r["U3"], x10=xU3, y10=yU, w_i=1, enumHE1="left", enumHE2="right",
+                         **common)
+        # lower block: rope runs under the bottom, K1 left, K2 right; the axes
+        # sit on the arms of the load body and start where its start values
+        # put them (no coordinates of their own)
+        self.L2 = Pulley(r=r["L2"], w_i=-1, enumHE1="left", enumHE2="right", **common)
+        self.L4 = Pulley(r=r["L4"], w_i=-1, enumHE1="left", enumHE2="right", **common)
         self.load = Body(m=MASS, I=2.0, x=start(xS, fixed=True), y=start(yS, fixed=True),
                          phi=start(0.0, fixed=True))
         self.arm2 = FixedTranslation(r=(xL2 - xS, yL - yS))

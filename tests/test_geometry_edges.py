@@ -60,12 +60,12 @@ def test_seen3_atwood_with_the_flipped_winding_sign_is_refused(elastic):
     kind = "Belt" if elastic else "Band"
     assert text.startswith("Pulley 'pulley': its bands %s 'band1' (at K1) and %s 'band2' "
                            "(at K2) cross each other" % (kind, kind))
-    assert "Use w=-1 (Pulley(w=-1))" in text
+    assert "Use w_i=+1 (Pulley(w_i=1); w=-1 in the deprecated notation)" in text
     # the crossing point lies on the pulley's vertical, between pulley and masses
     x, y = [float(v) for v in text.split(" at (")[1].split(")")[0].split(",")]
     assert abs(x) < 1e-4 and -1.0 < y < -0.1
     # check() (and with it the CLI's check) refuses the model in the same words
-    with pytest.raises(InitializationError, match="Use w=-1"):
+    with pytest.raises(InitializationError, match=r"Use w_i=\+1"):
         acausal2d.check(Atwood(w=1, elastic=elastic))
 
 
@@ -87,7 +87,7 @@ def test_seen3_atwood_with_the_right_sign_has_the_closed_form_acceleration():
 
 
 def test_seen3_rope_from_an_anchor_with_the_flipped_sign_is_refused():
-    with pytest.raises(InitializationError, match="Pulley 'pulley': .* Use w=-1"):
+    with pytest.raises(InitializationError, match=r"Pulley 'pulley': .* Use w_i=\+1"):
         acausal2d.simulate(Atwood(w=1, anchor=True), stop_time=0.2)
 
 

@@ -14,10 +14,12 @@ Elements and ports (seed names)
   Belt); a link of seed eq. 2.1 with pins or band joints at its ends.
 - :class:`GuideContour` -- circular contour over which a band slides
   without friction (seed Bild 2.1 b/c; band joints with f = 2).
-- :class:`Pulley` -- circular pulley "Bandrolle" (eq. 4.87-4.99): housing
-  frame ``ctr2D1`` (axis P1), contact frames ``ctrK1``, ``ctrK2``, band ports
-  ``ctrB1``, ``ctrB2``, rotational flange ``ctrR`` (pulley angle relative to
-  the housing; torque acting between housing and pulley).
+- :class:`Pulley` -- circular pulley "Bandrolle" (eq. 4.87-4.99, the seed's
+  interface): housing connection ``ctr2D1`` with the axis P1 placed by
+  ``x10, y10, phi10, frameRef`` (Anhang A.1, :mod:`.placement`), contact
+  frames ``ctrK1``, ``ctrK2``, band ports ``ctrB1``, ``ctrB2``, flanges
+  ``ctrR1`` (housing) and ``ctrR2`` (pulley), winding direction ``w_i`` and
+  half-planes ``enumHE1``, ``enumHE2`` (Tabelle 4.15, 4.16).
 - :class:`Drum` -- circular drum with one contact point and the rope end
   fixed on the contour (seed end of ch. 4.4.4).
 - :class:`RopeDrive` -- a rope end (point) moved along a straight line by the
@@ -31,6 +33,7 @@ Elements and ports (seed names)
 
 One element (or concern) per module: :mod:`.spans` (Belt, SpringBelt,
 NozzleBelt), :mod:`.pulley`, :mod:`.drum`, :mod:`.rope_drive`,
+:mod:`.placement` (axis placement, Anhang A.1, and start poses),
 :mod:`.contour` (contour forms, closed-form arc length), :mod:`.curved`
 (CurvedPulley, CurvedDrum), :mod:`.layout` (connect_band, tangents, start
 values), :mod:`.crane`; :mod:`.base` holds what they share.
@@ -65,8 +68,9 @@ equations ``x_P2 - x_P1 = l cos(gamma)``, ``y_P2 - y_P1 = l sin(gamma)``
 (no atan2; eq. 4.57 without its branch cut), so it needs a start value on the
 right branch.  When a model is compiled, :func:`prepare_belts` (called
 automatically) evaluates the tangent construction from the parameter values
-at that moment -- pulley centres ``x0, y0``, radii, winding directions,
-fixed points, start values of bodies -- and sets the start values of each
+at that moment -- pulley axes (``x10, y10`` placed on the start pose of
+what carries them, :class:`~acausal2d.library.belt.placement.StartPoses`),
+radii, winding directions, fixed points, start values of bodies -- and sets the start values of each
 span's gamma and length and the full-turn offset of each pulley's wrap
 angle.  Per-instance start values given by the user (``gamma=start(...)``)
 are kept.  These numbers are evaluated once at compile time: changing

@@ -15,7 +15,6 @@ from acausal2d.errors import ModelDefinitionError
 
 from .contour import _PI, _TWO_PI, Contour, SupportContour
 from .pulley import _Wheel
-from .base import _num
 
 
 class _ContourGeometry:
@@ -45,20 +44,28 @@ class _ContourGeometry:
 class _CurvedWheel(_Wheel):
     """Shared parts of the curved pulley and drum."""
 
-    def __init__(self, contour, w=1, friction=False, **kw):
+    def __init__(self, contour, w=None, friction=False, **kw):
         if not isinstance(contour, (Contour, SupportContour)):
             raise ModelDefinitionError("%s: contour must be a Contour (e.g. Contour.circle(0.1)"
                                        ", Contour.from_function(f)), got %r"
                                        % (type(self).__name__, contour))
+        for k in ("enumHE1", "enumHE2"):
+            if kw.get(k) is not None:
+                raise ModelDefinitionError(
+                    "%s: %s is checked for the circular Pulley and Drum only; on a curved "
+                    "contour the winding direction w_i alone fixes the mounting variant "
+                    "(leave %s out)" % (type(self).__name__, k, k))
         super().__init__(w=w, friction=friction, **kw)
         self.contour = contour
 
-    def _band_geometry(self, name):
+    def _band_geometry(self, name, poses):
+        """Start geometry of contact ``name`` (the axis placed as for
+        :class:`~acausal2d.library.belt.Pulley`), or None."""
         if name not in ("ctrK1", "ctrK2"):
             return None
         s = self.w if name == "ctrK1" else -self.w
-        return _ContourGeometry(float(_num(self, "x0")), float(_num(self, "y0")),
-                                self.start_value("phi"), self.contour, s)
+        (x, y), _ = self._axis_start(poses)
+        return _ContourGeometry(x, y, self.start_value("phi"), self.contour, s)
 
     def _start_kappa(self, gamma, s):
         """Contact angle (pulley frame) for the leaving angle gamma with the
@@ -85,18 +92,18 @@ class _CurvedWheel(_Wheel):
         it, the branch (parallel or anti-parallel) being the one of the start
         values (Tabelle 4.21's role), which are computed by belt_layout from
         the winding direction w and then followed continuously."""
-        P = self.ctr2D1
+        px, py = self.xP1, self.yP1
         if isinstance(self.contour, SupportContour):
             # explicit form (SupportContour docstring): kap is the normal angle
             p, dp = self.contour._sym(kap)
             ang = self.phi + kap
             c, s = ca.cos(ang), ca.sin(ang)
-            return (P.x + p * c - dp * s, P.y + p * s + dp * c,
+            return (px + p * c - dp * s, py + p * s + dp * c,
                     ang - (port.gamma + side * _PI / 2))
         r, dr = self.contour.r_dr_sym(kap)
         ang = self.phi + kap
-        x = P.x + r * ca.cos(ang)
-        y = P.y + r * ca.sin(ang)
+        x = px + r * ca.cos(ang)
+        y = py + r * ca.sin(ang)
         delta = port.gamma - ang
         return x, y, dr * ca.sin(delta) - r * ca.cos(delta)
 
@@ -121,14 +128,15 @@ class CurvedPulley(_CurvedWheel):
     """Pulley with curved contour "Bandrolle mit Kurvenkontur" (seed 4.4.5,
     eq. 4.100-4.122, Tabelle 4.20-4.22).
 
-    ``CurvedPulley(contour, w=1, friction=False, **parameters)`` with a
-    :class:`Contour`.  Ports as :class:`~acausal2d.library.belt.Pulley`:
-    ``ctr2D1`` housing/axis P1 (fixed at ``x0, y0, phi0`` while
-    unconnected), ``ctrK1``, ``ctrK2`` contact frames, ``ctrB1``, ``ctrB2``
-    band ports, ``ctrR`` flange (angle relative to the housing); connect the
-    spans with :func:`~acausal2d.library.belt.connect_band`.  Winding
-    direction ``w`` as for the circular pulley (``w=+1``: a positive turn
-    winds the band up at K1; the band wraps counter-clockwise from K1 to K2).
+    ``CurvedPulley(contour, w_i=-1, friction=False, **parameters)`` with a
+    :class:`Contour`.  Ports, axis placement (``x10, y10, phi10``,
+    ``frameRef``) and flanges (``ctrR1``, ``ctrR2``; deprecated ``ctrR``) as
+    :class:`~acausal2d.library.belt.Pulley`; connect the spans with
+    :func:`~acausal2d.library.belt.connect_band`.  Winding direction
+    ``w_i`` as for the circular pulley (eq. 4.118, 4.119: ``w_i = -1``, the
+    default, a positive turn winds the band up at K1; the band wraps
+    counter-clockwise from K1 to K2); below ``w = -w_i`` (the deprecated
+    constructor argument).
 
     Equations:
 
@@ -169,7 +177,7 @@ class CurvedPulley(_CurvedWheel):
     beta = Variable(unit="rad", state_select="avoid", doc="wrap angle")
     l_con = Variable(unit="m", state_select="avoid", doc="wrapped band length")
 
-    def __init__(self, contour, w=1, friction=False, **kw):
+    def __init__(self, contour, w=None, friction=False, **kw):
         super().__init__(contour, w=w, friction=friction, **kw)
         self.ctrK1 = Frame(required=True, doc="contact point K1")
         self.ctrK2 = Frame(required=True, doc="contact point K2")
@@ -214,7 +222,8 @@ class CurvedDrum(_CurvedWheel):
     the contour at the contour angle ``alpha_fix`` (the curved counterpart of
     :class:`~acausal2d.library.belt.Drum`; seed end of ch. 4.4.4 / 4.4.5).
 
-    ``w=+1``: a positive turn winds the rope up.  Contact point and tangency
+    ``w_i=-1`` (default; ``w = -w_i`` below): a positive turn winds the rope
+    up.  Contact point and tangency
     as :class:`CurvedPulley` (4.100-4.115), ``ctrB1.L = w s(kappa1)``
     (4.116-4.118) and the rope stored on the drum ``l_wound = w (s(alpha_fix)
     - s(kappa1)) + n_wound * perimeter`` (an output that must stay
@@ -225,7 +234,7 @@ class CurvedDrum(_CurvedWheel):
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (pulley frame)")
     l_wound = Variable(unit="m", state_select="avoid", doc="rope length stored on the drum")
 
-    def __init__(self, contour, w=1, alpha_fix=0.0, friction=False, **kw):
+    def __init__(self, contour, w=None, alpha_fix=0.0, friction=False, **kw):
         super().__init__(contour, w=w, friction=friction, **kw)
         self.alpha_fix = float(alpha_fix)
         self.ctrK1 = Frame(required=True, doc="contact point K1")

@@ -13,7 +13,10 @@ class Drum(_Wheel):
     """Circular rope drum: one contact point K1, rope end fixed on the
     contour (seed end of 4.4.4: the Bandrolle without ctrK2/ctrB2).
 
-    ``w=+1``: a positive turn winds the rope up.  The rope end is fastened
+    Winding direction ``w_i`` as the pulley's at K1 (eq. 4.95): ``w_i=-1``
+    (default) -- a positive turn winds the rope up; ``w = -w_i`` below (the
+    deprecated constructor argument).  Placement and flanges as
+    :class:`~acausal2d.library.belt.Pulley`.  The rope end is fastened
     at the angle ``alpha_fix`` of the drum frame; the rope stored on the drum
     is ``l_wound = w r (phi + alpha_fix - kappa1) + 2 pi r n_wound`` (an
     output; it must stay positive -- the drum does not model the rope
@@ -26,7 +29,7 @@ class Drum(_Wheel):
     kappa1 = Variable(unit="rad", state_select="avoid", doc="contact angle of K1 (world)")
     l_wound = Variable(unit="m", state_select="avoid", doc="rope length stored on the drum")
 
-    def __init__(self, w=1, friction=False, **kw):
+    def __init__(self, w=None, friction=False, **kw):
         super().__init__(w=w, friction=friction, **kw)
         self.ctrK1 = Frame(required=True, doc="contact point K1")
         self.ctrB1 = BandPort(required=True, doc="band port of K1")

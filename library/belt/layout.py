@@ -12,6 +12,8 @@ import numpy as np
 
 from acausal2d.errors import ModelDefinitionError
 
+from .placement import StartPoses
+
 
 _PI = math.pi
 
@@ -96,14 +98,15 @@ def open_belt_closed_form(r1, r2, d):
     return _PI + 2 * a, _PI - 2 * a, math.sqrt(d * d - (r1 - r2) ** 2)
 
 
-def _frame_geometry(conn):
+def _frame_geometry(conn, poses):
     """Initial geometry (cx, cy, rho) of the part a span end is connected to
-    (see :func:`tangent`), or None."""
+    (see :func:`tangent`), or None; ``poses``: the model's
+    :class:`~acausal2d.library.belt.placement.StartPoses`."""
     from acausal2d.library import planar
     owner = conn.owner
     name = conn._name
     if hasattr(owner, "_band_geometry"):        # wheels and rope ends of this library
-        return owner._band_geometry(name)
+        return owner._band_geometry(name, poses)
     if isinstance(owner, planar.Fixed):
         r = _num(owner, "r")
         return (float(r[0]), float(r[1]), 0.0)
@@ -202,7 +205,8 @@ def _named_tangent(span, ends, a, b):
 
 def _wheel_layout(wheel, g1, g2, layout):
     """Contact-angle guesses and wrap turns of a circular wheel (curved
-    wheels compute their own: ``_layout_start``)."""
+    wheels compute their own: ``_layout_start``), and the check of its
+    half-planes enumHE1/enumHE2 (Tabelle 4.16)."""
     if hasattr(wheel, "_layout_start"):
         guesses, params = wheel._layout_start(g1, g2)
         for name, v in guesses.items():
@@ -214,10 +218,12 @@ def _wheel_layout(wheel, g1, g2, layout):
     if g1 is None:
         return
     k1 = g1 + w * _PI / 2
+    wheel._check_half_plane(1, k1)
     if "kappa1" in wheel.variable_names():
         layout.guess(wheel, "kappa1", k1)
     if "kappa2" in wheel.variable_names() and g2 is not None:     # two contacts
         k2 = g2 - w * _PI / 2
+        wheel._check_half_plane(2, k2)
         layout.guess(wheel, "kappa2", k2)
         if wheel.is_given("kappa2"):
             k2 = wheel.start_value("kappa2")
@@ -231,12 +237,12 @@ class _SpanEnds:
     the start geometry of that end (see :func:`_frame_geometry`) or None,
     ``ends.owner(frame_name)`` the component it belongs to."""
 
-    def __init__(self, span, partners):
-        self.span, self.partners = span, partners
+    def __init__(self, span, partners, poses):
+        self.span, self.partners, self.poses = span, partners, poses
 
     def _find(self, frame_name):
         for c in self.partners(getattr(self.span, frame_name)):
-            g = _frame_geometry(c)
+            g = _frame_geometry(c, self.poses)
             if g is not None:
                 return g, c.owner
         return None, None
@@ -254,9 +260,10 @@ def belt_layout(model):
     :class:`Layout`; a start value the model gives wins."""
     partners = _partners(model)
     layout = Layout()
+    poses = StartPoses(model)
 
     def end_geometry(span):
-        return _SpanEnds(span, partners)
+        return _SpanEnds(span, partners, poses)
 
     leaving = {}   # (id(wheel), contact) -> leaving angle at t0
     comps = list(model.components())
@@ -276,6 +283,12 @@ def belt_layout(model):
                     leaving[(id(c.owner), int(c._name[-1]))] = gam
     for wheel in comps:
         if getattr(wheel, "_layout_kind", None) == "wheel":
+            xy, params = wheel._axis_start(poses, need=False)
+            for name, v in params.items():                          # A.4-A.6
+                layout.param(wheel, name, v)
+            if xy is not None:
+                layout.guess(wheel, "xP1", xy[0])
+                layout.guess(wheel, "yP1", xy[1])
             _wheel_layout(wheel, leaving.get((id(wheel), 1)), leaving.get((id(wheel), 2)),
                           layout)
     return layout

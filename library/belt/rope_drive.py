@@ -26,7 +26,7 @@ class RopeDrive(_BandElement):
         self.frame = Frame()
         self.s_in = RealInput()
 
-    def _band_geometry(self, name):
+    def _band_geometry(self, name, poses):
         """Start geometry of the rope end for the tangent construction (a
         point at s = 0)."""
         return (float(_num(self, "x0")), float(_num(self, "y0")), 0.0)

@@ -31,6 +31,12 @@ Conventions (common to all elements)
   them to constant relative coordinates with the connection's pose at t0
   (A.4-A.6).  An unconnected port's CKS is the global frame, so both choices
   then give the global point ``(xn0, yn0)`` with angle ``phin0``.
+  Output ports (the point frames PCSn of Anhang C: DAN, SAN, FGP port 2;
+  the dyads' ports 3 and 4) take ``xn0, yn0, phin0`` as the offset of the
+  element's point Pn in the port's connection frame: A.7-A.9 with the
+  connection frame as the unknown, the port force acting at the connection
+  point (A.16-A.18); only ``frameRefn="relative"`` (a point the element
+  computes has no global start pose of its own to give).
 * Each element states the position-level kinematics in point-direction form
   (Bild 4.3: ``x_P = x_P1 + l cos(phi)``), the force and moment balances of
   its bodies and their mass data (Anhang A.2/A.3), nothing else: velocities

@@ -150,6 +150,7 @@ class _Linkage(Component):
     from the VDI pre-assembly."""
     world = Outer(PlanarWorld)
     _placed_ports = ()     # port numbers n with parameters xn0, yn0, phin0
+    _output_ports = ()     # output port numbers n with xn0, yn0, phin0 (relative only)
     _bodies = ()           # MassData of the element's bodies
     _connector_spec = ()   # (name, factory) of the element's ports, in order
 
@@ -162,6 +163,13 @@ class _Linkage(Component):
                     "%s: frameRef%d must be 'relative' (connection frame) or 'global', not %r"
                     % (type(self).__name__, n, ref))
             refs[n] = ref
+        for n in self._output_ports:
+            ref = kw.pop("frameRef%d" % n, "relative")
+            if ref != "relative":
+                raise ModelDefinitionError(
+                    "%s: frameRef%d of the output port ctr2D%d must be 'relative' (x%d0, y%d0, "
+                    "phi%d0 in the port's connection frame, Anhang A.1), not %r"
+                    % (type(self).__name__, n, n, n, n, n, ref))
         super().__init__(**kw)
         self.__dict__["_frame_ref"] = refs
         self.__dict__["_rel"] = {}
@@ -247,7 +255,35 @@ class _Linkage(Component):
         dx, dy = _rot(c["phi"], xr, yr)
         return c["x"] + dx, c["y"] + dy, c["phi"] + pr
 
+    def _output_offset(self, n):
+        """Offset (x, y, phi) of the output port n's point Pn in its
+        connection frame, or None when it is zero (then Cn = Pn)."""
+        names = ("x%d0" % n, "y%d0" % n, "phi%d0" % n)
+        if n not in self._output_ports or all(float(self.parameter_value(k)) == 0.0
+                                               for k in names):
+            return None
+        return tuple(getattr(self, k) for k in names)
+
+    def _output(self, n, pose):
+        """Equations of the output port n for the element's point pose
+        ``pose`` = (x, y, phi) of Pn, and the connection point Cn where the
+        port's force acts (for the moment balances, A.16-A.18): A.7-A.9
+        with the connection frame as the unknown, phi_Cn = phi_Pn - phi_n0,
+        Cn = Pn - R(phi_Cn) (x_n0, y_n0)."""
+        f, rel = self._conn(n), self._output_offset(n)
+        if rel is None:
+            return [f.x == pose[0], f.y == pose[1], f.phi == pose[2]], (pose[0], pose[1])
+        phi = pose[2] - rel[2]
+        dx, dy = _rot(phi, rel[0], rel[1])
+        C = (pose[0] - dx, pose[1] - dy)
+        return [f.x == C[0], f.y == C[1], f.phi == phi], C
+
     def _set_port(self, asm, conn, vals):
+        n = int(conn._name[-1]) if conn._name.startswith("ctr2D") else None
+        if n in self._output_ports and "phi" in vals and self._output_offset(n) is not None:
+            phi = vals["phi"] - self._output_offset(n)[2]
+            dx, dy = _rot(phi, *self._output_offset(n)[:2])
+            vals = {"x": vals["x"] - dx, "y": vals["y"] - dy, "phi": phi}
         asm.put(conn, vals)
         if conn._owner is self:
             asm.start(self, {"%s.%s" % (conn._name, k): v for k, v in vals.items()})
@@ -425,11 +461,12 @@ def translational(doc):
     return lambda: TranslationalFlange(doc=doc)
 
 
-def element(ports, *bodies, connectors=None):
+def element(ports, *bodies, connectors=None, outputs=()):
     """Class decorator of a VDI element: the placement parameters ``xn0,
-    yn0, phin0`` of its input ``ports`` (Anhang A.1, Tabelle A.1), the
-    mass data of its ``bodies`` (:class:`MassData`) and its ``connectors``
-    ({name: :func:`triangle`, :func:`plug`, :func:`rotational` or
+    yn0, phin0`` of its input ``ports`` and of its ``outputs`` (the point
+    frames PCSn of Anhang C; Anhang A.1, Tabelle A.1), the mass data of its
+    ``bodies`` (:class:`MassData`) and its ``connectors`` ({name:
+    :func:`triangle`, :func:`plug`, :func:`rotational` or
     :func:`translational` port}, created in this order)."""
     def declare(cls):
         if connectors is not None:
@@ -437,10 +474,11 @@ def element(ports, *bodies, connectors=None):
         decls = {}
         for body in bodies:
             decls.update(body.declarations())
-        for n in ports:
+        for n in tuple(ports) + tuple(outputs):
             decls.update(_placement_declarations(n))
         cls._bodies = tuple(bodies)
         cls._placed_ports = tuple(ports)
+        cls._output_ports = tuple(outputs)
         return add_declarations(cls, decls)
     return declare
 
@@ -456,14 +494,31 @@ def housing(frame, point, connection, tau=None):
     return _plus(frame.t, tau) + _moment(point, connection, (-frame.fx, -frame.fy)) == 0
 
 
-def link_balance(f_in, f_plane, joint_force, joint, pivot, body, tau=None):
+def off_point(C, P):
+    """``C`` unless it is the point ``P`` itself (an output port placed
+    without offset, :meth:`_Linkage._output`), else None."""
+    return None if C[0] is P[0] and C[1] is P[1] else C
+
+
+def port_moment(C, pivot, f):
+    """Moment about ``pivot`` of the force of port ``f`` acting at its
+    connection point ``C`` (A.16-A.18); 0 where C is the pivot itself."""
+    return 0 if off_point(C, pivot) is None else _moment(C, pivot, (f.fx, f.fy))
+
+
+def link_balance(f_in, f_plane, joint_force, joint, pivot, body, tau=None, plane_at=None):
     """Force and moment balance (about ``pivot``) of a link turning about the
     housing port ``f_in`` and carrying its plane port ``f_plane``, with the
     force ``joint_force`` acting on it at ``joint`` (DDD B.65-B.70, DDS
-    B.108-B.110); ``tau`` is a 1D flange torque on the link."""
+    B.108-B.110); ``tau`` is a 1D flange torque on the link; ``plane_at``
+    the connection point of the plane port when it is placed off the
+    pivot (A.18)."""
+    mom = _plus(f_plane.t, tau) + _moment(joint, pivot, joint_force) + body.moment(pivot)
+    if plane_at is not None:
+        mom = mom + _moment(plane_at, pivot, (f_plane.fx, f_plane.fy))
     return [f_in.fx + joint_force[0] + f_plane.fx + body.F[0] == 0,
             f_in.fy + joint_force[1] + f_plane.fy + body.F[1] == 0,
-            _plus(f_plane.t, tau) + _moment(joint, pivot, joint_force) + body.moment(pivot) == 0]
+            mom == 0]
 
 
 def guide_balance(frame, Fn, Fu, TPS, e, n, PS, origin, connection):

@@ -12,14 +12,17 @@ __all__ = ["DAN"]
          connectors={"ctr2D1": triangle("housing at P1"),
                      "ctr2D2": plug("link plane at P"),
                      "ctrR1": rotational("housing (support) flange"),
-                     "ctrR2": rotational("link flange")})
+                     "ctrR2": rotational("link flange")}, outputs=(2,))
 class DAN(_Linkage):
     """Rotary drive DAN (seed Anhang B.1, Tabellen B.1-B.3, eqs. B.1-B.9).
 
     A crank (Link) of length ``lL`` turns about the bearing point P1; its end
     point P moves on a circle.  Ports: ``ctr2D1`` bearing housing at P1
     (triangle: ground-fixed at ``(x10, y10)`` while unconnected),
-    ``ctr2D2`` crank plane at P (angle phiL), ``ctrR1`` 1D rotational flange
+    ``ctr2D2`` crank plane at P (angle phiL; placed by ``x20, y20, phi20``,
+    the offset of P in the port's connection frame, A.7-A.9 with the
+    connection frame as the unknown, forces by A.16-A.18; ``frameRef2``
+    'relative' only), ``ctrR1`` 1D rotational flange
     on the housing (support torque, angle = housing angle), ``ctrR2`` 1D
     rotational flange on the crank (angle = phiL, torque T_R2 on the crank).
     Drive the crank by connecting a motion preset or a torque to ``ctrR2``
@@ -59,16 +62,17 @@ class DAN(_Linkage):
         P1 = (x1, y1)
         P = (x1 + self.lL * ca.cos(phi), y1 + self.lL * ca.sin(phi))          # B.1, B.2
         L, cg = self._mass("L", P1, phi)                                     # A.21, A.22
+        port2, C2 = self._output(2, (P[0], P[1], phi))       # Tabelle B.3, A.7-A.9
         return [
             self.omL == der(phi),
             *cg,
-            f2.x == P[0], f2.y == P[1], f2.phi == phi,                        # Tabelle B.3
+            *port2,
             self.ctrR2.phi == phi, self.ctrR1.phi == a1,
             # B.7, B.8: forces on the link (joint force housing -> link = f1)
             f1.fx + f2.fx + L.F[0] == 0,
             f1.fy + f2.fy + L.F[1] == 0,
-            # B.9: moments about P1
-            f2.t + self.ctrR2.tau + _moment(P, P1, (f2.fx, f2.fy)) + L.moment(P1) == 0,
+            # B.9: moments about P1 (the port force acts at C2, A.18)
+            f2.t + self.ctrR2.tau + _moment(C2, P1, (f2.fx, f2.fy)) + L.moment(P1) == 0,
             # massless housing, moments about the connection point (A.18)
             housing(f1, P1, C1, self.ctrR1.tau),
         ]

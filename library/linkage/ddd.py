@@ -4,7 +4,8 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import _Linkage, MassData, element, housing, link_balance, plug, rotational, triangle
+from .base import (_Linkage, MassData, element, housing, link_balance, off_point, plug,
+                   rotational, triangle)
 
 __all__ = ["DDD", "vdi_ddd"]
 
@@ -29,7 +30,7 @@ def vdi_ddd(x1, y1, x2, y2, l1, l2, K, sqrt=ca.sqrt):
                      "ctr2D3": plug("link 1 plane at P1"),
                      "ctr2D4": plug("link 2 plane at P2"),
                      "ctrR1": rotational("housing 2 (support) flange"),
-                     "ctrR2": rotational("link 2 flange")})
+                     "ctrR2": rotational("link 2 flange")}, outputs=(3, 4))
 class DDD(_Linkage):
     """Dyad with three revolute joints DDD (seed Anhang B.4, Tabellen
     B.10-B.12, eqs. B.42-B.70).
@@ -42,7 +43,10 @@ class DDD(_Linkage):
 
     Ports: ``ctr2D1``/``ctr2D2`` bearing housings at P1/P2 (triangles:
     ground-fixed while unconnected), ``ctr2D3`` plane of link 1 at P1 (angle
-    phiL1), ``ctr2D4`` plane of link 2 at P2 (angle phiL2), ``ctrR1`` flange
+    phiL1), ``ctr2D4`` plane of link 2 at P2 (angle phiL2) -- both placed by
+    ``x30, y30, phi30`` / ``x40, y40, phi40`` (offset of the point in the
+    port's connection frame, A.7-A.9 with the connection frame as the
+    unknown, forces by A.16-A.18; 'relative' only) --, ``ctrR1`` flange
     on housing 2 (support), ``ctrR2`` flange on link 2 (angle phiL2).
     Outputs ``xP, yP``: the joint point P.  Parameters (Tabelle B.11):
     ``lL1 = lL2 = 1 m``, ``K``, ``xSL1rel = lL1/2``, ``xSL2rel = lL2/2``,
@@ -86,19 +90,21 @@ class DDD(_Linkage):
         L1, cg1 = self._mass("L1", P1, p1)
         L2, cg2 = self._mass("L2", P2, p2)
         FP = (self.FPx, self.FPy)
+        port3, C3 = self._output(3, (x1, y1, p1))         # Tabelle B.12, A.7-A.9
+        port4, C4 = self._output(4, (x2, y2, p2))
         return [
             self.xP == x1 + self.lL1 * ca.cos(p1),             # B.53
             self.yP == y1 + self.lL1 * ca.sin(p1),             # B.54
             self.xP == x2 + self.lL2 * ca.cos(p2),             # B.59
             self.yP == y2 + self.lL2 * ca.sin(p2),             # B.60
             *cg1, *cg2,                                        # A.21, A.22
-            f3.x == x1, f3.y == y1, f3.phi == p1,              # Tabelle B.12
-            f4.x == x2, f4.y == y2, f4.phi == p2,
+            *port3, *port4,
             self.ctrR2.phi == p2, self.ctrR1.phi == a2,
             # link 1, B.65-B.67 (moments about P1)
-            *link_balance(f1, f3, FP, P, P1, L1),
+            *link_balance(f1, f3, FP, P, P1, L1, plane_at=off_point(C3, P1)),
             # link 2, B.68-B.70 (moments about P2)
-            *link_balance(f2, f4, (-FP[0], -FP[1]), P, P2, L2, self.ctrR2.tau),
+            *link_balance(f2, f4, (-FP[0], -FP[1]), P, P2, L2, self.ctrR2.tau,
+                          plane_at=off_point(C4, P2)),
             # massless housings (A.18)
             housing(f1, P1, C1),
             housing(f2, P2, C2, self.ctrR1.tau),

@@ -5,6 +5,7 @@ import casadi as ca
 from acausal2d import Parameter, Variable
 
 from .base import (_Linkage, _moment, MassData, element, guide_balance, housing, link_balance,
+                   off_point, port_moment,
                    plug, translational, triangle)
 
 __all__ = ["DDS", "vdi_dds"]
@@ -36,7 +37,7 @@ def vdi_dds(x1, y1, x2, y2, phiU, l, v, K, sqrt=ca.sqrt):
                      "ctr2D3": plug("link plane at P1"),
                      "ctr2D4": plug("slider plane at PS"),
                      "ctrT1": translational("guide support flange"),
-                     "ctrT2": translational("slider flange")})
+                     "ctrT2": translational("slider flange")}, outputs=(3, 4))
 class DDS(_Linkage):
     """Dyad with a prismatic joint as outer joint DDS (seed Anhang B.5,
     Tabellen B.13-B.15, eqs. B.71-B.118).
@@ -103,6 +104,8 @@ class DDS(_Linkage):
         S, cgS = self._mass("S", PS, a, self.phiS)
         FP = (self.FPx, self.FPy)
         Fn, Ft, Fu = self.Fn, self.ctrT2.f, self.ctrT1.f
+        port3, C3 = self._output(3, (x1, y1, phiL))
+        port4, C4 = self._output(4, (PS[0], PS[1], a))
         return [
             self.xP == x1 - self.lL * ca.cos(phiL),                # B.87
             self.yP == y1 - self.lL * ca.sin(phiL),                # B.88
@@ -110,15 +113,15 @@ class DDS(_Linkage):
             self.yP == PS[1] + self.v * c,                          # B.94
             self.phiS == a,                                         # B.105
             *cgL, *cgS,
-            f3.x == x1, f3.y == y1, f3.phi == phiL,                 # Tabelle B.15
-            f4.x == PS[0], f4.y == PS[1], f4.phi == a,
+            *port3, *port4,                                         # Tabelle B.15, A.7-A.9
             self.ctrT2.s == self.xG, self.ctrT1.s == 0,
             # link B.108-B.110 (moments about P1)
-            *link_balance(f1, f3, FP, P, P1, L),
+            *link_balance(f1, f3, FP, P, P1, L, plane_at=off_point(C3, P1)),
             # slider B.111-B.113 (moments about PS)
             -FP[0] + Fn * n[0] + Ft * e[0] + f4.fx + S.F[0] == 0,
             -FP[1] + Fn * n[1] + Ft * e[1] + f4.fy + S.F[1] == 0,
-            self.TPS + f4.t + _moment(P, PS, (-FP[0], -FP[1])) + S.moment(PS) == 0,
+            self.TPS + f4.t + _moment(P, PS, (-FP[0], -FP[1])) + S.moment(PS)
+            + port_moment(C4, PS, f4) == 0,
             # massless guide B.114-B.116
             *guide_balance(f2, Fn, Fu, self.TPS, e, n, PS, P2, C2),
             # massless housing at P1

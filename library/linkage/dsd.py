@@ -4,7 +4,8 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import _Linkage, _moment, MassData, element, housing, plug, translational, triangle
+from .base import (_Linkage, _moment, MassData, element, housing, plug, port_moment,
+                   translational, triangle)
 
 __all__ = ["DSD", "vdi_dsd"]
 
@@ -26,7 +27,7 @@ def vdi_dsd(x1, y1, x2, y2, v, sqrt=ca.sqrt):
                      "ctr2D3": plug("guide plane at P1"),
                      "ctr2D4": plug("slider plane at P2"),
                      "ctrT1": translational("slider flange"),
-                     "ctrT2": translational("guide flange")})
+                     "ctrT2": translational("guide flange")}, outputs=(3, 4))
 class DSD(_Linkage):
     """Dyad with a prismatic joint as inner joint DSD (seed Anhang B.6,
     Tabellen B.16-B.18, eqs. B.119-B.148).
@@ -85,22 +86,24 @@ class DSD(_Linkage):
         S, cgS = self._mass("S", PS, a)
         Fn, Ft, Fu = self.Fn, self.ctrT1.f, self.ctrT2.f
         FS = (Fn * n[0] + Ft * e[0], Fn * n[1] + Ft * e[1])   # guide -> slider at PS
+        port3, C3 = self._output(3, (x1, y1, a))
+        port4, C4 = self._output(4, (x2, y2, a))
         return [
             x2 == PS[0] - self.v * s,                               # B.132
             y2 == PS[1] + self.v * c,                               # B.133
             *cgU, *cgS,
             self.xPS == PS[0], self.yPS == PS[1],
-            f3.x == x1, f3.y == y1, f3.phi == a,                    # Tabelle B.18
-            f4.x == x2, f4.y == y2, f4.phi == a,
+            *port3, *port4,                                         # Tabelle B.18, A.7-A.9
             self.ctrT1.s == self.xG, self.ctrT2.s == 0,
             # guide B.141-B.143 (moments about P1)
             f1.fx + f3.fx - Fn * n[0] + Fu * e[0] + U.F[0] == 0,
             f1.fy + f3.fy - Fn * n[1] + Fu * e[1] + U.F[1] == 0,
-            f3.t - self.TPS + _moment(PS, P1, (-Fn * n[0], -Fn * n[1])) + U.moment(P1) == 0,
+            f3.t - self.TPS + _moment(PS, P1, (-Fn * n[0], -Fn * n[1])) + U.moment(P1)
+            + port_moment(C3, P1, f3) == 0,
             # slider B.144-B.146 (moments about P2)
             f2.fx + f4.fx + FS[0] + S.F[0] == 0,
             f2.fy + f4.fy + FS[1] + S.F[1] == 0,
-            f4.t + self.TPS + _moment(PS, P2, FS) + S.moment(P2) == 0,
+            f4.t + self.TPS + _moment(PS, P2, FS) + S.moment(P2) + port_moment(C4, P2, f4) == 0,
             # massless housings
             housing(f1, P1, C1),
             housing(f2, P2, C2),

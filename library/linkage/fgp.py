@@ -3,14 +3,14 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import _Linkage, _moment, MassData, element, plug, triangle
+from .base import _Linkage, MassData, element, plug, port_moment, triangle
 
 __all__ = ["FGP"]
 
 
 @element((1,), MassData("L", "the link", "LKS", half_of="lL"),
          connectors={"ctr2D1": triangle("connection to the predecessor plane"),
-                     "ctr2D2": plug("guided point P")})
+                     "ctr2D2": plug("guided point P")}, outputs=(2,))
 class FGP(_Linkage):
     """Guided link point FGP (seed Anhang B.3, Tabellen B.7-B.9, B.33-B.41).
 
@@ -39,13 +39,14 @@ class FGP(_Linkage):
         f1, f2 = self.ctr2D1, self.ctr2D2
         P = (x1 + self.lL * ca.cos(self.phiL), y1 + self.lL * ca.sin(self.phiL))   # B.33, B.34
         L, cg = self._mass("L", (x1, y1), self.phiL)
+        port2, C2 = self._output(2, (P[0], P[1], self.phiL))                         # A.7-A.9
         return [
             self.phiL == a,
             *cg,
-            f2.x == P[0], f2.y == P[1], f2.phi == self.phiL,                         # Tab. B.9
+            *port2,                                                                  # Tab. B.9
             f1.fx + f2.fx + L.F[0] == 0,                                             # B.39
             f1.fy + f2.fy + L.F[1] == 0,                                             # B.40
-            f1.t + f2.t + _moment(P, C1, (f2.fx, f2.fy)) + L.moment(C1) == 0,         # B.41
+            f1.t + f2.t + port_moment(C2, C1, f2) + L.moment(C1) == 0,                # B.41
         ]
 
     def shapes(self):

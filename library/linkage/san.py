@@ -3,8 +3,8 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import (_Body, _Linkage, _moment, _rot, element, guide_balance, plug, translational,
-                  triangle)
+from .base import (_Body, _Linkage, _rot, element, guide_balance, plug, port_moment,
+                   translational, triangle)
 
 __all__ = ["SAN"]
 
@@ -13,7 +13,7 @@ __all__ = ["SAN"]
          connectors={"ctr2D1": triangle("guide at P1"),
                      "ctr2D2": plug("slider plane at P"),
                      "ctrT1": translational("guide support flange"),
-                     "ctrT2": translational("slider flange")})
+                     "ctrT2": translational("slider flange")}, outputs=(2,))
 class SAN(_Linkage):
     """Linear drive SAN (seed Anhang B.2, Tabellen B.4-B.6, eqs. B.10-B.32).
 
@@ -71,16 +71,17 @@ class SAN(_Linkage):
         S = _Body(self.mS, self.JS, self.xSS, self.ySS, self.phiS, self._g())
         Ft, Fu = self.ctrT2.f, self.ctrT1.f
         Fn = self.Fn
+        port2, C2 = self._output(2, (P[0], P[1], a))       # A.7-A.9
         return [
             self.phiS == a,                                 # B.22
             self.xSS == PS[0] + dx, self.ySS == PS[1] + dy,
             self.xPS == PS[0], self.yPS == PS[1],
-            f2.x == P[0], f2.y == P[1], f2.phi == a,        # Tabelle B.6
+            *port2,                                         # Tabelle B.6, A.7-A.9
             self.ctrT2.s == self.xG, self.ctrT1.s == 0,
             # slider B.28-B.30 (joint: normal force, moment; drive force Ft along e)
             Fn * n[0] + Ft * e[0] + f2.fx + S.F[0] == 0,
             Fn * n[1] + Ft * e[1] + f2.fy + S.F[1] == 0,
-            self.TPS + f2.t + _moment(P, PS, (f2.fx, f2.fy)) + S.moment(PS) == 0,
+            self.TPS + f2.t + port_moment(C2, PS, f2) + S.moment(PS) == 0,
             # massless guide B.25-B.27
             *guide_balance(f1, Fn, Fu, self.TPS, e, n, PS, (x1, y1), C1),
         ]

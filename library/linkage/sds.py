@@ -4,7 +4,8 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import _TwoSliders, _cross, _moment, MassData, axes, element, plug, triangle
+from .base import (_TwoSliders, _cross, _moment, MassData, axes, element, plug, port_moment,
+                   triangle)
 
 __all__ = ["SDS", "solve_sds"]
 
@@ -23,7 +24,7 @@ def solve_sds(x1, y1, a1, x2, y2, a2, v1, v2):
          connectors={"ctr2D1": triangle("guide 1 at P1"),
                      "ctr2D2": triangle("guide 2 at P2"),
                      "ctr2D3": plug("slider 1 plane at P"),
-                     "ctr2D4": plug("slider 2 plane at PS2")})
+                     "ctr2D4": plug("slider 2 plane at PS2")}, outputs=(3, 4))
 class SDS(_TwoSliders):
     """Dyad with prismatic joints as outer joints SDS (seed Anhang B.8,
     Tabellen B.22-B.24, eqs. B.195-B.236).
@@ -74,6 +75,8 @@ class SDS(_TwoSliders):
         N1 = (self.Fn1 * n1[0], self.Fn1 * n1[1])
         N2 = (self.Fn2 * n2[0], self.Fn2 * n2[1])
         FP = (self.FPx, self.FPy)
+        port3, C3 = self._output(3, (P[0], P[1], a1))                      # A.7-A.9
+        port4, C4 = self._output(4, (PS2[0], PS2[1], a2))
         return [
             self.phiS1 == a1, self.phiS2 == a2,                            # B.195, B.196
             self.xP == PS1[0] + self.v1 * n1[0],                           # B.209
@@ -82,8 +85,7 @@ class SDS(_TwoSliders):
             self.yP == PS2[1] + self.v2 * n2[1],                           # B.216
             *cg1, *cg2,
             self.xPS1 == PS1[0], self.yPS1 == PS1[1],
-            f3.x == P[0], f3.y == P[1], f3.phi == a1,                      # Tabelle B.24
-            f4.x == PS2[0], f4.y == PS2[1], f4.phi == a2,
+            *port3, *port4,                                                # Tabelle B.24, A.7-A.9
             # massless guides B.221-B.226
             *self._guide1(C1, PS1, N1),
             f2.fx - N2[0] == 0, f2.fy - N2[1] == 0,
@@ -91,12 +93,13 @@ class SDS(_TwoSliders):
             # slider 1 B.227-B.229 (moments about PS1)
             N1[0] + FP[0] + f3.fx + S1.F[0] == 0,
             N1[1] + FP[1] + f3.fy + S1.F[1] == 0,
-            self.T1 + f3.t + _moment(P, PS1, (FP[0] + f3.fx, FP[1] + f3.fy))
+            self.T1 + f3.t + _moment(P, PS1, FP) + port_moment(C3, PS1, f3)
             + S1.moment(PS1) == 0,
             # slider 2 B.230-B.232 (moments about PS2)
             N2[0] - FP[0] + f4.fx + S2.F[0] == 0,
             N2[1] - FP[1] + f4.fy + S2.F[1] == 0,
-            self.T2 + f4.t + _moment(P, PS2, (-FP[0], -FP[1])) + S2.moment(PS2) == 0,
+            self.T2 + f4.t + _moment(P, PS2, (-FP[0], -FP[1])) + S2.moment(PS2)
+            + port_moment(C4, PS2, f4) == 0,
         ]
 
     def shapes(self):

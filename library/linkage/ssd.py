@@ -6,7 +6,8 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import _TwoSliders, _cross, _moment, MassData, axes, element, housing, plug, triangle
+from .base import (_TwoSliders, _cross, _moment, MassData, axes, element, housing, plug,
+                   port_moment, triangle)
 
 __all__ = ["SSD", "solve_ssd"]
 
@@ -24,7 +25,7 @@ def solve_ssd(x1, y1, a1, x2, y2, v1, v2, phiv):
          connectors={"ctr2D1": triangle("guide 1 at P1"),
                      "ctr2D2": triangle("housing at P2"),
                      "ctr2D3": plug("slider 1 plane at P"),
-                     "ctr2D4": plug("slider 2 plane at P2")})
+                     "ctr2D4": plug("slider 2 plane at P2")}, outputs=(3, 4))
 class SSD(_TwoSliders):
     """Dyad with prismatic joints as outer and inner joint SSD (seed Anhang
     B.7, Tabellen B.19-B.21, eqs. B.149-B.194).
@@ -78,6 +79,8 @@ class SSD(_TwoSliders):
         S2, cg2 = self._mass("S2", PS2, a2)
         N1 = (self.Fn1 * n1[0], self.Fn1 * n1[1])
         N2 = (self.Fn2 * n2[0], self.Fn2 * n2[1])
+        port3, C3 = self._output(3, (P[0], P[1], a1))
+        port4, C4 = self._output(4, (x2, y2, a2))
         return [
             self.phiS1 == a1,                                             # B.149
             self.phiS2 == a1 + self.phiv,                                 # B.152, B.155
@@ -86,19 +89,18 @@ class SSD(_TwoSliders):
             *cg1, *cg2,
             self.xPS1 == PS1[0], self.yPS1 == PS1[1],
             self.xPS2 == PS2[0], self.yPS2 == PS2[1],
-            f3.x == P[0], f3.y == P[1], f3.phi == a1,                     # Tabelle B.21
-            f4.x == x2, f4.y == y2, f4.phi == a2,
+            *port3, *port4,                                               # Tabelle B.21, A.7-A.9
             # massless guide 1 (B.182-B.184), moments about C1
             *self._guide1(C1, PS1, N1),
             # slider 1 (B.185-B.187), moments about PS1
             N1[0] - N2[0] + f3.fx + S1.F[0] == 0,
             N1[1] - N2[1] + f3.fy + S1.F[1] == 0,
             self.T1 - self.T2 + f3.t + _moment(PS2, PS1, (-N2[0], -N2[1]))
-            + _moment(P, PS1, (f3.fx, f3.fy)) + S1.moment(PS1) == 0,
+            + port_moment(C3, PS1, f3) + S1.moment(PS1) == 0,
             # slider 2 (B.188-B.190), moments about PS2
             N2[0] + f2.fx + f4.fx + S2.F[0] == 0,
             N2[1] + f2.fy + f4.fy + S2.F[1] == 0,
-            self.T2 + f4.t + _moment(P2, PS2, (f2.fx + f4.fx, f2.fy + f4.fy))
+            self.T2 + f4.t + _moment(P2, PS2, (f2.fx, f2.fy)) + port_moment(C4, PS2, f4)
             + S2.moment(PS2) == 0,
             # massless housing at P2
             housing(f2, P2, C2),
