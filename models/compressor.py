@@ -97,14 +97,12 @@ import casadi as ca
 import numpy as np
 
 from acausal2d import Component, start, study
-from acausal2d.language.connectors import Frame
-from acausal2d.language.dsl import Parameter, Variable
 from acausal2d.library import rotational, translational
 from acausal2d.library.belt import Belt, Pulley, connect_band, tangent
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
+from acausal2d.library.planar.forces import LineSpringDamper
 from acausal2d.library.pneumatics import GasCylinder
 from acausal2d.library.signals import TimeFunction
-from acausal2d.language.symbols import der
 
 G = 9.81
 # belt drive
@@ -139,36 +137,6 @@ def clutch_signal(t):
     up = ca.fmin(ca.fmax((t - T_CLOSE) / T_RAMP, 0.0), 1.0)
     down = ca.fmin(ca.fmax((t - T_OPEN) / T_RAMP, 0.0), 1.0)
     return up - down
-
-
-class SpringDamper2D(Component):
-    """Linear spring-damper between the origins of two frames:
-    ``F = c (l - l0) + d der(l)`` along the line, tension positive, no
-    moments (the "Belt Tensor" element of seed Bild 8.8)."""
-    c = Parameter(1e4, "N/m", "spring rate")
-    d = Parameter(0.0, "N.s/m", "damping coefficient")
-    l0 = Parameter(0.1, "m", "unstretched length")
-    l = Variable(start=0.1, unit="m", state_select="avoid", doc="distance frame_a - frame_b")
-    F = Variable(unit="N", doc="force, tension positive")
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.frame_a = Frame()
-        self.frame_b = Frame()
-
-    def equations(self):
-        a, b = self.frame_a, self.frame_b
-        dx, dy = b.x - a.x, b.y - a.y
-        ex, ey = dx / self.l, dy / self.l
-        return [self.l == ca.sqrt(dx ** 2 + dy ** 2),
-                self.F == self.c * (self.l - self.l0) + self.d * der(self.l),
-                a.fx == -self.F * ex, a.fy == -self.F * ey,
-                b.fx == self.F * ex, b.fy == self.F * ey, a.t == 0, b.t == 0]
-
-    def shapes(self):
-        """A zig-zag spring from the origin of frame_a to that of frame_b."""
-        return [{"type": "spring", "a": ["frame_a.x", "frame_a.y"],
-                 "b": ["frame_b.x", "frame_b.y"]}]
 
 
 def tensioner_geometry():
@@ -254,14 +222,15 @@ class Compressor(Component):
         connect_band(self, self.span3, 2, self.driven, 1)
 
     def _tensioner(self, C):
-        """Bell-crank lever with the spring-damper anchored at C."""
+        """Bell-crank lever with the "Belt Tensor" spring-damper (a
+        :class:`LineSpringDamper`, seed Bild 8.8) anchored at C."""
         l0_spring, _ = tensioner_preload()
         self.pivot = Fixed(r=PIVOT)
         self.lever = Revolute(phi=start(LEVER0, fixed=True), w=start(0.0, fixed=True))
         self.arm1 = FixedTranslation(r=(ARM1, 0.0))
         self.arm2 = FixedTranslation(r=(-ARM2 * math.sin(LEVER0), -ARM2 * math.cos(LEVER0)))
         self.anchor = Fixed(r=C)
-        self.spring = SpringDamper2D(c=C_SPRING, d=D_SPRING, l0=l0_spring, l=start(SPRING_DX))
+        self.spring = LineSpringDamper(c=C_SPRING, d=D_SPRING, s_unstretched=l0_spring)
         self.connect(self.pivot.frame, self.lever.frame_a)
         self.connect(self.lever.frame_b, self.arm1.frame_a)
         self.connect(self.lever.frame_b, self.arm2.frame_a)
