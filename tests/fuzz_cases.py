@@ -381,8 +381,9 @@ def trust_cases(seed=6):
 def all_cases():
     """Every fuzz case, in a fixed order."""
     import fuzz_cases_fitopt
+    import fuzz_cases_seednums
     import fuzz_cases_tx
     return (structure_cases() + connection_cases() + parameter_cases() + geometry_cases()
             + numeric_cases() + file_cases() + compare_cases() + trust_cases()
             + fuzz_cases_geometry.cases() + fuzz_cases_fitopt.cases()
-            + fuzz_cases_friction.cases() + fuzz_cases_tx.cases())
+            + fuzz_cases_friction.cases() + fuzz_cases_tx.cases() + fuzz_cases_seednums.cases())
