@@ -19,8 +19,8 @@ kg mm² -> kg m²):
   JL = 0.91942937 kg mm², xSLrel = 6.6176566 mm, ySLrel = 0.
 * preset1: speed 1.5 rad/s, phi0 = 0 (fixed).
 * dSD1: y10 = 0, P2 = (50, 30) mm (x20, y20; ground pivot B0), off = v =
-  -10 mm, JU = 0.1 kg m² (as printed), mS = 112.33331 g, JS = 75.986105
-  kg mm², xSSrel = -27.015926 mm, ySSrel = 13.750918 mm, xSUrel = ySUrel = 0.
+  -10 mm, mS = 112.33331 g, JS = 75.986105 kg mm², xSSrel = -27.015926 mm,
+  ySSrel = 13.750918 mm, xSUrel = ySUrel = 0.
 * fGP2: phi10 = -125°, lL (lU) = 50 mm, massless, x10 = y10 = 0.
 * sDS1: y10 = 105 mm, phi10 = 0 (horizontal ground guide), phi20 = -95°
   (guide 2 against the bell-crank arm; the cell reads "-05"/"95"), x20 = y20
@@ -35,7 +35,24 @@ Values CHOSEN here because the figure (Bild 7.2) is lost and the cells are
 empty:
 
 * dSD1: P1 connected to the crank pin A (ctr2D1 <- dAN1.ctr2D2) with x10 = 0;
-  P2 unconnected (ground pivot B0); mass of the guide mU = 0.020 kg.
+  P2 unconnected (ground pivot B0).
+* The mass data of the guide U of dSD1 (the slotted coupler, link 3): the
+  seed's printout (Anhang C, dSD1) leaves mU empty and gives JU = 0.1 kg m²
+  with xSURel = ySURel = 0 [m] -- the element's default values (Tabelle
+  B.11: m = 1 kg, J = 0.1 kg m²), in SI units where every other mass datum
+  of the table is in g, kg mm² and mm: these cells were not filled from
+  the Creo reference model.  Taken literally, JU = 0.1 kg m² is 1300 times
+  the bell crank's inertia and 94 % (rms) of the drive power is the power
+  of this one inertia torque (A.31), against which the seed's comparison
+  with the reference model (Bild 7.6, lost) could not have agreed unless
+  the reference had the same default.  Assumed here instead: the guide is
+  a 20 g bar of 80 mm (longer than the largest distance A - B0 of 66 mm)
+  with JU = mU (80 mm)²/12 = 10.7 kg mm² about its centre of gravity, at
+  A as printed (``GUIDE_M``, ``GUIDE_L``).  What follows: the drive
+  torque is -0.025 .. 0.013 N m (with the printed JU -0.083 .. 0.051 N m),
+  mainly lifting the links against gravity: at 1.5 rad/s the power of all
+  inertia forces and torques (``P_T<key>``, ``P_R<key>`` of the elements)
+  is below 1 % (rms) of the drive power, the guide's own 0.02 %.
 * fGP2 sits on the bell crank: fGP2.ctr2D1 <- dSD1.ctr2D4 (slider plane at B0).
 * sDS1: x10 = 0 (C0 = (0, 105) mm); guide 2 on the arm end D
   (sDS1.ctr2D2 <- fGP2.ctr2D2); off2 = v2 = 0; JS1 = 2.0 kg mm²;
@@ -65,6 +82,8 @@ from acausal2d.library.rotational import Inertia
 MM, G, KGMM2 = 1e-3, 1e-3, 1e-6
 OMEGA = 1.5
 PERIOD = 2 * math.pi / OMEGA
+GUIDE_M = 0.020               # kg, mass of the dSD1 guide (assumed, see above)
+GUIDE_L = 0.080               # m, length of the dSD1 guide bar (assumed)
 
 
 class EightLinkVDI2729(Component):
@@ -110,7 +129,7 @@ class EightLinkVDI2729(Component):
         else:
             raise ValueError("drive must be 'kinematic' or 'force'")
         self.dSD1 = DSD(x10=0.0, y10=0.0, x20=50 * MM, y20=30 * MM, v=-10 * MM,
-                        mU=0.020, JU=0.1, xSUrel=0.0, ySUrel=0.0,
+                        mU=GUIDE_M, JU=GUIDE_M * GUIDE_L ** 2 / 12, xSUrel=0.0, ySUrel=0.0,
                         mS=112.33331 * G, JS=75.986105 * KGMM2,
                         xSSrel=-27.015926 * MM, ySSrel=13.750918 * MM)
         self.fGP2 = FGP(phi10=math.radians(-125.0), lL=50 * MM, mL=0.0, JL=0.0)

@@ -90,3 +90,37 @@ def test_force_driven_conserves_energy(model_module):
     assert res["dAN1.omL"][0] == pytest.approx(1.5, abs=1e-12)
     assert np.max(np.abs(E - E[0])) < 1e-6 * abs(E[0])
     assert res["dAN1.phiL"][-1] > 2.0                         # keeps turning
+
+
+def test_power_of_inertia_forces_is_the_kinetic_energy_rate(model_module):
+    """Seed A.30, A.31 as element outputs P_T<key>, P_R<key>: for every body
+    of the mechanism they equal m (v . a) and J w alpha computed here from
+    the centre-of-gravity motion and the mass data, and their sum the rate
+    of the kinetic energy; with gravity's power, the drive power (as a
+    torque, to 1e-6 of its amplitude, as the power balance above)."""
+    cls = model_module.EightLinkVDI2729
+    cm = acausal2d.compile_model(cls())
+    T = model_module.PERIOD
+    res = cm.simulate(stop_time=T, rtol=1e-10, output_times=np.linspace(0.0, T, 181))
+    total = np.zeros(len(res.time))
+    for elem, mname, jname, xs, ys, ang in model_module.BODIES:
+        key = mname[1:]
+        m = res.parameters["%s.%s" % (elem, mname)]
+        J = res.parameters["%s.%s" % (elem, jname)]
+        vx, vy = (series(res, cm, "%s.%s" % (elem, v), 1) for v in (xs, ys))
+        ax, ay = (series(res, cm, "%s.%s" % (elem, v), 2) for v in (xs, ys))
+        w, al = (series(res, cm, "%s.%s" % (elem, ang), k) for k in (1, 2))
+        P_T, P_R = (series(res, cm, "%s.P_%s%s" % (elem, kind, key)) for kind in "TR")
+        # P_T, P_R are evaluated from the same derivative nodes: rounding only
+        scale = max(m * np.max(np.hypot(vx, vy) * np.hypot(ax, ay))
+                    + J * np.max(np.abs(w * al)), 1e-12)
+        assert np.max(np.abs(P_T - m * (vx * ax + vy * ay))) <= 1e-9 * scale
+        assert np.max(np.abs(P_R - J * w * al)) <= 1e-9 * scale
+        total += P_T + P_R
+    _, dE = energy_terms(res, cm, model_module.BODIES)
+    _, dE_kin = energy_terms(res, cm, model_module.BODIES, g=(0.0, 0.0))
+    tau, w = res["preset1.tau"], res["preset1.w"]
+    amplitude = np.max(np.abs(tau))
+    assert np.max(np.abs(total - dE_kin)) <= 1e-9 * amplitude * 1.5
+    # drive power = power of the inertia forces + power against gravity
+    assert np.max(np.abs(tau - (total + dE - dE_kin) / w)) < 1e-6 * amplitude

@@ -107,7 +107,7 @@ def test_cabinet_door_peak_torque_below_the_ch6_design_and_confirmed_by_a_grid(d
     assert opt.success, opt.message
     assert opt.objective_start == pytest.approx(peak_ch6, rel=1e-9)
     assert opt.objective <= peak_ch6
-    assert opt.objective < 0.7 * peak_ch6         # 0.0192 -> 0.0112 N m
+    assert opt.objective < 0.7 * peak_ch6         # 0.0562 -> 0.0370 N m
     # independent of the optimiser: no point of a grid around it is lower
     xs, values = opt.grid(rel=0.01, points=3)
     assert np.all(np.isfinite(values))

@@ -328,6 +328,7 @@ def test_first_order_init_options():
 
 NEW_ELEMENTS = [planar.FixedRotation, planar.BodyShape, planar.IdealRolling,
                 planar_forces.Spring, planar_forces.Damper, planar_forces.SpringDamper,
+                planar_forces.LineSpringDamper,
                 translational.SpringDamper, rotational.SpringDamper, signals.FirstOrder,
                 signals.Sine, signals.Ramp]
 

@@ -61,6 +61,16 @@ class _Body:
         """Moment of gravity and inertia about ``ref`` (incl. -J phi'')."""
         return _moment(self.S, ref, self.F) + self.T
 
+    def power(self, P_T, P_R):
+        """Equations of the power of the inertia forces (A.30, A.31):
+        ``P_T = Fax der(xS) + Fay der(yS)`` with ``Fa = m der(der(S))``
+        (A.27, A.28) and ``P_R = Ta der(phi)`` with ``Ta = J der(der(phi))``
+        (A.29): the rates of the translational and rotational kinetic
+        energy of the body."""
+        xS, yS = self.S
+        return [P_T == self.m * (der(der(xS)) * der(xS) + der(der(yS)) * der(yS)),
+                P_R == self.J * der(der(self.phi)) * der(self.phi)]
+
 
 # --------------------------------------------------------------- assembly
 class _Assembly:
@@ -194,7 +204,8 @@ class _Linkage(Component):
         xS, yS = getattr(self, "xS" + key), getattr(self, "yS" + key)
         body = _Body(getattr(self, "m" + key), getattr(self, "J" + key), xS, yS,
                      phi if body_phi is None else body_phi, self._g())
-        return body, [xS == origin[0] + d[0], yS == origin[1] + d[1]]
+        return body, [xS == origin[0] + d[0], yS == origin[1] + d[1],
+                      *body.power(getattr(self, "P_T" + key), getattr(self, "P_R" + key))]
 
     def _mass_start(self, key, origin, phi):
         """Start guesses {xS<key>: ..., yS<key>: ...} of the centre of
@@ -419,7 +430,8 @@ class MassData:
     B.5, B.8, B.11, B.14, B.17, B.20, B.23): the parameters ``xS<key>rel``,
     ``yS<key>rel`` (centre of gravity in the body frame ``frame``),
     ``m<key>`` and ``J<key>`` (about the centre of gravity) and the
-    variables ``xS<key>``, ``yS<key>`` (the centre of gravity in the world).
+    variables ``xS<key>``, ``yS<key>`` (the centre of gravity in the world)
+    and ``P_T<key>``, ``P_R<key>`` (power of the inertia forces, A.30, A.31).
     ``half_of`` names the length whose half is the default of
     ``xS<key>rel`` ("l/2" in the tables)."""
 
@@ -437,7 +449,11 @@ class MassData:
                 "J" + k: Parameter(0.1, "kg.m2", "moment of inertia of %s about its centre of "
                                    "gravity" % w, min=0.0),
                 "xS" + k: Variable(unit="m", doc="centre of gravity of %s, x" % w),
-                "yS" + k: Variable(unit="m", doc="centre of gravity of %s, y" % w)}
+                "yS" + k: Variable(unit="m", doc="centre of gravity of %s, y" % w),
+                "P_T" + k: Variable(unit="W", doc="power of the inertia force of %s, rate of "
+                                    "its translational kinetic energy (A.30)" % w),
+                "P_R" + k: Variable(unit="W", doc="power of the inertia torque of %s, rate of "
+                                    "its rotational kinetic energy (A.31)" % w)}
 
 
 def triangle(doc):

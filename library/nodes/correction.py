@@ -1,5 +1,7 @@
 """Position correction of node/constraint models by corrective impulses
-(the talk's eq. 3-16; the algorithm of cstr.js's ``correct()``).
+(the talk's eq. 3-16; the algorithm of cstr.js's ``correct()``), and the
+velocity correction by impulses of eq. 6-10
+(:meth:`PositionCorrection.correct_velocities`).
 
 A constraint between two nodes corrects their positions by the impulse of
 eq. 11, ``dq = -W J^T m_c C(q)``, which for the two constraint kinds reads
@@ -28,6 +30,8 @@ assembly that turns rough coordinates into consistent start values."""
 import math
 
 import numpy as np
+
+from acausal2d.errors import ModelDefinitionError
 
 __all__ = ["PositionCorrection", "Correction"]
 
@@ -266,6 +270,73 @@ class PositionCorrection:
             self.nodes[k].x, self.nodes[k].y = x, y
         self._track_angles()
         return Correction(False, self.itrmax, worst, largest)
+
+    # ------------------------------------------------ velocities (eq. 6-10)
+    def _velocity_rows(self, rates):
+        """One row per active two-node length or angle constraint: (id,
+        kind, node 1, node 2, unit direction u of its Jacobian J = (-u, u),
+        the time-dependent part C_t = -s * rate)."""
+        rows = []
+        for c in self.cstrs:
+            if c["type"] != "n2":
+                raise ModelDefinitionError(
+                    "constraint %r: the velocity correction takes two-node constraints only "
+                    "(type n2), not %r; express it by n2 constraints" % (c["id"], c["type"]))
+            n1, n2 = c["_nodes"]
+            x12, y12 = n2.x - n1.x, n2.y - n1.y
+            cur = math.hypot(x12, y12)
+            if cur <= _EPS or not c["_moving"]:
+                continue
+            ex, ey = x12 / cur, y12 / cur
+            for kind, u, s in (("ang", (-ey, ex), cur), ("len", (ex, ey), 1.0)):
+                if self.target(c, kind) is not None:
+                    rows.append((c["id"], kind, n1, n2, u, -s * rates.get((c["id"], kind), 0.0)))
+        return rows
+
+    def correct_velocities(self, velocities, rates=None, tol=1e-12, itrmax=None):
+        """Correct node velocities by impulses (the talk's eq. 6-10) so that
+        ``J q' + C_t = 0`` (eq. 4) holds at the current positions.  For each
+        active two-node constraint row C (length: ``|p2 - p1| - r``, angle:
+        ``(p2 - p1) . e~``) with ``J = (-u, u)`` the violated velocity balance
+        ``C' = J q' + C_t`` gets the corrective impulse ``lambda dt = -m_c C'``
+        (eq. 9, ``m_c = (J W J^T)^-1 = 1/(1/m1 + 1/m2)``, eq. 13) and the
+        velocities change by ``dq' = W J^T lambda dt`` (eq. 10), base nodes
+        not at all.  Sweeps over all rows repeat until every ``|C'| <= tol``
+        [m/s] or ``itrmax`` sweeps are done (default: the position
+        correction's).  ``velocities``: {node id: (vx, vy)} (base nodes may
+        be left out: at rest); ``rates``: {(constraint id, 'len' or 'ang'):
+        dr/dt or dw/dt} of driven constraints (default 0).  Returns the
+        corrected velocities and a :class:`Correction` (``largest`` the
+        largest ``|C'|`` met in the last sweep; velocities are never
+        undone).  The impulses act along the constraints only (eq. 7, no
+        impressed forces), so with C_t = 0 each one is a projection in the
+        metric of M: the kinetic energy falls by ``m_c C'^2 / 2`` per
+        impulse, and velocities that satisfy eq. 4 are not changed."""
+        for n in self.nodes.values():
+            n.dym = 0.0                      # the plain masses of eq. 13
+        v = {k: [0.0, 0.0] for k in self.nodes}
+        for k, (vx, vy) in velocities.items():
+            v[k] = [float(vx), float(vy)]
+        rows = self._velocity_rows(rates or {})
+        itrmax = int(itrmax if itrmax is not None else self.itrmax)
+        largest, worst = 0.0, None
+        for itr in range(1, itrmax + 1):
+            largest, worst = 0.0, None
+            for cid, kind, n1, n2, u, c_t in rows:
+                v1, v2 = v[n1.id], v[n2.id]
+                rate = u[0] * (v2[0] - v1[0]) + u[1] * (v2[1] - v1[1]) + c_t     # C'
+                if abs(rate) >= largest:
+                    largest, worst = abs(rate), (cid, kind)
+                w1, w2 = _weights(n1, n2)                  # m_c/m1, m_c/m2 (eq. 13)
+                v1[0] += w1 * rate * u[0]
+                v1[1] += w1 * rate * u[1]
+                v2[0] -= w2 * rate * u[0]
+                v2[1] -= w2 * rate * u[1]
+            if largest <= tol:
+                break
+        report = Correction(largest <= tol, itr, worst, largest)
+        report.undone = False
+        return {k: tuple(x) for k, x in v.items()}, report
 
     def _track_angles(self):
         for c in self.cstrs:

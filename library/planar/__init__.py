@@ -7,8 +7,8 @@ counter-clockwise positive), one concern per module:
 - :mod:`.parts`: Fixed, Body, FixedTranslation, FixedRotation, BodyShape.
 - :mod:`.joints`: Revolute, Prismatic, IdealRolling.
 - :mod:`.cam`: CamFollower, the cam joint K of seed Tab. 2.1.
-- :mod:`.forces`: Spring, Damper, SpringDamper, WorldForce, WorldTorque,
-  RelativeForce.
+- :mod:`.forces`: Spring, Damper, SpringDamper, LineSpringDamper,
+  WorldForce, WorldTorque, RelativeForce.
 - :mod:`.sensors`: absolute and relative position/velocity/acceleration
   sensors, CutForce, CutTorque, Power, Distance.
 

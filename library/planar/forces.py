@@ -1,7 +1,9 @@
 """Planar force elements with the semantics of PlanarMechanics 2.0
 (Parts.Spring, Parts.Damper, Parts.SpringDamper, Sources.WorldForce,
 Sources.WorldTorque, Sources.RelativeForce), as described in the project's
-reference README, section "Further component kinds".
+reference README, section "Further component kinds", and the line
+spring-damper :class:`LineSpringDamper` (seed Bild 4.1; the line-force
+semantics of Modelica.Mechanics.MultiBody.Forces.SpringDamperParallel).
 
 Sign of flows (seed eq. 4.1): the flows (fx, fy, t) of a frame are the
 force and torque acting ON the element through that frame; the element
@@ -20,7 +22,7 @@ from acausal2d.errors import ModelDefinitionError
 
 from .base import rotate
 
-__all__ = ["Spring", "Damper", "SpringDamper", "WorldForce", "WorldTorque", "RelativeForce",
+__all__ = ["Spring", "Damper", "SpringDamper", "LineSpringDamper", "WorldForce", "WorldTorque", "RelativeForce",
            "check_resolve_choice", "resolve_frame_angle", "resolve_frame_equations"]
 
 
@@ -143,20 +145,73 @@ class Damper(Component):
         self.frame_b = Frame()
 
     def equations(self):
-        a, b = self.frame_a, self.frame_b
-        rx, ry = b.x - a.x, b.y - a.y
-        norm = ca.sqrt(rx ** 2 + ry ** 2 + self.s_small ** 2)
-        ex, ey = rx / norm, ry / norm
-        return [self.length == (rx ** 2 + ry ** 2) / norm,
-                self.v == ex * der(rx) + ey * der(ry),
-                self.f == self.d * self.v,
-                b.fx == self.f * ex, b.fy == self.f * ey,
-                a.fx == -self.f * ex, a.fy == -self.f * ey,
-                a.t == 0, b.t == 0,
-                self.loss_power == self.d * self.v ** 2]
+        return _line_equations(self) + [self.f == self.d * self.v,
+                                        self.loss_power == self.d * self.v ** 2]
 
     def shapes(self):
         return [dict(type="damper", **_ends())]
+
+
+def _line_equations(comp):
+    """The line kinematics and forces shared by :class:`Damper` and
+    :class:`LineSpringDamper`: ``length``, its rate ``v`` and the frame
+    flows of the line force ``f`` (tension positive) along ``e = r/sqrt(|r|^2
+    + s_small^2)``, no frame torques."""
+    a, b = comp.frame_a, comp.frame_b
+    rx, ry = b.x - a.x, b.y - a.y
+    norm = ca.sqrt(rx ** 2 + ry ** 2 + comp.s_small ** 2)
+    ex, ey = rx / norm, ry / norm
+    return [comp.length == (rx ** 2 + ry ** 2) / norm,
+            comp.v == ex * der(rx) + ey * der(ry),
+            b.fx == comp.f * ex, b.fy == comp.f * ey,
+            a.fx == -comp.f * ex, a.fy == -comp.f * ey,
+            a.t == 0, b.t == 0]
+
+
+class LineSpringDamper(Component):
+    """A linear spring and a viscous damper in parallel acting along the
+    line between the origins of frame_a and frame_b: the 2D spring-damper
+    of seed Bild 4.1 (ch. 4.1: the planar spring-damper-mass oscillator,
+    whose elements the seed does not define) with the line-force
+    semantics of Modelica.Mechanics.MultiBody.Forces.SpringDamperParallel:
+    with the distance ``length = |r_b - r_a|`` and its rate ``v``,
+
+        f = c (length - s_unstretched) + d v,
+
+    tension positive: for ``f > 0`` the parts at frame_a and frame_b are
+    pulled towards each other with ``f`` along the line (frame flows, seed
+    eq. 4.1: ``frame_b.f = f e``, ``frame_a.f = -f e``, no torques).  The
+    element declares position-level quantities only (length, force); it
+    pushes as well as pulls (a band, which only pulls, is
+    :class:`acausal2d.library.belt.Belt`, seed eq. 4.52-4.66).  ``energy``
+    is the energy of the spring, ``loss_power = d v^2`` the power of the
+    damper.  The unit vector is ``e = r/sqrt(|r|^2 + s_small^2)`` as in
+    :class:`Damper` (the same to a relative ``(s_small/|r|)^2/2``, smooth
+    through |r| = 0)."""
+    c = Parameter(1.0e4, "N/m", "spring constant", min=0.0)
+    d = Parameter(0.0, "N.s/m", "damping constant", min=0.0)
+    s_unstretched = Parameter(0.1, "m", "unstretched spring length", min=0.0)
+    s_small = Parameter(1e-10, "m", "length below which the direction fades out", positive=True)
+    length = Variable(unit="m", doc="distance of the frame origins, |r|^2/sqrt(|r|^2 + s_small^2)")
+    v = Variable(unit="m/s", doc="rate of change of the distance")
+    f = Variable(unit="N", doc="line force, tension positive (pulls the frames together)")
+    energy = Variable(unit="J", doc="energy stored in the spring")
+    loss_power = Variable(unit="W", doc="power dissipated by the damper")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.frame_a = Frame()
+        self.frame_b = Frame()
+
+    def equations(self):
+        stretch = self.length - self.s_unstretched
+        return _line_equations(self) + [
+            self.f == self.c * stretch + self.d * self.v,
+            self.energy == 0.5 * self.c * stretch ** 2,
+            self.loss_power == self.d * self.v ** 2]
+
+    def shapes(self):
+        return [dict(type="spring", **_ends()), dict(type="damper", offset=12, **_ends())]
 
 
 _ABSOLUTE = ("world", "frame_b", "frame_resolve")
