@@ -123,7 +123,7 @@ class Recipe:
         return count
 
     def __getstate__(self):
-        parts = [(how, [fn.serialize() for fn in fns]) for how, fns in self.parts]
+        parts = [(how, [cbuild.serialized(fn) for fn in fns]) for how, fns in self.parts]
         return dict(self.__dict__, parts=parts)
 
     def __setstate__(self, state):
