@@ -71,6 +71,6 @@ def test_small_modes_print_their_tables(script, labels):
 def test_bench_cold_small():
     text = _run("bench_cold.py", "--small")
     row = next(s for s in text.splitlines() if s.startswith("chain of 3 links"))
-    assert len(_numbers(row)) == 5          # Python, first (auto), ratio, background, later
+    assert len(_numbers(row)) == 6          # Python, first (auto), ratio, background, CPU, later
     line = next(s for s in text.splitlines() if "piston_engine.py, whole process" in s)
     assert len(_numbers(line)) == 3

@@ -34,6 +34,7 @@ def auto(tmp_path, monkeypatch):
     monkeypatch.setattr(background, "_seen", set())
     monkeypatch.setattr(background, "_workers", [])
     monkeypatch.setattr(cstore, "_said", set())
+    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)   # no library is small enough to wait
     yield tmp_path / "cache"
     background.wait(lambda: False, WAIT)
 
@@ -121,12 +122,37 @@ def test_a_failed_background_compile_is_said_once_and_stays_on_python(auto, capf
         again, form2 = _run(PistonEngine())
         assert native.library(form2) is None and not background.pending()
     err = capfd.readouterr().err
-    assert err.count("background compile of native code for PistonEngine failed") == 1, err
+    assert err.count("compile of native code for PistonEngine failed") == 1, err
     assert "/bin/false" in err
     assert "in the background" not in err
     monkeypatch.setenv(tiers.ENV, "off")
     ref, _ = _run(PistonEngine())
     _agree(again, ref, ("revoluteDrive.phi", "prismatic.s"), 1e-8)
+
+
+def test_a_small_library_is_compiled_first_and_a_failure_said_once(auto, capfd, monkeypatch):
+    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 1e9)   # every library is small
+    res, form = _run(Pendulum())
+    assert native.library(form) is not None                # in this run, not in the background
+    assert any(n.startswith("compile first: a2d_model is small") for n in res.native_notes)
+    err = capfd.readouterr().err
+    assert "before the run" not in err
+    monkeypatch.setenv(cbuild.CACHE_ENV, str(auto) + "-2")
+    monkeypatch.setenv("CC", "/bin/false")
+    said = []
+    for _ in range(3):              # the first fails (and may say so), each failure said once
+        again, form2 = _run(Pendulum())
+        background.wait(lambda: False, WAIT)               # the maps' library (not small)
+        assert native.library(form2) is None
+        said.append([line for line in capfd.readouterr().err.splitlines()
+                     if "compile of native code for Pendulum failed" in line])
+    lines = said[0] + said[1] + said[2]
+    assert lines and len(set(lines)) == len(lines) and not said[2], said
+    assert any(f.endswith(".failed") for f in os.listdir(str(auto) + "-2"))
+    monkeypatch.setenv(tiers.ENV, "off")
+    ref, _ = _run(Pendulum())
+    _agree(res, ref, ("revolute.phi", "revolute.w"), 1e-8)
+    _agree(again, ref, ("revolute.phi", "revolute.w"), 1e-8)
 
 
 SEPARATED = 0.01     # s: events further apart than this are compared one by one

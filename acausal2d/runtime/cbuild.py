@@ -24,6 +24,7 @@ install) and :class:`BuildFailed` (carries the compiler's message).
 import glob
 import os
 import shutil
+import weakref
 
 from . import cstore as store, cunits as units
 from .cstore import CACHE_ENV, _sha256, cache_dir  # noqa: F401 - names of this module
@@ -115,13 +116,28 @@ def fingerprint(functions, *texts):
     drive's 0.23 s run; serializing takes a third of that)."""
     import casadi as ca
     h = _sha256()
-    parts = [fn.serialize() for fn in functions if fn is not None]
+    parts = [serialized(fn) for fn in functions if fn is not None]
     for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS,
                                        units.SCHEME]:
         data = str(part).encode("utf-8")
         h.update(len(data).to_bytes(8, "little"))
         h.update(data)
     return h.hexdigest()
+
+
+_serial: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()   # Function -> serialize()
+
+
+def serialized(fn):
+    """``fn.serialize()`` of a CasADi function, made once per function
+    object: the fingerprint (:func:`fingerprint`) and the background job
+    (:class:`~acausal2d.runtime.codegen.Recipe`) both need it, and the
+    first run of a new structure pays for it before it starts (chain of 81
+    links: 0.1-0.3 s per serialization of its functions on a loaded machine)."""
+    text = _serial.get(fn)
+    if text is None:
+        text = _serial[fn] = fn.serialize()
+    return text
 
 
 def index_path(key, name):

@@ -7,9 +7,11 @@ and :func:`too_large` refuses sizes that would take too long to compile at
 run time.  Recipes are pickled (their functions serialized) for the
 background worker (:mod:`~acausal2d.runtime.background`).
 """
+import os
+
 import casadi as ca
 
-from . import cbuild
+from . import cbuild, cstraight
 
 OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
 NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
@@ -48,7 +50,8 @@ slower: :mod:`~acausal2d.runtime.csplit`)."""
 
 def generate(recipe):
     """The C text of a :class:`Recipe`: CasADi's
-    code of its functions, then its suffix."""
+    code of its functions, made straight-line (:func:`~acausal2d.runtime.
+    cstraight.straighten`), then its suffix."""
     cg = ca.CodeGenerator(recipe.name + ".c", CODEGEN)
     for how, fns in recipe.parts:
         if how == "ej":
@@ -56,7 +59,7 @@ def generate(recipe):
         else:
             for fn in fns:
                 cg.add(eliminated(fn) if how == "cse" else fn)
-    return cg.dump() + "\n" + recipe.suffix
+    return cstraight.straighten(cg.dump()) + "\n" + recipe.suffix
 
 
 def too_large(*functions):
@@ -71,12 +74,30 @@ def too_large(*functions):
     return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
 
 
-def optimization(code):
+GCC_LIMITS = ("--param=sccvn-max-alias-queries-per-access=20",
+              "--param=dse-max-alias-queries-per-store=20")
+"""gcc's alias queries per memory access in value numbering and dead-store
+elimination (defaults 1000 and 256).  In a straight-line body
+(:mod:`~acausal2d.runtime.cstraight`) every load of an input may alias every
+earlier store of an output, and walking those chains was 42% of gcc's -O1
+time (chain of 81 links, model library unit of 248 kB: 5.0 -> 3.3 s CPU,
+``-ftime-report``); CasADi's code loads each input element once, so the
+queries found nothing to reuse."""
+
+
+def _is_gcc(compiler):
+    """True where ``compiler`` is gcc (``cc`` is often a link to it)."""
+    return bool(compiler) and "gcc" in os.path.basename(os.path.realpath(compiler))
+
+
+def optimization(code, compiler=None):
     """The compiler flags for generated C of this size, or None: too large
-    to compile at run time (see :data:`NATIVE_BELOW`)."""
+    to compile at run time (see :data:`NATIVE_BELOW`); gcc's alias query
+    limits (:data:`GCC_LIMITS`) where ``compiler`` is gcc."""
     if len(code) >= NATIVE_BELOW:
         return None
-    return ["-O1"] if len(code) < OPTIMIZE_BELOW else ["-O0"]
+    flags = ["-O1"] if len(code) < OPTIMIZE_BELOW else ["-O0"]
+    return flags + list(GCC_LIMITS) if _is_gcc(compiler) else flags
 
 
 class Recipe:
@@ -102,7 +123,7 @@ class Recipe:
         return count
 
     def __getstate__(self):
-        parts = [(how, [fn.serialize() for fn in fns]) for how, fns in self.parts]
+        parts = [(how, [cbuild.serialized(fn) for fn in fns]) for how, fns in self.parts]
         return dict(self.__dict__, parts=parts)
 
     def __setstate__(self, state):
@@ -115,7 +136,7 @@ class Recipe:
         """Generate the C and compile it (:func:`~acausal2d.runtime.cbuild.
         build`); the library's path."""
         code = generate(self)
-        flags = optimization(code)
+        flags = optimization(code, cbuild.find_compiler())
         if flags is None:
             raise cbuild.BuildFailed("the generated C of %s is too large to compile at run "
                                      "time (%d characters)" % (self.name, len(code)))

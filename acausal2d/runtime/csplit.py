@@ -26,7 +26,7 @@ import re
 SPLIT_FROM = 150_000
 """Characters of C from which a file is cut (below, one compiler process
 starts faster than two)."""
-_BODY = re.compile(r"^static int (casadi_f\d+)\(([^)]*)\) \{\n(.*?)^\}\n", re.M | re.S)
+_BODY = re.compile(r"^static int (casadi_f\d+(?:_s)?)\(([^)]*)\) \{\n(.*?)^\}\n", re.M | re.S)
 _HELPER = re.compile(r"^(casadi_real|casadi_int|void|int) (casadi_\w+)\(", re.M)
 _EXPORTED = re.compile(r"^CASADI_SYMBOL_EXPORT [^\n]*\{(?:[^\n]*\}\n|\n.*?^\}\n)", re.M | re.S)
 

@@ -19,7 +19,7 @@ import shutil
 from ..errors import Acausal2dError
 from . import cstore
 
-SCHEME = "units-2"
+SCHEME = "units-3"
 """Names how sources are cut and compiled: part of every fingerprint, so a
 library built another way is never found again."""
 TIMEOUT = 600.0   # s per compiler process

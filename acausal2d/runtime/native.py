@@ -32,7 +32,7 @@ import numpy as np
 from . import blt_layout, cbuild, ordering, tiers
 from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
                       optimization, too_large)
-from . import codegen
+from . import codegen, cstraight
 
 SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
@@ -102,6 +102,7 @@ def _generator():
     so a library generated differently is never found again."""
     if __file__ not in _module_texts:
         _module_texts[__file__] = _text(__file__) + _text(codegen.__file__) + \
+            _text(cstraight.__file__) + \
             "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
     return _module_texts[__file__]
 

@@ -142,7 +142,7 @@ class Simulation:
         states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
             self.selection)] if self.selection is not None else []
         log = RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
-        log.native_notes = list(self.tiering.notes)
+        log.native_notes = tiers.take_notes() + list(self.tiering.notes)
         return log
 
     def _over_budget(self, wall):

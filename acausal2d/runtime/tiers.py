@@ -8,7 +8,9 @@ wait for the C compiler.
   process at lower priority, one build at a time per library: a lock per
   key), which publishes it into the cache and ends; the run goes on with
   the Python path and switches to the library when it appears
-  (:class:`Tiering`); later runs, in this process or another, use it.  A run
+  (:class:`Tiering`); later runs, in this process or another, use it.  A
+  library expected to compile in less than :data:`FOREGROUND_BELOW` s is
+  compiled first (a small model's Python path costs more).  A run
   long enough that waiting for the compile pays waits for it (the choice
   and its reason are in the run's ``native`` notes);
 - ``now`` (or ``1``): compile first, in this process (before issue 30);
@@ -28,6 +30,14 @@ from .background import failure_path, launch, pending, queue, wait  # noqa: F401
 
 ENV = "ACAUSAL2D_NATIVE"
 MODES = ("auto", "now", "off")
+FOREGROUND_BELOW = 0.3
+"""Seconds of expected compile (:data:`~acausal2d.runtime.background.
+SECONDS_PER_INSTRUCTION` per CasADi instruction) below which mode auto
+compiles first, in the process: the Python path costs a small model more
+than its compile (``acausal2d simulate models/piston_engine.py`` on an
+empty cache, CPU seconds of the process and its compilers on a loaded
+machine: Python path 6.87, compile first 4.56, full cache 3.04)."""
+_notes: list = []        # why libraries were compiled first (the next run log takes them)
 _spent = [0.0]          # seconds this process spent compiling native code in the foreground
 _label = ["this model"]  # the model of the current run (its notices name it)
 
@@ -72,33 +82,67 @@ def _failed_before(key, name):
 def obtain(key, recipe, loader):
     """``loader(path)`` of the library of ``key`` made by ``recipe``, or
     None: off, a compile in the background (auto), a compile that failed
-    before, or a build or load that fails (``now``)."""
+    before (auto), or a build or load that fails."""
     m = mode()
     if m == "off":
         return None
     path = cbuild.lookup(key, recipe.name)
-    if path is None and m == "auto":
-        failed = _failed_before(key, recipe.name)
-        if failed is not None:
-            cstore.notice("the background compile of native code for %s failed (%s; the "
-                          "messages are in %s*.failed, 'acausal2d cache clear' retries it); "
-                          "this run uses the Python path"
-                          % (_label[0], failed.splitlines()[0][:200],
-                             os.path.join(cstore.folder(), "")))
-        else:
-            queue(key, recipe, _label[0])
+    first = path is None and m == "auto" and _small(recipe) and \
+        _failed_before(key, recipe.name) is None
+    if path is None and m == "auto" and not first:
+        _later(key, recipe)
         return None
-    t0 = time.perf_counter()
-    if path is None and cbuild.find_compiler() is not None:
+    if first:
+        _notes.append("compile first: %s is small (about %.2g s to compile)"
+                      % (recipe.name, _expected(recipe)))
+    elif path is None and cbuild.find_compiler() is not None:
         cstore.notice("compiling native code for %s before the run (native mode 'now')"
                       % _label[0])
+    t0 = time.perf_counter()
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)
-    except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError):
+    except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError) as exc:
+        if first:          # as a failed background compile: said once by later runs
+            cstore.write_atomic(failure_path(key, recipe.name),
+                                ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
         return None
     finally:
         if path is None:
             _spent[0] += time.perf_counter() - t0
+
+
+def _later(key, recipe):
+    """Mode auto, no library: queue its background compile, or say (once)
+    that an earlier compile failed."""
+    failed = _failed_before(key, recipe.name)
+    if failed is None:
+        queue(key, recipe, _label[0])
+        return
+    cstore.notice("the compile of native code for %s failed (%s; the messages are in "
+                  "%s*.failed, 'acausal2d cache clear' retries it); this run uses the "
+                  "Python path" % (_label[0], failed.splitlines()[0][:200],
+                                   os.path.join(cstore.folder(), "")))
+
+
+def _expected(recipe):
+    """Seconds the compile of ``recipe`` is expected to take."""
+    from .background import SECONDS_PER_INSTRUCTION
+    return SECONDS_PER_INSTRUCTION * recipe.instructions()
+
+
+def _small(recipe):
+    """True where compiling ``recipe`` first costs less than the Python
+    path would (:data:`FOREGROUND_BELOW`) and a compiler is there.  Only
+    SX functions are judged by their instructions: a map counts only its
+    own few (the chain of 20 links' row maps, 60 instructions, were 1 MB of C)."""
+    plain = all(fn.is_a("SXFunction") for _, fns in recipe.parts for fn in fns)
+    return plain and _expected(recipe) < FOREGROUND_BELOW and cbuild.find_compiler() is not None
+
+
+def take_notes():
+    """The notes on libraries compiled first since the last call (a run's log)."""
+    notes, _notes[:] = list(_notes), []
+    return notes
 
 
 def spent():
