@@ -262,11 +262,6 @@ class System:
                 names.append(a.var.owner.describe())
         return list(dict.fromkeys(names))
 
-    def alias_names_of(self, j):
-        """Names of the eliminated variables equal (up to sign/offset) to node j."""
-        rep = self.node_info[j]
-        return [a.var.name for a in self.aliases if a.rep is not None and a.rep.name == rep.name]
-
     def formulation(self, selection):
         """The semi-explicit index-1 formulation of a dummy selection (cached)."""
         f = self._formulations.get(selection.dummies)
