@@ -1,5 +1,5 @@
-"""What a result shows in a Jupyter notebook: ``repr(result)`` a one-line
-summary, ``result._repr_html_()`` a table (model, time span, points,
+"""What a result shows in a Jupyter notebook (its one-line ``repr`` is the
+Result's own): ``result._repr_html_()`` a table (model, time span, points,
 solver counts, events, states, outputs with their final values) and a small
 figure of the outputs, and ``result.animation()`` an :class:`Animation`
 whose ``_repr_html_`` embeds the self-contained animation page of
@@ -9,22 +9,12 @@ import base64
 import html
 import io
 
-__all__ = ["Animation", "summary_text", "summary_html"]
+__all__ = ["Animation", "summary_html"]
 
 
 def _model_name(result):
     model = getattr(result.model, "model", None) if result.model is not None else None
     return type(model).__name__ if model is not None else "model"
-
-
-def summary_text(result):
-    """``<Result PistonEngine: t 0..1 s, 5001 points, 126 signals, 0 events>``
-    (plus the reason of an early stop)."""
-    t = result.time
-    span = "t %.6g..%.6g s" % (t[0], t[-1]) if len(t) else "no time points"
-    stop = ", stopped early: %s" % result.stopped if result.stopped else ""
-    return "<Result %s: %s, %d points, %d signals, %d events%s>" % (
-        _model_name(result), span, len(t), len(result.names), len(result.events), stop)
 
 
 def _rows(result):

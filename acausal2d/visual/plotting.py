@@ -21,16 +21,15 @@ import os
 
 import numpy as np
 
+from ..analysis.poles import transfer
 from ..errors import Acausal2dError
 from ..io.files import atomic_path
 
 
 def unit_of(result, name):
-    """Unit of the column or parameter ``name`` of ``result`` ('' if unknown)."""
-    if name == "time":
-        return "s"
-    model = getattr(result, "model", None)
-    return model.units.get(name, "") if model is not None else ""
+    """Unit of the column or parameter ``name`` of ``result`` ('' if unknown;
+    see :meth:`acausal2d.result.Result.unit`)."""
+    return result.unit(name)
 
 
 def axis_label(name, unit):
@@ -247,10 +246,10 @@ def transfer_figure(result, q, p, orders=(0, 1, 2)):
     """Figure of the transfer functions of ``q`` over the drive coordinate
     ``p`` (seed eq. 2.2-2.4): one axes per order, q, q' = dq/dp and
     q'' = d2q/dp2 from the run's derivatives (see
-    :meth:`acausal2d.result.Result.transfer`), over p (degrees for angles)."""
+    :func:`acausal2d.analysis.poles.transfer`), over p (degrees for angles)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
-    curves = result.transfer(q, p, orders)
+    curves = transfer(result, q, p, orders)
     xv, xlabel = x_values(result, p)
     uq, up = unit_of(result, q) or "-", unit_of(result, p) or "-"
     labels = {0: "%s [%s]" % (q, uq), 1: "d%s/d%s [%s/%s]" % (q, p, uq, up),

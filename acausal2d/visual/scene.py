@@ -10,6 +10,7 @@ import numpy as np
 
 from .animation import write_html
 
+from ..analysis.poles import cartesian, pole_homogeneous, poles
 from ..errors import Acausal2dError
 
 _SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width", "fx", "fy", "t", "angle", "scale",
@@ -150,7 +151,7 @@ def pole_shapes(result, links, joints=None):
     "poles" of the page, each labelled P<i><j>; a pole at infinity is hidden
     in that frame."""
     shapes, signals = [], {}
-    for (i, j), pts in result.poles(links, joints).items():
+    for (i, j), pts in poles(result, links, joints).items():
         name = "pole P%s%s" % (i, j)
         signals[name + ".x"] = [float(v) for v in pts[:, 0]]
         signals[name + ".y"] = [float(v) for v in pts[:, 1]]
@@ -167,7 +168,6 @@ def declared_pole_views(result, model, signals):
     mec2's ``pole`` views).  A path is drawn only where it stays within
     three times the extent of the other ``signals`` (.x/.y) around their
     centre: a pole runs off to infinity where the link translates."""
-    from ..analysis.poles import cartesian, pole_homogeneous
     shapes, out = [], {}
     box = _clip_box(signals)
     for comp in model.components() if model is not None else ():
