@@ -22,6 +22,7 @@ from .language.symbols import der, time, time_derivative  # noqa: E402,F401
 from .analysis.check import check  # noqa: E402,F401
 from .analysis.compare import compare as _compare  # noqa: E402
 from .analysis.study import study  # noqa: E402,F401
+from .io import loader as _loader  # noqa: E402
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
@@ -53,6 +54,16 @@ __all__ = [
 ]
 
 _LAZY = {"CompiledModel": "compiled", "Result": "result"}
+
+
+def _read_mec2(path):
+    """A mec2 model file, read by the library's importer
+    (:func:`acausal2d.library.nodes.mec2.load_mec2`; imported when one is read)."""
+    from .library.nodes.mec2 import load_mec2
+    return load_mec2(path)
+
+
+_loader.register_reader(".json", "mec2", _read_mec2)
 
 
 def __getattr__(name):
