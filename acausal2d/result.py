@@ -6,6 +6,13 @@ import numpy as np
 
 from .errors import Acausal2dError
 from .io.files import atomic_path
+from .visual.plotting import plot
+from .visual.scene import animate
+from .visual.animation import render_html
+from .visual.notebook import Animation
+from .visual.scene import build_scene
+from .io.dymola_mat import write_mat
+from .visual.notebook import summary_html
 
 
 class Result:
@@ -129,7 +136,6 @@ class Result:
         signal ``x``, with units in the labels; same-unit signals share an
         axes with a legend.  Writes ``path`` or returns a matplotlib Figure.
         See :func:`acausal2d.visual.plotting.plot`."""
-        from .visual.plotting import plot
         return plot(self, names, path, title, x=x)
 
     def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
@@ -142,7 +148,6 @@ class Result:
         slider, ``autoplay`` starts playback, ``poles`` ({label: link}, see
         :meth:`poles`) draws the instantaneous poles on a layer.  See
         :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
-        from .visual.scene import animate
         return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
     def animation(self, traces=(), title=None, arrows=(), signal=None, autoplay=False,
@@ -150,9 +155,6 @@ class Result:
         """The animation (options as for :meth:`animate`) as an object a
         notebook displays inline (:class:`acausal2d.visual.notebook.Animation`,
         whose ``save(path)`` writes the page)."""
-        from .visual.animation import render_html
-        from .visual.notebook import Animation
-        from .visual.scene import build_scene
         scene = build_scene(self, traces, title, arrows, signal, autoplay, poles)
         return Animation(render_html(scene), height)
 
@@ -178,7 +180,6 @@ class Result:
         another or its negation shared) for Modelica plotting tools; every
         column (derivatives included) unless ``names`` is given.  See
         :mod:`acausal2d.io.dymola_mat`.  Returns ``path``."""
-        from .io.dymola_mat import write_mat
         names = self.names if names is None else list(names)
         units = {n: self.unit(n) for n in list(names) + list(self.parameters)}
         return write_mat(path, self.time, {n: self[n] for n in names}, self.parameters,
@@ -197,7 +198,6 @@ class Result:
 
     def _repr_html_(self):
         """Jupyter's display: a summary table and a small figure of the outputs."""
-        from .visual.notebook import summary_html
         return summary_html(self)
 
 

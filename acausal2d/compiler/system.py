@@ -20,6 +20,8 @@ from .aliases import substitution
 from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
 from .structure import column
+from ..language.context import ModelContext
+from ..language.dsl import Component
 
 
 def _param_function(exprs, p, name):
@@ -202,8 +204,6 @@ class System:
     def _start_checks(self, model):
         """(component, check) of the components' ``start_checks()`` (see
         :meth:`~acausal2d.language.dsl.Component.start_checks`)."""
-        from ..language.context import ModelContext
-        from ..language.dsl import Component
         context, out = None, []
         for comp in model.components():
             if type(comp).start_checks is Component.start_checks:

@@ -24,6 +24,8 @@ install) and :class:`BuildFailed` (carries the compiler's message).
 import glob
 import os
 import shutil
+import casadi as ca
+import importlib.util
 
 from . import cstore as store, cunits as units
 from .cstore import CACHE_ENV, _sha256, cache_dir  # noqa: F401 - names of this module
@@ -113,7 +115,6 @@ def fingerprint(functions, *texts):
     CasADi version and the compiler: a key of generated code that is found
     without generating it (CasADi's code generator took 0.09 s of the belt
     drive's 0.23 s run; serializing takes a third of that)."""
-    import casadi as ca
     h = _sha256()
     parts = [fn.serialize() for fn in functions if fn is not None]
     for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS,
@@ -182,7 +183,6 @@ def load(key, make, name, loader):
 def _sksundae_dir():
     """The folder of the installed ``sksundae`` package, found without
     importing it (its import pulls in scipy.optimize), or None."""
-    import importlib.util
     try:
         spec = importlib.util.find_spec("sksundae")
     except (ImportError, ValueError):

@@ -8,6 +8,8 @@ whose ``_repr_html_`` embeds the self-contained animation page of
 import base64
 import html
 import io
+from .plotting import plot
+from ..io.files import write_text
 
 __all__ = ["Animation", "summary_html"]
 
@@ -49,7 +51,6 @@ def _figure_png(result):
     names = _plotted(result)
     if not names or len(result.time) < 2:
         return ""
-    from .plotting import plot
     fig = plot(result, [[n] for n in names])
     fig.set_size_inches(6, 1.6 + 1.4 * len(names))
     buf = io.BytesIO()
@@ -84,7 +85,6 @@ class Animation:
 
     def save(self, path):
         """Write the page to ``path`` (atomically); returns the path."""
-        from ..io.files import write_text
         return write_text(path, self.html)
 
     def __repr__(self):

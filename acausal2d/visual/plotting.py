@@ -24,6 +24,7 @@ import numpy as np
 from ..analysis.poles import transfer
 from ..errors import Acausal2dError
 from ..io.files import atomic_path
+from ..io.files import safe_filename
 
 
 def unit_of(result, name):
@@ -181,7 +182,6 @@ def write_figures(result, out_dir, specs, fmt="png"):
 def figure_jobs(result, out_dir, specs, fmt="png"):
     """The (path, :func:`figure_plan`) pairs :func:`write_figures` draws:
     signal names checked, values taken from ``result``; no matplotlib."""
-    from ..io.files import safe_filename
     jobs = []
     for spec in specs:
         stem = spec.get("name") or "+".join(n for g in spec["groups"] for n in g)
@@ -271,7 +271,6 @@ def transfer_figure(result, q, p, orders=(0, 1, 2)):
 def write_transfer_figures(result, out_dir, specs, orders, fmt="png"):
     """One transfer-function figure per signal of the figure ``specs`` over
     each spec's x (the drive coordinate); returns the paths."""
-    from ..io.files import safe_filename
     paths = []
     for spec in specs:
         for q in (n for g in spec["groups"] for n in g):

@@ -12,6 +12,7 @@ from .animation import write_html
 
 from ..analysis.poles import cartesian, pole_homogeneous, poles
 from ..errors import Acausal2dError
+from .plotting import axis_label, unit_of
 
 _SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width", "fx", "fy", "t", "angle", "scale",
                 "offset")
@@ -58,7 +59,6 @@ def trace_signals(traces, names):
     a frame (``"dyad.ctr2D3"``: its ``.x`` and ``.y``) or a pair of signals
     ``"x_name:y_name"`` (``"dyad.xP:dyad.yP"``).  ``names``: the signals
     available; an unknown entry raises an error listing the frames."""
-    from ..errors import Acausal2dError
     available = set(names)
     pairs = []
     for entry in traces:
@@ -252,7 +252,6 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
              "time": [float(t) for t in result.time], "signals": signals, "shapes": shapes,
              "unit": "m", "autoplay": bool(autoplay)}
     if signal:
-        from .plotting import axis_label, unit_of
         signals[signal] = [float(v) for v in result[signal]]
         scene["plot"] = {"signal": signal, "label": axis_label(signal, unit_of(result, signal))}
     nodes = _drag_system(model)

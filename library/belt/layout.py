@@ -11,6 +11,7 @@ import numpy as np
 
 
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library import planar
 
 
 _PI = math.pi
@@ -99,7 +100,6 @@ def open_belt_closed_form(r1, r2, d):
 def _frame_geometry(conn):
     """Initial geometry (cx, cy, rho) of the part a span end is connected to
     (see :func:`tangent`), or None."""
-    from acausal2d.library import planar
     owner = conn.owner
     name = conn._name
     if hasattr(owner, "_band_geometry"):        # wheels and rope ends of this library
