@@ -65,3 +65,22 @@ def test_the_reader_sees_an_upward_import(tmp_path):
     tree = ast.parse("def f():\n    from ..library.planar import Body\n")
     node = [n for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)][0]
     assert _targets(node, module, False) == ["acausal2d.library.planar"]
+
+
+def test_the_result_imports_no_analysis():
+    """A Result is data: the analyses are functions that take one
+    (acausal2d.analysis.poles: transfer, ratio, turn_slide, poles)."""
+    path = ROOT / "acausal2d" / "result.py"
+    module, is_package = _module_name(path)
+    targets = [t for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+               if isinstance(node, (ast.Import, ast.ImportFrom))
+               for t in _targets(node, module, is_package)]
+    assert targets and not [t for t in targets if t.startswith("acausal2d.analysis")]
+
+
+def test_the_mec2_reader_is_wired_in_by_the_package_root():
+    """io reads mec2 files without importing the library: the package root
+    registers the library's reader."""
+    from acausal2d.io import loader
+    kind, read = loader.READERS[".json"]
+    assert kind == "mec2" and read.__module__ == "acausal2d"
