@@ -12,6 +12,7 @@ _os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is import
 
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
                     fmin, fmax, sign, if_else, pi)
+import importlib
 
 from .language.connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
                          RotationalFlange, TranslationalFlange, HydraulicPort)
@@ -22,6 +23,8 @@ from .language.symbols import der, time, time_derivative  # noqa: E402,F401
 from .analysis.check import check  # noqa: E402,F401
 from .analysis.compare import compare as _compare  # noqa: E402
 from .analysis.study import study  # noqa: E402,F401
+from .io import loader as _loader  # noqa: E402
+from .io.loader import load_model as _load
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
@@ -55,12 +58,21 @@ __all__ = [
 _LAZY = {"CompiledModel": "compiled", "Result": "result"}
 
 
+def _read_mec2(path):
+    """A mec2 model file, read by the library's importer
+    (:func:`acausal2d.library.nodes.mec2.load_mec2`; imported when one is read)."""
+    from .library.nodes.mec2 import load_mec2
+    return load_mec2(path)
+
+
+_loader.register_reader(".json", "mec2", _read_mec2)
+
+
 def __getattr__(name):
     """``CompiledModel`` and ``Result`` on first use: they import the
     runtime (IDA, scikit-sundae), which ``import acausal2d`` alone does not
     need."""
     if name in _LAZY:
-        import importlib
         value = getattr(importlib.import_module("." + _LAZY[name], __name__), name)
         globals()[name] = value
         return value
@@ -104,7 +116,6 @@ def sweep(model, vary=None, points=None, **options):
 
 def load_model(path, name=None, **kwargs):
     """Instantiate the model of a model file (see :func:`acausal2d.io.loader.load_model`)."""
-    from .io.loader import load_model as _load
     from .arguments import check_load
     check_load(path, name, kwargs)
     return _load(path, name, **kwargs)

@@ -9,6 +9,10 @@ import os
 import numpy as np
 
 from .errors import Acausal2dError
+from .compiled import CompiledModel
+from .language.dsl import Component
+from .compiled import number
+from .io.loader import load_model
 
 __all__ = ["model_argument", "check_model", "check_simulate_options", "check_load", "check_sweep"]
 
@@ -19,12 +23,9 @@ def model_argument(model, function, name=None):
     ``name`` choosing the class in it), a Component subclass (instantiated
     with its defaults), an instance or a CompiledModel.  Anything else is an
     :class:`~acausal2d.errors.Acausal2dError` naming ``function``."""
-    from .compiled import CompiledModel
-    from .language.dsl import Component
     if isinstance(model, (Component, CompiledModel)):
         return model
     if isinstance(model, (str, os.PathLike)):
-        from .io.loader import load_model
         check_load(model, name, {})
         return load_model(model, name)
     if isinstance(model, type) and issubclass(model, Component):
@@ -47,7 +48,6 @@ def check_model(model, function):
 
 def check_simulate_options(options):
     """Unknown keyword arguments of ``simulate`` are named with the known ones."""
-    from .compiled import CompiledModel
     known = [p for p in inspect.signature(CompiledModel.simulate).parameters if p != "self"]
     unknown = sorted(set(options) - set(known))
     if unknown:
@@ -84,7 +84,6 @@ def _check_vary(vary):
 
 def check_sweep(vary, points, options):
     """``sweep``: vary a dict, points a list of dicts, numeric options numbers."""
-    from .compiled import number
     _check_vary(vary)
     if points is not None and (isinstance(points, (str, dict)) or not hasattr(points, "__iter__")
                                or not all(isinstance(p, dict) for p in points)):

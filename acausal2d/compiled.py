@@ -17,6 +17,10 @@ from .runtime.selection import select
 from .runtime.simulation import Simulation, time_resolution
 from .result import Result
 from .derived import derived_columns, derived_signals
+from .analysis.modes import linearize
+from .analysis.modes import modes
+from .analysis.equilibrium import find_equilibrium
+from .language.dsl import Parameter
 
 
 MAX_STEPS = 1000000
@@ -229,21 +233,18 @@ class CompiledModel:
         static equilibrium: a
         :class:`~acausal2d.analysis.linearize.Linearization` (see
         :func:`acausal2d.analysis.modes.linearize`)."""
-        from .analysis.modes import linearize
         return linearize(self, at, equilibrium, params, inputs, outputs, start)
 
     def modes(self, at=None, equilibrium=False, params=None, start=None):
         """Natural frequencies, damping ratios and mode shapes: a
         :class:`~acausal2d.analysis.modes.Modes` (see
         :func:`acausal2d.analysis.modes.modes`)."""
-        from .analysis.modes import modes
         return modes(self, at, equilibrium, params, start)
 
     def equilibrium(self, t=0.0, params=None, start=None):
         """The static equilibrium (all state derivatives zero) at time t: an
         :class:`~acausal2d.analysis.equilibrium.Equilibrium` (see
         :func:`acausal2d.analysis.equilibrium.find_equilibrium`)."""
-        from .analysis.equilibrium import find_equilibrium
         with translated("searching the equilibrium of %s" % type(self.model).__name__):
             return find_equilibrium(self, t, params, start)
 
@@ -463,7 +464,6 @@ class _Scalar:
         self.decl = decl
 
     def validated(self, value, where):
-        from .language.dsl import Parameter
         d = self.decl
         one = Parameter(0.0, d.unit, d.doc, d.min, d.max, d.positive)
         one.name = d.name

@@ -1,10 +1,18 @@
 """Simulation results: every variable by its dotted name."""
 import csv
+import difflib
 
 import numpy as np
 
 from .errors import Acausal2dError
 from .io.files import atomic_path
+from .visual.plotting import plot
+from .visual.scene import animate
+from .visual.animation import render_html
+from .visual.notebook import Animation
+from .visual.scene import build_scene
+from .io.dymola_mat import write_mat
+from .visual.notebook import summary_html
 
 
 class Result:
@@ -16,7 +24,9 @@ class Result:
     ``events`` lists (time, description); ``stats`` holds counters and wall
     times.  ``singularities`` lists the singular positions met during the
     run (dicts with time, element, kind) and ``stopped`` says why a run
-    ended early (None if it reached its stop time).
+    ended early (None if it reached its stop time); ``success`` and
+    ``message`` say the same as scipy's and scikit-sundae's results do.
+    ``units`` maps every signal and parameter to its declared unit.
     """
 
     def __init__(self, time, node_names, node_values, alias_names, alias_values,
@@ -50,6 +60,23 @@ class Result:
             self._cols.append(np.asarray(values, dtype=float))
 
     @property
+    def success(self):
+        """True if the run reached its stop time (``stopped`` is None)."""
+        return self.stopped is None
+
+    @property
+    def message(self):
+        """Why the run ended: "reached the stop time" or the reason it
+        stopped early (``stopped``)."""
+        return "reached the stop time" if self.stopped is None else str(self.stopped)
+
+    @property
+    def units(self):
+        """{name: unit} of ``time``, every column and every parameter, from
+        the components' declarations ('' where none is declared)."""
+        return {n: self.unit(n) for n in ["time"] + self.names + list(self.parameters)}
+
+    @property
     def names(self):
         """Names of all time-varying columns (unknowns, aliases, derivatives)."""
         return list(self._index)
@@ -67,9 +94,8 @@ class Result:
             return self._cols[k]
         if name in self.parameters:
             return np.full(len(self.time), self.parameters[name])
-        close = [n for n in self._index if name.split(".")[-1] in n][:8]
-        raise Acausal2dError("no variable %r in the result%s" % (
-            name, "; similar: " + ", ".join(close) if close else ""))
+        raise Acausal2dError("no variable %r in the result%s" % (name, _did_you_mean(
+            name, list(self._index) + list(self.parameters))))
 
     def at(self, name, t):
         """Value of ``name`` at time ``t`` (linear interpolation)."""
@@ -81,8 +107,9 @@ class Result:
 
     def unit(self, name):
         """Unit of a column or parameter from its declaration ('' if none)."""
-        from .visual.plotting import unit_of
-        return unit_of(self, name)
+        if name == "time":
+            return "s"
+        return self.model.units.get(name, "") if self.model is not None else ""
 
     def to_csv(self, path, names=None):
         """Write a CSV file with a ``time`` column and the given variables (all
@@ -109,7 +136,6 @@ class Result:
         signal ``x``, with units in the labels; same-unit signals share an
         axes with a legend.  Writes ``path`` or returns a matplotlib Figure.
         See :func:`acausal2d.visual.plotting.plot`."""
-        from .visual.plotting import plot
         return plot(self, names, path, title, x=x)
 
     def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
@@ -122,7 +148,6 @@ class Result:
         slider, ``autoplay`` starts playback, ``poles`` ({label: link}, see
         :meth:`poles`) draws the instantaneous poles on a layer.  See
         :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
-        from .visual.scene import animate
         return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
     def animation(self, traces=(), title=None, arrows=(), signal=None, autoplay=False,
@@ -130,9 +155,6 @@ class Result:
         """The animation (options as for :meth:`animate`) as an object a
         notebook displays inline (:class:`acausal2d.visual.notebook.Animation`,
         whose ``save(path)`` writes the page)."""
-        from .visual.animation import render_html
-        from .visual.notebook import Animation
-        from .visual.scene import build_scene
         scene = build_scene(self, traces, title, arrows, signal, autoplay, poles)
         return Animation(render_html(scene), height)
 
@@ -144,7 +166,8 @@ class Result:
         try:
             import pandas as pd
         except ImportError:
-            raise Acausal2dError("Result.to_pandas needs pandas: pip install pandas") from None
+            raise Acausal2dError("Result.to_pandas needs pandas, an optional dependency: "
+                                 "pip install 'acausal2d[pandas]' (or pip install pandas)") from None
         names = self.names if names is None else list(names)
         frame = pd.DataFrame({n: self[n] for n in names}, index=pd.Index(self.time, name="time"))
         frame.attrs["units"] = {n: self.unit(n) for n in names}
@@ -157,48 +180,34 @@ class Result:
         another or its negation shared) for Modelica plotting tools; every
         column (derivatives included) unless ``names`` is given.  See
         :mod:`acausal2d.io.dymola_mat`.  Returns ``path``."""
-        from .io.dymola_mat import write_mat
         names = self.names if names is None else list(names)
         units = {n: self.unit(n) for n in list(names) + list(self.parameters)}
         return write_mat(path, self.time, {n: self[n] for n in names}, self.parameters,
                          {n: "[%s]" % u for n, u in units.items() if u})
 
     def __repr__(self):
-        from .visual.notebook import summary_text
-        return summary_text(self)
+        """``<Result PistonEngine: t 0..1 s, 5001 points, 126 signals, success:
+        reached the stop time>`` (or ``stopped early: <why>``)."""
+        t = self.time
+        span = "t %.6g..%.6g s" % (t[0], t[-1]) if len(t) else "no time points"
+        model = getattr(self.model, "model", None) if self.model is not None else None
+        return "<Result %s: %s, %d points, %d signals, %d events, %s: %s>" % (
+            type(model).__name__ if model is not None else "model", span, len(t),
+            len(self._index), len(self.events),
+            "success" if self.success else "stopped early", self.message)
 
     def _repr_html_(self):
         """Jupyter's display: a summary table and a small figure of the outputs."""
-        from .visual.notebook import summary_html
         return summary_html(self)
 
-    # ------------------------------------------------- kinematics (ch. 2.6)
-    def poles(self, links, joints=None):
-        """Instantaneous poles P_ij of ``links`` ({label: link}) at every
-        output time (seed ch. 2.6, Bild 2.10-2.14); with ``joints`` the poles
-        not at joints by Aronhold-Kennedy.  See
-        :func:`acausal2d.analysis.poles.poles`."""
-        from .analysis.poles import poles
-        return poles(self, links, joints)
 
-    def ratio(self, out, inp, ref="ground", in_ref=None):
-        """Ratio i = phi_dot(out, ref) / phi_dot(inp, in_ref) (eq. 2.5-2.7).
-        See :func:`acausal2d.analysis.poles.ratio`."""
-        from .analysis.poles import ratio
-        return ratio(self, out, inp, ref, in_ref)
-
-    def turn_slide(self, slide, crank, crank_ref="ground"):
-        """Drehschubstrecke x_dot / phi_dot of a slide coordinate over a
-        crank (eq. 2.8-2.10).  See :func:`acausal2d.analysis.poles.turn_slide`."""
-        from .analysis.poles import turn_slide
-        return turn_slide(self, slide, crank, crank_ref)
-
-    def transfer(self, q, p, orders=(0, 1, 2)):
-        """Transfer functions q(p), q' = dq/dp, q'' = d2q/dp2 of order 0..2
-        from the run's derivatives (eq. 2.2-2.4).  See
-        :func:`acausal2d.analysis.poles.transfer`."""
-        from .analysis.poles import transfer
-        return transfer(self, q, p, orders)
+def _did_you_mean(name, names):
+    """'; did you mean a, b?' with the names closest to ``name`` (spelling,
+    then the same last part), or ''."""
+    close = difflib.get_close_matches(name, names, n=4, cutoff=0.75)
+    last = name.split(".")[-1]
+    close += [n for n in names if n.split(".")[-1] == last and n not in close][:4]
+    return "; did you mean %s?" % ", ".join(close[:6]) if close else ""
 
 
 class _Lazy:

@@ -1,4 +1,4 @@
-"""mec2 JSON import (acausal2d/io/mec2.py): the verbatim examples of
+"""mec2 JSON import (library/nodes/mec2.py): the verbatim examples of
 goessner/mec2 (MIT, copied with their attribution into
 tests/data/mec2, see SOURCE.md there), the project's own models in models/mec2/ covering every constraint kind,
 and errors naming the JSON path."""
@@ -15,7 +15,7 @@ from scipy.integrate import solve_ivp
 import acausal2d
 from acausal2d import ModelDefinitionError
 from acausal2d.cli import main
-from acausal2d.io.mec2 import model_from_mec2
+from acausal2d.library.nodes.mec2 import model_from_mec2
 from acausal2d.visual.scene import build_scene
 from conftest import ROOT, same_time
 from vdi2729_reference import vdi_ddd

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.analysis.poles import cartesian, directed_ratio, kennedy, pole_homogeneous
+from acausal2d.analysis.poles import (cartesian, directed_ratio, kennedy, pole_homogeneous, poles,
+                                      ratio, transfer, turn_slide)
 from acausal2d.library.nodes import NodeModel, speed
 from conftest import assert_copied
 
@@ -109,7 +110,7 @@ LINKS = {"1": "ground", "2": "A0A", "3": "AB", "4": "B0B"}
 
 def test_fourbar_poles_at_joints_are_the_joints(fourbar):
     a_pt, b_pt, _ = _fourbar_closed(fourbar)
-    P = fourbar.poles(LINKS)
+    P = poles(fourbar, LINKS)
     assert np.abs(P[("1", "2")]).max() < 1e-12                     # A0 = origin
     assert np.abs(P[("2", "3")] - a_pt).max() < 1e-9
     assert np.abs(P[("3", "4")] - b_pt).max() < 1e-9
@@ -120,8 +121,8 @@ def test_fourbar_kennedy_poles_agree_with_velocity_poles(fourbar):
     """P13 and P24 constructed by Aronhold-Kennedy from the four joint
     poles equal the poles of the velocity fields; the three-pole lines hold."""
     joints = [("1", "2"), ("2", "3"), ("3", "4"), ("1", "4")]
-    built = fourbar.poles(LINKS, joints=joints)
-    direct = fourbar.poles(LINKS)
+    built = poles(fourbar, LINKS, joints=joints)
+    direct = poles(fourbar, LINKS)
     for key in (("1", "3"), ("2", "4")):
         ok = np.isfinite(direct[key]).all(axis=1)
         assert ok.sum() > 60
@@ -137,9 +138,9 @@ def test_fourbar_ratio_closed_form_and_pole_distances(fourbar):
     """i_41-21 = w4/w2 (eq. 2.5) against the closed form and against the
     directed pole distances 12-24 / 14-24."""
     _, _, i41 = _fourbar_closed(fourbar)
-    i = fourbar.ratio("B0B", "A0A")
+    i = ratio(fourbar, "B0B", "A0A")
     assert np.abs(i - i41).max() < 1e-9
-    P = fourbar.poles(LINKS)
+    P = poles(fourbar, LINKS)
     from_poles = directed_ratio(P[("1", "2")], P[("1", "4")], P[("2", "4")])
     ok = np.isfinite(from_poles)
     assert np.abs(from_poles[ok] - i[ok]).max() < 1e-7
@@ -159,7 +160,7 @@ def _slider_closed(phi):
 def test_slider_crank_transfer_functions_to_1e9(slider):
     """q = x_B over the crank angle: q, q', q'' (eq. 2.2-2.4) from the run's
     derivatives against the closed forms, to 1e-9."""
-    tf = slider.transfer("B.x", "A0A.w")
+    tf = transfer(slider, "B.x", "A0A.w")
     x, x1, x2 = _slider_closed(slider["A0A.w"])
     assert np.abs(tf[0] - x).max() < 1e-9
     assert np.abs(tf[1] - x1).max() < 1e-9
@@ -171,11 +172,11 @@ def test_drehschubstrecke_slider_crank_is_pole_distance(slider):
     """r_41-21 = x_dot_41 / phi_dot_21 (eq. 2.8) = the closed-form q', and
     the directed pole distance 12-24 (pole 24 by Kennedy from 12, 23, 34 and
     14 at infinity)."""
-    r = slider.turn_slide("GB.r", "A0A")
+    r = turn_slide(slider, "GB.r", "A0A")
     _, x1, _ = _slider_closed(slider["A0A.w"])
     assert np.abs(r - x1).max() < 1e-9
     links = {"1": "ground", "2": "A0A", "3": "AB", "4": ("B.x", "B.y", "GB.w")}
-    P = slider.poles(links, joints=[("1", "2"), ("2", "3"), ("3", "4"), ("1", "4")])
+    P = poles(slider, links, joints=[("1", "2"), ("2", "3"), ("3", "4"), ("1", "4")])
     assert np.isnan(P[("1", "4")]).all()                            # prismatic: at infinity
     d = P[("2", "4")] - P[("1", "2")]
     along = -d[:, 1]                       # (k x d) . e with e = (1, 0), the guide
@@ -190,12 +191,12 @@ def test_diagonal_drehschubstrecke_slotted_crank():
     res = run(SlottedCrank())
     phi = res["A0A.w"]
     rho = np.sqrt(A ** 2 + 0.15 ** 2 - 2 * A * 0.15 * np.cos(phi))
-    assert np.abs(res.turn_slide("B0A.r", "A0A") - A * 0.15 * np.sin(phi) / rho).max() < 1e-9
+    assert np.abs(turn_slide(res, "B0A.r", "A0A") - A * 0.15 * np.sin(phi) / rho).max() < 1e-9
     i41 = A * (A - 0.15 * np.cos(phi)) / rho ** 2                  # d(psi)/d(phi)
-    assert np.abs(res.ratio("B0A", "A0A") - i41).max() < 1e-9
+    assert np.abs(ratio(res, "B0A", "A0A") - i41).max() < 1e-9
     ad = A * 0.15
     rho1 = ad * np.sin(phi) / rho
-    tf_r, tf_w = res.transfer("B0A.r", "A0A.w"), res.transfer("B0A.w", "A0A.w")
+    tf_r, tf_w = transfer(res, "B0A.r", "A0A.w"), transfer(res, "B0A.w", "A0A.w")
     assert np.abs(tf_r[2] - (ad * np.cos(phi) / rho - rho1 ** 2 / rho)).max() < 1e-9
     psi2 = ad * np.sin(phi) / rho ** 2 - 2 * A * (A - 0.15 * np.cos(phi)) * ad * np.sin(phi) \
         / rho ** 4
@@ -213,9 +214,9 @@ def test_kennedy_line_intersection_closed_form():
 def test_absolute_pole_of_ground_and_missing_link(fourbar):
     assert np.isnan(cartesian(pole_homogeneous(fourbar, "ground", "ground"))).all()
     with pytest.raises(acausal2d.Acausal2dError, match="no link"):
-        fourbar.poles({"1": "ground", "2": "nothing"})
+        poles(fourbar, {"1": "ground", "2": "nothing"})
     with pytest.raises(acausal2d.Acausal2dError, match="orders are 0, 1 and 2"):
-        fourbar.transfer("B.x", "A0A.w", orders=(3,))
+        transfer(fourbar, "B.x", "A0A.w", orders=(3,))
 
 
 def _cli(*args):
@@ -306,21 +307,21 @@ def test_vdi_fourbar_frames_rates_and_joint_points():
     assert np.abs(derivative(res, "dyad.ctr2D3.phi", 2) - res["der(der(dyad.phiL1))"]).max() \
         < 1e-8
     links = {"1": "ground", "2": "crank.ctr2D2", "3": "dyad.ctr2D3", "4": "dyad.ctr2D4"}
-    P = res.poles(links)
+    P = poles(res, links)
     b = np.column_stack([res["dyad.xP"], res["dyad.yP"]])
     a = np.column_stack([res["crank.ctr2D2.x"], res["crank.ctr2D2.y"]])
     assert np.abs(P[("3", "4")] - b).max() < 1e-8 and np.abs(P[("2", "3")] - a).max() < 1e-9
     assert np.abs(P[("1", "4")] - [0.4, 0.0]).max() < 1e-9
     joints = {("1", "2"): "crank.ctr2D1", ("2", "3"): "crank.ctr2D2",
               ("3", "4"): ("dyad.xP", "dyad.yP"), ("1", "4"): "dyad.ctr2D4"}
-    built = res.poles(links, joints=joints)
+    built = poles(res, links, joints=joints)
     assert np.abs(built[("3", "4")] - b).max() < 1e-12
     for key in (("1", "3"), ("2", "4")):
         ok = np.isfinite(P[key]).all(axis=1)
         scale = 1 + np.linalg.norm(P[key][ok], axis=1)
         assert ok.sum() > 40
         assert (np.linalg.norm(built[key][ok] - P[key][ok], axis=1) / scale).max() < 1e-7
-    i = res.ratio("dyad.ctr2D4", "crank.ctr2D2")
+    i = ratio(res, "dyad.ctr2D4", "crank.ctr2D2")
     assert np.abs(i - res["der(dyad.phiL2)"] / TURN).max() < 1e-9
     assert np.abs(directed_ratio(built[("1", "2")], built[("1", "4")], built[("2", "4")]) - i) \
         .max() < 1e-7
@@ -329,11 +330,11 @@ def test_vdi_fourbar_frames_rates_and_joint_points():
 def test_diagonal_ratio_is_pole_distance_ratio_on_the_collineation_axis(fourbar):
     """Eq. 2.6: i_34-21 = w_34 / w_21 = 12R / 34R with R the intersection of
     the line P12-P34 with the collineation axis k_14-23 (through P14, P23)."""
-    P = fourbar.poles(LINKS)
+    P = poles(fourbar, LINKS)
     h = lambda p: np.column_stack([p, np.ones(len(p))])
     R = cartesian(kennedy(h(P[("1", "2")]), h(P[("3", "4")]), h(P[("1", "4")]),
                           h(P[("2", "3")])))
-    i = fourbar.ratio("AB", "A0A", ref="B0B", in_ref="ground")
+    i = ratio(fourbar, "AB", "A0A", ref="B0B", in_ref="ground")
     w = fourbar
     expected = (w["der(AB.w)"] - w["der(B0B.w)"]) / w["der(A0A.w)"]
     assert np.abs(i - expected).max() < 1e-12

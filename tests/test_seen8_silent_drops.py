@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import acausal2d
+from acausal2d.analysis.poles import transfer
 from acausal2d.cli import main
 from acausal2d.library import translational
 from acausal2d.visual.scene import parse_links
@@ -30,9 +31,9 @@ def test_seen8_transfer_over_a_drive_that_does_not_move_is_an_error(tmp_path, ca
     cm = acausal2d.compile_model(acausal2d.load_model(MSD))
     res = cm.simulate(stop_time=0.1, intervals=20)
     with pytest.raises(acausal2d.Acausal2dError, match="wall.flange.s stays at 0"):
-        res.transfer("mass.s", "wall.flange.s", (0, 1))
+        transfer(res, "mass.s", "wall.flange.s", (0, 1))
     # over a moving coordinate: q' = v_q / v_p, here mass.v over mass.s is 1 where v != 0
-    curves = res.transfer("mass.s", "mass.s", (1,))
+    curves = transfer(res, "mass.s", "mass.s", (1,))
     moving = np.abs(res["mass.v"]) > 0
     assert np.allclose(curves[1][moving], 1.0, rtol=1e-12, atol=0)
     code = main(["simulate", MSD, "--plot", "mass.s", "--x", "wall.flange.s", "--transfer",

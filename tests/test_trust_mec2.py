@@ -14,8 +14,8 @@ import pytest
 import acausal2d
 from acausal2d import ModelDefinitionError
 from acausal2d.cli import main
-from acausal2d.io.mec2 import model_from_mec2
-from acausal2d.io.mec2_views import Mec2Warning
+from acausal2d.library.nodes.mec2 import model_from_mec2
+from acausal2d.library.nodes.mec2_views import Mec2Warning
 from acausal2d.visual.animation import validate_scene
 from acausal2d.visual.scene import build_scene
 from conftest import same_time, assert_copied

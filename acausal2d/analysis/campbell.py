@@ -12,6 +12,7 @@ from ..errors import Acausal2dError
 from .equilibrium import find_equilibrium
 from .linearize import OperatingPoint, linearize_point, relation_values
 from .modes import modes_of
+from .sweep import sweep
 
 
 class ModeFrequencies:
@@ -44,7 +45,6 @@ def campbell(model, vary, count=3, equilibrium=False, stop_time=None, **options)
     :func:`acausal2d.sweep` (``vary`` as there; ``count`` frequencies
     ``f1..``); returns the :class:`~acausal2d.analysis.sweep.SweepResult`,
     whose ``plot()`` is the Campbell-like diagram."""
-    from .sweep import sweep
     if not vary:
         raise Acausal2dError("campbell needs a parameter to vary, e.g. "
                              "{'spring.c': '1e3:1e4:10'}")

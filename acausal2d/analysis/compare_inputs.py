@@ -16,10 +16,12 @@ import numbers
 import os
 
 import numpy as np
+import json
 
 from ..errors import Acausal2dError
 from ..io.tables import _check_time, _few, check_finite, read_csv
 from ..language.dsl import modelica_aliases
+from ..io.files import MANIFEST
 
 __all__ = ["load_table", "table_units", "check_options", "select_signals",
            "modelica_counterpart"]
@@ -62,8 +64,6 @@ def table_units(source):
     if path.lower().endswith(".mat"):
         from ..io.dymola_mat import mat_units
         return mat_units(path)
-    import json
-    from ..io.files import MANIFEST
     try:
         with open(os.path.join(os.path.dirname(os.path.abspath(path)), MANIFEST),
                   encoding="utf-8") as fh:

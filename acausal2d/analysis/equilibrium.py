@@ -36,6 +36,8 @@ import numpy as np
 from ..errors import Acausal2dError, SimulationError
 from .linearize import (OperatingPoint, index1_states, linearize_point, point_at,
                         relation_values)
+from ..runtime.newton import NoConvergence, solve_consistent
+from ..runtime.evaluator import Evaluator
 
 SHIFTS = (0.3, 1.5)
 """Shifts of a position state for further starts, in units of its nominal value (at least 1)."""
@@ -142,7 +144,6 @@ def _newton(compiled, ev, point, states, deriv, max_iter=100):
     the step of the whole system applied to the states (selected anew at
     every iterate, as the runtime would), halved until the next step with
     the same Jacobian is shorter (natural monotonicity).  Returns z."""
-    from ..runtime.newton import NoConvergence, solve_consistent
     try:                    # a shifted start: the other unknowns follow the states first
         z = solve_consistent(ev, point.t, point.z, point.d, states, point.z[states])
     except NoConvergence:
@@ -171,7 +172,6 @@ def _damped(ev, point, z, states, dx, newton, size, fraction):
     (1, 1/2, ...) whose next Newton step (same Jacobian) is shorter than
     (1 - lambda fraction / 4) ``size`` (Deuflhard's natural monotonicity
     test; ``fraction``: the share of the full step dx is); None."""
-    from ..runtime.newton import NoConvergence, solve_consistent
     lam = 1.0
     while lam > 1e-6:
         try:
@@ -227,7 +227,6 @@ def _stable(compiled, point):
 def _search(compiled, first):
     """(Equilibrium or None, best (point, residual), evaluator, deriv) of the
     starts from the point ``first`` (see the module docstring)."""
-    from ..runtime.evaluator import Evaluator
     ev = Evaluator(compiled.system, first.p)
     _, states, deriv = index1_states(compiled, ev, first)
     fallback, best = None, (None, float("inf"))

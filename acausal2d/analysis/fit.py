@@ -48,9 +48,15 @@ alone; an optimiser stopped by its evaluation budget is reported with
 ``budget_exhausted``.
 """
 import numpy as np
+import time as _time
 
 from ..errors import Acausal2dError
 from .trials import Trials, parse_free
+from .compare_inputs import load_table
+from .compare_inputs import select_signals
+from .sweep import expand_params
+from .trials import check_fixed_apart
+from .fit_report import FitResult
 
 CORRELATION_LIMIT = 0.99
 """|corr| above which a pair of parameters is reported as not separable."""
@@ -110,7 +116,6 @@ class _Problem:
 
 def _load_data(data, t_range):
     """(times, {column: values}) of the measured data inside ``t_range``."""
-    from .compare_inputs import load_table
     t, cols = load_table(data, "measured data")
     if t_range is not None:
         t0, t1 = (float(v) for v in t_range)
@@ -133,7 +138,6 @@ def _load_data(data, t_range):
 
 def _pairs(cm, cols, signals, mapping):
     """(measured column, our signal) pairs, checked as compare does."""
-    from .compare_inputs import select_signals
     ours = {n: None for n in cm.names}
     pairs, unmatched = select_signals(cols, ours, signals, mapping)
     if unmatched:
@@ -334,7 +338,6 @@ def _polish(problem, x, lo, hi, loss, f_scale, names, steps=POLISH_STEPS):
 
 def _final_run(cm, trials, x, times, rtol):
     """The fitted run on a fine grid with the measured times."""
-    from .sweep import expand_params
     grid = np.union1d(np.linspace(0.0, float(times[-1]), 501), times)
     return cm.simulate(params=expand_params(trials.point(x)), rtol=rtol, output_times=grid)
 
@@ -384,8 +387,6 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
     measured values (points times signals) must outnumber the free
     parameters.  Returns a :class:`~acausal2d.analysis.fit_report.FitResult`.
     """
-    import time as _time
-    from .trials import check_fixed_apart
     if loss not in _LOSS_WEIGHT:
         raise Acausal2dError("loss must be one of %s, got %r" % (", ".join(_LOSS_WEIGHT), loss))
     _check_abs_tol(abs_tol)
@@ -407,8 +408,6 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
 
 def _run(problem, cm, start, data, loss, f_scale, rtol, max_evaluations, extra):
     """The fit's search, polish and verdict; the FitResult."""
-    import time as _time
-    from .fit_report import FitResult
     (x0, lo, hi), (t, cols), trials = start, data, problem.trials
     names = trials.names
     r0 = problem.residuals(x0)

@@ -7,6 +7,8 @@ import os
 import numpy as np
 
 from ..io.files import atomic_path
+from .compare import DEFAULT_ABS_TOL
+from .compare import Comparison, compare
 
 COMPARE_TUBE = 4.0
 """Half-width of the comparison tube in standard deviations of the noise
@@ -100,7 +102,6 @@ class FitResult:
         (wrong units, a wrong model) fails it.  Without a noise estimate
         (fewer than 3 points) the tube is ``abs_tol`` (default: compare's
         :data:`~acausal2d.analysis.compare.DEFAULT_ABS_TOL`)."""
-        from .compare import DEFAULT_ABS_TOL
         y = self.data[1][ref]
         floor = 10.0 * (self.rtol or 1e-6) * float(np.max(np.abs(y)))
         noise = self.noise.get(ref, float("nan"))
@@ -111,7 +112,6 @@ class FitResult:
     def compare(self, plot_dir=None):
         """The fitted run against the data (:func:`acausal2d.compare`), each
         measured signal in its tube (:meth:`tolerance`)."""
-        from .compare import Comparison, compare
         t, cols = self.data
         rows, plots = [], []
         for ref, our in self.pairs:

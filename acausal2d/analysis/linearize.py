@@ -28,6 +28,12 @@ import casadi as ca
 import numpy as np
 
 from ..errors import Acausal2dError, SimulationError, translated
+from ..runtime.evaluator import Evaluator
+from ..runtime.events import values_from
+from ..runtime.selection import select
+from ..runtime.selection import singular_elements, worst_level
+from ..compiler.structure import column
+from ..language.symbols import time
 
 SINGULAR_GZ = 1e-12
 """Smallest singular value of G_z (columns scaled by the nominal values,
@@ -111,8 +117,6 @@ def point_at(compiled, t=None, params=None, rtol=None):
 
 def relation_values(compiled, t, z, p):
     """Relation values (0/1) that the crossing functions give at z."""
-    from ..runtime.evaluator import Evaluator
-    from ..runtime.events import values_from
     s = compiled.system
     d = np.zeros(len(s.relations))
     if not len(d):
@@ -128,7 +132,6 @@ def index1_states(compiled, ev, point):
     """(selection, state nodes, their derivative nodes) of the dummy
     selection the runtime makes at ``point`` - the one place that reads
     the runtime's selection and formulation."""
-    from ..runtime.selection import select
     try:
         with translated("selecting the states at t=%g" % point.t):
             selection = select(compiled.system, ev, point.t, point.z, point.d)
@@ -144,7 +147,6 @@ def index1_states(compiled, ev, point):
 def singular_reason(compiled, ev, selection, point):
     """Text naming the components of the worst-conditioned dummy block at
     the point (why the state selection is singular there)."""
-    from ..runtime.selection import singular_elements, worst_level
     worst = worst_level(compiled.system, ev, selection, point.t, point.z, point.d)
     if worst is None:
         return "the equations are singular in the algebraic unknowns"
@@ -159,7 +161,6 @@ def state_sensitivities(compiled, point):
     """(state nodes, derivative nodes, dz/dx, G_z) at ``point``; refuses a
     model without states (kinematically driven) and a point where the state
     selection is singular, naming the reason."""
-    from ..runtime.evaluator import Evaluator
     s = compiled.system
     ev = Evaluator(s, point.p)
     name = type(compiled.model).__name__
@@ -196,8 +197,6 @@ def _param_jacobian(compiled):
     """CasADi function dE/dp(t, z, p, d), made once per compiled model."""
     fn = getattr(compiled, "_dEdp", None)
     if fn is None:
-        from ..compiler.structure import column
-        from ..language.symbols import time
         s = compiled.system
         z = column(s.structure.var_sym)
         E = column(s.structure.eq_expr)

@@ -51,10 +51,14 @@ multipliers.
 import time as _time
 
 import numpy as np
+from scipy.optimize import Bounds, minimize
 
 from ..errors import Acausal2dError
 from .metrics import Expression, parse_constraint
 from .trials import Trials, check_fixed_apart, parse_free
+from .optimality import kkt_check
+from .fit import _check_free
+from .optimize_report import OptimizeResult
 
 KKT_TOL = 1e-5
 """Tolerance of the scaled KKT measures that decide success (finite
@@ -250,7 +254,6 @@ class _Problem:
 
 
 def _slsqp(problem, z0, max_iterations, split=False):
-    from scipy.optimize import Bounds, minimize
     lo, hi = problem.bounds()
     cons = []
     if problem.epigraph or problem.cons:
@@ -262,7 +265,6 @@ def _slsqp(problem, z0, max_iterations, split=False):
 
 
 def _kkt(problem, z):
-    from .optimality import kkt_check
     lo, hi = problem.bounds()
     if problem.epigraph:
         f = problem.evaluate(z)[0]
@@ -314,8 +316,6 @@ def optimize(model, vary, objective, constraints=(), fixed=None, stop_time=None,
     client: the Jacobians' runs on Dask as for :func:`acausal2d.fit`.
     Returns an :class:`~acausal2d.analysis.optimize_report.OptimizeResult`.
     """
-    from .fit import _check_free
-    from .optimize_report import OptimizeResult
     names, x0, lo, hi = parse_free(vary, "vary")
     _check_bounds(names, x0, lo, hi)
     check_fixed_apart(names, fixed, "vary")

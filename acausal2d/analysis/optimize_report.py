@@ -9,6 +9,9 @@ import os
 import numpy as np
 
 from ..io.files import atomic_path
+from .sweep import expand_params
+from ..visual.fitting import optimize_figure
+from ..visual.plotting import save_figure
 
 
 class OptimizeResult:
@@ -40,7 +43,6 @@ class OptimizeResult:
         self.signal = sig[0] if sig else None
 
     def _run(self, cm, x):
-        from .sweep import expand_params
         return cm.simulate(params=expand_params(self.trials.point(x)),
                            rtol=self.trials.settings.get("rtol"),
                            output_times=self.problem.times)
@@ -126,8 +128,6 @@ class OptimizeResult:
                 json.dump(self.to_dict(), fh, indent=2)
         files = [path, self.result.to_csv(os.path.join(out_dir, "optimize.csv"))]
         if self.signal is not None:
-            from ..visual.fitting import optimize_figure
-            from ..visual.plotting import save_figure
             files.append(save_figure(optimize_figure(self),
                                      os.path.join(out_dir, "optimize.png")))
         return files

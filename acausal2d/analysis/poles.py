@@ -31,6 +31,7 @@ import itertools
 import numpy as np
 
 from ..errors import Acausal2dError
+from .rates import Rates
 
 GROUND = "ground"
 """Name of the frame link (velocity zero)."""
@@ -60,7 +61,6 @@ def derivative(res, name, order=1):
         raise Acausal2dError("derivatives of order 1 and 2 only, not %r" % (order,))
     rates = res.__dict__.get("_rates")
     if rates is None:
-        from .rates import Rates
         rates = res.__dict__["_rates"] = Rates(res)
     return rates.of(name, order)
 

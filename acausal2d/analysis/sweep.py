@@ -53,9 +53,16 @@ import sys
 import time as _time
 
 import numpy as np
+import logging
+import tempfile
+import csv
 
 from ..errors import Acausal2dError
 from ..io.files import atomic_path
+from ..compiled import CompiledModel, compile_model
+from ..language.dsl import Component
+from ..io.loader import load_model
+from ..visual.plotting import save_figure, sweep_figure
 
 _COMPILED: dict = {}
 """Worker-side cache: model key -> CompiledModel (or the exception its
@@ -105,7 +112,6 @@ class ModelSpec:
             with open(self.path, encoding="utf-8") as fh:
                 if fh.read() == self.source:
                     return self.path
-        import tempfile
         folder = os.path.join(tempfile.gettempdir(), "acausal2d-sweep-" + self.key)
         os.makedirs(folder, exist_ok=True)
         path = os.path.join(folder, os.path.basename(self.path))
@@ -121,8 +127,6 @@ def compiled_model(spec):
     first call and cached (a compilation error is cached and raised again)."""
     cm = _COMPILED.get(spec.key)
     if cm is None:
-        from ..compiled import compile_model
-        from ..io.loader import load_model
         COMPILATIONS["count"] += 1
         try:
             cm = compile_model(load_model(spec.local_path(), spec.name, **spec.kwargs))
@@ -330,7 +334,6 @@ def cluster(workers=None, scheduler=None):
     address) if given, else to a new ``LocalCluster`` of ``workers``
     single-threaded worker processes (default: one per core), closed on
     exit.  Pass it as ``client=`` to run several sweeps on one cluster."""
-    import logging
     from dask.distributed import Client, LocalCluster
     if scheduler is not None:
         try:
@@ -419,7 +422,6 @@ class SweepResult:
 
     def to_csv(self, path):
         """Write the table as CSV (atomically); returns ``path``."""
-        import csv
         with atomic_path(path) as tmp:
             with open(tmp, "w", newline="", encoding="utf-8") as fh:
                 w = csv.writer(fh)
@@ -449,7 +451,6 @@ class SweepResult:
         (default the first), one line per combination of the other varied
         parameters; one axes per unit.  Writes ``path`` or returns the
         matplotlib Figure."""
-        from ..visual.plotting import save_figure, sweep_figure
         fig = sweep_figure(self, x or self.parameters[0], outputs or self.outputs)
         return fig if path is None else save_figure(fig, path)
 
@@ -481,8 +482,6 @@ def sweep(model, vary=None, points=None, outputs=None, metrics=None, at=None, st
     ``dask.distributed.Client`` (see :func:`cluster`).  progress: draw a
     bar on standard error.  Returns a :class:`SweepResult`.
     """
-    from ..compiled import CompiledModel, compile_model
-    from ..language.dsl import Component
     points = grid_points(vary) if points is None else [dict(p) for p in points]
     if params:
         points = [dict(params, **p) for p in points]

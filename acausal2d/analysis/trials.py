@@ -25,6 +25,9 @@ import numpy as np
 
 from ..errors import Acausal2dError
 from .sweep import ModelSpec, cluster, compiled_model, expand_params
+from ..compiled import CompiledModel, compile_model
+from ..language.dsl import Component
+from .sweep import _picklable_metrics
 
 FD_STEP = 1e-3
 """Relative finite-difference step of :meth:`Trials.jacobian`."""
@@ -142,8 +145,6 @@ class Trials:
 
     def __init__(self, model, names, signals, times, fixed=None, rtol=None, scheduler=None,
                  workers=None, client=None, model_name=None):
-        from ..compiled import CompiledModel, compile_model
-        from ..language.dsl import Component
         if isinstance(model, Component):      # an instance runs in this process, compiled once
             model = compile_model(model)
         self.names, self.fixed = list(names), dict(fixed or {})
@@ -206,7 +207,6 @@ class Trials:
         return out
 
     def _run_dask(self, points):
-        from .sweep import _picklable_metrics
         settings = dict(self.settings, functions=[
             None if f is None else _picklable_metrics(f) for f in
             self.settings.get("functions") or ()])

@@ -17,8 +17,14 @@ import argparse
 import sys
 import time
 import warnings
+import importlib
+import signal
 
 from ..errors import Acausal2dError
+from .. import __version__
+from ..io.loader import load_model
+from ..analysis.study import declared_studies
+from .examples import add_examples
 
 
 PROGRESS_DELAY = 1.0      # s of wall time before the progress bar appears
@@ -62,15 +68,12 @@ COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optim
 
 def build_parser():
     """The argparse parser of the ``acausal2d`` command."""
-    import importlib
-    from .. import __version__
     p = argparse.ArgumentParser(prog="acausal2d", description="simulate, check and compare "
                                 "models of planar linkages and belt drives")
     p.add_argument("--version", action="version", version="acausal2d " + __version__)
     sub = p.add_subparsers(dest="command", required=True)
     for name in COMMAND_MODULES:
         importlib.import_module("." + name, __name__).add_parsers(sub)
-    from .examples import add_examples
     add_examples(sub)
     return p
 
@@ -79,8 +82,6 @@ def run_model_file(path, model=None, out="out"):
     """What running a model file does (its ``__main__`` block): simulate it
     (figures, CSV, animation) and run its declared studies, into ``out``.
     Returns the exit code."""
-    from ..io.loader import load_model
-    from ..analysis.study import declared_studies
     extra = ["--model", model] if model else []
     code = main(["simulate", path, "--out", out] + extra)
     if code == 0 and declared_studies(type(load_model(path, model))):
@@ -100,7 +101,6 @@ def main(argv=None):
     turn a finished command into a death by SIGINT."""
     code = _main(argv)
     if argv is None:
-        import signal
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     return code
 

@@ -4,6 +4,7 @@ import sys
 
 from ..errors import Acausal2dError
 from .args import _nonnegative
+from .. import compare
 
 
 def cmd_compare(args):
@@ -52,7 +53,6 @@ def run_compare_cli(result_csv, reference_csv, signals=None, mapping=None, abs_t
     :class:`~acausal2d.errors.Acausal2dError` is left to the caller."""
     if stream is None:
         stream = sys.stdout
-    from .. import compare
     cmp = compare(result_csv, reference_csv, signals=signals, mapping=mapping,
                   abs_tol=abs_tol, rel_tol=rel_tol, plot_dir=out_dir, time_tol=time_tol,
                   until=until, only_common=only_common)

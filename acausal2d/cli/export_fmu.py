@@ -1,12 +1,12 @@
 """``acausal2d export-fmu``: a model as an FMI 2.0 FMU (native code, no
 Python needed by the importer); see :func:`acausal2d.fmu.export_fmu`."""
+from ..io.loader import load_model
 
 
 def cmd_export_fmu(args):
     """``acausal2d export-fmu MODEL.py [--model NAME] [--kind me|cs] [--out F]
     [--fixed-states]``."""
     from ..fmu import export_fmu
-    from ..io.loader import load_model
     from ..io.output import terminate_as_interrupt
     with terminate_as_interrupt():         # SIGTERM cleans up like Ctrl-C
         model = load_model(args.model_file, args.model)

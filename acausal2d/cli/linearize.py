@@ -8,6 +8,9 @@ import sys
 
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
+from ..io.files import atomic_path
+from ..io.files import write_text
+from ..io.loader import load_model
 
 
 def _names(text):
@@ -40,7 +43,6 @@ def point_options(args):
 
 
 def _write_matrix(path, M, rows, cols):
-    from ..io.files import atomic_path
     with atomic_path(path) as tmp:
         with open(tmp, "w", newline="", encoding="utf-8") as fh:
             w = csv.writer(fh)
@@ -52,7 +54,6 @@ def _write_matrix(path, M, rows, cols):
 
 def write_linearization(lin, out):
     """``OUT/linear.json`` and ``OUT/A.csv`` .. ``D.csv``; returns the paths."""
-    from ..io.files import write_text
     os.makedirs(out, exist_ok=True)
     files = [write_text(os.path.join(out, "linear.json"), json.dumps(lin.to_dict(), indent=1))]
     for key, rows, cols in (("A", lin.states, lin.states), ("B", lin.states, lin.inputs),
@@ -66,7 +67,6 @@ def cmd_linearize(args):
     """``acausal2d linearize``: write linear.json and A/B/C/D.csv."""
     from ..analysis.equilibrium import NoEquilibrium
     from ..compiled import compile_model
-    from ..io.loader import load_model
     from ..library.inputs import bind_inputs
     from ..io.output import OutputFolder
     with OutputFolder(args.out, "linearize") as tx:

@@ -1,11 +1,11 @@
 """``acausal2d check`` (the structure report) and ``acausal2d params`` (the
 parameter table) of a model file."""
+from ..analysis.check import check
+from ..io.loader import load_model
 
 
 def cmd_check(args):
     """``acausal2d check``: print the structure report of a model."""
-    from ..analysis.check import check
-    from ..io.loader import load_model
     print(check(load_model(args.model_file, args.model)))
     return 0
 
@@ -13,7 +13,6 @@ def cmd_check(args):
 def cmd_params(args):
     """``acausal2d params``: print the model's parameter table."""
     from ..compiled import compile_model
-    from ..io.loader import load_model
     model = load_model(args.model_file, args.model)
     print("%s parameters (set with --set NAME=VALUE or params={NAME: value}):"
           % type(model).__name__)

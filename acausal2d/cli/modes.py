@@ -9,6 +9,8 @@ import sys
 from ..errors import Acausal2dError
 from .args import _positive_int
 from .linearize import add_point_arguments, point_options
+from ..io.files import write_text
+from ..io.loader import load_model
 
 
 def _campbell(args, vary, options, out):
@@ -32,8 +34,6 @@ def cmd_modes(args):
     """``acausal2d modes``: print the table; write modes.json and modes.html."""
     from ..analysis.equilibrium import NoEquilibrium
     from ..compiled import compile_model
-    from ..io.files import write_text
-    from ..io.loader import load_model
     from ..io.output import OutputFolder
     from ..visual.mode_page import write_mode_page
     from ..library.inputs import bind_inputs

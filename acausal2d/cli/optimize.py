@@ -6,6 +6,7 @@ objective that is not a number at the start or on the whole grid), 3 when
 the optimiser stops elsewhere (its budget, a failed line search)."""
 import os
 import sys
+import numpy as np
 
 from ..errors import Acausal2dError
 from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_options
@@ -42,7 +43,6 @@ re-runs of the grid differ from the optimiser's run by round-off)."""
 def _grid_check(opt, args, out):
     """Objective on a grid around the optimum (--grid POINTS, --grid-span);
     prints the smallest value found and writes grid.csv."""
-    import numpy as np
     xs, values = opt.grid(rel=args.grid_span, points=args.grid)
     path = os.path.join(out, "grid.csv")
     np.savetxt(path, np.column_stack([xs, values]), delimiter=",", comments="",

@@ -6,6 +6,9 @@ import sys
 from . import _Progress
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set, _positive_float, _positive_int
+from ..analysis.check import grounded_lines
+from ..compiler.flatten import grounded_ports
+from ..io.loader import load_model
 
 
 def _plot_specs(args, cm):
@@ -47,8 +50,6 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
     the files written (``table``: the result file, ``extra``: those the
     model wrote itself), states and the ports fixed to ground because nothing
     is connected to them."""
-    from ..analysis.check import grounded_lines
-    from ..compiler.flatten import grounded_ports
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -108,7 +109,6 @@ def cmd_simulate(args):
 def _run(args):
     """Load, compile and simulate the model file: (result, settings)."""
     from ..compiled import compile_model
-    from ..io.loader import load_model
     from ..runtime import tiers
     cm = compile_model(load_model(args.model_file, args.model))
     settings = _simulate_settings(args, cm)

@@ -3,6 +3,8 @@
 
 from ..errors import Acausal2dError
 from .args import _check_names, _nonnegative, _parse_set, _positive_int, add_dask_options
+from ..io.loader import load_model
+from ..analysis.study import declared_studies, run_studies
 
 
 def _sweep_settings(args, cm, vary):
@@ -68,8 +70,6 @@ def cmd_sweep(args):
 
 def cmd_study(args):
     """``acausal2d study``: run (or list) the model's declared studies."""
-    from ..io.loader import load_model
-    from ..analysis.study import declared_studies, run_studies
     model = load_model(args.model_file, args.model)
     if args.list:
         studies = declared_studies(type(model))

@@ -8,7 +8,7 @@ and, once chosen, the dummy-derivative selection.  Every derivative order of
 a variable is a node of its own.  All fields are immutable (tuples, frozen
 dataclasses); a pass returns a new state with :func:`dataclasses.replace`.
 """
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Optional
 
 import casadi as ca
@@ -116,10 +116,6 @@ class Structure:
         """{symbol key: node}."""
         return self._var_index
 
-    def node_of(self, sym):
-        """Node index of a variable symbol (any derivative order)."""
-        return self._var_index[self.table_key(sym)]
-
     @staticmethod
     def table_key(sym):
         return sym.element_hash()
@@ -139,10 +135,6 @@ class Structure:
         dummies = sel.dummies if sel is not None else frozenset()
         return [j for j in range(self.n_var)
                 if self.var_to_diff[j] >= 0 and self.var_to_diff[j] not in dummies]
-
-    def with_selection(self, selection):
-        """The same structure with ``selection`` chosen."""
-        return replace(self, selection=selection)
 
 
 class NodeBuilder:

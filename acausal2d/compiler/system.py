@@ -20,6 +20,8 @@ from .aliases import substitution
 from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
 from .structure import column
+from ..language.context import ModelContext
+from ..language.dsl import Component
 
 
 def _param_function(exprs, p, name):
@@ -202,8 +204,6 @@ class System:
     def _start_checks(self, model):
         """(component, check) of the components' ``start_checks()`` (see
         :meth:`~acausal2d.language.dsl.Component.start_checks`)."""
-        from ..language.context import ModelContext
-        from ..language.dsl import Component
         context, out = None, []
         for comp in model.components():
             if type(comp).start_checks is Component.start_checks:
@@ -261,11 +261,6 @@ class System:
             if a.rep is not None and a.rep.name == rep.name and a.var.owner is not None:
                 names.append(a.var.owner.describe())
         return list(dict.fromkeys(names))
-
-    def alias_names_of(self, j):
-        """Names of the eliminated variables equal (up to sign/offset) to node j."""
-        rep = self.node_info[j]
-        return [a.var.name for a in self.aliases if a.rep is not None and a.rep.name == rep.name]
 
     def formulation(self, selection):
         """The semi-explicit index-1 formulation of a dummy selection (cached)."""

@@ -22,6 +22,10 @@ from ..errors import Acausal2dError, SimulationError
 from ..io.loader import load_model
 from .drag import movable
 from .requests import parse_run
+from ..visual.animation import render_html
+from ..visual.scene import build_scene
+from ..visual.plotting import declared_figures
+from .drag import drag_start
 
 MAX_SESSIONS = 256
 """Sessions whose latest run number the server remembers (oldest dropped)."""
@@ -93,7 +97,6 @@ class Explorer:
     def figures(self):
         """The figures the page draws: the model's declared ``figures``, else
         one per declared output (dicts groups, x, title)."""
-        from ..visual.plotting import declared_figures
         specs = declared_figures(self.compiled.model) or \
             [{"groups": [[n]], "x": None, "title": None} for n in self.compiled.outputs]
         return [{"groups": s["groups"], "x": s["x"], "title": s["title"]} for s in specs]
@@ -141,7 +144,6 @@ class Explorer:
     def submit_drag(self, spec):
         """Queue the drag of ``spec`` (see :mod:`acausal2d.explore.drag`);
         a future of the answer ``{"start": {unknown: value}}``."""
-        from .drag import drag_start
         d = spec.drag
 
         def move():
@@ -227,6 +229,4 @@ class Explorer:
 def scene_page(res):
     """The animation page of a run (the scene of ``simulate``'s
     animation.html, at most 1000 frames)."""
-    from ..visual.animation import render_html
-    from ..visual.scene import build_scene
     return render_html(build_scene(res), max_frames=1000)

@@ -25,6 +25,12 @@ from ..runtime import cbuild
 from .description import model_description
 from .generate import casadi_sources, model_data_header
 from ..library.inputs import bind_inputs
+from ..runtime.evaluator import Evaluator
+from ..runtime.events import values_from
+from ..runtime.initialize import _guess_selection, choose_initial_conditions
+from .. import __version__
+from ..compiled import compile_model, _experiment
+from ..io.output import check_writable
 
 C_DIR = os.path.join(os.path.dirname(__file__), "c")
 C_FILES = ("a2d_core.c", "a2d_core.h", "a2d_fmi2.c", "a2d_cs.c", "a2d_cs.h",
@@ -59,9 +65,6 @@ class ExportData:
 
 def _held_at_start(compiled, p):
     """The nodes consistent initialization holds (as the runtime chooses them)."""
-    from ..runtime.evaluator import Evaluator
-    from ..runtime.events import values_from
-    from ..runtime.initialize import _guess_selection, choose_initial_conditions
     s = compiled.system
     st = s.structure
     ev = Evaluator(s, p)
@@ -109,8 +112,6 @@ def _may_turn_singular(system, level):
 def export_data(model, inputs=None, fixed_states=False):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
     :func:`~acausal2d.library.inputs.bind_inputs`)."""
-    from .. import __version__
-    from ..compiled import compile_model, _experiment
     name = type(model).__name__
     model, input_params = bind_inputs(model, inputs)
     compiled = compile_model(model)
@@ -204,7 +205,6 @@ def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
 def _check_target(out):
     """The .fmu path ``out`` can be written: not a folder, in an existing,
     writable folder (checked before the build)."""
-    from ..io.output import check_writable
     if os.path.isdir(out):
         raise ModelDefinitionError("--out %s is a folder; give the path of the .fmu file "
                                    "(e.g. %s)" % (out, os.path.join(out, "Model.fmu")))

@@ -17,11 +17,11 @@ import zipfile
 import numpy as np
 
 from .files import atomic_path
+from ..runtime.cbuild import CACHE_ENV
 
 
 def cache_dir():
     """The folder of the disk cache (see the module docstring)."""
-    from ..runtime.cbuild import CACHE_ENV
     if os.environ.get(CACHE_ENV):
         return os.environ[CACHE_ENV]
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")

@@ -7,6 +7,8 @@ import json
 import os
 import re
 import tempfile
+import shutil
+import numpy as np
 
 from ..errors import Acausal2dError
 
@@ -76,7 +78,6 @@ def clear_previous_run(folder):
 def remove_entries(folder, names):
     """Remove the files and folders ``names`` of ``folder`` (those gone already
     are skipped)."""
-    import shutil
     for name in names:
         target = os.path.join(folder, name)
         if os.path.isdir(target) and not os.path.islink(target):
@@ -143,7 +144,6 @@ def _line_column(prefix):
 def _too_deep(text):
     """Index of the first bracket nesting deeper than JSON_MAX_DEPTH in
     ``text`` (brackets inside strings ignored), or None."""
-    import numpy as np
     plain = re.sub(r'"(?:[^"\\]|\\.)*"', lambda m: " " * len(m.group()), text)
     codes = np.frombuffer(plain.encode("utf-32-le"), dtype=np.uint32)
     step = np.isin(codes, (0x5B, 0x7B)).astype(np.int64) - np.isin(codes, (0x5D, 0x7D))

@@ -91,10 +91,13 @@ def load_model(path, name=None, **kwargs):
     inherited), or the file's only component class.  A file with several
     models (a base model and its subclass count as two) must be given a
     name; the error lists them.  ``Component`` itself is not a model.
-    ``kwargs`` go to the model's constructor.  A ``.json`` file is a mec2
-    model (:func:`acausal2d.io.mec2.load_mec2`)."""
-    if isinstance(path, (str, os.PathLike)) and os.fspath(path).lower().endswith(".json"):
-        return _load_json(path, name, kwargs)
+    ``kwargs`` go to the model's constructor.  A file with a suffix of
+    :data:`READERS` (``.json``: a mec2 model,
+    :func:`acausal2d.library.nodes.mec2.load_mec2`) is read by its reader."""
+    suffix = os.path.splitext(os.fspath(path))[1].lower() \
+        if isinstance(path, (str, os.PathLike)) else None
+    if suffix in READERS:
+        return _load_other(path, READERS[suffix], name, kwargs)
     if not isinstance(path, (str, os.PathLike)) or not os.path.isfile(path):
         raise ModelDefinitionError("model file %s does not exist" % (path,))
     path = os.path.abspath(os.fspath(path))
@@ -112,10 +115,23 @@ def load_model(path, name=None, **kwargs):
                                    % (cls.__name__, type(exc).__name__, exc)) from None
 
 
-def _load_json(path, name, kwargs):
-    """A mec2 model file: one model, no constructor arguments."""
-    from .mec2 import load_mec2
+READERS: dict = {}
+"""{suffix: (kind, read)}: model files that are not Python source, read by
+``read(path)`` -> model (:func:`register_reader`)."""
+
+
+def register_reader(suffix, kind, read):
+    """Let :func:`load_model` read the model files ending in ``suffix``
+    (e.g. ``".json"``, files of ``kind``, e.g. "mec2") with ``read(path)``.
+    The package root registers the library's mec2 reader, so that io
+    imports nothing of the library (tests/test_layering.py)."""
+    READERS[suffix.lower()] = (kind, read)
+
+
+def _load_other(path, reader, name, kwargs):
+    """A model file of a registered reader: one model, no constructor arguments."""
+    kind, read = reader
     if name is not None or kwargs:
-        raise ModelDefinitionError("%s is a mec2 model (one model, no arguments); drop "
-                                   "--model and the keyword arguments" % (path,))
-    return load_mec2(os.fspath(path))
+        raise ModelDefinitionError("%s is a %s model (one model, no arguments); drop "
+                                   "--model and the keyword arguments" % (path, kind))
+    return read(os.fspath(path))

@@ -38,10 +38,6 @@ class ModelContext:
         """True if ``conn`` appears in a connect statement of the model."""
         return id(conn) in self._connected
 
-    def same_node(self, a, b):
-        """True if connectors ``a`` and ``b`` are in one connection set."""
-        return self._sets.find(id(a)) == self._sets.find(id(b))
-
     def partners(self, conn):
         """The other connectors in the connection set of ``conn``."""
         k = self._sets.find(id(conn))

@@ -12,6 +12,7 @@ import numbers
 import numpy as np
 
 from ..errors import ModelDefinitionError
+from .connector_doc import LazyDoc
 
 STATE_SELECT = ("never", "avoid", "default", "prefer", "always")
 
@@ -294,7 +295,6 @@ def add_declarations(cls, declarations):
     for name, decl in declarations.items():
         decl.__set_name__(cls, name)
         setattr(cls, name, decl)
-    from .connector_doc import LazyDoc          # (connector_doc imports nothing of ours but errors)
     cls.__doc__ = LazyDoc(declaration_doc)
     return cls
 

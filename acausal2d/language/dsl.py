@@ -35,6 +35,7 @@ and :meth:`~Component.topology` describe drawing and structure.
 import numbers
 
 import numpy as np
+import difflib
 
 from ..errors import ModelDefinitionError
 from .declarations import (STATE_SELECT, Parameter, Variable, VarInfo, start,  # noqa: F401
@@ -86,7 +87,6 @@ class Outer:
 def _unknown_attribute(comp, name):
     """The message of an unknown attribute: the names the component has,
     by kind, and the closest one."""
-    import difflib
     d = comp.__dict__
     groups = [("connectors", list(d["_connectors"])), ("sub-components", list(d["_children"])),
               ("parameters", list(d["_param_values"])), ("variables", list(d["_var_decls"]))]

@@ -13,6 +13,7 @@ import os
 import pickle
 import sys
 import time
+import subprocess
 
 from . import cbuild, cstore
 
@@ -66,7 +67,6 @@ def launch(label=None):
     """Start one worker for the queued builds (the model's own library
     first); one notice on stderr naming the model (``label``).  Returns
     whether one was started."""
-    import subprocess
     if not _queue:
         return False
     jobs = sorted(_queue, key=lambda job: job[1].name != "a2d_model")

@@ -14,9 +14,9 @@ generator, native drivers):
   (:mod:`~acausal2d.runtime.cstore`); :func:`load` loads it (a library the
   loader refuses is built again); how the C is compiled (translation units
   in parallel) is :mod:`~acausal2d.runtime.cunits`;
-- :func:`sundials_dirs` gives the SUNDIALS include and library folders of
-  the scikit-sundae install, if its headers are there (the wheel ships the
-  libraries; headers may come from ``$SUNDIALS_INCLUDE_DIR``).
+- :func:`sundials_libraries` finds the SUNDIALS libraries the scikit-sundae
+  wheel ships (no headers: the native driver declares what it uses, see
+  :mod:`~acausal2d.runtime.native`).
 
 Errors a user can act on are :class:`CompilerMissing` (names what to
 install) and :class:`BuildFailed` (carries the compiler's message).
@@ -24,7 +24,10 @@ install) and :class:`BuildFailed` (carries the compiler's message).
 import glob
 import os
 import shutil
+import importlib.util
 import weakref
+
+import casadi as ca
 
 from . import cstore as store, cunits as units
 from .cstore import CACHE_ENV, _sha256, cache_dir  # noqa: F401 - names of this module
@@ -114,7 +117,6 @@ def fingerprint(functions, *texts):
     CasADi version and the compiler: a key of generated code that is found
     without generating it (CasADi's code generator took 0.09 s of the belt
     drive's 0.23 s run; serializing takes a third of that)."""
-    import casadi as ca
     h = _sha256()
     parts = [serialized(fn) for fn in functions if fn is not None]
     for part in parts + list(texts) + [ca.__version__, str(find_compiler()), DEFAULT_FLAGS,
@@ -195,19 +197,9 @@ def load(key, make, name, loader):
         return loader(build_indexed(key, make, name))
 
 
-class SundialsDirs:
-    """Where the SUNDIALS of scikit-sundae is: ``include`` (headers),
-    ``lib`` (the shipped shared libraries), ``libraries`` (short name, e.g.
-    ``"ida"``, -> full path) and ``version``."""
-
-    def __init__(self, include, lib, libraries, version):
-        self.include, self.lib, self.libraries, self.version = include, lib, libraries, version
-
-
 def _sksundae_dir():
     """The folder of the installed ``sksundae`` package, found without
     importing it (its import pulls in scipy.optimize), or None."""
-    import importlib.util
     try:
         spec = importlib.util.find_spec("sksundae")
     except (ImportError, ValueError):
@@ -229,49 +221,3 @@ def sundials_libraries():
         short = os.path.basename(path)[len("libsundials_"):].split("-")[0].split(".")[0]
         found[short] = path
     return (folder, found) if found else None
-
-
-def _header_version(include):
-    path = os.path.join(include, "sundials", "sundials_config.h")
-    try:
-        with open(path, encoding="utf-8", errors="replace") as fh:
-            for line in fh:
-                if line.startswith("#define SUNDIALS_VERSION "):
-                    return line.split('"')[1]
-    except (OSError, IndexError):
-        return None
-    return None
-
-
-def sundials_dirs():
-    """The SUNDIALS include and library folders of the scikit-sundae
-    install (:class:`SundialsDirs`) if its headers exist - in the package's
-    ``include`` folder or in ``$SUNDIALS_INCLUDE_DIR`` - and are of the
-    version of the shipped libraries; else None."""
-    libs = sundials_libraries()
-    if libs is None:
-        return None
-    version = _shipped_version()
-    candidates = [os.environ.get("SUNDIALS_INCLUDE_DIR", ""),
-                  os.path.join(_sksundae_dir(), "include")]
-    for inc in candidates:
-        if inc and os.path.exists(os.path.join(inc, "ida", "ida.h")) and \
-                _header_version(inc) == version:
-            return SundialsDirs(inc, libs[0], libs[1], version)
-    return None
-
-
-def _shipped_version():
-    """The SUNDIALS version scikit-sundae was built with (its config file)."""
-    pkg = _sksundae_dir()
-    if pkg is None:
-        return None
-    path = os.path.join(pkg, "py_config.pxi")
-    try:
-        with open(path, encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("SUNDIALS_VERSION"):
-                    return line.split('"')[1]
-    except (OSError, IndexError):
-        return None
-    return None

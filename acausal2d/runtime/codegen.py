@@ -127,7 +127,6 @@ class Recipe:
         return dict(self.__dict__, parts=parts)
 
     def __setstate__(self, state):
-        import casadi as ca
         state["parts"] = [(how, [ca.Function.deserialize(s) for s in fns])
                           for how, fns in state["parts"]]
         self.__dict__.update(state)

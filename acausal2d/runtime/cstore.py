@@ -18,6 +18,10 @@ removed and built again, with one line on stderr.
 import contextlib
 import os
 import sys
+import tempfile
+import fcntl
+import shutil
+import time
 
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
     from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
@@ -63,7 +67,6 @@ def _writable(path):
 
 def fallback_folder():
     """The folder used where the configured cache cannot be written."""
-    import tempfile
     return os.path.join(tempfile.gettempdir(), "acausal2d-cbuild-%d" % os.getuid())
 
 
@@ -133,7 +136,6 @@ def discard(path):
 
 def write_atomic(path, data):
     """Write bytes to ``path`` through a temporary sibling and a rename."""
-    import tempfile
     fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), prefix=TMP_PREFIX)
     try:
         with os.fdopen(fd, "wb") as fh:
@@ -157,7 +159,6 @@ def locked(target, wait=True):
     """Hold the lock of library ``target`` (yields True), or, with
     ``wait=False`` where another process holds it, yield False at once.
     A lock file that cannot be created (read-only folder) locks nothing."""
-    import fcntl
     try:
         fh = open(target + LOCK, "a")
     except OSError:
@@ -183,7 +184,6 @@ def busy(target):
 
 def build_folder(folder, target):
     """A new build folder for ``target`` (named by it: :func:`sweep`)."""
-    import tempfile
     return tempfile.mkdtemp(dir=folder, prefix="%s%s-" % (BUILD_PREFIX, os.path.basename(target)))
 
 
@@ -191,8 +191,6 @@ def sweep(folder, older_than=600.0):
     """Remove build folders whose library's lock nobody holds, and
     temporary files older than ``older_than`` seconds (a build killed
     with SIGKILL leaves them)."""
-    import shutil
-    import time
     try:
         names = os.listdir(folder)
     except OSError:
@@ -250,7 +248,6 @@ def _size(path):
 def clear():
     """Remove the cache's files (not those of a build running now: their
     library's lock is held); returns (files removed, files kept)."""
-    import shutil
     where = folder()
     try:
         names = os.listdir(where)

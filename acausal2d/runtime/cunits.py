@@ -15,9 +15,11 @@ naming the compiler, the command and its output.
 """
 import os
 import shutil
+import subprocess
 
 from ..errors import Acausal2dError
 from . import cstore
+from .csplit import split
 
 SCHEME = "units-3"
 """Names how sources are cut and compiled: part of every fingerprint, so a
@@ -51,7 +53,6 @@ def _failed(cc, cmd, why, output=""):
 def _run_all(cc, commands):
     """Run compiler commands, at most :func:`workers` at a time; each must
     exit 0 and write its output file (the last argument after ``-o``)."""
-    import subprocess
     pending, running = list(commands), []
     try:
         while pending or running:
@@ -82,7 +83,6 @@ def _run_all(cc, commands):
 
 def _units(sources):
     """(file name, text) of the translation units and headers to write."""
-    from .csplit import split
     files = []
     for fname, text in sorted(sources.items()):
         base = os.path.basename(fname)

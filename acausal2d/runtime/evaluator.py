@@ -24,12 +24,6 @@ class Evaluator:
         self.rows, self.cols = system.jacobian_pattern
         self.sparse = s.n_var >= SPARSE_FROM
 
-    def set_parameters(self, p):
-        """Use the parameter vector ``p`` from now on."""
-        for b in (self.E, self.J, self.G):
-            if b is not None:
-                b.args[2][:] = p
-
     @staticmethod
     def _call(b, t, z, d):
         a = b.args

@@ -108,8 +108,8 @@ class SundialsMessages:
 
 
 class Problem:
-    """IDA callbacks of one formulation; ``set_relations``/``set_parameters``
-    change the values bound into them.  The event functions are, in this
+    """IDA callbacks of one formulation; ``set_relations`` changes the
+    relation values bound into them.  The event functions are, in this
     order: ``n_rel`` relation crossings, ``n_mon`` watched dummy blocks
     (|det| fell 4x since the segment began: re-check the selection),
     ``n_pass`` passages (sign of the highest block's det) and ``n_pass``
@@ -158,10 +158,6 @@ class Problem:
         """Bind the relation values."""
         for b in self._buffers():
             b.args[4][:] = d
-
-    def set_parameters(self, p):
-        for b in self._buffers():
-            b.args[3][:] = p
 
     def resfn(self, t, y, yp, res):
         if t != self.t_last:          # IDA evaluates each step attempt at a new time

@@ -20,21 +20,30 @@ the steps are the same.  Where there is no compiler, the build fails, the
 SUNDIALS version is not the one the declarations are written for, or IDA
 fails in a segment, the caller uses the Python path (which then reports the
 failure exactly as before).  ``ACAUSAL2D_NATIVE=0`` turns it off.
+
+The driver declares the SUNDIALS functions it calls itself (the wheel ships
+no headers), for the release named in ``native_driver.c``
+(:data:`SUNDIALS_VERSION`).  That release is compared with the one the
+shipped core library reports (``SUNDIALSGetVersionNumber``,
+:func:`loaded_sundials_version`) before anything is built, and again by
+the built library when it is loaded (``a2d_sundials_matches``); another
+release makes the process say once on stderr that IDA runs through
+scikit-sundae instead (slower, same results).
 """
 import ctypes
 import os
+import re
 import sys
 import weakref
 
 import casadi as ca
 import numpy as np
 
-from . import blt_layout, cbuild, ordering, tiers
+from . import blt_layout, cbuild, cstore, ordering, tiers
 from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
                       optimization, too_large)
 from . import codegen, cstraight
 
-SUNDIALS_VERSION = "7.9.0"     # the declarations in native_driver.c are of this version
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
              "core")
 OPTIONAL = (("sunlinsollapackdense", "SUNLinSol_LapackDense"),
@@ -61,6 +70,18 @@ tests/test_native_runtime.py; 1437 with the LU)."""
 MAX_PASSES = 256
 _DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
 _LU = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_lu.c")
+
+
+def _declared_version():
+    with open(_DRIVER, encoding="utf-8") as fh:
+        text = fh.read()
+    return ".".join(re.search(r"#define A2D_SUNDIALS_%s (\d+)" % part, text).group(1)
+                    for part in ("MAJOR", "MINOR", "PATCH"))
+
+
+SUNDIALS_VERSION = _declared_version()
+"""The SUNDIALS release the declarations in ``native_driver.c`` are written
+for (its ``A2D_SUNDIALS_*`` lines)."""
 _libs: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
     ctypes.POINTER(ctypes.c_long)
@@ -68,12 +89,45 @@ _PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
 
 
 def enabled():
-    """False where ``ACAUSAL2D_NATIVE=0`` (or ``off``) or the shipped SUNDIALS
-    is not the version the driver is written for."""
-    if tiers.mode() == "off":
+    """False where ``ACAUSAL2D_NATIVE=0`` (or ``off``), scikit-sundae ships
+    no SUNDIALS libraries, or they are not of :data:`SUNDIALS_VERSION` (said
+    once on stderr)."""
+    if tiers.mode() == "off" or cbuild.sundials_libraries() is None:
         return False
-    return cbuild._shipped_version() == SUNDIALS_VERSION and \
-        cbuild.sundials_libraries() is not None
+    loaded = loaded_sundials_version()
+    if loaded != SUNDIALS_VERSION:
+        _falls_back("SUNDIALS %s is loaded" % (loaded or "of unknown version"))
+        return False
+    return True
+
+
+_loaded_version: list = []
+
+
+def loaded_sundials_version():
+    """The release of the SUNDIALS that scikit-sundae ships, as its core
+    library reports it (``SUNDIALSGetVersionNumber``), e.g. ``"7.9.0"``, or
+    None where it cannot be asked."""
+    if not _loaded_version:
+        version = None
+        try:
+            get = ctypes.CDLL(cbuild.sundials_libraries()[1]["core"]).SUNDIALSGetVersionNumber
+            get.argtypes = [_I, _I, _I, ctypes.c_char_p, ctypes.c_int]
+            parts = [ctypes.c_int(-1) for _ in range(3)]
+            if get(*(ctypes.byref(p) for p in parts), ctypes.create_string_buffer(64), 64) == 0:
+                version = "%d.%d.%d" % tuple(p.value for p in parts)
+        except (TypeError, KeyError, OSError, AttributeError):
+            pass
+        _loaded_version.append(version)
+    return _loaded_version[0]
+
+
+def _falls_back(why):
+    """Say once per process that IDA runs through scikit-sundae, and why."""
+    cstore.notice("%s, the native driver is declared for SUNDIALS %s: IDA runs through "
+                  "scikit-sundae instead (the Python path: the same results, slower; "
+                  "ACAUSAL2D_NATIVE=off chooses it without this message)"
+                  % (why, SUNDIALS_VERSION))
 
 
 def _text(path):
@@ -125,6 +179,11 @@ def _declare(lib):
     lib.a2d_steps.argtypes = [ctypes.c_void_p]
     lib.a2d_set_optional.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
     lib.a2d_lu_usable.restype = ctypes.c_int
+    lib.a2d_sundials_matches.restype = ctypes.c_int
+    if not lib.a2d_sundials_matches():
+        _falls_back("the SUNDIALS loaded with %s is not of the declared release"
+                    % os.path.basename(lib._name))
+        return None
     lib.a2d_run.restype = ctypes.c_int
     lib.a2d_run.argtypes = [ctypes.c_void_p, _P, ctypes.c_int, _P, _P, _P, _P, _I, _P, _P,
                             _I, ctypes.c_int, _P, _I, _L]
@@ -167,6 +226,9 @@ def _hand_in_optional(lib, solver):
             lib.a2d_lu_ok = bool(lib.a2d_lu_usable())
         if lib.a2d_lu_ok:
             return
+        cstore.notice("the linear-solver slots of this SUNDIALS (%s) were not found: "
+                      "IDA's sparse systems use SuperLU_MT instead of the driver's own LU "
+                      "(the same results, slower)" % SUNDIALS_VERSION)
     libs = cbuild.sundials_libraries()[1]
     found = []
     for name, symbol in OPTIONAL:

@@ -25,6 +25,7 @@ import sys
 import threading
 
 from ..errors import Acausal2dError
+from . import plotting
 
 _HEADER = struct.Struct("!Q")
 
@@ -99,7 +100,6 @@ def _drawing():
     (the import this process is for), or a function raising the import's
     error for the parent to report."""
     try:
-        from . import plotting
         import matplotlib.backends.backend_agg  # noqa: F401
         import matplotlib.figure  # noqa: F401
         return plotting.draw_jobs

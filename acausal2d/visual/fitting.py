@@ -1,6 +1,5 @@
 """Figures of fits and optimisations (matplotlib object API, as
 :mod:`acausal2d.visual.plotting`)."""
-import numpy as np
 
 from .plotting import axis_label, unit_of
 
@@ -49,19 +48,5 @@ def optimize_figure(opt, signal=None):
     ax.legend(fontsize=8)
     ax.set_title("objective %s: %.6g -> %.6g" % (opt.objective_text, opt.objective_start,
                                                  opt.objective), fontsize=9)
-    fig.tight_layout()
-    return fig
-
-
-def grid_figure(xs, ys, values, names, optimum):
-    """Objective over a grid of two varied parameters around the optimum."""
-    fig, axes = _figure(1, size=(6, 4.5))
-    ax = axes[0, 0]
-    cs = ax.contourf(xs, ys, np.asarray(values).T, levels=20)
-    fig.colorbar(cs, ax=ax)
-    ax.plot([optimum[0]], [optimum[1]], "r*", ms=12, label="optimum")
-    ax.set_xlabel(names[0])
-    ax.set_ylabel(names[1])
-    ax.legend(fontsize=8)
     fig.tight_layout()
     return fig

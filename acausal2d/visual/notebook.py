@@ -1,5 +1,5 @@
-"""What a result shows in a Jupyter notebook: ``repr(result)`` a one-line
-summary, ``result._repr_html_()`` a table (model, time span, points,
+"""What a result shows in a Jupyter notebook (its one-line ``repr`` is the
+Result's own): ``result._repr_html_()`` a table (model, time span, points,
 solver counts, events, states, outputs with their final values) and a small
 figure of the outputs, and ``result.animation()`` an :class:`Animation`
 whose ``_repr_html_`` embeds the self-contained animation page of
@@ -8,23 +8,15 @@ whose ``_repr_html_`` embeds the self-contained animation page of
 import base64
 import html
 import io
+from .plotting import plot
+from ..io.files import write_text
 
-__all__ = ["Animation", "summary_text", "summary_html"]
+__all__ = ["Animation", "summary_html"]
 
 
 def _model_name(result):
     model = getattr(result.model, "model", None) if result.model is not None else None
     return type(model).__name__ if model is not None else "model"
-
-
-def summary_text(result):
-    """``<Result PistonEngine: t 0..1 s, 5001 points, 126 signals, 0 events>``
-    (plus the reason of an early stop)."""
-    t = result.time
-    span = "t %.6g..%.6g s" % (t[0], t[-1]) if len(t) else "no time points"
-    stop = ", stopped early: %s" % result.stopped if result.stopped else ""
-    return "<Result %s: %s, %d points, %d signals, %d events%s>" % (
-        _model_name(result), span, len(t), len(result.names), len(result.events), stop)
 
 
 def _rows(result):
@@ -59,7 +51,6 @@ def _figure_png(result):
     names = _plotted(result)
     if not names or len(result.time) < 2:
         return ""
-    from .plotting import plot
     fig = plot(result, [[n] for n in names])
     fig.set_size_inches(6, 1.6 + 1.4 * len(names))
     buf = io.BytesIO()
@@ -94,7 +85,6 @@ class Animation:
 
     def save(self, path):
         """Write the page to ``path`` (atomically); returns the path."""
-        from ..io.files import write_text
         return write_text(path, self.html)
 
     def __repr__(self):

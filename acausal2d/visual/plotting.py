@@ -21,16 +21,16 @@ import os
 
 import numpy as np
 
+from ..analysis.poles import transfer
 from ..errors import Acausal2dError
 from ..io.files import atomic_path
+from ..io.files import safe_filename
 
 
 def unit_of(result, name):
-    """Unit of the column or parameter ``name`` of ``result`` ('' if unknown)."""
-    if name == "time":
-        return "s"
-    model = getattr(result, "model", None)
-    return model.units.get(name, "") if model is not None else ""
+    """Unit of the column or parameter ``name`` of ``result`` ('' if unknown;
+    see :meth:`acausal2d.result.Result.unit`)."""
+    return result.unit(name)
 
 
 def axis_label(name, unit):
@@ -182,7 +182,6 @@ def write_figures(result, out_dir, specs, fmt="png"):
 def figure_jobs(result, out_dir, specs, fmt="png"):
     """The (path, :func:`figure_plan`) pairs :func:`write_figures` draws:
     signal names checked, values taken from ``result``; no matplotlib."""
-    from ..io.files import safe_filename
     jobs = []
     for spec in specs:
         stem = spec.get("name") or "+".join(n for g in spec["groups"] for n in g)
@@ -247,10 +246,10 @@ def transfer_figure(result, q, p, orders=(0, 1, 2)):
     """Figure of the transfer functions of ``q`` over the drive coordinate
     ``p`` (seed eq. 2.2-2.4): one axes per order, q, q' = dq/dp and
     q'' = d2q/dp2 from the run's derivatives (see
-    :meth:`acausal2d.result.Result.transfer`), over p (degrees for angles)."""
+    :func:`acausal2d.analysis.poles.transfer`), over p (degrees for angles)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
-    curves = result.transfer(q, p, orders)
+    curves = transfer(result, q, p, orders)
     xv, xlabel = x_values(result, p)
     uq, up = unit_of(result, q) or "-", unit_of(result, p) or "-"
     labels = {0: "%s [%s]" % (q, uq), 1: "d%s/d%s [%s/%s]" % (q, p, uq, up),
@@ -272,7 +271,6 @@ def transfer_figure(result, q, p, orders=(0, 1, 2)):
 def write_transfer_figures(result, out_dir, specs, orders, fmt="png"):
     """One transfer-function figure per signal of the figure ``specs`` over
     each spec's x (the drive coordinate); returns the paths."""
-    from ..io.files import safe_filename
     paths = []
     for spec in specs:
         for q in (n for g in spec["groups"] for n in g):

@@ -10,7 +10,9 @@ import numpy as np
 
 from .animation import write_html
 
+from ..analysis.poles import cartesian, pole_homogeneous, poles
 from ..errors import Acausal2dError
+from .plotting import axis_label, unit_of
 
 _SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width", "fx", "fy", "t", "angle", "scale",
                 "offset")
@@ -57,7 +59,6 @@ def trace_signals(traces, names):
     a frame (``"dyad.ctr2D3"``: its ``.x`` and ``.y``) or a pair of signals
     ``"x_name:y_name"`` (``"dyad.xP:dyad.yP"``).  ``names``: the signals
     available; an unknown entry raises an error listing the frames."""
-    from ..errors import Acausal2dError
     available = set(names)
     pairs = []
     for entry in traces:
@@ -150,7 +151,7 @@ def pole_shapes(result, links, joints=None):
     "poles" of the page, each labelled P<i><j>; a pole at infinity is hidden
     in that frame."""
     shapes, signals = [], {}
-    for (i, j), pts in result.poles(links, joints).items():
+    for (i, j), pts in poles(result, links, joints).items():
         name = "pole P%s%s" % (i, j)
         signals[name + ".x"] = [float(v) for v in pts[:, 0]]
         signals[name + ".y"] = [float(v) for v in pts[:, 1]]
@@ -167,7 +168,6 @@ def declared_pole_views(result, model, signals):
     mec2's ``pole`` views).  A path is drawn only where it stays within
     three times the extent of the other ``signals`` (.x/.y) around their
     centre: a pole runs off to infinity where the link translates."""
-    from ..analysis.poles import cartesian, pole_homogeneous
     shapes, out = [], {}
     box = _clip_box(signals)
     for comp in model.components() if model is not None else ():
@@ -252,7 +252,6 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
              "time": [float(t) for t in result.time], "signals": signals, "shapes": shapes,
              "unit": "m", "autoplay": bool(autoplay)}
     if signal:
-        from .plotting import axis_label, unit_of
         signals[signal] = [float(v) for v in result[signal]]
         scene["plot"] = {"signal": signal, "label": axis_label(signal, unit_of(result, signal))}
     nodes = _drag_system(model)

@@ -11,6 +11,7 @@ import numpy as np
 
 
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library import planar
 
 from .placement import StartPoses
 
@@ -102,7 +103,6 @@ def _frame_geometry(conn, poses):
     """Initial geometry (cx, cy, rho) of the part a span end is connected to
     (see :func:`tangent`), or None; ``poses``: the model's
     :class:`~acausal2d.library.belt.placement.StartPoses`."""
-    from acausal2d.library import planar
     owner = conn.owner
     name = conn._name
     if hasattr(owner, "_band_geometry"):        # wheels and rope ends of this library

@@ -27,7 +27,6 @@ def modelica_names():
     from the Modelica name of a component's variable to the list of our
     names it may stand for.  :func:`acausal2d.compare` matches reference
     columns such as ``body.r[1]`` by it."""
-    from . import forces, joints, parts, sensors
     table = {}
     for module in (parts, joints, forces, sensors):
         for obj in vars(module).values():
@@ -41,4 +40,5 @@ def modelica_names():
 __all__ = ["modelica_names", "PlanarWorld", "fixed_of", "is_connected", "resolve", "rotate", "Body", "BodyShape",
            "Fixed", "FixedRotation", "FixedTranslation", "IdealRolling", "Prismatic", "Revolute"]
 from .cam import CamFollower  # noqa: E402
+from . import forces, joints, parts, sensors
 __all__ += ["CamFollower"]

@@ -15,9 +15,11 @@ frame and unwrapped.  The outward normal angle of a polar contour is
 import math
 
 import casadi as ca
+import numpy as np
 
 from acausal2d import Component, der, Frame, Parameter, Variable
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.belt.contour import Contour, SupportContour
 
 _FOLLOWERS = ("roller", "flat")
 
@@ -44,7 +46,6 @@ def _check_choices(follower, closure, contact, rolling):
 def contact_geometry(contour, q):
     """(point (x, y), outward normal angle psi, arc length s) of the contour
     at contact parameter ``q``, CasADi expressions in the cam frame."""
-    from acausal2d.library.belt.contour import Contour, SupportContour
     if isinstance(contour, SupportContour):
         p, dp = contour._sym(q)
         c, s = ca.cos(q), ca.sin(q)
@@ -206,7 +207,6 @@ class CamFollower(Component):
     def shapes(self):
         """The cam contour (sampled, turned with frame_a, drawn as a pulley
         of that outline), the contact point and the line to the follower."""
-        import numpy as np
         x, y = self.contour.point(np.linspace(0.0, 2 * math.pi, 240, endpoint=False))
         pts = [[float(a), float(b)] for a, b in zip(x, y)]
         return [{"type": "pulley", "x": "frame_a.x", "y": "frame_a.y",
@@ -224,7 +224,6 @@ class CamFollower(Component):
     def contact_changes(self, res):
         """[(t, "lift-off" | "re-contact")] of the result ``res``: the
         switches of ``lifted`` (at the event times, which are output rows)."""
-        import numpy as np
         flag = np.asarray(res[self.path + ".lifted"]) > 0.5
         idx = np.nonzero(flag[1:] != flag[:-1])[0] + 1
         return [(float(res.time[k]), "lift-off" if flag[k] else "re-contact") for k in idx]

@@ -27,6 +27,7 @@ its truncation error; a jump shows as the difference (see :func:`jumps`).
 from dataclasses import dataclass, field
 
 import numpy as np
+from acausal2d.visual.plotting import save_figure
 
 __all__ = ["Finding", "BandMaterial", "Assessment", "assess", "precheck_transfer", "jumps",
            "sign_changes", "new_figure"]
@@ -206,7 +207,6 @@ class Assessment:
         """Write the assessment plot (contour with involute, free band length
         and its change, GF1/GF2/S_Bf, space and lever arm, stresses) as a
         PNG file (written atomically); returns ``path``."""
-        from acausal2d.visual.plotting import save_figure
         fig, axes = new_figure(2, 2, (11, 8))
         _plot_contour(axes[0, 0], self.synthesis)
         _plot_band_length(axes[0, 1], self)

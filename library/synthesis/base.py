@@ -9,6 +9,8 @@ import math
 import casadi as ca
 
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library import planar
+from acausal2d.library.linkage.base import _Assembly
 
 
 def _check_K(owner, K):
@@ -21,8 +23,6 @@ def _check_K(owner, K):
 def _pose_assembly(context):
     """The linkage pre-assembly (library/linkage.py) extended across
     planar.Revolute (same point on both frames) and planar.FixedTranslation."""
-    from acausal2d.library import planar
-    from acausal2d.library.linkage.base import _Assembly
     asm = context.shared("linkage assembly", lambda: _Assembly(context))
     comps = list(context.model.components())
     for _ in range(len(comps)):

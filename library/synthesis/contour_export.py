@@ -38,6 +38,7 @@ import numpy as np
 
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.io.files import atomic_path, write_text
+from acausal2d.library.belt.contour import Contour
 
 __all__ = ["CamOutline", "cam_outline", "analysis_contour", "write_csv", "write_svg",
            "write_dxf", "export_contour"]
@@ -263,7 +264,6 @@ def analysis_contour(syn, n_harm=400, n_arc=800, n_gap=400):
     the ln r closure (``n_gap`` points) through
     :meth:`Contour.from_table` with ``n_harm`` harmonics.  Returns an
     :class:`AnalysisContour`."""
-    from acausal2d.library.belt.contour import Contour
     kappa, r, krange, _ = _polar_table(syn, n_arc, n_gap)
     con = Contour.from_table(kappa, r, n_harm=n_harm)
     res = AnalysisContour(con, krange, 0.0, syn)

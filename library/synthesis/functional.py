@@ -36,6 +36,8 @@ from .bandkurve import CRITERIA, band_criteria, involute
 from .base import _check_K
 from .dbbd import dbbd_band
 from .dbsd import dbsd_band
+from acausal2d.io.files import write_text
+from .assessment import assess
 
 __all__ = ["BandStructure", "BandSynthesis", "synthesize"]
 
@@ -204,7 +206,6 @@ class BandSynthesis:
     def to_csv(self, path):
         """Write :meth:`table` as CSV (header row of the column names, full
         precision), atomically; returns ``path``."""
-        from acausal2d.io.files import write_text
         cols = self.table()
         rows = [",".join(cols)] + [",".join("%.17g" % v for v in row)
                                    for row in zip(*cols.values())]
@@ -213,7 +214,6 @@ class BandSynthesis:
     def assess(self, **kw):
         """Assessment of the band curve after seed ch. 5 (see
         :func:`acausal2d.library.synthesis.assessment.assess`)."""
-        from .assessment import assess
         return assess(self, **kw)
 
 

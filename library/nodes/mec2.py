@@ -29,7 +29,7 @@ Mapping (mec2 -> acausal2d):
   ``ref`` a drive relative to the reference).  ``input: true`` (a slider on
   mec2's page) drives over time like any drive.
 * loads: ``force {p, value, w0, wref}``, ``spring {p1, p2, k, len0}``.
-* views (both spellings, :mod:`acausal2d.io.mec2_views`): traces of
+* views (both spellings, :mod:`acausal2d.library.nodes.mec2_views`): traces of
   node positions and vectors of a node's vel/acc/force become traces and
   arrows of the animation; the other views (points, charts, infos,
   relative and pole traces) have no counterpart and are listed in the
@@ -46,9 +46,12 @@ import math
 import os
 import re
 
-from ..errors import ModelDefinitionError
-from acausal2d.library.nodes import NodeModel, mec2_drive, ref
+from acausal2d.errors import ModelDefinitionError
+from acausal2d.io.files import read_json
+
 from .mec2_views import check_cosmetics, vector_arrows, warn_once
+from .model import NodeModel
+from .specs import mec2_drive, ref
 
 __all__ = ["load_mec2", "model_from_mec2", "Mec2Model"]
 
@@ -301,7 +304,7 @@ class Mec2Model(NodeModel):
 
     def _views(self, views, loads):
         """Traces and vector arrows of the views (both spellings, already
-        normalized by :func:`~acausal2d.io.mec2_views.normalized_view`)."""
+        normalized by :func:`~acausal2d.library.nodes.mec2_views.normalized_view`)."""
         for path, v in views:
             kind, node = v["as"], v.get("of")
             why = "no counterpart in the animation"
@@ -396,7 +399,6 @@ def load_mec2(path):
     errors name line and column, wrong fields their JSON path."""
     if not os.path.isfile(path):
         raise ModelDefinitionError("model file %s does not exist" % path)
-    from .files import read_json
     data = read_json(path, ModelDefinitionError, "mec2 model file")
     try:
         stem = os.path.splitext(os.path.basename(path))[0]
