@@ -84,15 +84,14 @@ def _check_vary(vary):
 
 def check_sweep(vary, points, options):
     """``sweep``: vary a dict, points a list of dicts, numeric options numbers."""
-    from .compiled import number
+    from .options import number
     _check_vary(vary)
     if points is not None and (isinstance(points, (str, dict)) or not hasattr(points, "__iter__")
                                or not all(isinstance(p, dict) for p in points)):
         raise Acausal2dError("sweep: points must be a list of {'comp.param': value} dicts, "
                              "not %r" % (points,))
-    for name in ("stop_time", "rtol", "intervals", "at"):
-        if options.get(name) is not None:
-            number("sweep: " + name, options[name])
+    if options.get("at") is not None:                 # the run options: RunOptions checks them
+        number("sweep: at", options["at"])
     workers = options.get("workers")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):

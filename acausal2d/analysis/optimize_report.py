@@ -41,9 +41,9 @@ class OptimizeResult:
 
     def _run(self, cm, x):
         from .sweep import expand_params
+        from .trials import trial_options
         return cm.simulate(params=expand_params(self.trials.point(x)),
-                           rtol=self.trials.settings.get("rtol"),
-                           output_times=self.problem.times)
+                           options=trial_options(self.trials.settings, self.problem.times))
 
     def _metric(self, metric, res):
         if metric.expr is None:

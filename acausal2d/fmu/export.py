@@ -25,6 +25,7 @@ from ..runtime import cbuild
 from .description import model_description
 from .generate import casadi_sources, model_data_header
 from ..library.inputs import bind_inputs
+from ..options import RunOptions
 
 C_DIR = os.path.join(os.path.dirname(__file__), "c")
 C_FILES = ("a2d_core.c", "a2d_core.h", "a2d_fmi2.c", "a2d_cs.c", "a2d_cs.h",
@@ -52,7 +53,7 @@ class ExportData:
     p0: np.ndarray
     input_params: dict
     units: dict
-    experiment: dict
+    experiment: RunOptions
     version: str
     guid: str = ""
 
@@ -106,9 +107,11 @@ def _may_turn_singular(system, level):
     return bool(ca.depends_on(J, ca.vertcat(*st.var_sym)))
 
 
-def export_data(model, inputs=None, fixed_states=False):
+def export_data(model, inputs=None, fixed_states=False, options=None):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
-    :func:`~acausal2d.library.inputs.bind_inputs`)."""
+    :func:`~acausal2d.library.inputs.bind_inputs`); ``options`` (a
+    :class:`~acausal2d.options.RunOptions`) give the FMU's default
+    experiment (stop time, tolerance) instead of the model's."""
     from .. import __version__
     from ..compiled import compile_model, _experiment
     name = type(model).__name__
@@ -120,7 +123,8 @@ def export_data(model, inputs=None, fixed_states=False):
         held0 = _held_at_start(compiled, p)
     doc = (type(model).__doc__ or name).strip().splitlines()[0]
     return ExportData(compiled.system, name, name, doc, list(states), list(held0), p,
-                      input_params, compiled.units, _experiment(model), __version__)
+                      input_params, compiled.units,
+                      (options or RunOptions()).resolved(_experiment(model)), __version__)
 
 
 def write_sources(data, folder, kind):
@@ -171,14 +175,16 @@ def build_binary(data, folder, src):
                                              name="fmu-" + data.identifier), target)
 
 
-def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
+def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False, options=None):
     """Export ``model`` (a model instance) as an FMI 2.0 FMU file.
 
     kind: ``"me"`` (Model Exchange) or ``"cs"`` (Co-Simulation); out: the
     .fmu path (default ``<ModelName>.fmu``); inputs: {RealInput name: start
     value}; fixed_states: export a model with dynamic state selection with
     the states chosen at the start (the FMU stops with an error where they
-    no longer serve).  Returns the path.  Raises
+    no longer serve); options: a :class:`~acausal2d.options.RunOptions`
+    whose stop_time and rtol become the FMU's default experiment (default:
+    the model's ``experiment``).  Returns the path.  Raises
     :class:`DynamicStateSelectionError` for a model whose states may have to
     change during a run (unless ``fixed_states``)."""
     if kind not in KINDS:
@@ -186,7 +192,7 @@ def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
                                    "got %r" % (kind,))
     if out is not None:
         _check_target(out)                 # before the model is compiled and built
-    data = export_data(model, inputs, fixed_states)
+    data = export_data(model, inputs, fixed_states, options)
     out = out or data.identifier + ".fmu"
     _check_target(out)
     with tempfile.TemporaryDirectory() as tmp:
