@@ -105,10 +105,13 @@ def simulate(model: ModelArgument, stop_time: float | None = None,
     :meth:`~acausal2d.compiled.CompiledModel.simulate`."""
     from .compiled import CompiledModel
     from .arguments import model_argument, check_simulate_options
-    model = model_argument(model, "simulate")
+    from .options import OPTION_NAMES
     check_simulate_options(keywords)
+    settings = {k: keywords.pop(k) for k in OPTION_NAMES if k in keywords}
+    opts = RunOptions.of(options, "simulate", stop_time=stop_time, **settings)  # before compiling
+    model = model_argument(model, "simulate")
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
-    result: Result = compiled.simulate(stop_time=stop_time, options=options, **keywords)
+    result: Result = compiled.simulate(options=opts, **keywords)
     return result
 
 

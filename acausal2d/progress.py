@@ -19,7 +19,7 @@ DELAY = 1.0
 def _bar(total: float, unit: str, **kw: Any) -> Any:
     from tqdm import tqdm
     return tqdm(total=total, unit=unit, file=sys.stderr, delay=DELAY, disable=None,
-                leave=False, dynamic_ncols=True, **kw)
+                leave=False, **kw)
 
 
 @contextlib.contextmanager

@@ -24,8 +24,11 @@ _CONTROLLER: list[Any] = []
 
 
 def controller() -> Any:
-    """The process's ThreadpoolController, made at the first call."""
+    """The process's ThreadpoolController, made at the first call (it
+    limits the libraries loaded by then: numpy's and scipy's BLAS)."""
     if not _CONTROLLER:
+        import scipy.linalg  # noqa: F401  (loads scipy's BLAS, which the runs use, before the
+        import scipy.sparse.linalg  # noqa: F401  controller lists the loaded libraries)
         from threadpoolctl import ThreadpoolController
         _CONTROLLER.append(ThreadpoolController())
     return _CONTROLLER[0]

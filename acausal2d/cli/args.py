@@ -112,10 +112,12 @@ def option_type(name):
     by :func:`run_options` inside the command's output transaction, so a
     bad value reads as in the API and leaves no earlier results behind."""
     def parse(text):
-        try:
-            return float(text)
-        except ValueError:
-            return text                   # the check names it: "... must be a number"
+        for kind in (int, float):
+            try:
+                return kind(text)
+            except ValueError:
+                pass
+        return text                       # the check names it: "... must be a number"
     parse.__name__ = name
     return parse
 
