@@ -166,9 +166,9 @@ def export_fmu(model: ModelArgument, kind: str = "me", out: str | None = None,
     experiment; see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
     from .fmu import export_fmu as _export
     from .arguments import model_argument
-    model = model_argument(model, "export_fmu")
-    if not isinstance(model, Component):
-        model = model.model          # a CompiledModel: the model it was compiled from
-    path: str = _export(model, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states,
+    given = model_argument(model, "export_fmu")
+    # a CompiledModel: the model it was compiled from
+    instance = given if isinstance(given, Component) else given.model
+    path: str = _export(instance, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states,
                         options=options)
     return path

@@ -3,17 +3,24 @@
 :mod:`acausal2d.analysis.compare_inputs`): an argument of the wrong type is
 an :class:`~acausal2d.errors.Acausal2dError` that names the argument and
 says what it takes, never a raw Python or numpy error from deep inside."""
+from __future__ import annotations
+
 import inspect
 import os
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .errors import Acausal2dError
 
+if TYPE_CHECKING:
+    from .compiled import CompiledModel
+    from .language.dsl import Component
+
 __all__ = ["model_argument", "check_model", "check_simulate_options", "check_load", "check_sweep"]
 
 
-def model_argument(model, function, name=None):
+def model_argument(model: Any, function: str, name: str | None = None) -> Component | CompiledModel:
     """The model a public function was given, as a Component instance or a
     CompiledModel: every public function takes a model file's path (with
     ``name`` choosing the class in it), a Component subclass (instantiated
@@ -39,13 +46,13 @@ def model_argument(model, function, name=None):
                          "instance or a CompiledModel, not %s" % (function, type(model).__name__))
 
 
-def check_model(model, function):
+def check_model(model: Any, function: str) -> Component | CompiledModel:
     """:func:`model_argument` for functions that take an instance only
     (kept for the callers that resolve paths and classes themselves)."""
     return model_argument(model, function)
 
 
-def check_simulate_options(options):
+def check_simulate_options(options: dict[str, Any]) -> None:
     """Unknown keyword arguments of ``simulate`` are named with the known ones."""
     from .compiled import CompiledModel
     known = [p for p in inspect.signature(CompiledModel.simulate).parameters if p != "self"]
@@ -56,7 +63,7 @@ def check_simulate_options(options):
                                 ", ".join(known)))
 
 
-def check_load(path, name, kwargs):
+def check_load(path: Any, name: Any, kwargs: dict[str, Any]) -> None:
     """``load_model``: path a file path, name None or a class name."""
     if not isinstance(path, (str, os.PathLike)):
         raise Acausal2dError("load_model: path must be a model file path, not %s"
@@ -66,7 +73,7 @@ def check_load(path, name, kwargs):
                              "not %r" % (name,))
 
 
-def _check_vary(vary):
+def _check_vary(vary: Any) -> None:
     if vary is None:
         return
     if not isinstance(vary, dict):
@@ -82,7 +89,7 @@ def _check_vary(vary):
                                  % (column, vals)) from None
 
 
-def check_sweep(vary, points, options):
+def check_sweep(vary: Any, points: Any, options: dict[str, Any]) -> None:
     """``sweep``: vary a dict, points a list of dicts, numeric options numbers."""
     from .options import number
     _check_vary(vary)

@@ -2,7 +2,10 @@
 :class:`CompiledModel`, which simulates many times with other parameter
 values without recompiling and returns :class:`~acausal2d.result.Result`
 objects."""
+from __future__ import annotations
+
 import copy as _copy
+from typing import TYPE_CHECKING, Any
 import time as _time
 
 import numpy as np
@@ -21,8 +24,11 @@ from .options import CHECKS, RunOptionError, RunOptions, number
 from .progress import time_progress
 from .threads import our_threads
 
+if TYPE_CHECKING:
+    from .language.dsl import Component
 
-def compile_model(model):
+
+def compile_model(model: Component) -> "CompiledModel":
     """Compile a model instance into a :class:`CompiledModel`.  The model
     itself is left as it was: the compiler works on its own copy."""
     return CompiledModel(model)
@@ -263,9 +269,11 @@ class CompiledModel:
         _check_clock(times)
         return opts
 
-    def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
-                 start_time=None, output_times=None, progress=None, max_steps=None,
-                 max_wall_time=None, start=None, options=None):
+    def simulate(self, stop_time: Any = None, params: Any = None, rtol: Any = None,
+                 atol: Any = None, intervals: Any = None, start_time: Any = None,
+                 output_times: Any = None, progress: Any = None, max_steps: Any = None,
+                 max_wall_time: Any = None, start: Any = None,
+                 options: RunOptions | None = None) -> Result:
         """Simulate and return a :class:`~acausal2d.result.Result`.
 
         params: {dotted parameter name: value}; start: {unknown: value}
@@ -292,8 +300,9 @@ class CompiledModel:
                 log = Simulation(self.system, p, times, opts.rtol, atol, progress,
                                  opts.max_steps, opts.max_wall_time, start).run()
         except SimulationError as exc:
-            if getattr(exc, "partial", None) is not None:
-                exc.result = self._result(exc.partial, p)
+            partial = getattr(exc, "partial", None)
+            if partial is not None:
+                setattr(exc, "result", self._result(partial, p))
             raise
         return self._result(log, p)
 

@@ -106,7 +106,7 @@ def _output_times(value: object) -> tuple[float, ...]:
 
 def _progress(value: object) -> Progress:
     if isinstance(value, bool) or callable(value):
-        return value  # type: ignore[return-value]
+        return value
     raise RunOptionError("progress", "must be True (a bar on a terminal), False or a function "
                          "progress(t, t_end), got %r" % (value,))
 

@@ -47,11 +47,16 @@ the reported point, :func:`~acausal2d.analysis.optimality.kkt_check`), never by 
 alone; an optimiser stopped by its evaluation budget is reported with
 ``budget_exhausted``.
 """
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from ..errors import Acausal2dError
 from ..options import DEFAULTS, RunOptionError, RunOptions
 from .trials import Trials, parse_free
+
+if TYPE_CHECKING:
+    from .fit_report import FitResult
 
 CORRELATION_LIMIT = 0.99
 """|corr| above which a pair of parameters is reported as not separable."""
@@ -373,9 +378,11 @@ def _check_abs_tol(abs_tol):
                              "units, got %r" % (abs_tol,))
 
 
-def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=None, fixed=None,
-        loss="linear", f_scale=1.0, rtol=None, max_evaluations=100, scheduler=None,
-        workers=None, client=None, model_name=None, abs_tol=None, options=None):
+def fit(model: Any, data: Any, free: Any, signals: Any = None, mapping: Any = None,
+        weights: Any = None, t_range: Any = None, fixed: Any = None, loss: str = "linear",
+        f_scale: float = 1.0, rtol: Any = None, max_evaluations: int = 100,
+        scheduler: Any = None, workers: Any = None, client: Any = None, model_name: Any = None,
+        abs_tol: Any = None, options: "RunOptions | None" = None) -> "FitResult":
     """Fit the parameters ``free`` of ``model`` to the measured ``data``.
 
     model: a model file path, a Component subclass or a CompiledModel (this

@@ -49,6 +49,7 @@ exit flag; the constraints active at the optimum are reported with their
 multipliers.
 """
 import time as _time
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -56,6 +57,9 @@ from ..errors import Acausal2dError
 from ..options import RunOptions
 from .metrics import Expression, parse_constraint
 from .trials import Trials, check_fixed_apart, parse_free
+
+if TYPE_CHECKING:
+    from .optimize_report import OptimizeResult
 
 KKT_TOL = 1e-5
 """Tolerance of the scaled KKT measures that decide success (finite
@@ -289,9 +293,11 @@ def _check_bounds(names, x0, lo, hi):
                                     start + max(abs(start), 1.0)))
 
 
-def optimize(model, vary, objective, constraints=(), fixed=None, stop_time=None,
-             intervals=None, rtol=None, max_iterations=60, scheduler=None, workers=None,
-             client=None, model_name=None, options=None):
+def optimize(model: Any, vary: Any, objective: Any, constraints: Any = (), fixed: Any = None,
+             stop_time: Any = None, intervals: Any = None, rtol: Any = None,
+             max_iterations: int = 60, scheduler: Any = None, workers: Any = None,
+             client: Any = None, model_name: Any = None,
+             options: "RunOptions | None" = None) -> "OptimizeResult":
     """Minimise ``objective`` over the parameters ``vary``.
 
     model: a model file path, a Component subclass or a CompiledModel (this

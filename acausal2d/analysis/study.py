@@ -21,6 +21,8 @@ to the model file (``ctx.sweep(...)``, with the command's ``--scheduler`` and
 atomic writes of figures and tables into the output folder (``ctx.save``).
 """
 import inspect
+from collections.abc import Callable
+from typing import Any
 import os
 
 from ..errors import Acausal2dError
@@ -48,7 +50,7 @@ class Study:
         return "Study(%s)" % self.name
 
 
-def study(fn):
+def study(fn: Callable[..., Any]) -> "Study":
     """Decorator declaring a study of a model class; the function takes a
     :class:`StudyContext`."""
     return Study(fn)

@@ -51,6 +51,7 @@ import itertools
 import os
 import sys
 import time as _time
+from typing import Any
 
 import numpy as np
 
@@ -436,9 +437,11 @@ def _cell(value, digits=17):
     return str(value)
 
 
-def sweep(model, vary=None, points=None, outputs=None, metrics=None, at=None, stop_time=None,
-          rtol=None, intervals=None, params=None, scheduler=None, workers=None, client=None,
-          progress=None, model_name=None, model_kwargs=None, options=None):
+def sweep(model: Any, vary: Any = None, points: Any = None, outputs: Any = None,
+          metrics: Any = None, at: Any = None, stop_time: Any = None, rtol: Any = None,
+          intervals: Any = None, params: Any = None, scheduler: Any = None, workers: Any = None,
+          client: Any = None, progress: Any = None, model_name: Any = None,
+          model_kwargs: Any = None, options: "RunOptions | None" = None) -> "SweepResult":
     """Simulate ``model`` once per parameter point and collect a table.
 
     model: a model file path, a Component subclass (from an importable

@@ -15,6 +15,7 @@ import shutil
 import tempfile
 import zipfile
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -175,7 +176,8 @@ def build_binary(data, folder, src):
                                              name="fmu-" + data.identifier), target)
 
 
-def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False, options=None):
+def export_fmu(model: Any, kind: str = "me", out: "str | None" = None, inputs: Any = None,
+               fixed_states: bool = False, options: "RunOptions | None" = None) -> str:
     """Export ``model`` (a model instance) as an FMI 2.0 FMU file.
 
     kind: ``"me"`` (Model Exchange) or ``"cs"`` (Co-Simulation); out: the

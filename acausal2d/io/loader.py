@@ -5,6 +5,8 @@ import inspect
 import os
 import sys
 
+from typing import Any
+
 from ..errors import Acausal2dError, ModelDefinitionError
 from ..language.dsl import Component
 
@@ -82,7 +84,8 @@ def _named(path, module, name, classes):
     return cls
 
 
-def load_model(path, name=None, **kwargs):
+def load_model(path: "str | os.PathLike[str]", name: "str | None" = None,
+               **kwargs: Any) -> Component:
     """Import the model file ``path`` (Python source; any file name) and
     instantiate its model.
 
