@@ -136,7 +136,8 @@ class RunOptions:
     absolute tolerance, one number or one per unknown (default: rtol times
     each unknown's nominal); intervals: output intervals (default:
     ``experiment`` or 500) from ``start_time``; output_times: the output
-    times instead of stop_time and intervals; max_steps, max_wall_time:
+    times instead of stop_time and intervals (which, if also given, must
+    agree with them); max_steps, max_wall_time:
     budgets of integrator steps and wall-clock seconds after which a run
     stops early with its data so far; progress: ``True`` (a bar on standard
     error when it is a terminal), ``False`` or ``progress(t, t_end)``.
@@ -158,13 +159,24 @@ class RunOptions:
             value = getattr(self, f.name)
             if value is not None:
                 object.__setattr__(self, f.name, CHECKS[f.name](value))
-        if self.output_times is not None and (self.stop_time is not None
-                                              or self.intervals is not None):
-            raise RunOptionError("output_times", "replaces stop_time and intervals; give "
-                                 "either output_times or stop_time/intervals, not both")
+        if self.output_times is not None:
+            self._check_grid(self.output_times)
         if self.stop_time is not None and not self.stop_time > self.start_time:
             raise RunOptionError("stop_time", "(%g s) must be larger than start_time (%g s)"
                                  % (self.stop_time, self.start_time))
+
+    def _check_grid(self, times: tuple[float, ...]) -> None:
+        """stop_time and intervals given beside output_times must agree with
+        them (the last time, the number of intervals)."""
+        end = times[-1]
+        if self.stop_time is not None and \
+                abs(self.stop_time - end) > 8 * np.finfo(float).eps * max(1.0, abs(end)):
+            raise RunOptionError("stop_time", "(%g s) differs from the last of output_times "
+                                 "(%g s); give output_times alone" % (self.stop_time, end))
+        if self.intervals is not None and self.intervals != len(times) - 1:
+            raise RunOptionError("intervals", "(%d) differs from the %d intervals of "
+                                 "output_times; give output_times alone"
+                                 % (self.intervals, len(times) - 1))
 
     def replace(self, **changes: Any) -> RunOptions:
         """A copy with ``changes`` (checked alike)."""
@@ -179,6 +191,7 @@ class RunOptions:
                 if getattr(self, k) is None}
         if self.output_times is not None:
             fill = {k: v for k, v in fill.items() if k == "rtol"}
+            fill.update(stop_time=None, intervals=None)   # the grid says both
         return self.replace(**fill) if fill else self
 
     def times(self) -> np.ndarray:

@@ -72,8 +72,11 @@ def test_options_and_a_keyword_together_name_both():
         acausal2d.sweep(PENDULUM, vary={"body.m": [1, 2]}, options=RunOptions(), stop_time=1.0)
     with pytest.raises(RunOptionError, match="options of simulate must be a RunOptions"):
         acausal2d.simulate(PENDULUM, options={"rtol": 1e-6})
-    with pytest.raises(RunOptionError, match="output_times replaces stop_time and intervals"):
-        RunOptions(stop_time=1.0, output_times=[0.0, 1.0])
+    with pytest.raises(RunOptionError, match=r"stop_time \(2 s\) differs from the last"):
+        RunOptions(stop_time=2.0, output_times=[0.0, 1.0])
+    with pytest.raises(RunOptionError, match=r"intervals \(4\) differs from the 1 intervals"):
+        RunOptions(intervals=4, output_times=[0.0, 1.0])
+    assert RunOptions(stop_time=1.0, intervals=1, output_times=[0.0, 1.0]).resolved({}).end == 1.0
 
 
 def test_options_are_frozen_and_replace_checks_again():
