@@ -187,11 +187,11 @@ class RunOptions:
         ``experiment`` and then :data:`DEFAULTS` (output_times, when given,
         replaces stop_time and intervals)."""
         exp = dict(experiment or {})
-        fill = {k: exp.get(k, DEFAULTS[k]) for k in ("stop_time", "rtol", "intervals")
-                if getattr(self, k) is None}
-        if self.output_times is not None:
-            fill = {k: v for k, v in fill.items() if k == "rtol"}
-            fill.update(stop_time=None, intervals=None)   # the grid says both
+        fill: dict[str, float | None] = {
+            k: exp.get(k, DEFAULTS[k]) for k in ("stop_time", "rtol", "intervals")
+            if getattr(self, k) is None}
+        if self.output_times is not None:            # the grid says stop_time and intervals
+            fill = {"stop_time": None, "intervals": None, "rtol": fill.get("rtol", self.rtol)}
         return self.replace(**fill) if fill else self
 
     def times(self) -> np.ndarray:
