@@ -3,12 +3,13 @@
 Write models as Python classes (:class:`Component`), then :func:`compile_model`
 and :meth:`CompiledModel.simulate` them, or call :func:`simulate` directly.
 """
+from __future__ import annotations
+
 import os as _os
+from typing import TYPE_CHECKING, Any, Union
 
 __version__ = "0.1.0"
 """The package version (``acausal2d --version``; pyproject.toml reads it from here)."""
-
-_os.environ.setdefault("OMP_NUM_THREADS", "1")  # before scikit-sundae is imported
 
 from casadi import (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, fabs,  # noqa: E402,F401
                     fmin, fmax, sign, if_else, pi)
@@ -25,18 +26,33 @@ from .analysis.compare import compare as _compare  # noqa: E402
 from .analysis.study import study  # noqa: E402,F401
 from .io import loader as _loader  # noqa: E402
 from .io.loader import load_model as _load
+from .options import OPTION_NAMES, RunOptions  # noqa: E402,F401
+
+if TYPE_CHECKING:
+    from .analysis.compare import Comparison
+    from .analysis.fit_report import FitResult
+    from .analysis.optimize_report import OptimizeResult
+    from .analysis.sweep import SweepResult
+    from .compiled import CompiledModel
+    from .result import Result
 
 Model = Component
 """Alias of :class:`Component` for top-level models."""
 
+ModelArgument = Union[str, "_os.PathLike[str]", Component, "type[Component]", "CompiledModel"]
+"""What every public function takes as its model: a model file's path, a
+Component subclass (made with its defaults), an instance or a CompiledModel."""
 
-def compare(result, reference, signals=None, **options):
+
+def compare(result: Any, reference: Any, signals: Any = None, **options: Any) -> Comparison:
     """Compare a result with a reference signal by signal, the planar
     library's Modelica aliases included (``body.r[1]`` is our ``body.x``);
     see :func:`acausal2d.analysis.compare.compare` for the options.
     Returns a Comparison."""
     import acausal2d.library.planar  # noqa: F401  (declares the aliases)
-    return _compare(result, reference, signals=signals, **options)
+    comparison: Comparison = _compare(result, reference, signals=signals, **options)
+    return comparison
+
 
 __all__ = [
     # modelling
@@ -47,8 +63,8 @@ __all__ = [
     "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "log", "fabs", "fmin",
     "fmax", "sign", "if_else", "pi",
     # running and analysing
-    "load_model", "compile_model", "CompiledModel", "simulate", "Result", "check", "compare",
-    "sweep", "study", "fit", "optimize", "export_fmu",
+    "load_model", "compile_model", "CompiledModel", "simulate", "RunOptions", "Result", "check",
+    "compare", "sweep", "study", "fit", "optimize", "export_fmu",
     # errors
     "Acausal2dError", "ModelDefinitionError", "StructuralError", "InitializationError",
     "SimulationError",
@@ -58,7 +74,7 @@ __all__ = [
 _LAZY = {"CompiledModel": "compiled", "Result": "result"}
 
 
-def _read_mec2(path):
+def _read_mec2(path: str) -> Any:
     """A mec2 model file, read by the library's importer
     (:func:`acausal2d.library.nodes.mec2.load_mec2`; imported when one is read)."""
     from .library.nodes.mec2 import load_mec2
@@ -68,7 +84,7 @@ def _read_mec2(path):
 _loader.register_reader(".json", "mec2", _read_mec2)
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     """``CompiledModel`` and ``Result`` on first use: they import the
     runtime (IDA, scikit-sundae), which ``import acausal2d`` alone does not
     need."""
@@ -79,7 +95,7 @@ def __getattr__(name):
     raise AttributeError("module 'acausal2d' has no attribute %r" % name)
 
 
-def compile_model(model, name=None):
+def compile_model(model: ModelArgument, name: str | None = None) -> CompiledModel:
     """Flatten, index-reduce and prepare ``model`` (a model file's path with
     ``name`` choosing its class, a Component subclass or instance) for
     simulation; returns a :class:`~acausal2d.compiled.CompiledModel` that
@@ -91,58 +107,78 @@ def compile_model(model, name=None):
     return model if isinstance(model, CompiledModel) else _compile(model)
 
 
-def simulate(model, stop_time=None, **options):
+def simulate(model: ModelArgument, stop_time: float | None = None,
+             options: RunOptions | None = None, **keywords: Any) -> Result:
     """Compile (if needed) and simulate ``model`` (a model file's path, a
     Component subclass or instance, or a CompiledModel); returns a
-    :class:`~acausal2d.result.Result`.  See
+    :class:`~acausal2d.result.Result`.  ``options``: a
+    :class:`RunOptions`, or its settings as keywords (not both); further
+    keywords (params, start) as for
     :meth:`~acausal2d.compiled.CompiledModel.simulate`."""
     from .compiled import CompiledModel
     from .arguments import model_argument, check_simulate_options
+    check_simulate_options(keywords)
+    settings = {k: keywords.pop(k) for k in OPTION_NAMES if k in keywords}
+    opts = RunOptions.of(options, "simulate", stop_time=stop_time, **settings)  # before compiling
     model = model_argument(model, "simulate")
-    check_simulate_options(options)
     compiled = model if isinstance(model, CompiledModel) else compile_model(model)
-    return compiled.simulate(stop_time=stop_time, **options)
+    result: Result = compiled.simulate(options=opts, **keywords)
+    return result
 
 
-def sweep(model, vary=None, points=None, **options):
-    """Parameter study on Dask: simulate ``model`` (a model file) for every
-    combination of the ``vary`` values (or every dict of ``points``) and
-    return the table (see :func:`acausal2d.analysis.sweep.sweep`)."""
+def sweep(model: ModelArgument, vary: dict[str, Any] | None = None,
+          points: list[dict[str, Any]] | None = None, **options: Any) -> SweepResult:
+    """Parameter study on Dask: simulate ``model`` for every combination of
+    the ``vary`` values (or every dict of ``points``) and return the table
+    (see :func:`acausal2d.analysis.sweep.sweep`; ``options=`` a
+    :class:`RunOptions` for every point)."""
     from .analysis.sweep import sweep as _sweep
     from .arguments import check_sweep
     check_sweep(vary, points, options)
-    return _sweep(model, vary=vary, points=points, **options)
+    table: SweepResult = _sweep(model, vary=vary, points=points, **options)
+    return table
 
 
-def load_model(path, name=None, **kwargs):
+def load_model(path: str | _os.PathLike[str], name: str | None = None,
+               **kwargs: Any) -> Component:
     """Instantiate the model of a model file (see :func:`acausal2d.io.loader.load_model`)."""
     from .arguments import check_load
     check_load(path, name, kwargs)
-    return _load(path, name, **kwargs)
+    model: Component = _load(path, name, **kwargs)
+    return model
 
 
-def fit(model, data, free, **options):
+def fit(model: ModelArgument, data: Any, free: dict[str, Any], **options: Any) -> FitResult:
     """Fit the parameters ``free`` of ``model`` to measured curves ``data``
-    (see :func:`acausal2d.analysis.fit.fit`); returns a FitResult."""
+    (see :func:`acausal2d.analysis.fit.fit`; ``options=`` a
+    :class:`RunOptions` for its runs); returns a FitResult."""
     from .analysis.fit import fit as _fit
-    return _fit(model, data, free, **options)
+    result: FitResult = _fit(model, data, free, **options)
+    return result
 
 
-def optimize(model, vary, objective, **options):
+def optimize(model: ModelArgument, vary: dict[str, Any], objective: Any,
+             **options: Any) -> OptimizeResult:
     """Minimise a run metric ``objective`` over the parameters ``vary``
-    (see :func:`acausal2d.analysis.optimize.optimize`); returns an
-    OptimizeResult."""
+    (see :func:`acausal2d.analysis.optimize.optimize`; ``options=`` a
+    :class:`RunOptions` for its runs); returns an OptimizeResult."""
     from .analysis.optimize import optimize as _optimize
-    return _optimize(model, vary, objective, **options)
+    result: OptimizeResult = _optimize(model, vary, objective, **options)
+    return result
 
 
-def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
-    """Export a model (an instance, or the path of a model file) as an FMI
-    2.0 FMU with native binaries; kind ``"me"`` (Model Exchange) or ``"cs"``
-    (Co-Simulation); see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
+def export_fmu(model: ModelArgument, kind: str = "me", out: str | None = None,
+               inputs: dict[str, float] | None = None, fixed_states: bool = False,
+               options: RunOptions | None = None) -> str:
+    """Export a model as an FMI 2.0 FMU with native binaries; kind ``"me"``
+    (Model Exchange) or ``"cs"`` (Co-Simulation); ``options``: a
+    :class:`RunOptions` whose stop_time and rtol become the FMU's default
+    experiment; see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
     from .fmu import export_fmu as _export
     from .arguments import model_argument
-    model = model_argument(model, "export_fmu")
-    if not isinstance(model, Component):
-        model = model.model          # a CompiledModel: the model it was compiled from
-    return _export(model, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states)
+    given = model_argument(model, "export_fmu")
+    # a CompiledModel: the model it was compiled from
+    instance = given if isinstance(given, Component) else given.model
+    path: str = _export(instance, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states,
+                        options=options)
+    return path

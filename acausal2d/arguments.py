@@ -3,21 +3,28 @@
 :mod:`acausal2d.analysis.compare_inputs`): an argument of the wrong type is
 an :class:`~acausal2d.errors.Acausal2dError` that names the argument and
 says what it takes, never a raw Python or numpy error from deep inside."""
+from __future__ import annotations
+
 import inspect
 import os
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .errors import Acausal2dError
 from .compiled import CompiledModel
 from .language.dsl import Component
-from .compiled import number
+from .options import number
 from .io.loader import load_model
+
+if TYPE_CHECKING:
+    from .compiled import CompiledModel
+    from .language.dsl import Component
 
 __all__ = ["model_argument", "check_model", "check_simulate_options", "check_load", "check_sweep"]
 
 
-def model_argument(model, function, name=None):
+def model_argument(model: Any, function: str, name: str | None = None) -> Component | CompiledModel:
     """The model a public function was given, as a Component instance or a
     CompiledModel: every public function takes a model file's path (with
     ``name`` choosing the class in it), a Component subclass (instantiated
@@ -40,13 +47,13 @@ def model_argument(model, function, name=None):
                          "instance or a CompiledModel, not %s" % (function, type(model).__name__))
 
 
-def check_model(model, function):
+def check_model(model: Any, function: str) -> Component | CompiledModel:
     """:func:`model_argument` for functions that take an instance only
     (kept for the callers that resolve paths and classes themselves)."""
     return model_argument(model, function)
 
 
-def check_simulate_options(options):
+def check_simulate_options(options: dict[str, Any]) -> None:
     """Unknown keyword arguments of ``simulate`` are named with the known ones."""
     known = [p for p in inspect.signature(CompiledModel.simulate).parameters if p != "self"]
     unknown = sorted(set(options) - set(known))
@@ -56,7 +63,7 @@ def check_simulate_options(options):
                                 ", ".join(known)))
 
 
-def check_load(path, name, kwargs):
+def check_load(path: Any, name: Any, kwargs: dict[str, Any]) -> None:
     """``load_model``: path a file path, name None or a class name."""
     if not isinstance(path, (str, os.PathLike)):
         raise Acausal2dError("load_model: path must be a model file path, not %s"
@@ -66,7 +73,7 @@ def check_load(path, name, kwargs):
                              "not %r" % (name,))
 
 
-def _check_vary(vary):
+def _check_vary(vary: Any) -> None:
     if vary is None:
         return
     if not isinstance(vary, dict):
@@ -82,16 +89,15 @@ def _check_vary(vary):
                                  % (column, vals)) from None
 
 
-def check_sweep(vary, points, options):
+def check_sweep(vary: Any, points: Any, options: dict[str, Any]) -> None:
     """``sweep``: vary a dict, points a list of dicts, numeric options numbers."""
     _check_vary(vary)
     if points is not None and (isinstance(points, (str, dict)) or not hasattr(points, "__iter__")
                                or not all(isinstance(p, dict) for p in points)):
         raise Acausal2dError("sweep: points must be a list of {'comp.param': value} dicts, "
                              "not %r" % (points,))
-    for name in ("stop_time", "rtol", "intervals", "at"):
-        if options.get(name) is not None:
-            number("sweep: " + name, options[name])
+    if options.get("at") is not None:                 # the run options: RunOptions checks them
+        number("sweep: at", options["at"])
     workers = options.get("workers")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):

@@ -2,7 +2,10 @@
 :class:`CompiledModel`, which simulates many times with other parameter
 values without recompiling and returns :class:`~acausal2d.result.Result`
 objects."""
+from __future__ import annotations
+
 import copy as _copy
+from typing import TYPE_CHECKING, Any
 import time as _time
 
 import numpy as np
@@ -21,13 +24,15 @@ from .analysis.modes import linearize
 from .analysis.modes import modes
 from .analysis.equilibrium import find_equilibrium
 from .language.dsl import Parameter
+from .options import CHECKS, RunOptionError, RunOptions, number
+from .progress import time_progress
+from .threads import our_threads
+
+if TYPE_CHECKING:
+    from .language.dsl import Component
 
 
-MAX_STEPS = 1000000
-"""Default step budget of a run."""
-
-
-def compile_model(model):
+def compile_model(model: Component) -> "CompiledModel":
     """Compile a model instance into a :class:`CompiledModel`.  The model
     itself is left as it was: the compiler works on its own copy."""
     return CompiledModel(model)
@@ -253,56 +258,52 @@ class CompiledModel:
         return self.system.describe_equation(i)
 
     # ------------------------------------------------------------ simulate
-    def _settings(self, stop_time, rtol, atol, intervals, start_time, output_times):
-        """(output times, rtol) from the arguments and the model's
-        ``experiment``, checked."""
-        exp = _experiment(self.model)
-        rtol = float(number("rtol", rtol if rtol is not None else exp.get("rtol", 1e-6)))
-        atol = _check_tolerances(rtol, atol, self.system.node_names)
-        if output_times is None:
-            stop = number("stop_time", stop_time if stop_time is not None
-                           else exp.get("stop_time", 1.0))
-            intervals = number("intervals", intervals if intervals is not None
-                                else exp.get("intervals", 500))
-            output_times = _output_grid(number("start_time", start_time), stop, intervals,
-                                        len(self.names))
-        output_times = _times(output_times)
-        _check_clock(output_times)
-        return output_times, rtol, atol
+    def run_options(self, options=None, **keywords):
+        """The :class:`~acausal2d.options.RunOptions` of a run of this model:
+        ``options`` or the keywords (not both), resolved with the model's
+        ``experiment`` and checked against the model (atol, output times)."""
+        opts = RunOptions.of(options, "simulate", **keywords).resolved(_experiment(self.model))
+        _check_atol(opts.atol, self.system.node_names)
+        times = opts.times()
+        if opts.output_times is None:
+            _check_size(opts.intervals, len(self.names))
+        _check_clock(times)
+        return opts
 
-    def simulate(self, stop_time=None, params=None, rtol=None, atol=None, intervals=None,
-                 start_time=0.0, output_times=None, progress=None, max_steps=MAX_STEPS,
-                 max_wall_time=None, start=None):
+    def simulate(self, stop_time: Any = None, params: Any = None, rtol: Any = None,
+                 atol: Any = None, intervals: Any = None, start_time: Any = None,
+                 output_times: Any = None, progress: Any = None, max_steps: Any = None,
+                 max_wall_time: Any = None, start: Any = None,
+                 options: RunOptions | None = None) -> Result:
         """Simulate and return a :class:`~acausal2d.result.Result`.
 
-        stop_time: end time (default: the model's ``experiment['stop_time']``
-        or 1 s); params: {dotted parameter name: value}; rtol/atol:
-        integrator tolerances (default 1e-6 and rtol times each variable's
-        nominal); intervals: number of output intervals (default 500)
-        unless ``output_times`` is given; progress: optional callable(t,
-        t_end), called as the run advances; max_steps, max_wall_time:
-        budgets of integrator steps and wall-clock seconds, after which the
-        run stops early with the data so far (``result.stopped`` says why;
-        default: 1,000,000 steps, no time limit); start: {unknown: value}
+        params: {dotted parameter name: value}; start: {unknown: value}
         replacing start values of the model (a fixed one stays fixed, a
-        guess moves the assembly guess; names from :attr:`start_names`).
+        guess moves the assembly guess; names from :attr:`start_names`);
+        options: a :class:`~acausal2d.options.RunOptions`, or its settings
+        as keywords (stop_time, rtol, atol, intervals, start_time,
+        output_times, progress, max_steps, max_wall_time; see there; not
+        both).  A run that uses up a budget stops early with the data so
+        far (``result.stopped`` says why).
         """
-        times, rtol, atol = self._settings(stop_time, rtol, atol, intervals, start_time,
-                                           output_times)
-        if progress is not None and not callable(progress):
-            raise Acausal2dError("progress must be a function progress(t, t_end) or None, got %r"
-                                 % (progress,))
+        opts = self.run_options(options, stop_time=stop_time, rtol=rtol, atol=atol,
+                                intervals=intervals, start_time=start_time,
+                                output_times=output_times, progress=progress,
+                                max_steps=max_steps, max_wall_time=max_wall_time)
         p = self.parameter_values(params)
         start = self.start_indices(start)
         self.system.check_fixed_values(p)
+        atol = np.asarray(opts.atol) if isinstance(opts.atol, tuple) else opts.atol
+        times = opts.times()
         try:
-            with translated("simulating %s" % type(self.model).__name__):
-                log = Simulation(self.system, p, times, rtol, atol, progress,
-                                 _budget(max_steps, "max_steps"),
-                                 _budget(max_wall_time, "max_wall_time"), start).run()
+            with translated("simulating %s" % type(self.model).__name__), our_threads(), \
+                    time_progress(opts.progress, times[0], times[-1]) as progress:
+                log = Simulation(self.system, p, times, opts.rtol, atol, progress,
+                                 opts.max_steps, opts.max_wall_time, start).run()
         except SimulationError as exc:
-            if getattr(exc, "partial", None) is not None:
-                exc.result = self._result(exc.partial, p)
+            partial = getattr(exc, "partial", None)
+            if partial is not None:
+                setattr(exc, "result", self._result(partial, p))
             raise
         return self._result(log, p)
 
@@ -322,54 +323,22 @@ class CompiledModel:
         return res
 
 
-def _budget(value, name):
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 \
-            or value != value:
-        raise Acausal2dError("%s must be a positive number, got %r" % (name, value))
-    return value
+def _check_atol(atol, names):
+    """atol of one number per unknown has as many values as the model has
+    unknowns (``names``, in that order)."""
+    if isinstance(atol, tuple) and len(atol) != len(names):
+        raise RunOptionError("atol", "has %d values; give one number, or one per unknown "
+                             "(%d: %s)" % (len(atol), len(names), ", ".join(list(names)[:6])
+                                            + (", ..." if len(names) > 6 else "")))
 
 
-def _check_tolerances(rtol, atol, names):
-    """rtol checked; atol as None, a positive number or an array of one
-    positive number per unknown (``names``, in that order)."""
-    if not rtol > 0:
-        raise Acausal2dError("rtol must be positive, got %g" % rtol)
-    if not rtol < 0.1:
-        raise Acausal2dError("rtol must be below 0.1 (a relative tolerance, e.g. 1e-6), got %g"
-                             % rtol)
-    if atol is None:
-        return None
-    if isinstance(atol, (bool, str, bytes)):
-        raise Acausal2dError("atol must be a positive number or one per unknown, got %r" % (atol,))
-    try:
-        a = np.asarray(atol, dtype=float)
-    except (TypeError, ValueError):
-        raise Acausal2dError("atol must be a positive number or one per unknown, got %r"
-                             % (atol,)) from None
-    if a.ndim > 1 or (a.ndim == 1 and a.size != len(names)):
-        raise Acausal2dError("atol has %s values; give one number, or one per unknown (%d: %s)"
-                             % (a.size if a.ndim == 1 else "shape %s of" % (a.shape,),
-                                len(names), ", ".join(list(names)[:6])
-                                + (", ..." if len(names) > 6 else "")))
-    if not np.all(np.isfinite(a)) or not np.all(a > 0):
-        raise Acausal2dError("atol must be positive and finite, got %r" % (atol,))
-    return float(a) if a.ndim == 0 else a
-
-
-def _times(output_times):
-    """output_times as a float array of at least two finite, increasing times."""
-    bad = "output_times must be at least two finite, increasing times (a list of numbers)"
-    if isinstance(output_times, (str, bytes, dict)):
-        raise Acausal2dError("%s, got %r" % (bad, output_times))
-    try:
-        t = np.asarray(output_times, dtype=float)
-    except (TypeError, ValueError):
-        raise Acausal2dError("%s, got %r" % (bad, output_times)) from None
-    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
-        raise Acausal2dError(bad)
-    return t
+def _check_size(intervals, columns):
+    """Refuse a result too large for memory (:data:`MAX_RESULT_BYTES`)."""
+    size = 8.0 * (intervals + 1) * (columns + 1)
+    if size > MAX_RESULT_BYTES:
+        raise RunOptionError("intervals", "too many: %d output intervals of %d signals would "
+                             "take %.3g GB of memory (at most %.3g GB); ask for fewer intervals"
+                             % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
 
 
 def _check_clock(times):
@@ -393,16 +362,6 @@ MAX_RESULT_BYTES = 4e9
 _EXPERIMENT_KEYS = ("stop_time", "rtol", "intervals")
 
 
-def number(name, value):
-    """``value`` if it is a finite number, else the project's error naming
-    the setting ``name`` (used by ``simulate``'s settings and ``sweep``)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise Acausal2dError("%s must be a number, got %r" % (name, value))
-    if not np.isfinite(value):
-        raise Acausal2dError("%s must be finite, got %r" % (name, value))
-    return value
-
-
 def _experiment(model):
     """The model's ``experiment`` settings, checked."""
     exp = getattr(model, "experiment", None) or {}
@@ -416,23 +375,13 @@ def _experiment(model):
                                       ", ".join(_EXPERIMENT_KEYS)))
     for key, value in exp.items():
         number("%s: experiment['%s']" % (type(model).__name__, key), value)
+        try:
+            CHECKS[key](value)
+        except RunOptionError as exc:
+            raise ModelDefinitionError("%s: experiment['%s']: %s"
+                                       % (type(model).__name__, key, exc)) from None
     return dict(exp)
 
-
-def _output_grid(start_time, stop, intervals, columns):
-    if not stop > start_time:
-        raise Acausal2dError("stop_time (%g s) must be larger than start_time (%g s)"
-                             % (stop, start_time))
-    if intervals < 1:
-        raise Acausal2dError("intervals must be at least 1, got %r" % (intervals,))
-    if int(intervals) != intervals:
-        raise Acausal2dError("intervals must be a whole number, got %r" % (intervals,))
-    size = 8.0 * (intervals + 1) * (columns + 1)
-    if size > MAX_RESULT_BYTES:
-        raise Acausal2dError("%d output intervals of %d signals would take %.3g GB of memory "
-                             "(at most %.3g GB); ask for fewer intervals"
-                             % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
-    return np.linspace(start_time, stop, int(intervals) + 1)
 
 def derivative_unit(unit, order=1):
     """Unit of the ``order``-th time derivative of a quantity of ``unit``:

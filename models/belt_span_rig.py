@@ -23,7 +23,6 @@ strain) at 201 times over 0.5 s plus Gaussian noise of 3 N (numpy
     acausal2d fit models/belt_span_rig.py --data models/belt_span_rig_measured.csv \\
         --free span.c=1e5:1e4:1e6 --free span.d=50:0:1000 --out out/fit_span
 """
-import math
 import os
 
 import casadi as ca

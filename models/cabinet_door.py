@@ -79,7 +79,7 @@ import os
 import numpy as np
 
 from acausal2d import Component, simulate, start
-from acausal2d.library import rotational, signals
+from acausal2d.library import signals
 from acausal2d.library.synthesis.balancing import spring_band_transfer
 from acausal2d.library.synthesis.functional import BandStructure, synthesize
 from acausal2d.library.synthesis import Bandkurve, DB_SD

@@ -134,14 +134,9 @@ class PulleyBlock(Component):
         self.connect(self.profile.y, self.pull.s_in)
         self.anchor = Fixed(r=(x5, yU))
         self.connect(self.pull.frame, self.rope1.ctr2D1)
-        connect_band(self, self.rope1, 2, self.U1, 1)
-        connect_band(self, self.rope2, 1, self.U1, 2)
-        connect_band(self, self.rope2, 2, self.L2, 1)
-        connect_band(self, self.rope3, 1, self.L2, 2)
-        connect_band(self, self.rope3, 2, self.U3, 1)
-        connect_band(self, self.rope4, 1, self.U3, 2)
-        connect_band(self, self.rope4, 2, self.L4, 1)
-        connect_band(self, self.rope5, 1, self.L4, 2)
+        for k, name in enumerate(("U1", "L2", "U3", "L4")):   # rope k+1 onto it, k+2 off it
+            connect_band(self, getattr(self, "rope%d" % (k + 1)), 2, getattr(self, name), 1)
+            connect_band(self, getattr(self, "rope%d" % (k + 2)), 1, getattr(self, name), 2)
         self.connect(self.rope5.ctr2D2, self.anchor.frame)
 
     @study

@@ -36,5 +36,5 @@ def test_simulate_rejects_bad_settings():
         cm.simulate(stop_time=0.0)
     with pytest.raises(acausal2d.Acausal2dError, match="output_times must be at least two"):
         cm.simulate(output_times=[0.0, 0.2, 0.1])
-    with pytest.raises(acausal2d.Acausal2dError, match="atol must be positive"):
+    with pytest.raises(acausal2d.Acausal2dError, match="atol must be a positive number"):
         cm.simulate(atol=-1.0)

@@ -82,9 +82,9 @@ def test_experiment_settings_are_checked(experiment, message):
     (dict(stop_time=float("inf")), "stop_time must be finite"),
     (dict(stop_time=-1.0), "must be larger than start_time"),
     (dict(intervals=2e9), r"2000000000 output intervals of \d+ signals would take [0-9.e+]+ GB"),
-    (dict(intervals=0), "intervals must be at least 1, got 0"),
-    (dict(intervals=2.5), "intervals must be a whole number, got 2.5"),
-    (dict(rtol=10.0), "rtol must be below 0.1"),
+    (dict(intervals=0), "intervals must be a whole number of at least 1, got 0"),
+    (dict(intervals=2.5), "intervals must be a whole number of at least 1, got 2.5"),
+    (dict(rtol=10.0), r"rtol must be between 0 and 0.1 \(a relative tolerance"),
     (dict(output_times=[0.0, float("nan")]), "output_times must be at least two finite"),
 ])
 def test_run_settings_are_checked_before_the_run(settings, message):

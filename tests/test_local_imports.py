@@ -35,6 +35,8 @@ COSTLY = {
     "starlette": "the explore extra (optional) and its import cost",
     "uvicorn": "the explore extra (optional) and its import cost",
     "webbrowser": "explore only: opens the page",
+    "tqdm": "0.1 s; a progress bar only where standard error is a terminal",
+    "threadpoolctl": "0.03 s (and 34 ms for its controller); made once per process at the first run",
 }
 """Third-party (and stdlib) packages imported inside functions: name -> reason."""
 

@@ -40,5 +40,5 @@ def test_budgets_leave_normal_runs_alone_and_are_checked():
     res = acausal2d.simulate(_pendulum(), stop_time=3.0, max_wall_time=60.0)
     assert res.stopped is None and same_time(res.time[-1], 3.0)
     for bad in (0, -1, float("nan"), "many", True):
-        with pytest.raises(Acausal2dError, match="max_steps must be a positive number"):
+        with pytest.raises(Acausal2dError, match="max_steps must be "):
             acausal2d.simulate(_pendulum(), stop_time=1.0, max_steps=bad)

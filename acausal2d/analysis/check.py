@@ -2,6 +2,7 @@
 loops and the degree of freedom by the seed's eq. 2.1 next to the
 structural one."""
 import textwrap
+from typing import Any
 from collections import Counter
 
 
@@ -208,7 +209,7 @@ def _index(structure, states):
     return 0 if len(covered) == structure.n_var else 1
 
 
-def check(model):
+def check(model: Any) -> "CheckReport":
     """Compile ``model`` (a model file's path, a Component subclass or
     instance, or a CompiledModel) and return a :class:`CheckReport`; raises
     the project's errors for a broken model."""

@@ -61,7 +61,7 @@ curve from the reference's time window (0 inside it).  A step or an event
 shifted by less than ``time_tol`` therefore passes, a wrong level does not.
 ``until`` compares the reference points up to that time only.
 """
-from typing import Optional
+from typing import Any, Optional
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -457,8 +457,10 @@ def _cut(t_ref, ref_cols, until):
     return t_ref[keep], {k: v[keep] for k, v in ref_cols.items()}
 
 
-def compare(result, reference, signals=None, mapping=None, abs_tol=None, rel_tol=None,
-            plot_dir=None, event_tol=None, time_tol=None, until=None, only_common=False):
+def compare(result: Any, reference: Any, signals: Any = None, mapping: Any = None,
+            abs_tol: Any = None, rel_tol: Any = None, plot_dir: Any = None,
+            event_tol: Any = None, time_tol: Any = None, until: Any = None,
+            only_common: bool = False) -> "Comparison":
     """Compare our ``result`` with a ``reference`` signal by signal.
 
     ``result`` is a :class:`~acausal2d.result.Result`, a CSV file path
@@ -505,7 +507,8 @@ def compare(result, reference, signals=None, mapping=None, abs_tol=None, rel_tol
     if abs_tol is None and rel_tol is None:
         abs_tol = DEFAULT_ABS_TOL
     t_ours, our_cols = load_table(result, "result")
-    t_ref, ref_cols = _cut(*load_table(reference, "reference"), until)
+    t_ref, ref_cols = load_table(reference, "reference")
+    t_ref, ref_cols = _cut(t_ref, ref_cols, until)
     pairs, unmatched = select_signals(ref_cols, our_cols, signals, mapping)
     plan = _Plan(t_ours, t_ref, event_tol)
     range_msg = _range_message(plan, t_ref, t_ours)

@@ -47,16 +47,22 @@ the reported point, :func:`~acausal2d.analysis.optimality.kkt_check`), never by 
 alone; an optimiser stopped by its evaluation budget is reported with
 ``budget_exhausted``.
 """
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 import time as _time
 
 from ..errors import Acausal2dError
-from .trials import Trials, parse_free
+from ..options import DEFAULTS, RunOptionError, RunOptions
+from .trials import Trials, parse_free, trial_options
 from .compare_inputs import load_table
 from .compare_inputs import select_signals
 from .sweep import expand_params
 from .trials import check_fixed_apart
 from .fit_report import FitResult
+
+if TYPE_CHECKING:
+    from .fit_report import FitResult
 
 CORRELATION_LIMIT = 0.99
 """|corr| above which a pair of parameters is reported as not separable."""
@@ -336,10 +342,12 @@ def _polish(problem, x, lo, hi, loss, f_scale, names, steps=POLISH_STEPS):
     return x, J, r, stats, kkt, held
 
 
-def _final_run(cm, trials, x, times, rtol):
-    """The fitted run on a fine grid with the measured times."""
-    grid = np.union1d(np.linspace(0.0, float(times[-1]), 501), times)
-    return cm.simulate(params=expand_params(trials.point(x)), rtol=rtol, output_times=grid)
+def _final_run(cm, trials, x, times):
+    """The fitted run on a fine grid (the default number of output
+    intervals) with the measured times."""
+    grid = np.union1d(np.linspace(0.0, float(times[-1]), int(DEFAULTS["intervals"]) + 1), times)
+    return cm.simulate(params=expand_params(trials.point(x)),
+                       options=trial_options(trials.settings, grid))
 
 
 def _check_count(m, names):
@@ -354,6 +362,17 @@ def _check_count(m, names):
             % (m, "" if m == 1 else "s", n, "" if n == 1 else "s", ", ".join(names), n + 1))
 
 
+def _fit_options(options, rtol):
+    """The fit's RunOptions; its runs end at the measured times, so a stop
+    time or output times of its own is an error."""
+    opts = RunOptions.of(options, "fit", rtol=rtol)
+    for name in ("stop_time", "intervals", "output_times"):
+        if getattr(opts, name) is not None:
+            raise RunOptionError(name, "is not an option of fit: its runs end at the last "
+                                 "measured time; leave it out")
+    return opts
+
+
 def _check_abs_tol(abs_tol):
     if abs_tol is not None and not (isinstance(abs_tol, (int, float)) and not
                                     isinstance(abs_tol, bool) and 0 <= abs_tol < np.inf):
@@ -361,9 +380,11 @@ def _check_abs_tol(abs_tol):
                              "units, got %r" % (abs_tol,))
 
 
-def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=None, fixed=None,
-        loss="linear", f_scale=1.0, rtol=None, max_evaluations=100, scheduler=None,
-        workers=None, client=None, model_name=None, abs_tol=None):
+def fit(model: Any, data: Any, free: Any, signals: Any = None, mapping: Any = None,
+        weights: Any = None, t_range: Any = None, fixed: Any = None, loss: str = "linear",
+        f_scale: float = 1.0, rtol: Any = None, max_evaluations: int = 100,
+        scheduler: Any = None, workers: Any = None, client: Any = None, model_name: Any = None,
+        abs_tol: Any = None, options: "RunOptions | None" = None) -> "FitResult":
     """Fit the parameters ``free`` of ``model`` to the measured ``data``.
 
     model: a model file path, a Component subclass or a CompiledModel (this
@@ -377,7 +398,9 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
     t1)`` measured times to use; fixed: parameter values held; loss:
     ``"linear"`` (least squares) or a robust loss of
     ``scipy.optimize.least_squares`` (``"soft_l1"``, ``"huber"``,
-    ``"cauchy"``, ``"arctan"``) with ``f_scale``; max_evaluations: budget
+    ``"cauchy"``, ``"arctan"``) with ``f_scale``; options: the runs'
+    :class:`~acausal2d.options.RunOptions` (tolerances, budgets; the runs
+    end at the measured times) or its ``rtol`` as a keyword; max_evaluations: budget
     of optimiser steps; scheduler/workers/client: the Jacobian's runs on
     Dask (``"local"`` or a number of workers for a LocalCluster, a
     scheduler address, or an open Client); abs_tol: the tolerance (in the
@@ -393,8 +416,9 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
     names, x0, lo, hi = parse_free(free)
     check_fixed_apart(names, fixed)
     t, cols = _load_data(data, t_range)
+    opts = _fit_options(options, rtol)
     t0 = _time.perf_counter()
-    with Trials(model, names, [], t, fixed, rtol, scheduler, workers, client,
+    with Trials(model, names, [], t, fixed, opts, scheduler, workers, client,
                 model_name) as trials:
         cm = trials.compiled()
         _check_free(cm, names)
@@ -402,7 +426,8 @@ def fit(model, data, free, signals=None, mapping=None, weights=None, t_range=Non
         _check_count(t.size * len(pairs), names)
         trials.settings["signals"] = list(dict.fromkeys(our for _, our in pairs))
         problem = _Problem(trials, pairs, cols, _weights(pairs, weights))
-        return _run(problem, cm, (x0, lo, hi), (t, cols), loss, f_scale, rtol,
+        return _run(problem, cm, (x0, lo, hi), (t, cols), loss, f_scale,
+                    opts.resolved(getattr(cm.model, "experiment", None)).rtol,
                     max_evaluations, dict(abs_tol=abs_tol, t_start=t0))
 
 
@@ -426,7 +451,7 @@ def _run(problem, cm, start, data, loss, f_scale, rtol, max_evaluations, extra):
                      cost_start=0.5 * float(r0 @ r0), success=kkt.ok and not held,
                      message=why, budget_exhausted=sol.status == 0 and not kkt.ok,
                      evaluations=trials.count, infeasible=list(trials.failures),
-                     result=_final_run(cm, trials, x, t, rtol),
+                     result=_final_run(cm, trials, x, t),
                      wall_time=_time.perf_counter() - extra["t_start"], workers=trials.workers,
                      at_bound={names[j]: kind for j, kind in held.items()},
                      abs_tol=extra["abs_tol"], rtol=rtol)

@@ -9,6 +9,7 @@ import numpy as np
 from ..io.files import atomic_path
 from .compare import DEFAULT_ABS_TOL
 from .compare import Comparison, compare
+from ..options import DEFAULTS
 
 COMPARE_TUBE = 4.0
 """Half-width of the comparison tube in standard deviations of the noise
@@ -97,13 +98,13 @@ class FitResult:
         """Half-width of the comparison tube of the measured column ``ref``:
         ``COMPARE_TUBE`` times its noise estimated from the data
         (:func:`data_noise`) plus the user's ``abs_tol``, at least ten
-        times the runs' relative tolerance (default 1e-6) of the data's
+        times the runs' relative tolerance (the model's, else 1e-6) of the data's
         size.  Never the fit's own residual: a fit that misses the data
         (wrong units, a wrong model) fails it.  Without a noise estimate
         (fewer than 3 points) the tube is ``abs_tol`` (default: compare's
         :data:`~acausal2d.analysis.compare.DEFAULT_ABS_TOL`)."""
         y = self.data[1][ref]
-        floor = 10.0 * (self.rtol or 1e-6) * float(np.max(np.abs(y)))
+        floor = 10.0 * (self.rtol or DEFAULTS["rtol"]) * float(np.max(np.abs(y)))
         noise = self.noise.get(ref, float("nan"))
         if not np.isfinite(noise):
             return max(self.abs_tol if self.abs_tol is not None else DEFAULT_ABS_TOL, floor)

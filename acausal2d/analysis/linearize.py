@@ -107,7 +107,7 @@ def point_at(compiled, t=None, params=None, rtol=None):
         raise Acausal2dError("the time of the operating point (--at) must be a positive "
                              "number of seconds, got %r" % (t,))
     res = compiled.simulate(output_times=np.linspace(0.0, float(t), 3), params=params,
-                            rtol=rtol)
+                            rtol=rtol, progress=False)
     if res.stopped:
         raise SimulationError("the run stopped before t=%g: %s" % (t, res.stopped), time=t)
     s = compiled.system

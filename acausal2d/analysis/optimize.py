@@ -49,16 +49,21 @@ exit flag; the constraints active at the optimum are reported with their
 multipliers.
 """
 import time as _time
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.optimize import Bounds, minimize
 
 from ..errors import Acausal2dError
+from ..options import RunOptions
 from .metrics import Expression, parse_constraint
 from .trials import Trials, check_fixed_apart, parse_free
 from .optimality import kkt_check
 from .fit import _check_free
 from .optimize_report import OptimizeResult
+
+if TYPE_CHECKING:
+    from .optimize_report import OptimizeResult
 
 KKT_TOL = 1e-5
 """Tolerance of the scaled KKT measures that decide success (finite
@@ -290,18 +295,11 @@ def _check_bounds(names, x0, lo, hi):
                                     start + max(abs(start), 1.0)))
 
 
-def _times(cm, stop_time, intervals):
-    exp = dict(getattr(cm.model, "experiment", {}) or {})
-    stop = float(stop_time or exp.get("stop_time", 1.0))
-    n = int(intervals or exp.get("intervals", 500))
-    if not stop > 0:
-        raise Acausal2dError("stop_time must be larger than 0, got %g" % stop)
-    return np.linspace(0.0, stop, max(n, 1) + 1)
-
-
-def optimize(model, vary, objective, constraints=(), fixed=None, stop_time=None,
-             intervals=None, rtol=None, max_iterations=60, scheduler=None, workers=None,
-             client=None, model_name=None):
+def optimize(model: Any, vary: Any, objective: Any, constraints: Any = (), fixed: Any = None,
+             stop_time: Any = None, intervals: Any = None, rtol: Any = None,
+             max_iterations: int = 60, scheduler: Any = None, workers: Any = None,
+             client: Any = None, model_name: Any = None,
+             options: "RunOptions | None" = None) -> "OptimizeResult":
     """Minimise ``objective`` over the parameters ``vary``.
 
     model: a model file path, a Component subclass or a CompiledModel (this
@@ -311,7 +309,8 @@ def optimize(model, vary, objective, constraints=(), fixed=None, stop_time=None,
     :mod:`acausal2d.analysis.metrics`) or a function of the Result
     returning a number.  constraints: ``"EXPR<=VALUE"``/``"EXPR>=VALUE"``
     strings or ``(function, "<=", value)`` tuples.  fixed: values held;
-    stop_time, intervals, rtol: the runs (default: the model's
+    options: the runs' :class:`~acausal2d.options.RunOptions`, or its
+    stop_time, intervals and rtol as keywords (default: the model's
     experiment); max_iterations: SLSQP's budget; scheduler, workers,
     client: the Jacobians' runs on Dask as for :func:`acausal2d.fit`.
     Returns an :class:`~acausal2d.analysis.optimize_report.OptimizeResult`.
@@ -321,13 +320,15 @@ def optimize(model, vary, objective, constraints=(), fixed=None, stop_time=None,
     check_fixed_apart(names, fixed, "vary")
     span = np.where(np.isfinite(hi - lo), (hi - lo) / 10.0, 1.0)
     d = np.maximum(np.abs(x0), span)
+    opts = RunOptions.of(options, "optimize", stop_time=stop_time, intervals=intervals,
+                         rtol=rtol)
     t0 = _time.perf_counter()
-    with Trials(model, names, [], [0.0], fixed, rtol, scheduler, workers, client,
+    with Trials(model, names, [], [0.0], fixed, opts, scheduler, workers, client,
                 model_name) as trials:
         cm = trials.compiled()
         _check_free(cm, names)
         obj, cons = _metrics(objective, constraints, set(cm.names))
-        times = _times(cm, stop_time, intervals)
+        times = cm.run_options(opts).times()
         trials.settings.update(times=times, functions=[m.func for m in [obj] + cons],
                                signals=list(dict.fromkeys(s for m in [obj] + cons
                                                           for s in m.signals)))

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..io.files import atomic_path
 from .sweep import expand_params
+from .trials import trial_options
 from ..visual.fitting import optimize_figure
 from ..visual.plotting import save_figure
 
@@ -44,8 +45,7 @@ class OptimizeResult:
 
     def _run(self, cm, x):
         return cm.simulate(params=expand_params(self.trials.point(x)),
-                           rtol=self.trials.settings.get("rtol"),
-                           output_times=self.problem.times)
+                           options=trial_options(self.trials.settings, self.problem.times))
 
     def _metric(self, metric, res):
         if metric.expr is None:

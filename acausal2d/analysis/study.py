@@ -21,6 +21,8 @@ to the model file (``ctx.sweep(...)``, with the command's ``--scheduler`` and
 atomic writes of figures and tables into the output folder (``ctx.save``).
 """
 import inspect
+from collections.abc import Callable
+from typing import Any
 import os
 
 from ..errors import Acausal2dError
@@ -48,7 +50,7 @@ class Study:
         return "Study(%s)" % self.name
 
 
-def study(fn):
+def study(fn: Callable[..., Any]) -> "Study":
     """Decorator declaring a study of a model class; the function takes a
     :class:`StudyContext`."""
     return Study(fn)
@@ -68,8 +70,8 @@ def declared_studies(model_cls):
 class StudyContext:
     """What a study works with.  ``model`` is the model instance (built from
     ``model_file``), ``out`` the output folder, ``files`` the paths written
-    so far; ``sweep_options`` (scheduler, workers) go to every
-    :meth:`sweep`."""
+    so far; ``sweep_options`` (scheduler, workers, progress) go to every
+    :meth:`sweep` (progress also to :meth:`simulate`)."""
 
     def __init__(self, model_file, model, out, sweep_options=None, stream=None):
         self.model_file = os.path.abspath(model_file)
@@ -93,12 +95,15 @@ class StudyContext:
     def result(self):
         """The model's default run (its ``experiment``), simulated once."""
         if self._result is None:
-            self._result = self.compiled.simulate()
+            self._result = self.simulate()
         return self._result
 
     def simulate(self, **options):
         """A further run of the compiled model (options of
-        :meth:`CompiledModel.simulate`)."""
+        :meth:`CompiledModel.simulate`; its progress bar as the command's
+        ``--quiet`` says, unless ``options`` say otherwise)."""
+        if "options" not in options:
+            options.setdefault("progress", self.sweep_options.get("progress", True))
         return self.compiled.simulate(**options)
 
     def sweep(self, **options):
@@ -106,6 +111,8 @@ class StudyContext:
         on the command's cluster (``scheduler``/``workers``)."""
         from .sweep import sweep
         kwargs = dict(self.sweep_options)
+        if "options" in options:            # a RunOptions carries its own progress
+            kwargs.pop("progress", None)
         kwargs.update(options)
         kwargs.setdefault("model_name", type(self.model).__name__)
         return sweep(self.model_file, **kwargs)

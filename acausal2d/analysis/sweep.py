@@ -51,6 +51,7 @@ import itertools
 import os
 import sys
 import time as _time
+from typing import Any
 
 import numpy as np
 import logging
@@ -63,6 +64,8 @@ from ..compiled import CompiledModel, compile_model
 from ..language.dsl import Component
 from ..io.loader import load_model
 from ..visual.plotting import save_figure, sweep_figure
+from ..options import RunOptions
+from ..progress import count_progress
 
 _COMPILED: dict = {}
 """Worker-side cache: model key -> CompiledModel (or the exception its
@@ -141,19 +144,20 @@ def compiled_model(spec):
 # ---------------------------------------------------------------------------
 # one point
 
-def _output_times(cm, settings):
-    exp = dict(getattr(cm.model, "experiment", {}) or {})
-    stop = float(settings.get("stop_time") or exp.get("stop_time", 1.0))
-    intervals = int(settings.get("intervals") or exp.get("intervals", 500))
-    times = np.linspace(0.0, stop, max(intervals, 1) + 1)
+def _point_options(cm, settings):
+    """The RunOptions of one point: the sweep's, resolved for the model,
+    with ``at`` among the output times and no progress bar of its own."""
+    opts = cm.run_options(settings["options"])
+    times = opts.times()
     at = settings.get("at")
-    return times if at is None else np.union1d(times, [float(at)])
+    if at is not None:
+        times = np.union1d(times, [float(at)])
+    return opts.replace(stop_time=None, intervals=None, output_times=times, progress=False)
 
 
 def _simulate_point(cm, params, settings):
     """Simulate one point; returns (values, status, message)."""
-    res = cm.simulate(params=params, rtol=settings.get("rtol"),
-                      output_times=_output_times(cm, settings))
+    res = cm.simulate(params=params, options=_point_options(cm, settings))
     at = settings.get("at")
     values = {}
     for name in settings.get("outputs") or ():
@@ -301,33 +305,6 @@ def parse_vary(items):
 # ---------------------------------------------------------------------------
 # running
 
-class PointProgress:
-    """A bar over the points done, on standard error: ``[####   ] 12/40
-    points, 1 failed``."""
-
-    def __init__(self, total, stream=None, enabled=True):
-        self.total, self.done, self.failed = total, 0, 0
-        self.stream = stream or sys.stderr
-        self.enabled = enabled
-
-    def update(self, row):
-        """Count a finished point (its row) and redraw the bar."""
-        self.done += 1
-        self.failed += row.get("status") == "failed"
-        if self.enabled:
-            frac = self.done / self.total if self.total else 1.0
-            self.stream.write("\r  [%-30s] %d/%d points%s" % (
-                "#" * int(30 * frac), self.done, self.total,
-                ", %d failed" % self.failed if self.failed else ""))
-            self.stream.flush()
-
-    def close(self):
-        """End the bar's line."""
-        if self.enabled and self.done:
-            self.stream.write("\n")
-            self.stream.flush()
-
-
 @contextlib.contextmanager
 def cluster(workers=None, scheduler=None):
     """A :class:`dask.distributed.Client`: connected to ``scheduler`` (an
@@ -365,7 +342,7 @@ def _run_dask(client, model, points, settings, progress):
         except Exception as exc:                # noqa: BLE001 - e.g. a worker that died
             rows[k] = dict(points[k], point=k, status="failed",
                            error="%s: %s" % (type(exc).__name__, exc), wall_time=float("nan"))
-        progress.update(rows[k])
+        progress(rows[k].get("status") == "failed")
     return rows
 
 
@@ -373,7 +350,7 @@ def _run_serial(model, points, settings, progress):
     rows = []
     for k, params in enumerate(points):
         rows.append(run_point(model, k, params, settings))
-        progress.update(rows[-1])
+        progress(rows[-1].get("status") == "failed")
     return rows
 
 
@@ -461,9 +438,11 @@ def _cell(value, digits=17):
     return str(value)
 
 
-def sweep(model, vary=None, points=None, outputs=None, metrics=None, at=None, stop_time=None,
-          rtol=None, intervals=None, params=None, scheduler=None, workers=None, client=None,
-          progress=True, model_name=None, model_kwargs=None):
+def sweep(model: Any, vary: Any = None, points: Any = None, outputs: Any = None,
+          metrics: Any = None, at: Any = None, stop_time: Any = None, rtol: Any = None,
+          intervals: Any = None, params: Any = None, scheduler: Any = None, workers: Any = None,
+          client: Any = None, progress: Any = None, model_name: Any = None,
+          model_kwargs: Any = None, options: "RunOptions | None" = None) -> "SweepResult":
     """Simulate ``model`` once per parameter point and collect a table.
 
     model: a model file path, a Component subclass (from an importable
@@ -475,13 +454,18 @@ def sweep(model, vary=None, points=None, outputs=None, metrics=None, at=None, st
     dicts instead (e.g. an optimiser's candidates).  params: values held
     fixed for every point.  outputs: signals recorded at time ``at``
     (default: the end of the run); metrics: a function ``result -> {name:
-    number}`` run on the worker after each simulation.  stop_time, rtol,
-    intervals: as for :meth:`CompiledModel.simulate`.  scheduler: ``None``
+    number}`` run on the worker after each simulation.  options: the
+    :class:`~acausal2d.options.RunOptions` of every point, or its
+    stop_time, rtol, intervals and progress as keywords (not both);
+    progress: a bar over the points on standard error when it is a
+    terminal (the points themselves show none).  scheduler: ``None``
     (a LocalCluster of ``workers`` processes, default one per core), a Dask
     scheduler address, or ``"serial"`` (this process); client: an open
-    ``dask.distributed.Client`` (see :func:`cluster`).  progress: draw a
-    bar on standard error.  Returns a :class:`SweepResult`.
+    ``dask.distributed.Client`` (see :func:`cluster`).  Returns a
+    :class:`SweepResult`.
     """
+    opts = RunOptions.of(options, "sweep", stop_time=stop_time, rtol=rtol, intervals=intervals,
+                         progress=progress)
     points = grid_points(vary) if points is None else [dict(p) for p in points]
     if params:
         points = [dict(params, **p) for p in points]
@@ -492,14 +476,11 @@ def sweep(model, vary=None, points=None, outputs=None, metrics=None, at=None, st
     compiled = isinstance(model, CompiledModel)
     spec = model if compiled else ModelSpec.of(model, model_name, model_kwargs)
     settings = {"outputs": list(outputs or ()), "metrics": _picklable_metrics(metrics),
-                "at": at, "stop_time": stop_time, "rtol": rtol, "intervals": intervals}
-    bar = PointProgress(len(points), enabled=progress)
+                "at": at, "options": opts.replace(progress=False)}
     t0 = _time.perf_counter()
-    try:
+    with count_progress(len(points), "points", opts.progress is not False) as bar:
         rows, n_workers, info = _dispatch(spec, points, settings, bar, compiled, scheduler,
                                           workers, client)
-    finally:
-        bar.close()
     return _result(rows, points, params, settings, _time.perf_counter() - t0, n_workers, info)
 
 

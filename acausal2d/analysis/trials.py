@@ -24,6 +24,7 @@ import os
 import numpy as np
 
 from ..errors import Acausal2dError
+from ..options import RunOptions
 from .sweep import ModelSpec, cluster, compiled_model, expand_params
 from ..compiled import CompiledModel, compile_model
 from ..language.dsl import Component
@@ -105,6 +106,13 @@ def _check_fixed(fixed):
             raise Acausal2dError("fixed value of %s must be finite, got %r" % (name, value))
 
 
+def trial_options(settings, times):
+    """The RunOptions of a trial: the caller's (tolerances, budgets) with
+    the output ``times`` and no progress bar of its own."""
+    return settings["options"].replace(stop_time=None, intervals=None, output_times=times,
+                                       progress=False)
+
+
 def run_trial(model, params, settings):
     """Simulate one trial on this process; returns ({signal: values at
     ``settings['times']``}, "") or (None, error text).  ``model``: a
@@ -112,8 +120,8 @@ def run_trial(model, params, settings):
     try:
         cm = model if not isinstance(model, ModelSpec) else compiled_model(model)
         times = np.asarray(settings["times"], dtype=float)
-        res = cm.simulate(params=expand_params(params), rtol=settings.get("rtol"),
-                          output_times=np.union1d([0.0], times))
+        res = cm.simulate(params=expand_params(params),
+                          options=trial_options(settings, np.union1d([0.0], times)))
         if res.stopped:
             return None, "the run stopped early: %s" % res.stopped
         t = np.asarray(res.time)
@@ -137,20 +145,21 @@ class Trials:
 
     model: a model file path, a Component subclass, an instance or a
     CompiledModel; ``names``: the varied columns; ``signals`` and ``times``: what every
-    run returns; ``fixed``: values held for every run; ``scheduler``: None
+    run returns; ``fixed``: values held for every run; ``options``: the
+    runs' :class:`~acausal2d.options.RunOptions` (tolerances, budgets); ``scheduler``: None
     (this process), ``"local"``/a number of workers (a LocalCluster), a
     Dask scheduler address, or ``client=`` an open Client.  Use it as a
     context manager (the cluster is closed on exit).  ``count`` counts the
     runs, ``failures`` lists (point, error) of the failed ones."""
 
-    def __init__(self, model, names, signals, times, fixed=None, rtol=None, scheduler=None,
+    def __init__(self, model, names, signals, times, fixed=None, options=None, scheduler=None,
                  workers=None, client=None, model_name=None):
         if isinstance(model, Component):      # an instance runs in this process, compiled once
             model = compile_model(model)
         self.names, self.fixed = list(names), dict(fixed or {})
         _check_fixed(self.fixed)
         self.settings = {"signals": list(signals), "times": np.asarray(times, dtype=float),
-                         "rtol": rtol}
+                         "options": options or RunOptions()}
         self.count, self.failures, self.client = 0, [], client
         self._cluster = None
         parallel = client is not None or scheduler not in (None, "serial")

@@ -15,7 +15,6 @@ results there.
 """
 import argparse
 import sys
-import time
 import warnings
 import importlib
 import signal
@@ -25,40 +24,6 @@ from .. import __version__
 from ..io.loader import load_model
 from ..analysis.study import declared_studies
 from .examples import add_examples
-
-
-PROGRESS_DELAY = 1.0      # s of wall time before the progress bar appears
-PROGRESS_INTERVAL = 0.1   # s of wall time between two updates
-
-
-class _Progress:
-    """A progress bar over simulated time on ``stream`` (default: the
-    current ``sys.stderr``), shown after ``PROGRESS_DELAY`` and updated at
-    most every ``PROGRESS_INTERVAL`` seconds."""
-
-    def __init__(self, stream=None):
-        self.start = time.perf_counter()
-        self.last = None
-        self.stream = stream if stream is not None else sys.stderr
-        self.shown = False
-
-    def __call__(self, t, t_end):
-        now = time.perf_counter()
-        if now - self.start < PROGRESS_DELAY or \
-                (self.last is not None and now - self.last < PROGRESS_INTERVAL and t < t_end):
-            return
-        self.last = now
-        self.shown = True
-        frac = min(max(t / t_end if t_end else 1.0, 0.0), 1.0)
-        bar = "#" * int(30 * frac)
-        self.stream.write("\r  [%-30s] t = %.4g / %.4g s" % (bar, t, t_end))
-        self.stream.flush()
-
-    def close(self):
-        """End the bar's line (if it was shown)."""
-        if self.shown:
-            self.stream.write("\n")
-        self.stream.flush()
 
 
 COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",

@@ -1,9 +1,11 @@
 """Argument checks shared by the commands: ``--set`` values, number types
-for argparse, and signal names checked against the compiled model before
-a run."""
+for argparse, signal names checked against the compiled model before a
+run, and the run options (:func:`add_run_options`, :func:`run_options`)
+declared once for every command that runs simulations."""
 import argparse
 
 from ..errors import Acausal2dError
+from ..options import DEFAULTS, RunOptionError, RunOptions
 
 
 def _parse_set(items):
@@ -85,3 +87,63 @@ def add_dask_options(parser, scheduler_help):
     parser.add_argument("--scheduler", help=scheduler_help)
     parser.add_argument("--workers", type=_positive_int, help="worker processes of the local "
                         "cluster (default: one per core)")
+
+
+RUN_FLAGS = {
+    "stop_time": ("--stop-time", "SECONDS", "end time of the run (default: the model's "
+                  "experiment, else %g s)" % DEFAULTS["stop_time"]),
+    "rtol": ("--rtol", "TOL", "relative tolerance of the integrator (default: the model's "
+             "experiment, else %g)" % DEFAULTS["rtol"]),
+    "atol": ("--atol", "TOL", "absolute tolerance of the integrator (default: rtol times each "
+             "unknown's nominal)"),
+    "intervals": ("--intervals", "N", "number of output intervals (default: the model's "
+                  "experiment, else %d)" % DEFAULTS["intervals"]),
+    "max_steps": ("--max-steps", "N", "step budget of the run (default %d); exit 3 when used "
+                  "up" % DEFAULTS["max_steps"]),
+    "max_wall_time": ("--max-wall-time", "SECONDS", "wall-clock budget of the run; exit 3 when "
+                      "used up"),
+}
+"""The command-line flag, metavar and help of each run option."""
+
+
+def option_type(name):
+    """argparse type of the run option ``name``: the text as a number (or
+    as it is, when it is none); the check is :class:`RunOptions`' own, made
+    by :func:`run_options` inside the command's output transaction, so a
+    bad value reads as in the API and leaves no earlier results behind."""
+    def parse(text):
+        for kind in (int, float):
+            try:
+                return kind(text)
+            except ValueError:
+                pass
+        return text                       # the check names it: "... must be a number"
+    parse.__name__ = name
+    return parse
+
+
+def add_run_options(parser, *names, quiet=True):
+    """Declare the run options ``names`` (keys of :data:`RUN_FLAGS`, each
+    with one type) and, on a command that runs simulations (``quiet``),
+    ``--quiet``."""
+    for name in names:
+        flag, metavar, text = RUN_FLAGS[name]
+        parser.add_argument(flag, dest=name, action=Once, type=option_type(name),
+                            metavar=metavar, help=text)
+    if quiet:
+        parser.add_argument("--quiet", action="store_true",
+                            help="no progress bar (it is shown only when stderr is a terminal)")
+
+
+def run_options(args, **extra):
+    """The :class:`~acausal2d.options.RunOptions` of the parsed command
+    line (the options :func:`add_run_options` declared, ``--quiet``) and
+    ``extra``."""
+    given = {n: getattr(args, n) for n in RUN_FLAGS if getattr(args, n, None) is not None}
+    if getattr(args, "quiet", False):
+        given["progress"] = False
+    try:
+        return RunOptions(**dict(given, **extra))
+    except RunOptionError as exc:
+        flag = RUN_FLAGS[exc.option][0] if exc.option in RUN_FLAGS else exc.option
+        raise RunOptionError(exc.option, exc.message, flag) from None

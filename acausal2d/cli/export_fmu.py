@@ -1,6 +1,7 @@
 """``acausal2d export-fmu``: a model as an FMI 2.0 FMU (native code, no
 Python needed by the importer); see :func:`acausal2d.fmu.export_fmu`."""
 from ..io.loader import load_model
+from .args import add_run_options, run_options
 
 
 def cmd_export_fmu(args):
@@ -10,7 +11,8 @@ def cmd_export_fmu(args):
     from ..io.output import terminate_as_interrupt
     with terminate_as_interrupt():         # SIGTERM cleans up like Ctrl-C
         model = load_model(args.model_file, args.model)
-        out = export_fmu(model, kind=args.kind, out=args.out, fixed_states=args.fixed_states)
+        out = export_fmu(model, kind=args.kind, out=args.out, fixed_states=args.fixed_states,
+                         options=run_options(args))
     print("%s: %s FMU (FMI 2.0) written to %s" % (
         type(model).__name__, "Model Exchange" if args.kind == "me" else "Co-Simulation", out))
     return 0
@@ -29,4 +31,5 @@ def add_parsers(sub):
     e.add_argument("--fixed-states", action="store_true",
                    help="export a model with dynamic state selection with the states chosen "
                    "at the start (the FMU stops with an error where they no longer serve)")
+    add_run_options(e, "stop_time", "rtol", quiet=False)    # the FMU's default experiment
     e.set_defaults(func=cmd_export_fmu)

@@ -11,7 +11,7 @@ import sys
 from ..analysis.fit_report import COMPARE_TUBE
 from ..errors import Acausal2dError
 from .args import Once, _nonnegative, _parse_set, _positive_float, _positive_int, \
-    add_dask_options
+    add_dask_options, add_run_options, run_options
 
 
 def parse_mapping(items, option="--map"):
@@ -90,7 +90,8 @@ def _fit(args):
     fr = fit(args.model_file, args.data, free=args.free, signals=signals,
              mapping=parse_mapping(args.map) or None, weights=parse_weights(args.weights),
              t_range=parse_range(args.t_range), fixed=_parse_set(args.set), loss=args.loss,
-             f_scale=args.f_scale, rtol=args.rtol, max_evaluations=args.max_evaluations,
+             f_scale=args.f_scale, options=run_options(args),
+             max_evaluations=args.max_evaluations,
              scheduler=args.scheduler, workers=args.workers, model_name=args.model,
              abs_tol=args.abs_tol)
     return fr
@@ -123,7 +124,7 @@ def add_parsers(sub):
                    help="robust loss for data with outliers (default: least squares)")
     f.add_argument("--f-scale", action=Once, type=_positive_float, default=1.0,
                    help="residual size where the robust loss sets in (default 1)")
-    f.add_argument("--rtol", action=Once, type=float)
+    add_run_options(f, "rtol")
     f.add_argument("--abs-tol", action=Once, type=_nonnegative, metavar="TOL",
                    help="tolerance added to the comparison tube (in the signals' units); the "
                    "tube is otherwise %g times the noise estimated from the measured data"

@@ -7,7 +7,7 @@ import os
 import sys
 
 from ..errors import Acausal2dError
-from .args import _positive_int
+from .args import _positive_int, add_run_options
 from .linearize import add_point_arguments, point_options
 from ..io.files import write_text
 from ..io.loader import load_model
@@ -21,6 +21,7 @@ def _campbell(args, vary, options, out):
                              "(--stop-time) or at --equilibrium (of the start time), not at --at")
     table = campbell(args.model_file, vary, count=args.count,
                      equilibrium=options["equilibrium"], stop_time=args.stop_time,
+                     progress=False if args.quiet else None,
                      params=options["params"], scheduler="serial", model_name=args.model)
     files = [table.to_csv(os.path.join(out, "campbell.csv"))]
     if len(table.failed) < len(table.rows):
@@ -75,6 +76,5 @@ def add_parsers(sub):
                    "(campbell.csv, campbell.png)")
     p.add_argument("--count", type=_positive_int, default=4,
                    help="frequencies in the Campbell diagram (default 4)")
-    p.add_argument("--stop-time", type=float, help="with --vary: each point is linearised at "
-                   "the end of its run")
+    add_run_options(p, "stop_time")       # with --vary: each point linearised at its end
     p.set_defaults(func=cmd_modes)

@@ -9,7 +9,8 @@ import sys
 import numpy as np
 
 from ..errors import Acausal2dError
-from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_options
+from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_options, \
+    add_run_options, run_options
 
 
 def cmd_optimize(args):
@@ -19,7 +20,7 @@ def cmd_optimize(args):
     with OutputFolder(args.out, "optimize") as tx:
         opt = optimize(args.model_file, vary=args.vary, objective=args.objective,
                        constraints=args.constraint or (), fixed=_parse_set(args.set),
-                       stop_time=args.stop_time, intervals=args.intervals, rtol=args.rtol,
+                       options=run_options(args),
                        max_iterations=args.max_iterations, scheduler=args.scheduler,
                        workers=args.workers, model_name=args.model)
         files = opt.write(tx.path)
@@ -80,11 +81,7 @@ def add_parsers(sub):
                    help="EXPR<=VALUE or EXPR>=VALUE; repeatable")
     o.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
                    help="a parameter value held fixed; repeatable")
-    o.add_argument("--stop-time", action=Once, type=_positive_float)
-    o.add_argument("--intervals", action=Once, type=_positive_int,
-                   help="output intervals of every run (the metrics are taken at the output "
-                   "points)")
-    o.add_argument("--rtol", action=Once, type=float)
+    add_run_options(o, "stop_time", "intervals", "rtol")   # metrics at the output points
     o.add_argument("--max-iterations", action=Once, type=_positive_int, default=60,
                    help="optimiser's budget of iterations (default 60); exit 3 when used up")
     o.add_argument("--grid", action=Once, type=_positive_int, metavar="POINTS",

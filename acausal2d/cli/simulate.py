@@ -3,12 +3,12 @@ the animation page and the run's manifest."""
 import os
 import sys
 
-from . import _Progress
 from ..errors import Acausal2dError
-from .args import _check_names, _parse_set, _positive_float, _positive_int
+from .args import _check_names, _parse_set
 from ..analysis.check import grounded_lines
 from ..compiler.flatten import grounded_ports
 from ..io.loader import load_model
+from .args import add_run_options, run_options
 
 
 def _plot_specs(args, cm):
@@ -110,16 +110,13 @@ def _run(args):
     """Load, compile and simulate the model file: (result, settings)."""
     from ..compiled import compile_model
     from ..runtime import tiers
+    options = run_options(args)              # checked before the model is compiled
     cm = compile_model(load_model(args.model_file, args.model))
     settings = _simulate_settings(args, cm)
-    progress = _Progress()
     previous = tiers.choose(args.native)
     try:
-        res = cm.simulate(stop_time=args.stop_time, params=settings["params"], rtol=args.rtol,
-                          intervals=args.intervals, progress=progress,
-                          max_steps=args.max_steps, max_wall_time=args.max_wall_time)
+        res = cm.simulate(params=settings["params"], options=options)
     finally:
-        progress.close()
         tiers.choose(previous)
     return res, settings
 
@@ -205,11 +202,9 @@ def add_parsers(sub):
     s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
     s.add_argument("model_file")
     s.add_argument("--model", help="model class in the file (if it defines several)")
-    s.add_argument("--stop-time", type=float)
     s.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
                    help="parameter value (vectors as 1,0); repeatable")
-    s.add_argument("--rtol", type=float)
-    s.add_argument("--intervals", type=int, help="number of output intervals")
+    add_run_options(s, "stop_time", "rtol", "atol", "intervals", "max_steps", "max_wall_time")
     s.add_argument("--plot", help="signals to plot: a,b overlays a and b in one figure (one axes "
                    "per unit), a,b;c writes two figures (default: the model's figures or "
                    "outputs)")
@@ -231,10 +226,6 @@ def add_parsers(sub):
     s.add_argument("--poles", metavar="LINKS", help="draw the instantaneous poles of these "
                    "links on a layer of the animation: label=link pairs, e.g. "
                    "1=ground,2=A0A,3=AB,4=B0B (frames, node constraints or x:y:phi signals)")
-    s.add_argument("--max-steps", type=_positive_int, default=1000000,
-                   help="step budget of the run (default 1000000); exit 3 when used up")
-    s.add_argument("--max-wall-time", type=_positive_float, metavar="SECONDS",
-                   help="wall-clock budget of the run; exit 3 when used up")
     s.add_argument("--native", choices=("auto", "now", "off"), help="native code: auto (default, "
                    "$ACAUSAL2D_NATIVE): a structure not compiled yet runs on the Python path "
                    "while it is compiled in the background; now: compile first; off: the "

@@ -2,9 +2,11 @@
 (the studies a model declares)."""
 
 from ..errors import Acausal2dError
-from .args import _check_names, _nonnegative, _parse_set, _positive_int, add_dask_options
+from .args import _check_names, _nonnegative, _parse_set, add_dask_options
 from ..io.loader import load_model
 from ..analysis.study import declared_studies, run_studies
+from .args import add_run_options, \
+    run_options
 
 
 def _sweep_settings(args, cm, vary):
@@ -23,24 +25,21 @@ def _sweep_settings(args, cm, vary):
     outputs = [n.strip() for n in args.outputs.split(",") if n.strip()] if args.outputs \
         else list(cm.outputs)
     _check_names(outputs, cm, "--outputs")
-    _check_run_settings(args, cm)
+    options = _check_run_settings(args, cm)
     if args.x is not None and args.x not in vary:
         raise Acausal2dError("--x %r is not a varied parameter; varied: %s"
                              % (args.x, ", ".join(vary)))
-    return grid_points(vary), fixed, outputs
+    return grid_points(vary), fixed, outputs, options
 
 
 def _check_run_settings(args, cm):
-    """--stop-time, --rtol and --at of a sweep, checked once before the
-    points run (each point would fail alike)."""
-    stop = args.stop_time if args.stop_time is not None else \
-        float((getattr(cm.model, "experiment", None) or {}).get("stop_time", 1.0))
-    if not stop > 0:
-        raise Acausal2dError("--stop-time must be larger than 0, got %g" % stop)
-    if args.rtol is not None and not 0 < args.rtol < 0.1:
-        raise Acausal2dError("--rtol must be between 0 and 0.1 (e.g. 1e-6), got %g" % args.rtol)
+    """The run options of a sweep and --at, checked once before the points
+    run (each point would fail alike); returns the RunOptions."""
+    options = run_options(args)
+    stop = cm.run_options(options).stop_time
     if args.at is not None and args.at > stop:
         raise Acausal2dError("--at %g lies after the end of the run (%g s)" % (args.at, stop))
+    return options
 
 
 def cmd_sweep(args):
@@ -51,10 +50,9 @@ def cmd_sweep(args):
     grid_size(vary)                         # a too large grid is refused before anything
     with OutputFolder(args.out, "sweep") as tx:
         cm = compiled_model(ModelSpec(args.model_file, args.model))  # errors here exit with 2
-        points, fixed, outputs = _sweep_settings(args, cm, vary)
+        points, fixed, outputs, options = _sweep_settings(args, cm, vary)
         result = sweep(args.model_file, points=points, params=fixed, outputs=outputs,
-                       at=args.at, stop_time=args.stop_time, rtol=args.rtol,
-                       intervals=args.intervals, scheduler=args.scheduler,
+                       at=args.at, options=options, scheduler=args.scheduler,
                        workers=args.workers, model_name=args.model)
         files = [result.to_csv(tx.file("sweep.csv"))]
         if outputs and len(result.failed) < len(result.rows):
@@ -81,7 +79,8 @@ def cmd_study(args):
     from ..io.output import OutputFolder
     with OutputFolder(args.out, "study", merge=True) as tx:    # beside simulate's files
         files = run_studies(args.model_file, model, args.names, tx.path,
-                            {"scheduler": args.scheduler, "workers": args.workers})
+                            {"scheduler": args.scheduler, "workers": args.workers,
+                             "progress": not args.quiet})
         tx.info["model"] = type(model).__name__
     files = [tx.final(f) for f in files]
     print("%s: %d file%s -> %s" % (type(model).__name__, len(files),
@@ -104,9 +103,7 @@ def add_parsers(sub):
                    "the model's outputs)")
     w.add_argument("--at", type=_nonnegative, metavar="T",
                    help="record the outputs at time T (default: at the end of the run)")
-    w.add_argument("--stop-time", type=float)
-    w.add_argument("--rtol", type=float)
-    w.add_argument("--intervals", type=_positive_int)
+    add_run_options(w, "stop_time", "rtol", "intervals")
     add_dask_options(w, "address of a running Dask scheduler (tcp://host:8786);"
                      " default: a local cluster; 'serial': run in this process")
     w.add_argument("--x", metavar="PARAM", help="varied parameter on the plot's x axis "
@@ -119,6 +116,7 @@ def add_parsers(sub):
     t.add_argument("names", nargs="*", help="studies to run (default: all)")
     t.add_argument("--model")
     t.add_argument("--list", action="store_true", help="list the model's studies")
+    add_run_options(t)
     add_dask_options(t, "Dask scheduler address for the studies' sweeps "
                      "(default: a local cluster; 'serial': this process)")
     t.add_argument("--out", default="out", help="output directory (default: out)")

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..errors import Acausal2dError
 
-MAX_STEPS = 12
+MAX_NEWTON_STEPS = 12
 """Gauss-Newton steps of one drag."""
 
 MAX_STEP = 0.5
@@ -74,7 +74,7 @@ def drag_start(compiled, params, start, xy, target):
     index = {n: j for j, n in enumerate(compiled.system.node_names)}
     u = np.array([z[index[n]] for n in names])
     goal = np.asarray(target, dtype=float)
-    for _ in range(MAX_STEPS):
+    for _ in range(MAX_NEWTON_STEPS):
         err = goal - pos
         if np.linalg.norm(err) < 1e-9 * (1.0 + np.linalg.norm(goal)):
             break

@@ -20,6 +20,7 @@ import numpy as np
 from ..compiled import _experiment, compile_model
 from ..errors import Acausal2dError, SimulationError
 from ..io.loader import load_model
+from ..options import RunOptions
 from .drag import movable
 from .requests import parse_run
 from ..visual.animation import render_html
@@ -81,8 +82,9 @@ class Explorer:
         self.path = path
         self.compiled = compile_model(load_model(path, model))
         exp = _experiment(self.compiled.model)
-        stop = float(exp.get("stop_time", 1.0))
-        self.defaults = {"stop_time": stop, "intervals": 500,
+        run = RunOptions().resolved(exp)
+        stop = run.stop_time
+        self.defaults = {"stop_time": stop, "intervals": run.intervals,
                          "max_stop_time": float(max_stop_time or 10.0 * stop),
                          "signals": self._figure_signals()}
         if self.defaults["stop_time"] > self.defaults["max_stop_time"]:

@@ -90,7 +90,7 @@ def model_description(data, kind):
     kind_elem += "\n    <SourceFiles>\n%s\n    </SourceFiles>\n  </%s>" % (
         "\n".join('      <File name="%s"/>' % f for f in SOURCE_FILES),
         "ModelExchange" if kind == "me" else "CoSimulation")
-    exp = data.experiment
+    exp = data.experiment             # resolved RunOptions: the default experiment
 
     def unknowns(tag, idx):
         if not idx:
@@ -105,7 +105,7 @@ def model_description(data, kind):
                                                  len(data.system.relations)),
              kind_elem] + _units(vars_) + \
         ['  <DefaultExperiment startTime="0" stopTime="%r" tolerance="%r"/>'
-         % (float(exp.get("stop_time", 1.0)), float(exp.get("rtol", 1e-6))),
+         % (exp.stop_time, exp.rtol),
          "  <ModelVariables>"] + [_variable(v) for v in vars_] + \
         ["  </ModelVariables>", "  <ModelStructure>"] + unknowns("Outputs", outputs) + \
         unknowns("Derivatives", ders) + unknowns("InitialUnknowns", initial) + \

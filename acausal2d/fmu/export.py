@@ -15,6 +15,7 @@ import shutil
 import tempfile
 import zipfile
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -31,6 +32,7 @@ from ..runtime.initialize import _guess_selection, choose_initial_conditions
 from .. import __version__
 from ..compiled import compile_model, _experiment
 from ..io.output import check_writable
+from ..options import RunOptions
 
 C_DIR = os.path.join(os.path.dirname(__file__), "c")
 C_FILES = ("a2d_core.c", "a2d_core.h", "a2d_fmi2.c", "a2d_cs.c", "a2d_cs.h",
@@ -58,7 +60,7 @@ class ExportData:
     p0: np.ndarray
     input_params: dict
     units: dict
-    experiment: dict
+    experiment: RunOptions
     version: str
     guid: str = ""
 
@@ -109,9 +111,11 @@ def _may_turn_singular(system, level):
     return bool(ca.depends_on(J, ca.vertcat(*st.var_sym)))
 
 
-def export_data(model, inputs=None, fixed_states=False):
+def export_data(model, inputs=None, fixed_states=False, options=None):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
-    :func:`~acausal2d.library.inputs.bind_inputs`)."""
+    :func:`~acausal2d.library.inputs.bind_inputs`); ``options`` (a
+    :class:`~acausal2d.options.RunOptions`) give the FMU's default
+    experiment (stop time, tolerance) instead of the model's."""
     name = type(model).__name__
     model, input_params = bind_inputs(model, inputs)
     compiled = compile_model(model)
@@ -121,7 +125,8 @@ def export_data(model, inputs=None, fixed_states=False):
         held0 = _held_at_start(compiled, p)
     doc = (type(model).__doc__ or name).strip().splitlines()[0]
     return ExportData(compiled.system, name, name, doc, list(states), list(held0), p,
-                      input_params, compiled.units, _experiment(model), __version__)
+                      input_params, compiled.units,
+                      (options or RunOptions()).resolved(_experiment(model)), __version__)
 
 
 def write_sources(data, folder, kind):
@@ -172,14 +177,17 @@ def build_binary(data, folder, src):
                                              name="fmu-" + data.identifier), target)
 
 
-def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
+def export_fmu(model: Any, kind: str = "me", out: "str | None" = None, inputs: Any = None,
+               fixed_states: bool = False, options: "RunOptions | None" = None) -> str:
     """Export ``model`` (a model instance) as an FMI 2.0 FMU file.
 
     kind: ``"me"`` (Model Exchange) or ``"cs"`` (Co-Simulation); out: the
     .fmu path (default ``<ModelName>.fmu``); inputs: {RealInput name: start
     value}; fixed_states: export a model with dynamic state selection with
     the states chosen at the start (the FMU stops with an error where they
-    no longer serve).  Returns the path.  Raises
+    no longer serve); options: a :class:`~acausal2d.options.RunOptions`
+    whose stop_time and rtol become the FMU's default experiment (default:
+    the model's ``experiment``).  Returns the path.  Raises
     :class:`DynamicStateSelectionError` for a model whose states may have to
     change during a run (unless ``fixed_states``)."""
     if kind not in KINDS:
@@ -187,7 +195,7 @@ def export_fmu(model, kind="me", out=None, inputs=None, fixed_states=False):
                                    "got %r" % (kind,))
     if out is not None:
         _check_target(out)                 # before the model is compiled and built
-    data = export_data(model, inputs, fixed_states)
+    data = export_data(model, inputs, fixed_states, options)
     out = out or data.identifier + ".fmu"
     _check_target(out)
     with tempfile.TemporaryDirectory() as tmp:

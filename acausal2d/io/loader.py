@@ -5,6 +5,8 @@ import inspect
 import os
 import sys
 
+from typing import Any, Callable
+
 from ..errors import Acausal2dError, ModelDefinitionError
 from ..language.dsl import Component
 
@@ -82,7 +84,8 @@ def _named(path, module, name, classes):
     return cls
 
 
-def load_model(path, name=None, **kwargs):
+def load_model(path: "str | os.PathLike[str]", name: "str | None" = None,
+               **kwargs: Any) -> Component:
     """Import the model file ``path`` (Python source; any file name) and
     instantiate its model.
 
@@ -120,7 +123,7 @@ READERS: dict = {}
 ``read(path)`` -> model (:func:`register_reader`)."""
 
 
-def register_reader(suffix, kind, read):
+def register_reader(suffix: str, kind: str, read: Callable[[str], Any]) -> None:
     """Let :func:`load_model` read the model files ending in ``suffix``
     (e.g. ``".json"``, files of ``kind``, e.g. "mec2") with ``read(path)``.
     The package root registers the library's mec2 reader, so that io

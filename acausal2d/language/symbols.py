@@ -13,6 +13,7 @@ nothing is registered process-wide except the one ``time`` symbol.
 of the flattening in progress (:meth:`SymbolTable.active`).
 """
 from contextlib import contextmanager
+from typing import Any
 
 import casadi as ca
 
@@ -148,14 +149,14 @@ def active_table():
     return _active[-1]
 
 
-def der(expr):
+def der(expr: Any) -> Any:
     """Time derivative ``der(x)`` for use in component equations: ``der`` of a
     variable gives its derivative symbol; ``der`` of an expression applies
     the chain rule."""
     return active_table().der(expr)
 
 
-def time_derivative(expr):
+def time_derivative(expr: Any) -> Any:
     """Total time derivative of an expression in component equations (the
     chain rule over all variables and ``time``)."""
     return active_table().time_derivative(expr)

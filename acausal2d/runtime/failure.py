@@ -19,7 +19,8 @@ import numpy as np
 from ..errors import SimulationError
 from . import singularities as sing
 from .diagnose import non_finite
-from .ida import MAX_STEPS, TOO_MUCH_WORK
+from .ida import TOO_MUCH_WORK
+from ..options import STEPS_PER_OUTPUT
 from .newton import NoConvergence, solve_consistent
 
 _STALLED = 20         # steps 1e6 times shorter than the longest, in a row: IDA stalls
@@ -94,7 +95,7 @@ class Approach:
         later = sim.times[sim.times > f.t + sim.eps]
         t_next = float(later[0]) if len(later) else sim.t_end
         last, how, times, kept = _take_steps(self.solver, self.form, f, t_next, self.keep,
-                                             MAX_STEPS)
+                                             STEPS_PER_OUTPUT)
         if last is not None and how in ("reached", "steps") and last[0] > f.t:
             return self._go_on(last, how == "reached")
         t_f, z_f = (last[0], last[1]) if last is not None else (f.t, np.array(f.y))

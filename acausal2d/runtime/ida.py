@@ -18,7 +18,6 @@ import warnings
 
 import numpy as np
 
-os.environ.setdefault("OMP_NUM_THREADS", "1")     # before scikit-sundae is imported
 # SUNDIALS' own warnings (its logger writes them to stderr by default) go to a
 # file of this process, read into SundialsMessages, read when a context is made
 WARNINGS_FILE = os.path.join(tempfile.gettempdir(), "acausal2d-sundials-%d.log" % os.getpid())
@@ -26,10 +25,10 @@ os.environ.setdefault("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
 
 from .buffered import Buffered  # noqa: E402
 from .sundials_ext import ida_memory, suppress_algebraic  # noqa: E402
+from ..options import STEPS_PER_OUTPUT  # noqa: E402
 
 ALGEBRAIC_ATOL = 1e10    # fallback: an absolute tolerance that leaves an unknown untested
-MAX_STEPS = 500       # IDA steps per output interval before the runtime looks at the run
-TOO_MUCH_WORK = -1    # IDA's status when it used up MAX_STEPS for one output interval
+TOO_MUCH_WORK = -1    # IDA's status when it used up STEPS_PER_OUTPUT for one output interval
 MONITOR_THRESHOLD = 0.25    # a watched block whose |det| dropped 4x: re-check the selection
 NEAR_SINGULAR = 1e-3        # the highest block's |det| this small: a singular position ahead
 
@@ -241,7 +240,7 @@ def make_solver(prob, rtol, atol):
     n_ev = prob.n_events
     tested = form.differential
     alg = np.nonzero(~tested)[0]
-    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=MAX_STEPS,
+    opts = dict(rtol=rtol, atol=atol, jacfn=prob.jacfn, max_num_steps=STEPS_PER_OUTPUT,
                 algebraic_idx=alg if len(alg) else None)
     if form.sparse:
         opts.update(linsolver="sparse", sparsity=prob.pattern)
@@ -355,7 +354,7 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     keep = _member(T, outputs)
     if budget:       # only the step budget of one output interval: as the Python path reports it
         outcome = Failed(*last, TOO_MUCH_WORK, "IDA took %d steps without reaching the next "
-                         "output time" % MAX_STEPS)
+                         "output time" % STEPS_PER_OUTPUT)
     elif flag == 2:
         idx = np.nonzero(roots)[0]
         m = prob.n_rel + prob.n_mon

@@ -14,7 +14,7 @@ read out of scikit-sundae's objects on this path).
 
 It makes the same IDA settings as :func:`~acausal2d.runtime.ida.make_solver`
 and :func:`~acausal2d.runtime.ida.start_solver` (tolerances, algebraic ids
-with ``IDASetSuppressAlg``, 500 steps per output interval, root directions,
+with ``IDASetSuppressAlg``, :data:`~acausal2d.options.STEPS_PER_OUTPUT` steps per output interval, root directions,
 terminal roots) and runs a segment as scikit-sundae's ``solve`` does, so
 the steps are the same.  Where there is no compiler, the build fails, the
 SUNDIALS version is not the one the declarations are written for, or IDA
@@ -40,6 +40,7 @@ import casadi as ca
 import numpy as np
 
 from . import blt_layout, cbuild, cstore, ordering, tiers
+from ..options import STEPS_PER_OUTPUT
 from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
                       optimization, too_large)
 from . import codegen, cstraight
@@ -265,7 +266,7 @@ class NativeIDA:
         self._bound = [_backing(p), _backing(d), ab]
         self.handle = lib.a2d_create(
             self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
-            _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), 500, SOLVERS[solver],
+            _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), STEPS_PER_OUTPUT, SOLVERS[solver],
             *(_ptr(b) for b in self._bound), *(_ptr(a, _I) for a in self._pattern),
             None if self._order is None else _ptr(self._order, _I))
         self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)

@@ -26,7 +26,8 @@ import os
 import time
 
 from . import cbuild, cstore
-from .background import failure_path, launch, pending, queue, wait  # noqa: F401 - the worker side
+from .background import (SECONDS_PER_INSTRUCTION, failure_path, launch, pending, queue,  # noqa: F401
+                         wait)  # the worker side
 
 ENV = "ACAUSAL2D_NATIVE"
 MODES = ("auto", "now", "off")
@@ -126,7 +127,6 @@ def _later(key, recipe):
 
 def _expected(recipe):
     """Seconds the compile of ``recipe`` is expected to take."""
-    from .background import SECONDS_PER_INSTRUCTION
     return SECONDS_PER_INSTRUCTION * recipe.instructions()
 
 

@@ -25,6 +25,7 @@ import numpy as np
 
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.language.unionfind import connector_sets
+from acausal2d.library import planar
 
 FRAME_REFS = ("relative", "global")
 HALF_PLANES = ("upper", "lower", "left", "right")
@@ -181,7 +182,6 @@ class StartPoses:
         return bool(new)
 
     def _seed(self, comp):
-        from acausal2d.library import planar
         pv = comp.parameter_value
         if isinstance(comp, planar.Fixed):
             r = np.asarray(pv("r"), dtype=float)
@@ -196,7 +196,6 @@ class StartPoses:
             self._put(comp.ctr2D1, unplaced())
 
     def _propagate(self, comp):
-        from acausal2d.library import planar
         if isinstance(comp, planar.FixedTranslation):
             r = np.asarray(comp.parameter_value("r"), dtype=float)
             return self._rigid(comp.frame_a, comp.frame_b, (r[0], r[1], 0.0))

@@ -26,7 +26,6 @@ class AssemblyError(InitializationError, ModelDefinitionError):
 _GROUND = {"x": 0.0, "y": 0.0, "phi": 0.0}
 
 
-# --------------------------------------------------------------- helpers
 def _rot(phi, x, y):
     """Vector (x, y) given in a frame with angle phi, resolved in the world."""
     c, s = ca.cos(phi), ca.sin(phi)

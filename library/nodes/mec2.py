@@ -45,6 +45,7 @@ import json
 import math
 import os
 import re
+from typing import Any
 
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.io.files import read_json
@@ -394,7 +395,7 @@ def model_from_mec2(data, name="Mec2Model", source=None):
     return cls(data, views, shapes)
 
 
-def load_mec2(path):
+def load_mec2(path: str) -> Any:
     """Read the mec2 model file ``path`` (JSON) into a node model; syntax
     errors name line and column, wrong fields their JSON path."""
     if not os.path.isfile(path):
