@@ -48,6 +48,7 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
     model wrote itself), states and the ports fixed to ground because nothing
     is connected to them."""
     from ..analysis.check import grounded_lines
+    from ..analysis.slider_ranges import range_lines, slider_ranges
     from ..compiler.flatten import grounded_ports
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
@@ -71,6 +72,8 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
                                "  grounded ports: "):
         print(line)
     _print_events(res.events)
+    for line in range_lines(slider_ranges(res)):
+        print(line)
 
 
 def _print_events(events, first=5):
