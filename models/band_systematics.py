@@ -44,9 +44,13 @@ mechanisms ([Vol92]), which the text does not define.  The text itself
 calls two-band structures and the band as the frame rare in practice.
 
 Modelled here: the 19 structures with one band that is a moving link (the
-table's entries without "(band frame)" and with one band).  Not modelled:
-the 7 structures with the band as the frame (the band is then a taut
-straight line in the ground on which the discs roll) and the 11 two-band
+table's entries without "(band frame)" and with one band, list
+``MODELS``) and 6 of the 7 one-band structures with the band as the frame
+(``BAND_FRAME``, code with a trailing ``~``: the band is a taut straight
+line y = 0 in the ground on which the discs roll without slip; classes
+named ``<code>_frame``).  Not modelled: BSSB (band frame; both frame-side
+links roll and the coupler is a slider on a moving guide, which a speed
+preset cannot drive with its reaction on the guide) and the 11 two-band
 structures (a rigid link held by two bands only).
 
 Every model: joints at the corners of the skeleton quadrilateral J1 =
@@ -174,4 +178,44 @@ class SSB_B(BandStructure):
     code = "SSB~B"
 
 
+class BDDD_frame(BandStructure):
+    """BDDD~, the band as the frame (4-bar, band D-B): a rocker pivoted on the band drives a
+    coupler whose other link carries a disc rolling on the band."""
+    code = "BDDD~"
+
+
+class BDDB_frame(BandStructure):
+    """BDDB~, the band as the frame (4-bar, band B-B): a disc rolling on the band, its link
+    pinned to a driven coupler, whose other link carries a second disc rolling on the
+    band."""
+    code = "BDDB~"
+
+
+class DDSB_frame(BandStructure):
+    """DDSB~, the band as the frame (slider-crank, band B-D): a crank pivoted on the band, a
+    coupler carrying a guide, the slider on it carries a disc rolling on the band."""
+    code = "DDSB~"
+
+
+class DSDB_frame(BandStructure):
+    """DSDB~, the band as the frame (slider-crank, band D-B): a crank pivoted on the band
+    with a guide, its slider's pin carries a link with a disc rolling on the band."""
+    code = "DSDB~"
+
+
+class BDSB_frame(BandStructure):
+    """BDSB~, the band as the frame (slider-crank, band B-B): a disc rolling on the band,
+    its link pinned to a driven coupler carrying a guide, whose slider carries a second
+    rolling disc."""
+    code = "BDSB~"
+
+
+class DSSB_frame(BandStructure):
+    """DSSB~, the band as the frame (cross-slider, band D-B): a crank pivoted on the band
+    with a guide, a slider on it with a second guide, whose slider carries a disc rolling on
+    the band."""
+    code = "DSSB~"
+
+
 MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, DSD_B, SB_BD, SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
+BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame]

@@ -55,10 +55,40 @@ def _link_balance(res, model, name, point, end, load):
     return load + F * (u[0] * np.cos(e) + u[1] * np.sin(e))
 
 
+def _rolling_balance(res, model, load):
+    """Band as the frame: the loaded link carries the disc rolling on the band
+    (y = 0); the contact force on the disc, -(roll.frame_a.fx, fy) at (roll.x,
+    0), balances the load about the link's pivot (a slider: along its guide)."""
+    name = model.load_link
+    link = getattr(model, name)
+    gx, gy = -res["roll.frame_a.fx"], -res["roll.frame_a.fy"]
+    if model.load_kind == "torque":
+        phi, lL = res[name + ".phiL"], float(link.parameter_value("lL"))
+        px = res[name + ".ctr2D2.x"] - lL * np.cos(phi)
+        py = res[name + ".ctr2D2.y"] - lL * np.sin(phi)
+        return load + (res["roll.x"] - px) * gy - (0.0 - py) * gx
+    e = res[name + ".phiS"]
+    return load + gx * np.cos(e) + gy * np.sin(e)
+
+
 def _load_power(res, model):
     name = model.load_link
     speed = res["%s.omL" % name] if model.load_kind == "torque" else res["der(%s.xG)" % name]
     return model.load_value * speed
+
+
+@pytest.mark.parametrize("cls", bs.BAND_FRAME, ids=lambda c: c.code)
+def test_band_frame_static_and_power_balance(cls):
+    model = cls()
+    res = _run(model)
+    load = np.full_like(res["roll.x"], model.load_value)
+    scale = np.max(np.hypot(res["roll.frame_a.fx"], res["roll.frame_a.fy"]))
+    assert np.max(np.abs(_rolling_balance(res, model, load))) < REL * scale
+    p_drive = res["drive.tau"] * res["drive.w"]
+    assert np.max(np.abs(p_drive + _load_power(res, model))) < REL * np.max(np.abs(p_drive))
+    assert abs(res["roll.x"][-1] - res["roll.x"][0]) > 1e-3        # the disc rolls
+    ratio = _load_power(res, model) / model.load_value / res["drive.w"]
+    assert np.ptp(ratio) > 1e-3 * np.max(np.abs(ratio))
 
 
 @pytest.mark.parametrize("cls", bs.MODELS, ids=lambda c: c.code)
@@ -84,14 +114,18 @@ def test_structure_static_and_power_balance(cls):
 def test_every_structure_has_its_own_class():
     codes = [c.code for c in bs.MODELS]
     assert len(set(codes)) == len(codes) == 19
+    assert sorted(c.code for c in bs.BAND_FRAME) == sorted(
+        ["BDDD~", "BDDB~", "DDSB~", "DSDB~", "BDSB~", "DSSB~"])
     for c in bs.MODELS:
         assert c.__name__ == c.code.replace("~", "_")
         assert parse_structure(c.code)
 
 
-@pytest.mark.parametrize("code", ["DS~DD", "DD~DD", "DBDD", "DB~DB~", "BD~DB"])
+@pytest.mark.parametrize("code", ["DS~DD", "DD~DD", "DBDD", "DB~DB~", "BD~DB", "SDDB~", "BSSB~"])
 def test_codes_the_rules_exclude_are_refused(code):
     """A band next to a prismatic joint (R3), a band without a disc (R2), no
-    band, two marks, a disc away from the band: refused with the rule."""
+    band, two marks, a disc away from the band, a band frame next to a
+    slider; BSSB~ (two discs on the band frame, the coupler a slider on a
+    moving guide) cannot be driven by a speed preset: refused, saying so."""
     with pytest.raises(ModelDefinitionError, match="band structure"):
         type("X", (BandStructure,), {"code": code})()

@@ -27,9 +27,11 @@ so that the band pulls with about :data:`F_BAND` N.  A force on a slider
 whose guide moves acts between slider and guide (1D sources on both
 flanges), so every load is a true external or internal force.
 
-The band as the frame ("(band frame)" structures) and two-band structures
-are not built by this class; see models/band_systematics.py for which
-structures the rules define and which ones are modelled.
+The band as the frame (code with a trailing ``~``, ``"BDDD~"``; see
+:meth:`BandStructure._build_band_frame`) is a taut straight band along y =
+0 on which discs roll.  Two-band structures are not built by this class;
+see models/band_systematics.py for which structures the rules define and
+which ones are modelled.
 """
 import math
 
@@ -41,12 +43,16 @@ from acausal2d.library.belt.layout import connect_band, tangent
 from acausal2d.library.belt.spans import Band
 from acausal2d.library.linkage import DAN, SAN
 from acausal2d.library.linkage.drives import ForceSource, Preset, TorqueSource
-from acausal2d.library.planar import Fixed
+from acausal2d.library.planar import Fixed, IdealRolling
 
 __all__ = ["BandStructure", "parse_structure", "SKELETON", "R_DISC", "F_BAND"]
 
 SKELETON = {1: (0.0, 0.0), 2: (0.05, 0.15), 3: (0.3, 0.22), 4: (0.35, 0.0)}
 """Joint points J1..J4 of the generated mechanisms at t = 0 (m)."""
+BAND_FRAME_J3 = (0.2, 0.12)
+"""J3 when the band is the frame (with J3 of :data:`SKELETON`, DSDB~ starts
+next to a dead position: its disc link's pin would run across the guide's
+normal)."""
 R_DISC = 0.03
 """Radius of every disc (m)."""
 F_BAND = 10.0
@@ -56,24 +62,24 @@ OMEGA, SPEED = 0.5, 0.02       # drive: rad/s (revolute) or m/s (prismatic)
 
 def parse_structure(code):
     """``"DB~DD"`` -> (joint letters "DBDD", index b of the band link
-    L_b, 1..3).  Refuses codes that are not four joints with exactly one
+    L_b, 1..3; b = 4 for a trailing ``~``, ``"BDDD~"``: the band is the frame
+    between J4 and J1).  Refuses codes that are not four joints with exactly one
     band between two of them, or whose band ends are not D or B with at
     least one B, or whose band lies next to a prismatic joint."""
     letters = code.replace("~", "")
     marks = [i for i, ch in enumerate(code) if ch == "~"]
-    if len(letters) != 4 or set(letters) - set("DSB") or len(marks) != 1 \
-            or not 0 < marks[0] < len(code) - 1:
+    if len(letters) != 4 or set(letters) - set("DSB") or len(marks) != 1 or marks[0] == 0:
         raise ModelDefinitionError(
             "band structure %r: give four joint letters D, S, B with one '~' between the two "
             "joints of the band link, e.g. 'DB~DD'" % code)
-    b = marks[0]                       # the band link L_b joins J_b and J_b+1
-    ends = letters[b - 1] + letters[b]
+    b = marks[0]                       # the band link L_b joins J_b and J_b+1 (L4: the frame)
+    ends = letters[b - 1] + letters[b % 4]
     if "S" in ends or "B" not in ends:
         raise ModelDefinitionError(
             "band structure %r: the band's joints are %s; each end must be a pin D or a "
             "disc B, at least one B (seed ch. 2.5.2: a band joint does not combine with a "
             "prismatic joint)" % (code, ends))
-    if any(ch == "B" and i not in (b - 1, b) for i, ch in enumerate(letters)):
+    if any(ch == "B" and i not in (b - 1, b % 4) for i, ch in enumerate(letters)):
         raise ModelDefinitionError("band structure %r: a disc B is a band joint; here one is "
                                    "away from the band" % code)
     return letters, b
@@ -106,12 +112,17 @@ class BandStructure(Component):
         super().__init__(**kw)
         letters, b = parse_structure(self.code)
         self._letters, self._band_link = letters, b
+        self._pts = dict(SKELETON)
+        self._angles, self._pivots, self._tip_at = {}, {}, {}
+        if b == 4:
+            self._build_band_frame(letters)
+            return
         left = [(1, 2)] + ([(2, 3)] if b == 3 else []) if b > 1 else []
         right = [(4, 3)] + ([(3, 2)] if b == 1 else []) if b < 3 else []
         self._ends = (b, b + 1)
-        geo = [(*SKELETON[j], R_DISC if letters[j - 1] == "B" else 0.0) for j in self._ends]
+        geo = [(*self._pts[j], R_DISC if letters[j - 1] == "B" else 0.0) for j in self._ends]
         self._gam, self._length = tangent(*geo)
-        tips, self._angles, self._pivots = {}, {}, {}
+        tips = {}
         for branch in (left, right):
             parent = None
             for jp, jc in branch:
@@ -131,10 +142,10 @@ class BandStructure(Component):
         """The rigid link from joint jp (letter ``joint``) to jc, on the
         frame (parent None) or on the tip of the link ``parent``."""
         name = self._link_name((jp, jc))
-        p, c = SKELETON[jp], SKELETON[jc]
+        p, c = self._pts[jp], self._pts[jc]
         ang, length = _angle(p, c), math.hypot(c[0] - p[0], c[1] - p[1])
         rel = ang - (self._angles[parent] if parent else 0.0)
-        at = {} if parent else {"x10": p[0], "y10": p[1]}
+        at = self._placement(p, parent)
         if joint == "D":
             link = DAN(lL=length, mL=0.0, JL=0.0, phiL0=ang, phiL=start(ang), **at)
         elif joint == "S":
@@ -148,10 +159,25 @@ class BandStructure(Component):
                                        "is %s; only D or S join two rigid links"
                                        % (self.code, jp, joint))
         setattr(self, name, link)
-        self._angles[name], self._pivots[name] = ang, p
+        self._angles[name], self._pivots[name], self._tip_at[name] = ang, p, c
         if parent:
-            self.connect(getattr(self, parent).ctr2D2, link.ctr2D1)
+            self.connect(self._out(parent), link.ctr2D1)
         return name
+
+    def _out(self, name):
+        """The output frame of link ``name`` (a link's tip, a wheel's centre)."""
+        part = getattr(self, name)
+        return part.ctr2D2 if hasattr(part, "ctr2D2") else part.frame_a
+
+    def _placement(self, p, parent):
+        """Placement (Anhang A.1) of the point p: on the frame, or relative
+        to the output frame of ``parent`` turned by its start angle."""
+        if not parent:
+            return {"x10": p[0], "y10": p[1]}
+        q, a = self._tip_at[parent], self._angles[parent]
+        dx, dy = p[0] - q[0], p[1] - q[1]
+        c, s = math.cos(a), math.sin(a)
+        return {"x10": c * dx + s * dy, "y10": -s * dx + c * dy}
 
     def _guide_angle(self, j, ang):
         """Guide direction of a slider whose next joint is J_j: at 0.5 rad to
@@ -175,7 +201,7 @@ class BandStructure(Component):
     def _end(self, j, k, holder, gam):
         """Band end k (1, 2) at joint j on the link ``holder`` (None: the
         frame): a pin or a locked disc; returns (frame name, point at t0)."""
-        p = SKELETON[j]
+        p = self._pts[j]
         tip = getattr(self, holder).ctr2D2 if holder else None
         if self._letters[j - 1] == "D":
             if tip is None:
@@ -216,13 +242,61 @@ class BandStructure(Component):
             p = self._pivots[self.load_link]
             arm = _cross((q[0] - p[0], q[1] - p[1]), u)
             self.load_kind, self.load_value = "torque", -F_BAND * arm
+        else:
+            e = self._angles[self.load_link]
+            along = u[0] * math.cos(e) + u[1] * math.sin(e)
+            self.load_kind, self.load_value = "force", -F_BAND * along
+        self._apply_load(link)
+
+    def _apply_load(self, link):
+        """The constant load ``load_value`` on ``link``: a torque, or a force
+        between slider and guide."""
+        if self.load_kind == "torque":
             self.load = TorqueSource(tau=self.load_value)
             self.connect(self.load.flange, link.ctrR2)
             return
-        e = self._angles[self.load_link]
-        along = u[0] * math.cos(e) + u[1] * math.sin(e)
-        self.load_kind, self.load_value = "force", -F_BAND * along
         self.load = ForceSource(f=self.load_value)
         self.connect(self.load.flange, link.ctrT2)
         self.support = ForceSource(f=-self.load_value)     # the reaction on the guide
         self.connect(self.support.flange, link.ctrT1)
+
+    def _build_band_frame(self, letters):
+        """The band as the frame (code ``"BDDD~"``): a taut straight band along
+        y = 0 in the ground; a D end is a pivot on it, a B end a disc of the
+        neighbouring link that rolls on it without slip
+        (:class:`~acausal2d.library.planar.IdealRolling`, bilateral).  The
+        chain of the three rigid links starts at the pivot (driven) and ends
+        at the rolling disc (loaded); with two discs, the first disc's link
+        rolls freely and the coupler is driven."""
+        self.outputs = ["drive.tau", "roll.x"]
+        self._ends, self._gam = (4, 1), 0.0        # a slider with the disc: guide at 0.5 rad to it
+        self._pts[3] = BAND_FRAME_J3
+        for j in (1, 4):
+            if letters[j - 1] == "B":
+                self._pts[j] = (self._pts[j][0], R_DISC)
+        if letters[3] == "D":
+            chain, parent = [(4, 3), (3, 2), (2, 1)], None
+        else:
+            chain, parent = [(1, 2), (2, 3), (3, 4)], None
+            if letters[0] == "B":
+                self.wheel = IdealRolling(R=R_DISC, x0=self._pts[1][0])
+                self._angles["wheel"], self._tip_at["wheel"] = 0.0, self._pts[1]
+                chain, parent = chain[1:], "wheel"
+        for jp, jc in chain:
+            parent = self._link(letters[jp - 1], jp, jc, parent)
+        first = self._link_name(chain[0])
+        if not isinstance(getattr(self, first), DAN):
+            raise ModelDefinitionError(
+                "band structure %r: with two discs on the band frame the coupler is driven; "
+                "here it is a slider on a moving guide, which a speed preset cannot drive "
+                "without a reaction on the guide" % self.code)
+        self.drive_link, self.load_link = first, parent
+        self._drive(first)
+        j = chain[-1][1]
+        self.roll = IdealRolling(R=R_DISC, x0=self._pts[j][0] + R_DISC * self._angles[parent])
+        self.connect(self._out(parent), self.roll.frame_a)
+        self.load_point, self.load_end, self.drive_point, self.drive_end = "roll", None, None, None
+        link = getattr(self, parent)
+        self.load_kind = "torque" if isinstance(link, DAN) else "force"
+        self.load_value = F_BAND * (0.1 if self.load_kind == "torque" else 1.0)
+        self._apply_load(link)
