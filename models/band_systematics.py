@@ -48,10 +48,17 @@ table's entries without "(band frame)" and with one band, list
 ``MODELS``) and 6 of the 7 one-band structures with the band as the frame
 (``BAND_FRAME``, code with a trailing ``~``: the band is a taut straight
 line y = 0 in the ground on which the discs roll without slip; classes
-named ``<code>_frame``).  Not modelled: BSSB (band frame; both frame-side
-links roll and the coupler is a slider on a moving guide, which a speed
-preset cannot drive with its reaction on the guide) and the 11 two-band
-structures (a rigid link held by two bands only).
+named ``<code>_frame``) and the 6 two-band structures with the bands L1
+and L3 (``TWO_BANDS``, built by
+:class:`acausal2d.library.belt.systematics_two.TwoBandStructure`: the
+coupler hangs on the two bands like a swing, its angle driven, a vertical
+load).  Not modelled (31 of 37 modelled): BSSB (band frame; both
+frame-side links roll and the coupler is a slider on a moving guide, which
+a speed preset cannot drive with its reaction on the guide), BB~DB and
+BB~BB with the band as the frame (both frame-side links roll on the band:
+nothing to drive with a preset), and DB~DB, DD~BB, DB~BB with the band as
+the frame (a wheel rolling on the band frame held by the second band: the
+integration fails within 0.04 s here; open).
 
 Every model: joints at the corners of the skeleton quadrilateral J1 =
 (0, 0), J2 = (0.05, 0.15), J3 = (0.3, 0.22), J4 = (0.35, 0) m, discs of
@@ -63,6 +70,7 @@ the structure is.  ``acausal2d simulate models/band_systematics.py --model
 DB_DD`` runs one.
 """
 from acausal2d.library.belt.systematics import BandStructure
+from acausal2d.library.belt.systematics_two import TwoBandStructure
 
 
 class DB_DD(BandStructure):
@@ -217,5 +225,42 @@ class DSSB_frame(BandStructure):
     code = "DSSB~"
 
 
+class D_BD_B(TwoBandStructure):
+    """D~BD~B (4-bar, 2 bands D-B (a)): a frame pin and a frame disc hold the bands on which
+    the coupler (a disc and a pin) hangs."""
+    code = "D~BD~B"
+
+
+class B_DD_B(TwoBandStructure):
+    """B~DD~B (4-bar, 2 bands D-B (b)): two frame discs hold the bands that hang the coupler
+    by two pins."""
+    code = "B~DD~B"
+
+
+class D_BB_D(TwoBandStructure):
+    """D~BB~D (4-bar, 2 bands D-B (b)): two frame pins hold the bands that wrap two discs on
+    the coupler."""
+    code = "D~BB~D"
+
+
+class B_BD_B(TwoBandStructure):
+    """B~BD~B (4-bar, 2 bands B-B, D-B): a B-B band from a frame disc to a coupler disc, a
+    D-B band from the coupler's pin to a frame disc."""
+    code = "B~BD~B"
+
+
+class D_BB_B(TwoBandStructure):
+    """D~BB~B (4-bar, 2 bands B-B, D-B): a D-B band from a frame pin to a coupler disc, a
+    B-B band from a second coupler disc to a frame disc."""
+    code = "D~BB~B"
+
+
+class B_BB_B(TwoBandStructure):
+    """B~BB~B (4-bar, 2 bands B-B, B-B): two B-B bands between frame discs and coupler
+    discs."""
+    code = "B~BB~B"
+
+
 MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, DSD_B, SB_BD, SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
 BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame]
+TWO_BANDS = [D_BD_B, B_DD_B, D_BB_D, B_BD_B, D_BB_B, B_BB_B]

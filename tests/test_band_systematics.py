@@ -21,6 +21,7 @@ import pytest
 import acausal2d
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library.belt.systematics import F_BAND, BandStructure, parse_structure
+from acausal2d.library.belt.systematics_two import TwoBandStructure, parse_two_bands
 
 ROOT = os.path.join(os.path.dirname(__file__), os.pardir)
 sys.path.insert(0, os.path.join(ROOT, "models"))
@@ -91,6 +92,37 @@ def test_band_frame_static_and_power_balance(cls):
     assert np.ptp(ratio) > 1e-3 * np.max(np.abs(ratio))
 
 
+def _coupler_point(res, model, j):
+    """The point where the band pulls the coupler at joint j (2 or 3)."""
+    frame = model.ends[j] or {2: "back.frame_b", 3: "coupler.ctr2D2"}[j]
+    return res[frame + ".x"], res[frame + ".y"]
+
+
+@pytest.mark.parametrize("cls", bs.TWO_BANDS, ids=lambda c: c.code)
+def test_two_band_coupler_static_and_power_balance(cls):
+    """The coupler hangs on the bands L1 and L3: the band forces, the
+    vertical load W at its pivot H and the drive torque balance it (x, y,
+    moment about H); drive power + W dy_H/dt = 0."""
+    model = cls()
+    res = _run(model)
+    F1, F3 = res["band1.F"], res["band3.F"]
+    assert np.all(F1 > 0.5 * F_BAND) and np.all(F3 > 0.5 * F_BAND)
+    g1, g3 = res["band1.gamma"], res["band3.gamma"]
+    u1, u3 = (-np.cos(g1), -np.sin(g1)), (np.cos(g3), np.sin(g3))
+    W = model.load_value
+    assert np.max(np.abs(F1 * u1[0] + F3 * u3[0])) < REL * F_BAND
+    assert np.max(np.abs(F1 * u1[1] + F3 * u3[1] + W)) < REL * F_BAND
+    hx, hy = res["carrier_x.ctr2D2.x"], res["carrier_x.ctr2D2.y"]
+    (q2x, q2y), (q3x, q3y) = _coupler_point(res, model, 2), _coupler_point(res, model, 3)
+    moment = res["drive.tau"] + F1 * ((q2x - hx) * u1[1] - (q2y - hy) * u1[0]) \
+        + F3 * ((q3x - hx) * u3[1] - (q3y - hy) * u3[0])
+    assert np.max(np.abs(moment)) < REL * F_BAND
+    p_drive = res["drive.tau"] * res["drive.w"]
+    p_load = W * res["der(carrier_y.xG)"]
+    assert np.max(np.abs(p_drive + p_load)) < REL * np.max(np.abs(p_load))
+    assert np.ptp(res["drive.tau"]) > 1e-3 * np.max(np.abs(res["drive.tau"]))
+
+
 @pytest.mark.parametrize("cls", bs.MODELS, ids=lambda c: c.code)
 def test_structure_static_and_power_balance(cls):
     model = cls()
@@ -116,9 +148,13 @@ def test_every_structure_has_its_own_class():
     assert len(set(codes)) == len(codes) == 19
     assert sorted(c.code for c in bs.BAND_FRAME) == sorted(
         ["BDDD~", "BDDB~", "DDSB~", "DSDB~", "BDSB~", "DSSB~"])
+    assert len(bs.TWO_BANDS) == 6
     for c in bs.MODELS:
         assert c.__name__ == c.code.replace("~", "_")
         assert parse_structure(c.code)
+    for c in bs.TWO_BANDS:
+        assert c.__name__ == c.code.replace("~", "_")
+        assert parse_two_bands(c.code)[1] == (1, 3)
 
 
 @pytest.mark.parametrize("code", ["DS~DD", "DD~DD", "DBDD", "DB~DB~", "BD~DB", "SDDB~", "BSSB~"])
@@ -129,3 +165,11 @@ def test_codes_the_rules_exclude_are_refused(code):
     moving guide) cannot be driven by a speed preset: refused, saying so."""
     with pytest.raises(ModelDefinitionError, match="band structure"):
         type("X", (BandStructure,), {"code": code})()
+
+
+@pytest.mark.parametrize("code", ["DB~BD~", "D~DD~B", "DBB~B", "S~BD~B", "DB~DB~"])
+def test_two_band_codes_refused(code):
+    """Adjacent bands, a band without a disc, one mark, a slider, and the
+    band frame with a second band (not built): refused naming the code."""
+    with pytest.raises(ModelDefinitionError, match="two-band structure"):
+        type("X", (TwoBandStructure,), {"code": code})()

@@ -1,0 +1,140 @@
+"""Two-band structures of four-link band mechanisms (seed ch. 2.5.2, Bild
+2.6: "optionally two rigid links are replaced by bands", R1), generated from
+their code as :mod:`acausal2d.library.belt.systematics` does for one band.
+
+Two bands are never adjacent, so they are L1 and L3 (the frame and the
+coupler L2 rigid: ``"D~BD~B"``) or L2 and the frame (``"DB~DB~"``: the
+band as the frame, a taut straight band along y = 0).  Every joint is then
+a band end (D pin or B disc).
+
+- Bands L1 and L3: the coupler hangs on the two bands only, a free body:
+  it is carried by a vertical and a horizontal guide (two massless sliders
+  whose guides transmit no force along themselves) and turns about J2 (a
+  :class:`~acausal2d.library.linkage.DAN`), so its three planar degrees of
+  freedom are free; the bands take two of them.  Its angle is driven (0.5
+  rad/s); a vertical force on the vertical slider (the coupler's weight
+  turned upwards, the bands pull it towards the frame) is sized for 10 N in
+  the band L3 at t = 0.
+- Bands L2 and the frame: not built (refused with that message).
+"""
+import math
+
+from acausal2d import start
+from acausal2d.errors import ModelDefinitionError
+from acausal2d.library import rotational
+from acausal2d.library.belt.drum import Drum
+from acausal2d.library.belt.layout import connect_band, tangent
+from acausal2d.library.belt.spans import Band
+from acausal2d.library.belt.systematics import (F_BAND, OMEGA, R_DISC, SKELETON, BandStructure,
+                                                _angle)
+from acausal2d.library.linkage import DAN, SAN
+from acausal2d.library.linkage.drives import ForceSource, Preset
+from acausal2d.library.planar import Fixed, FixedTranslation
+
+__all__ = ["TwoBandStructure", "parse_two_bands", "HANGING"]
+
+HANGING = {1: (-0.12, 0.25), 2: (0.08, 0.05), 3: (0.28, 0.05), 4: (0.48, 0.25)}
+"""Joint points (m) of the structures with bands L1 and L3: the coupler
+J2-J3 hangs from the frame points J1, J4, its load pulls it down."""
+
+
+def parse_two_bands(code):
+    """``"D~BD~B"`` -> (letters, (1, 3)); ``"DB~DB~"`` -> (letters, (2, 4)).
+    Refuses codes whose bands are adjacent or without a disc, or with a
+    prismatic joint (every joint of a two-band chain is a band end)."""
+    letters = code.replace("~", "")
+    marks = tuple(len(code[:i].replace("~", "")) for i, ch in enumerate(code) if ch == "~")
+    if len(letters) != 4 or set(letters) - set("DB") or marks not in ((1, 3), (2, 4)):
+        raise ModelDefinitionError(
+            "two-band structure %r: give four joint letters D or B with '~' after the first "
+            "and third ('D~BD~B': bands L1, L3) or the second and fourth ('DB~DB~': band L2 "
+            "and the band as the frame); two bands are never adjacent" % code)
+    for b in marks:
+        if "B" not in letters[b - 1] + letters[b % 4]:
+            raise ModelDefinitionError("two-band structure %r: band L%d has no disc B (seed "
+                                       "ch. 2.5.2: D-B or B-B)" % (code, b))
+    return letters, marks
+
+
+class TwoBandStructure(BandStructure):
+    """A four-link mechanism with two bands of the structure ``code`` (class
+    attribute), built as the module docstring says.  Metadata for checks:
+    ``bands`` ({name: (joint of end 1, joint of end 2)}), ``ends``
+    ({joint: None for a pin, the disc's contact frame ``discJ.ctrK1``}),
+    ``load_kind`` ("force", on the coupler's vertical slider) and
+    ``load_value``."""
+    experiment = {"stop_time": 0.4, "intervals": 8, "rtol": 1e-10}
+    outputs = ["drive.tau", "band1.F"]
+
+    def __init__(self, **kw):
+        super(BandStructure, self).__init__(**kw)
+        letters, marks = parse_two_bands(self.code)
+        self._letters, self._pts = letters, dict(SKELETON)
+        self.bands, self.ends = {}, {}
+        if marks != (1, 3):
+            raise ModelDefinitionError(
+                "two-band structure %r: the band as the frame with a second band (L2) is not "
+                "built by this class (a wheel rolling on the band frame held by the band L2 "
+                "fails to integrate here); the bands L1 and L3 ('D~BD~B') are" % self.code)
+        self._coupler_on_bands()
+
+    def _band_pair(self, name, ja, jb, frames):
+        """Band ``name`` from J_ja (end 1) to J_jb (end 2); ``frames`` maps a
+        joint to the frame that carries its pin or disc (None: the ground)."""
+        geo = [(*self._pts[j], R_DISC if self._letters[j - 1] == "B" else 0.0) for j in (ja, jb)]
+        gam, length = tangent(*geo)
+        band = Band(gamma=start(gam), l=start(length), l_x=start(length), l_x0=start(length))
+        setattr(self, name, band)
+        self.bands[name] = (ja, jb)
+        q = {}
+        for k, j in ((1, ja), (2, jb)):
+            q[j] = self._band_end(band, j, k, frames.get(j), gam)
+        return gam, q
+
+    def _band_end(self, band, j, k, frame, gam):
+        p = self._pts[j]
+        if self._letters[j - 1] == "D":
+            if frame is None:
+                setattr(self, "pin%d" % j, Fixed(r=p))
+                frame = getattr(self, "pin%d" % j).frame
+            self.connect(getattr(band, "ctr2D%d" % k), frame)
+            self.ends[j] = None
+            return p
+        disc = Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
+        setattr(self, "disc%d" % j, disc)
+        setattr(self, "lock%d" % j, rotational.Fixed())
+        self.connect(getattr(self, "lock%d" % j).flange, disc.ctrR)
+        if frame is not None:
+            self.connect(frame, disc.ctr2D1)
+        connect_band(self, band, k, disc, 1)
+        self.ends[j] = "disc%d.ctrK1" % j
+        side = 1.0 if k == 1 else -1.0
+        return p[0] - side * R_DISC * math.sin(gam), p[1] + side * R_DISC * math.cos(gam)
+
+    def _coupler_on_bands(self):
+        """Bands L1 (J1-J2) and L3 (J3-J4); the coupler J2-J3 is free and
+        hangs from the frame points (:data:`HANGING`) like a swing."""
+        self._pts = dict(HANGING)
+        p2, p3 = self._pts[2], self._pts[3]
+        self.carrier_y = SAN(x10=p2[0], y10=0.0, phi10=math.pi / 2, mS=0.0, JS=0.0, xS0=p2[1],
+                             xG=start(p2[1]))
+        self.carrier_x = SAN(phi10=-math.pi / 2, mS=0.0, JS=0.0, xS0=0.0, xG=start(0.0))
+        self.connect(self.carrier_y.ctr2D2, self.carrier_x.ctr2D1)
+        ang, lL = _angle(p2, p3), math.hypot(p3[0] - p2[0], p3[1] - p2[1])
+        self.coupler = DAN(lL=lL, mL=0.0, JL=0.0, phiL0=ang, phiL=start(ang))
+        self.connect(self.carrier_x.ctr2D2, self.coupler.ctr2D1)
+        self.back = FixedTranslation(r=(-lL, 0.0))          # the coupler's frame at J2
+        self.connect(self.coupler.ctr2D2, self.back.frame_a)
+        self.drive = Preset(kind="speed", om=OMEGA, phi0=ang)
+        self.connect(self.drive.flange, self.coupler.ctrR2)
+        g1, _ = self._band_pair("band1", 1, 2, {2: self.back.frame_b})
+        g3, _ = self._band_pair("band3", 3, 4, {3: self.coupler.ctr2D2})
+        u1 = (-math.cos(g1), -math.sin(g1))                 # at J2 towards J1
+        u3 = (math.cos(g3), math.sin(g3))                   # at J3 towards J4
+        f1 = -F_BAND * u3[0] / u1[0]
+        if f1 <= 0:
+            raise ModelDefinitionError("two-band structure %r: the bands cannot both pull the "
+                                       "coupler at the skeleton" % self.code)
+        self.load_kind, self.load_value = "force", -(f1 * u1[1] + F_BAND * u3[1])
+        self.load = ForceSource(f=self.load_value)
+        self.connect(self.load.flange, self.carrier_y.ctrT2)
