@@ -94,7 +94,7 @@ def test_band_frame_static_and_power_balance(cls):
 
 def _coupler_point(res, model, j):
     """The point where the band pulls the coupler at joint j (2 or 3)."""
-    frame = model.ends[j] or {2: "back.frame_b", 3: "coupler.ctr2D2"}[j]
+    frame = model.ends[j]
     return res[frame + ".x"], res[frame + ".y"]
 
 

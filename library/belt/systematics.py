@@ -198,24 +198,27 @@ class BandStructure(Component):
                                 phi0=float(link.parameter_value("xS0")))
             self.connect(self.drive.flange, link.ctrT2)
 
-    def _end(self, j, k, holder, gam):
-        """Band end k (1, 2) at joint j on the link ``holder`` (None: the
-        frame): a pin or a locked disc; returns (frame name, point at t0)."""
+    def _end(self, band, j, k, frame, gam):
+        """End k (1, 2) of ``band`` at joint j: a pin or a locked disc on the
+        frame ``frame`` = (connector, signal prefix), None for the ground.
+        Returns (the prefix of the frame the band pulls at: the pin's frame,
+        None for a ground pin, or the disc's ``discJ.ctrK1``; that point at
+        t0)."""
         p = self._pts[j]
-        tip = getattr(self, holder).ctr2D2 if holder else None
+        conn, name = frame or (None, None)
         if self._letters[j - 1] == "D":
-            if tip is None:
+            if conn is None:
                 setattr(self, "pin%d" % j, Fixed(r=p))
-                tip = getattr(self, "pin%d" % j).frame
-            self.connect(getattr(self.band, "ctr2D%d" % k), tip)
-            return (holder + ".ctr2D2") if holder else None, p
+                conn = getattr(self, "pin%d" % j).frame
+            self.connect(getattr(band, "ctr2D%d" % k), conn)
+            return name, p
         disc = Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
         setattr(self, "disc%d" % j, disc)
         setattr(self, "lock%d" % j, rotational.Fixed())
         self.connect(getattr(self, "lock%d" % j).flange, disc.ctrR)
-        if tip is not None:
-            self.connect(tip, disc.ctr2D1)
-        connect_band(self, self.band, k, disc, 1)
+        if conn is not None:
+            self.connect(conn, disc.ctr2D1)
+        connect_band(self, band, k, disc, 1)
         side = 1.0 if k == 1 else -1.0        # contact at C +- rho perp(e) (tangent())
         q = (p[0] - side * R_DISC * math.sin(gam), p[1] + side * R_DISC * math.cos(gam))
         return "disc%d.ctrK1" % j, q
@@ -226,7 +229,8 @@ class BandStructure(Component):
         self.band = Band(gamma=start(gam), l=start(length), l_x=start(length),
                          l_x0=start(length))
         holders = {ja: tips.get(ja), jb: tips.get(jb)}
-        pts = {j: self._end(j, k, holders[j], gam) for k, j in ((1, ja), (2, jb))}
+        frames = {j: (self._out(h), h + ".ctr2D2") if h else None for j, h in holders.items()}
+        pts = {j: self._end(self.band, j, k, frames[j], gam) for k, j in ((1, ja), (2, jb))}
         k = 1 if holders[ja] == self.load_link else 2
         j = ja if k == 1 else jb
         self.load_end, (self.load_point, q) = k, pts[j]

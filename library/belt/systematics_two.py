@@ -21,15 +21,13 @@ import math
 
 from acausal2d import start
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library import rotational
-from acausal2d.library.belt.drum import Drum
-from acausal2d.library.belt.layout import connect_band, tangent
+from acausal2d.library.belt.layout import tangent
 from acausal2d.library.belt.spans import Band
 from acausal2d.library.belt.systematics import (F_BAND, OMEGA, R_DISC, SKELETON, BandStructure,
                                                 _angle)
 from acausal2d.library.linkage import DAN, SAN
 from acausal2d.library.linkage.drives import ForceSource, Preset
-from acausal2d.library.planar import Fixed, FixedTranslation
+from acausal2d.library.planar import FixedTranslation
 
 __all__ = ["TwoBandStructure", "parse_two_bands", "HANGING"]
 
@@ -60,7 +58,8 @@ class TwoBandStructure(BandStructure):
     """A four-link mechanism with two bands of the structure ``code`` (class
     attribute), built as the module docstring says.  Metadata for checks:
     ``bands`` ({name: (joint of end 1, joint of end 2)}), ``ends``
-    ({joint: None for a pin, the disc's contact frame ``discJ.ctrK1``}),
+    ({joint: the signal prefix of the frame the band pulls at, a pin's frame
+    or the disc's contact ``discJ.ctrK1``; None for a pin in the ground}),
     ``load_kind`` ("force", on the coupler's vertical slider) and
     ``load_value``."""
     experiment = {"stop_time": 0.4, "intervals": 8, "rtol": 1e-10}
@@ -80,7 +79,8 @@ class TwoBandStructure(BandStructure):
 
     def _band_pair(self, name, ja, jb, frames):
         """Band ``name`` from J_ja (end 1) to J_jb (end 2); ``frames`` maps a
-        joint to the frame that carries its pin or disc (None: the ground)."""
+        joint to (connector, signal prefix) of the frame that carries its pin
+        or disc (missing: the ground)."""
         geo = [(*self._pts[j], R_DISC if self._letters[j - 1] == "B" else 0.0) for j in (ja, jb)]
         gam, length = tangent(*geo)
         band = Band(gamma=start(gam), l=start(length), l_x=start(length), l_x0=start(length))
@@ -88,28 +88,8 @@ class TwoBandStructure(BandStructure):
         self.bands[name] = (ja, jb)
         q = {}
         for k, j in ((1, ja), (2, jb)):
-            q[j] = self._band_end(band, j, k, frames.get(j), gam)
+            self.ends[j], q[j] = self._end(band, j, k, frames.get(j), gam)
         return gam, q
-
-    def _band_end(self, band, j, k, frame, gam):
-        p = self._pts[j]
-        if self._letters[j - 1] == "D":
-            if frame is None:
-                setattr(self, "pin%d" % j, Fixed(r=p))
-                frame = getattr(self, "pin%d" % j).frame
-            self.connect(getattr(band, "ctr2D%d" % k), frame)
-            self.ends[j] = None
-            return p
-        disc = Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
-        setattr(self, "disc%d" % j, disc)
-        setattr(self, "lock%d" % j, rotational.Fixed())
-        self.connect(getattr(self, "lock%d" % j).flange, disc.ctrR)
-        if frame is not None:
-            self.connect(frame, disc.ctr2D1)
-        connect_band(self, band, k, disc, 1)
-        self.ends[j] = "disc%d.ctrK1" % j
-        side = 1.0 if k == 1 else -1.0
-        return p[0] - side * R_DISC * math.sin(gam), p[1] + side * R_DISC * math.cos(gam)
 
     def _coupler_on_bands(self):
         """Bands L1 (J1-J2) and L3 (J3-J4); the coupler J2-J3 is free and
@@ -127,8 +107,8 @@ class TwoBandStructure(BandStructure):
         self.connect(self.coupler.ctr2D2, self.back.frame_a)
         self.drive = Preset(kind="speed", om=OMEGA, phi0=ang)
         self.connect(self.drive.flange, self.coupler.ctrR2)
-        g1, _ = self._band_pair("band1", 1, 2, {2: self.back.frame_b})
-        g3, _ = self._band_pair("band3", 3, 4, {3: self.coupler.ctr2D2})
+        g1, _ = self._band_pair("band1", 1, 2, {2: (self.back.frame_b, "back.frame_b")})
+        g3, _ = self._band_pair("band3", 3, 4, {3: (self.coupler.ctr2D2, "coupler.ctr2D2")})
         u1 = (-math.cos(g1), -math.sin(g1))                 # at J2 towards J1
         u3 = (math.cos(g3), math.sin(g3))                   # at J3 towards J4
         f1 = -F_BAND * u3[0] / u1[0]
