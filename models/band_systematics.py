@@ -35,9 +35,9 @@ cross-slider, band B-B    SB~BS, SSB~B, (band frame) BSSB
 ========================  ==========================================
 
 ((a): each rigid link carries a pivot and a disc; (b): one rigid link
-carries two discs, the other two pivots), i.e. 18 four-bar structures from 6 chains and 19 slider structures from 5
-chains, against the seed's 16 from 5 starting combinations (Bild 2.6) and
-27 from 7 (Bild 2.7, 2.8).  The stated rules do not reproduce those counts:
+carries two discs, the other two pivots), i.e. 18 four-bar structures from
+6 chains and 19 slider structures from 5 chains, against the seed's 16
+from 5 starting combinations (Bild 2.6) and 27 from 7 (Bild 2.7, 2.8).  The stated rules do not reproduce those counts:
 dropping one of the two-structure four-bar chains gives 16, and the
 slider counts presumably include the grey form-change variants of slotted
 mechanisms ([Vol92]), which the text does not define.  The text itself
@@ -261,6 +261,7 @@ class B_BB_B(TwoBandStructure):
     code = "B~BB~B"
 
 
-MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, DSD_B, SB_BD, SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
+MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, DSD_B, SB_BD,
+          SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
 BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame]
 TWO_BANDS = [D_BD_B, B_DD_B, D_BB_D, B_BD_B, D_BB_B, B_BB_B]
