@@ -37,11 +37,12 @@ cross-slider, band B-B    SB~BS, SSB~B, (band frame) BSSB
 ((a): each rigid link carries a pivot and a disc; (b): one rigid link
 carries two discs, the other two pivots), i.e. 18 four-bar structures from
 6 chains and 19 slider structures from 5 chains, against the seed's 16
-from 5 starting combinations (Bild 2.6) and 27 from 7 (Bild 2.7, 2.8).
-The stated rules do not reproduce those counts: dropping one of the two-structure four-bar chains gives 16, and the
-slider counts presumably include the grey form-change variants of slotted
-mechanisms ([Vol92]), which the text does not define.  The text itself
-calls two-band structures and the band as the frame rare in practice.
+from 5 starting combinations (Bild 2.6) and 27 from 7 (Bild 2.7, 2.8). The
+stated rules do not reproduce those counts: dropping one of the two-
+structure four-bar chains gives 16, and the slider counts presumably
+include the grey form-change variants of slotted mechanisms ([Vol92]),
+which the text does not define. The text itself calls two-band structures
+and the band as the frame rare in practice.
 
 Modelled here: the 19 structures with one band that is a moving link (the
 table's entries without "(band frame)" and with one band, list
