@@ -266,3 +266,25 @@ MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, 
           SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
 BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame]
 TWO_BANDS = [D_BD_B, B_DD_B, D_BB_D, B_BD_B, D_BB_B, B_BB_B]
+
+
+class DB_DB_frame(TwoBandStructure):
+    """DB~DB~, the band as the frame with a second band L2 (4-bar, 2 bands D-B (a)): a crank
+    pivoted on the band frame carries a disc, the band L2 runs to a pin on a wheel rolling on
+    the band frame."""
+    code = "DB~DB~"
+
+
+class DD_BB_frame(TwoBandStructure):
+    """DD~BB~, the band as the frame with a second band L2 (4-bar, 2 bands D-B (b)): the band
+    L2 from the tip of a crank pivoted on the band frame to a disc on a wheel rolling on it."""
+    code = "DD~BB~"
+
+
+class DB_BB_frame(TwoBandStructure):
+    """DB~BB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, D-B): the band
+    L2 from a disc on a crank pivoted on the band frame to a disc on a wheel rolling on it."""
+    code = "DB~BB~"
+
+
+TWO_BANDS_FRAME = [DB_DB_frame, DD_BB_frame, DB_BB_frame]

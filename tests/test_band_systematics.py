@@ -123,6 +123,32 @@ def test_two_band_coupler_static_and_power_balance(cls):
     assert np.ptp(res["drive.tau"]) > 1e-3 * np.max(np.abs(res["drive.tau"]))
 
 
+def _moment(res, F, prefix, c, u):
+    """Moment about the point c of the band force F u at the frame ``prefix``."""
+    return F * ((res[prefix + ".x"] - c[0]) * u[1] - (res[prefix + ".y"] - c[1]) * u[0])
+
+
+@pytest.mark.parametrize("cls", bs.TWO_BANDS_FRAME, ids=lambda c: c.code)
+def test_band_frame_two_bands_static_and_power_balance(cls):
+    """Band L2 and the band as the frame: the driven link L1 (pivot J1 on the
+    band) and the wheel L3 rolling on it (moments about its contact point,
+    where the contact force acts) balance the band force; drive power +
+    load power = 0."""
+    model = cls()
+    res = _run(model)
+    F = res["band2.F"]
+    assert np.all(F > 0.0) and abs(F[0] - F_BAND) < REL * F_BAND
+    e = np.cos(res["band2.gamma"]), np.sin(res["band2.gamma"])   # pull at J2, along J2 -> J3
+    m_drive = res["drive.tau"] + _moment(res, F, model.ends[2], (0.0, 0.0), e)
+    assert np.max(np.abs(m_drive)) < REL * np.max(np.abs(res["drive.tau"]))
+    contact = (res["roll.x"], 0.0)
+    m_load = model.load_value + _moment(res, F, model.ends[3], contact, (-e[0], -e[1]))
+    assert np.max(np.abs(m_load)) < REL * abs(model.load_value)
+    p_drive, p_load = res["drive.tau"] * res["drive.w"], model.load_value * res["roll.w"]
+    assert np.max(np.abs(p_drive + p_load)) < REL * np.max(np.abs(p_drive))
+    assert np.ptp(res["roll.w"]) > 1e-3 * np.max(np.abs(res["roll.w"]))   # not a constant ratio
+
+
 @pytest.mark.parametrize("cls", bs.MODELS, ids=lambda c: c.code)
 def test_structure_static_and_power_balance(cls):
     model = cls()
@@ -155,6 +181,9 @@ def test_every_structure_has_its_own_class():
     for c in bs.TWO_BANDS:
         assert c.__name__ == c.code.replace("~", "_")
         assert parse_two_bands(c.code)[1] == (1, 3)
+    for c in bs.TWO_BANDS_FRAME:
+        assert c.__name__ == c.code.replace("~", "_") + "frame"
+        assert parse_two_bands(c.code)[1] == (2, 4)
 
 
 @pytest.mark.parametrize("code", ["DS~DD", "DD~DD", "DBDD", "DB~DB~", "BD~DB", "SDDB~", "BSSB~"])
@@ -167,9 +196,9 @@ def test_codes_the_rules_exclude_are_refused(code):
         type("X", (BandStructure,), {"code": code})()
 
 
-@pytest.mark.parametrize("code", ["DB~BD~", "D~DD~B", "DBB~B", "S~BD~B", "DB~DB~"])
+@pytest.mark.parametrize("code", ["DB~BD~", "D~DD~B", "DBB~B", "S~BD~B"])
 def test_two_band_codes_refused(code):
-    """Adjacent bands, a band without a disc, one mark, a slider, and the
-    band frame with a second band (not built): refused naming the code."""
+    """Adjacent bands, a band without a disc, one mark, a slider: refused
+    naming the code."""
     with pytest.raises(ModelDefinitionError, match="two-band structure"):
         type("X", (TwoBandStructure,), {"code": code})()
