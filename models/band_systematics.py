@@ -287,4 +287,18 @@ class DB_BB_frame(TwoBandStructure):
     code = "DB~BB~"
 
 
-TWO_BANDS_FRAME = [DB_DB_frame, DD_BB_frame, DB_BB_frame]
+class BB_DB_frame(TwoBandStructure):
+    """BB~DB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, D-B): two
+    wheels rolling on the band frame, the band L2 from a winch disc on the first (driven) to
+    a pin on the second."""
+    code = "BB~DB~"
+
+
+class BB_BB_frame(TwoBandStructure):
+    """BB~BB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, B-B): two
+    wheels rolling on the band frame, the band L2 from a winch disc on the first (driven) to
+    a disc on the second."""
+    code = "BB~BB~"
+
+
+TWO_BANDS_FRAME = [DB_DB_frame, DD_BB_frame, DB_BB_frame, BB_DB_frame, BB_BB_frame]
