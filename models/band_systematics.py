@@ -53,13 +53,18 @@ named ``<code>_frame``) and the 6 two-band structures with the bands L1
 and L3 (``TWO_BANDS``, built by
 :class:`acausal2d.library.belt.systematics_two.TwoBandStructure`: the
 coupler hangs on the two bands like a swing, its angle driven, a vertical
-load).  Not modelled (31 of 37 modelled): BSSB (band frame; both
-frame-side links roll and the coupler is a slider on a moving guide, which
-a speed preset cannot drive with its reaction on the guide), BB~DB and
-BB~BB with the band as the frame (both frame-side links roll on the band:
-nothing to drive with a preset), and DB~DB, DD~BB, DB~BB with the band as
-the frame (a wheel rolling on the band frame held by the second band: the
-integration fails within 0.04 s here; open).
+load) and the 5 two-band structures with the band L2 and the band as the
+frame (``TWO_BANDS_FRAME``, classes ``<code>_frame``: a crank pivoted on
+the band frame, driven clockwise, or for BB~DB~ and BB~BB~, where both
+frame-side links are wheels rolling on the band, a winch disc at J2 driven
+relative to its wheel; a wheel rolling on the band frame loaded by a
+torque).  Driven counterclockwise, DB~DB~ reaches a dead position within
+0.04 s (the band's line through the wheel's contact point, its
+instantaneous centre; this was the earlier integration failure).  Not
+modelled (36 of 37 modelled): BSSB (band frame; both frame-side links roll
+and the coupler is a slider on a moving guide, which a speed preset cannot
+drive with its reaction on the guide; a preset between slider and guide
+was tried and its run did not finish in 90 s, open).
 
 Every model: joints at the corners of the skeleton quadrilateral J1 =
 (0, 0), J2 = (0.05, 0.15), J3 = (0.3, 0.22), J4 = (0.35, 0) m, discs of

@@ -198,9 +198,11 @@ class BandStructure(Component):
                                 phi0=float(link.parameter_value("xS0")))
             self.connect(self.drive.flange, link.ctrT2)
 
-    def _end(self, band, j, k, frame, gam):
+    def _end(self, band, j, k, frame, gam, winch=None):
         """End k (1, 2) of ``band`` at joint j: a pin or a locked disc on the
-        frame ``frame`` = (connector, signal prefix), None for the ground.
+        frame ``frame`` = (connector, signal prefix), None for the ground; with
+        ``winch`` (a :class:`Preset`) the disc is not locked but turned by it
+        relative to its frame, winding the band.
         Returns (the prefix of the frame the band pulls at: the pin's frame,
         None for a ground pin, or the disc's ``discJ.ctrK1``; that point at
         t0)."""
@@ -214,8 +216,10 @@ class BandStructure(Component):
             return name, p
         disc = Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
         setattr(self, "disc%d" % j, disc)
-        setattr(self, "lock%d" % j, rotational.Fixed())
-        self.connect(getattr(self, "lock%d" % j).flange, disc.ctrR)
+        if winch is None:
+            winch = rotational.Fixed()
+            setattr(self, "lock%d" % j, winch)
+        self.connect(winch.flange, disc.ctrR)
         if conn is not None:
             self.connect(conn, disc.ctr2D1)
         connect_band(self, band, k, disc, 1)
