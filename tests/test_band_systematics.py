@@ -150,6 +150,7 @@ def test_band_frame_two_bands_static_and_power_balance(cls):
     drive power + load power = 0."""
     model = cls()
     res = _run(model)
+    assert all(name in res.names for name in model.outputs)      # what the CLI plots
     F = res["band2.F"]
     assert np.all(F > 0.0) and abs(F[0] - F_BAND) < REL * F_BAND
     e = np.cos(res["band2.gamma"]), np.sin(res["band2.gamma"])   # pull at J2, along J2 -> J3

@@ -144,6 +144,7 @@ class TwoBandStructure(BandStructure):
         :class:`~acausal2d.library.planar.IdealRolling`); the link L1 is
         driven (its pivot's angle), L3 loaded by a torque sized for 10 N in
         the band L2."""
+        self.outputs = ["drive.tau", "band2.F"]
         pts = dict(SKELETON)
         pts[3] = BAND_FRAME_J3
         for j in (1, 4):
