@@ -1,6 +1,6 @@
 """Systematics of four-link band mechanisms (seed ch. 2.5.2, Bild 2.6-2.8):
-every structure with one moving band that the text's construction rules
-derive, as a runnable model (one class per structure, built by
+every structure that the text's construction rules derive, as a runnable
+model (one class per structure, built by
 :class:`acausal2d.library.belt.systematics.BandStructure` from its code).
 
 How the structures are enumerated (the figures are lost; the rules are
@@ -46,11 +46,12 @@ and the band as the frame rare in practice.
 
 Modelled here: the 19 structures with one band that is a moving link (the
 table's entries without "(band frame)" and with one band, list
-``MODELS``) and 6 of the 7 one-band structures with the band as the frame
+``MODELS``), the 7 one-band structures with the band as the frame
 (``BAND_FRAME``, code with a trailing ``~``: the band is a taut straight
 line y = 0 in the ground on which the discs roll without slip; classes
-named ``<code>_frame``) and the 6 two-band structures with the bands L1
-and L3 (``TWO_BANDS``, built by
+named ``<code>_frame``; in BSSB the coupler slides on the guide of the
+first rolling link and is driven relative to that guide), the 6 two-band
+structures with the bands L1 and L3 (``TWO_BANDS``, built by
 :class:`acausal2d.library.belt.systematics_two.TwoBandStructure`: the
 coupler hangs on the two bands like a swing, its angle driven, a vertical
 load) and the 5 two-band structures with the band L2 and the band as the
@@ -58,13 +59,9 @@ frame (``TWO_BANDS_FRAME``, classes ``<code>_frame``: a crank pivoted on
 the band frame, driven clockwise, or for BB~DB~ and BB~BB~, where both
 frame-side links are wheels rolling on the band, a winch disc at J2 driven
 relative to its wheel; a wheel rolling on the band frame loaded by a
-torque).  Driven counterclockwise, DB~DB~ reaches a dead position within
-0.04 s (the band's line through the wheel's contact point, its
-instantaneous centre; this was the earlier integration failure).  Not
-modelled (36 of 37 modelled): BSSB (band frame; both frame-side links roll
-and the coupler is a slider on a moving guide, which a speed preset cannot
-drive with its reaction on the guide; a preset between slider and guide
-was tried and its run did not finish in 90 s, open).
+torque): all 37.  Driven counterclockwise, DB~DB~ reaches a dead position
+within 0.04 s (the band's line through the wheel's contact point, its
+instantaneous centre; this was the earlier integration failure).
 
 Every model: joints at the corners of the skeleton quadrilateral J1 =
 (0, 0), J2 = (0.05, 0.15), J3 = (0.3, 0.22), J4 = (0.35, 0) m, discs of
@@ -269,7 +266,14 @@ class B_BB_B(TwoBandStructure):
 
 MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, DSD_B, SB_BD,
           SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
-BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame]
+class BSSB_frame(BandStructure):
+    """BSSB~, the band as the frame (cross-slider, band B-B): a disc rolling on the band
+    carries a guide, the coupler slides on it (driven relative to the guide) and carries the
+    guide of a slider with a second rolling disc."""
+    code = "BSSB~"
+
+
+BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame, BSSB_frame]
 TWO_BANDS = [D_BD_B, B_DD_B, D_BB_D, B_BD_B, D_BB_B, B_BB_B]
 
 

@@ -87,7 +87,8 @@ def test_band_frame_static_and_power_balance(cls):
     assert np.max(np.abs(_rolling_balance(res, model, load))) < REL * scale
     p_drive = res["drive.tau"] * res["drive.w"]
     assert np.max(np.abs(p_drive + _load_power(res, model))) < REL * np.max(np.abs(p_drive))
-    assert abs(res["roll.x"][-1] - res["roll.x"][0]) > 1e-3        # the disc rolls
+    # the disc rolls: 1e-6 m is 10^4 times the position error at rtol 1e-10 on 0.35 m
+    assert abs(res["roll.x"][-1] - res["roll.x"][0]) > 1e-6
     ratio = _load_power(res, model) / model.load_value / res["drive.w"]
     assert np.ptp(ratio) > 1e-3 * np.max(np.abs(ratio))
 
@@ -189,7 +190,7 @@ def test_every_structure_has_its_own_class():
     codes = [c.code for c in bs.MODELS]
     assert len(set(codes)) == len(codes) == 19
     assert sorted(c.code for c in bs.BAND_FRAME) == sorted(
-        ["BDDD~", "BDDB~", "DDSB~", "DSDB~", "BDSB~", "DSSB~"])
+        ["BDDD~", "BDDB~", "DDSB~", "DSDB~", "BDSB~", "DSSB~", "BSSB~"])
     assert len(bs.TWO_BANDS) == 6
     for c in bs.MODELS:
         assert c.__name__ == c.code.replace("~", "_")
@@ -202,12 +203,11 @@ def test_every_structure_has_its_own_class():
         assert parse_two_bands(c.code)[1] == (2, 4)
 
 
-@pytest.mark.parametrize("code", ["DS~DD", "DD~DD", "DBDD", "DB~DB~", "BD~DB", "SDDB~", "BSSB~"])
+@pytest.mark.parametrize("code", ["DS~DD", "DD~DD", "DBDD", "DB~DB~", "BD~DB", "SDDB~"])
 def test_codes_the_rules_exclude_are_refused(code):
     """A band next to a prismatic joint (R3), a band without a disc (R2), no
     band, two marks, a disc away from the band, a band frame next to a
-    slider; BSSB~ (two discs on the band frame, the coupler a slider on a
-    moving guide) cannot be driven by a speed preset: refused, saying so."""
+    slider: refused, saying so."""
     with pytest.raises(ModelDefinitionError, match="band structure"):
         type("X", (BandStructure,), {"code": code})()
 

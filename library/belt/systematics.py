@@ -188,15 +188,20 @@ class BandStructure(Component):
             return ang
         return self._gam + (0.5 if j == self._ends[0] else math.pi - 0.5)
 
-    def _drive(self, name):
+    def _drive(self, name, on_wheel=False):
+        """Speed preset on the link ``name``; a slider whose guide is on a
+        rolling wheel (``on_wheel``) is driven relative to its guide, which
+        takes the reaction."""
         link = getattr(self, name)
         if isinstance(link, DAN):
             self.drive = Preset(kind="speed", om=OMEGA, phi0=self._angles[name])
             self.connect(self.drive.flange, link.ctrR2)
         else:
             self.drive = Preset(kind="speed", translational=True, om=SPEED,
-                                phi0=float(link.parameter_value("xS0")))
+                                phi0=float(link.parameter_value("xS0")), use_support=on_wheel)
             self.connect(self.drive.flange, link.ctrT2)
+            if on_wheel:
+                self.connect(self.drive.support, link.ctrT1)
 
     def _end(self, band, j, k, frame, gam, winch=None):
         """End k (1, 2) of ``band`` at joint j: a pin or a locked disc on the
@@ -275,7 +280,8 @@ class BandStructure(Component):
         (:class:`~acausal2d.library.planar.IdealRolling`, bilateral).  The
         chain of the three rigid links starts at the pivot (driven) and ends
         at the rolling disc (loaded); with two discs, the first disc's link
-        rolls freely and the coupler is driven."""
+        rolls freely and the coupler is driven (a slider relative to its
+        guide on that link, BSSB~)."""
         self.outputs = ["drive.tau", "roll.x"]
         self._ends, self._gam = (4, 1), 0.0        # a slider with the disc: guide at 0.5 rad to it
         self._pts[3] = BAND_FRAME_J3
@@ -293,13 +299,8 @@ class BandStructure(Component):
         for jp, jc in chain:
             parent = self._link(letters[jp - 1], jp, jc, parent)
         first = self._link_name(chain[0])
-        if not isinstance(getattr(self, first), DAN):
-            raise ModelDefinitionError(
-                "band structure %r: with two discs on the band frame the coupler is driven; "
-                "here it is a slider on a moving guide, which a speed preset cannot drive "
-                "without a reaction on the guide" % self.code)
         self.drive_link, self.load_link = first, parent
-        self._drive(first)
+        self._drive(first, on_wheel=hasattr(self, "wheel"))
         j = chain[-1][1]
         self.roll = IdealRolling(R=R_DISC, x0=self._pts[j][0] + R_DISC * self._angles[parent])
         self.connect(self._out(parent), self.roll.frame_a)
