@@ -24,6 +24,9 @@ Nozzle3     three-link band mechanism with a draw-off    the elastic band
 Spring3     three-link spring band mechanism (Bild 2.9   tension spring
             right): band with a tension spring from the   in the band
             drum to a ground pivot
+NozzleSl.   Bild 3.1 f: band from a drum through a       take-up torque
+            draw-off nozzle to the rocker of a slotted    on the drum
+            crank (Kurbelschleife)
 ==========  ===========================================  ==================
 
 All links are massless, so the balances are static at every instant:
@@ -36,11 +39,11 @@ import math
 
 from acausal2d import Component, start
 from acausal2d.library import rotational
-from acausal2d.library.belt import (Band, CurvedDrum, NozzleBelt, SpringBelt, SupportContour,
-                                    connect_band, tangent)
-from acausal2d.library.linkage import DAN, SAN
+from acausal2d.library.belt import (Band, CurvedDrum, Drum, NozzleBelt, SpringBelt,
+                                    SupportContour, connect_band, tangent)
+from acausal2d.library.linkage import DAN, DSD, SAN
 from acausal2d.library.linkage.drives import ForceSource, Preset, TorqueSource
-from acausal2d.library.planar import Fixed
+from acausal2d.library.planar import Fixed, FixedTranslation
 
 RC, E = 0.05, 0.02               # cam: radius and eccentricity (centre at (E, 0) in its frame)
 OM = 1.0                         # drum speed, rad/s
@@ -192,4 +195,66 @@ class Spring3(_Drum):
         self.connect(self.band.ctr2D2, self.anchor.frame)
 
 
-MODELS = [DBDD, DBDDInverted, DBDS, SBDS, Nozzle3, Spring3]
+class NozzleSlottedCrank(Component):
+    """Bild 3.1 f: "the band is led from a band pulley through a draw-off
+    nozzle and attached to a crank-slotted mechanism (Kurbelschleife)".
+
+    The seed gives only this sentence; assumed here (spec section 5): the
+    slotted crank is a crank of R_CRANK = 0.04 m about A0 = (0, 0), driven
+    at one revolution per second, whose pin slides in a guide (rocker,
+    :class:`~acausal2d.library.linkage.DSD`) pivoted at B0 = (0, -0.12);
+    the band is fastened to the rocker at E, L_ROCKER = 0.2 m from B0, and
+    runs through the ground nozzle N = (0.25, 0.08) (an elastic band, eq.
+    4.67-4.77, c = 2000 N per unit strain) to a drum of radius 0.04 m at D =
+    (0.45, 0) that a take-up torque of 0.4 N m keeps winding (the thread
+    tensioner of a sewing machine's take-up lever, seed ch. 3.1): the band
+    pulls with 10 N while the rocker swings it out and back.  Massless links.
+
+    Closed forms: the rocker angle psi = atan2(R sin phi + 0.12, R cos phi)
+    (the guide passes through the crank pin, offset v = 0), the band force
+    at the drum F = T / r, and the power balance drive torque x omega =
+    the band's pull on E times E's speed along the band."""
+    experiment = {"stop_time": 1.0, "intervals": 100, "rtol": 1e-10}
+    outputs = ["drive.tau", "band.F", "rocker.phiU"]
+    figures = [{"name": "drive_torque", "signals": ["drive.tau"], "x": "drive.phi",
+                "title": "drive torque over the crank angle"}]
+    R_CRANK, B0, L_ROCKER = 0.04, (0.0, -0.12), 0.2
+    NOZZLE, DRUM, R_DRUM, T_TAKE_UP, C_BAND = (0.25, 0.08), (0.45, 0.0), 0.04, 0.4, 2000.0
+    J_DRUM = 1e-4
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        om = 2 * math.pi
+        self.drive = Preset(kind="speed", om=om, phi0=0.0)
+        self.crank = DAN(lL=self.R_CRANK, mL=0.0, JL=0.0)
+        self.connect(self.drive.flange, self.crank.ctrR2)
+        self.rocker = DSD(v=0.0, x10=self.B0[0], y10=self.B0[1], mU=0.0, JU=0.0, mS=0.0,
+                          JS=0.0)
+        self.connect(self.crank.ctr2D2, self.rocker.ctr2D2)
+        self.arm = FixedTranslation(r=(self.L_ROCKER, 0.0))
+        self.connect(self.rocker.ctr2D3, self.arm.frame_a)
+        self._band()
+
+    def _band(self):
+        psi = math.atan2(-self.B0[1], self.R_CRANK)
+        E = (self.B0[0] + self.L_ROCKER * math.cos(psi), self.B0[1] + self.L_ROCKER * math.sin(psi))
+        N = self.NOZZLE
+        g1, l1 = tangent((*N, 0.0), (*self.DRUM, self.R_DRUM))
+        eps = self.T_TAKE_UP / self.R_DRUM / self.C_BAND
+        self.band = NozzleBelt(c=self.C_BAND, eps=start(eps, fixed=True),
+                               gamma1=start(g1 + math.pi), l1=start(l1),
+                               l2=start(math.hypot(E[0] - N[0], E[1] - N[1])),
+                               gamma2=start(math.atan2(E[1] - N[1], E[0] - N[0])))
+        # the drum's inertia J_DRUM and the elastic band swing (the thread
+        # tension varies about T / r); at rest at t = 0 with eps = T / (r c)
+        self.drum = Drum(r=self.R_DRUM, w=1, n_wound=3.0, x0=self.DRUM[0], y0=self.DRUM[1],
+                         J=self.J_DRUM, w_rel=start(0.0, fixed=True))
+        self.take_up = TorqueSource(tau=self.T_TAKE_UP)
+        self.connect(self.take_up.flange, self.drum.ctrR)
+        self.nozzle = Fixed(r=N)
+        self.connect(self.band.ctr2D3, self.nozzle.frame)
+        self.connect(self.band.ctr2D2, self.arm.frame_b)
+        connect_band(self, self.band, 1, self.drum, 1)
+
+
+MODELS = [DBDD, DBDDInverted, DBDS, SBDS, Nozzle3, Spring3, NozzleSlottedCrank]

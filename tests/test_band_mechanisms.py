@@ -122,3 +122,33 @@ def test_band_mechanism_from_the_cli_writes_figures(tmp_path, name):
                      "--model", name, "--out", str(tmp_path)])
     assert code == 0
     assert (tmp_path / "forces.png").exists() and (tmp_path / "drive_torque.png").exists()
+
+
+def test_nozzle_slotted_crank_bild_3_1_f():
+    """Bild 3.1 f: the rocker angle of the slotted crank is the closed form
+    psi = atan2(R sin phi - y_B0, R cos phi - x_B0); the band pulls E towards
+    the nozzle with the band force (frictionless nozzle: one force in both
+    pieces); the massless linkage's power balance drive torque x omega + F
+    u . v_E = 0 with v_E from the closed-form psi'; the drum obeys J psi'' =
+    T - F r.  Bounds: rtol 1e-10 on O(0.1 m) and O(10 N) quantities."""
+    C = bm.NozzleSlottedCrank
+    res = acausal2d.simulate(C(), stop_time=1.0, intervals=50, rtol=1e-10)
+    R, (bx, by), L = C.R_CRANK, C.B0, C.L_ROCKER
+    phi, om = res["drive.phi"], 2 * np.pi
+    X, Y = R * np.cos(phi) - bx, R * np.sin(phi) - by
+    psi = np.arctan2(Y, X)
+    assert np.max(np.abs(np.unwrap(res["rocker.phiU"]) - np.unwrap(psi))) < 1e-8
+    dpsi = (X * R * np.cos(phi) * om + Y * R * np.sin(phi) * om) / (X ** 2 + Y ** 2)
+    E = bx + L * np.cos(psi), by + L * np.sin(psi)
+    d = C.NOZZLE[0] - E[0], C.NOZZLE[1] - E[1]
+    u = d[0] / np.hypot(*d), d[1] / np.hypot(*d)
+    F = res["band.F"]
+    assert np.all(F > 0.5 * C.T_TAKE_UP / C.R_DRUM)
+    pull = res["arm.frame_b.fx"] * u[0] + res["arm.frame_b.fy"] * u[1]
+    assert np.max(np.abs(np.abs(pull) - F)) < 1e-7 * np.max(F)
+    v_along = L * dpsi * (-np.sin(psi) * u[0] + np.cos(psi) * u[1])
+    power = res["drive.tau"] * om + F * v_along
+    assert np.max(np.abs(power)) < 1e-6 * np.max(np.abs(F * v_along))
+    assert np.ptp(res["drive.tau"]) > 0.5                      # the band is pulled out and back
+    drum = C.J_DRUM * res["der(der(drum.phi))"] - (C.T_TAKE_UP - F * C.R_DRUM)
+    assert np.max(np.abs(drum)) < 1e-6 * C.T_TAKE_UP

@@ -7,6 +7,7 @@ from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
 from ..analysis.check import grounded_lines
 from ..compiler.flatten import grounded_ports
+from ..analysis.slider_ranges import range_lines, slider_ranges
 from ..io.loader import load_model
 from .args import add_run_options, run_options
 
@@ -72,6 +73,8 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
                                "  grounded ports: "):
         print(line)
     _print_events(res.events)
+    for line in range_lines(slider_ranges(res)):
+        print(line)
 
 
 def _print_events(events, first=5):

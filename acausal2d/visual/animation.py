@@ -35,7 +35,8 @@ counter-clockwise, with the y axis pointing up.  Shape kinds:
     a mass, a filled disc (``r`` optional, world units; default 9 pixels).
 ``{"type": "slider", "x": X, "y": Y, "phi": P, "length": L, "guide": [[X1, Y1], [X2, Y2]]}``
     slider block, a rectangle rotated by ``phi`` (``length`` optional, world
-    units; default 38 pixels), drawn on the dashed ``guide`` line (optional).
+    units; default 38 pixels), drawn on the dashed ``guide`` line (optional);
+    ``travel`` (optional): the ends of its travel range, marked on the guide.
 ``{"type": "pulley", "x": X, "y": Y, "r": R, "phi": P, "contour": [[x, y], ...]}``
     wheel with spokes so that its rotation ``phi`` is visible; the optional
     ``contour`` (constant numbers, in the pulley frame) draws a non-circular
@@ -153,7 +154,7 @@ SHAPE_TYPES = {
     "link": (("points", "points:2", True), ("width", "value", False)),
     "body": (("x", "value", True), ("y", "value", True), ("r", "value", False)),
     "slider": (("x", "value", True), ("y", "value", True), ("phi", "value", True),
-               ("length", "value", False), ("guide", "guide", False)),
+               ("length", "value", False), ("guide", "guide", False), ("travel", "guide", False)),
     "pulley": (("x", "value", True), ("y", "value", True), ("r", "value", True),
                ("phi", "value", True), ("contour", "contour", False)),
     "belt": (("points", "points:2", True),),

@@ -11,6 +11,7 @@ import numpy as np
 from .animation import write_html
 
 from ..analysis.poles import cartesian, pole_homogeneous, poles
+from ..analysis.slider_ranges import travel_shapes
 from ..errors import Acausal2dError
 from .plotting import axis_label, unit_of
 
@@ -245,6 +246,7 @@ def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=
         for name in _signal_names(shape):
             if name not in signals:
                 signals[name] = [float(v) for v in result[name]]
+    travel_shapes(shapes, signals)
     more, pole_signals = declared_pole_views(result, model, signals)
     shapes += more
     signals.update(pole_signals)

@@ -30,7 +30,7 @@ ROOT = os.path.dirname(DOCS)
 GROUPS = [
     ("Dissertation ch. 2: joints, degree of freedom, linkages, band and rope mechanisms",
      ["four_link_mechanisms", "dof_bild_2_1", "cam_follower", "rope_drives",
-      "band_mechanisms"]),
+      "band_mechanisms", "band_systematics"]),
     ("Dissertation ch. 3: balancing", ["hain_spring_lever"]),
     ("Dissertation ch. 7: the VDI 2729 eight-link mechanism, balancing, belt and rope drives",
      ["eight_link_vdi2729", "cabinet_door", "db_ds_synthesis", "pulley_block",

@@ -65,7 +65,11 @@ class Preset(Component):
     table is structural: changing it recompiles).  Outputs: ``phi`` (angle or
     position), ``w = der(phi)``, ``tau`` the torque (force) the preset
     applies to the driven flange and ``power = tau w`` (drive torque and
-    power, as the VDI measuring modules).  The reaction goes to ground.
+    power, as the VDI measuring modules).  The reaction goes to ground;
+    with ``use_support=True`` it goes to the flange ``support`` and the
+    preset prescribes the flange's position relative to it (a drive between
+    two moving links, Modelica's useSupport; e.g. a SAN's guide flange
+    ``ctrT1``).
     """
     om = Parameter(1.0, "rad/s", "speed (kind 'speed'; m/s when translational)")
     phi0 = Parameter(0.0, "rad", "angle (position) at t = 0 (kind 'speed')")
@@ -76,7 +80,7 @@ class Preset(Component):
     tau = Variable(unit="N.m", doc="drive torque (force) applied to the flange")
     power = Variable(unit="W", doc="drive power tau * w")
 
-    def __init__(self, kind="speed", table=None, translational=False, **kw):
+    def __init__(self, kind="speed", table=None, translational=False, use_support=False, **kw):
         super().__init__(**kw)
         if kind not in _KINDS:
             raise ModelDefinitionError("Preset kind must be one of %s, not %r"
@@ -87,6 +91,9 @@ class Preset(Component):
         self.table = table
         self.translational = translational
         self.flange = TranslationalFlange() if translational else RotationalFlange()
+        self.use_support = use_support
+        if use_support:
+            self.support = TranslationalFlange() if translational else RotationalFlange()
 
     def topology(self):
         """Nothing: the seed's eq. 2.1 counts the degree of freedom of the
@@ -111,9 +118,13 @@ class Preset(Component):
     def equations(self):
         pot = self.flange.s if self.translational else self.flange.phi
         flow = self.flange.f if self.translational else self.flange.tau
-        return [self.phi == self.motion(time), pot == self.phi,
-                self.w == der(self.phi), self.tau == -flow,
-                self.power == self.tau * self.w]
+        eqs = [self.phi == self.motion(time), self.w == der(self.phi), self.tau == -flow,
+               self.power == self.tau * self.w]
+        if not self.use_support:
+            return eqs + [pot == self.phi]
+        pot_s = self.support.s if self.translational else self.support.phi
+        flow_s = self.support.f if self.translational else self.support.tau
+        return eqs + [pot - pot_s == self.phi, flow_s == -flow]
 
 
 class TorqueSource(Component):

@@ -109,6 +109,18 @@
     ctx.save(); ctx.setLineDash([7, 5]); ctx.lineCap = "butt";
     polyline(ps); ctx.strokeStyle = COLORS.guide; ctx.lineWidth = 1.5; ctx.stroke();
     ctx.restore();
+    drawTravel(sh, k);
+  }
+  function drawTravel(sh, k) {       // the slider's travel range over the run (seed Bild 7.4)
+    var ps = sh.travel && pts(sh.travel, k); if (!ps) return;
+    var dx = ps[1][0] - ps[0][0], dy = ps[1][1] - ps[0][1], d = Math.hypot(dx, dy);
+    var nx = d > 0 ? -dy / d * 7 : 0, ny = d > 0 ? dx / d * 7 : 7;
+    ctx.save(); ctx.lineCap = "butt"; ctx.strokeStyle = COLORS.guide; ctx.lineWidth = 2.5;
+    polyline(ps); ctx.stroke();
+    ps.forEach(function (p) {
+      ctx.beginPath(); ctx.moveTo(p[0] - nx, p[1] - ny); ctx.lineTo(p[0] + nx, p[1] + ny); ctx.stroke();
+    });
+    ctx.restore();
   }
   function drawSlider(sh, k) {
     var x = val(sh.x, k), y = val(sh.y, k), phi = val(sh.phi, k);

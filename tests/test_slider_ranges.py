@@ -1,0 +1,68 @@
+"""Slider travel ranges (seed ch. 7.1, Bild 7.4): computed from a run by
+:func:`acausal2d.analysis.slider_ranges.slider_ranges`, printed by
+``acausal2d simulate`` and drawn in the animation over the whole range.
+
+Reference: the slider crank DDDS of models/four_link_mechanisms.py (crank r
+= 0.1, coupler l = 0.35, the pin on the line y = 0 through the crank pivot:
+centric) has the stroke 2 r, between l - r and l + r from the guide point
+P2 = (0, -0.02) (its x coordinate is 0).  The run samples one revolution at
+200 intervals, so the dead centres (phi = 0, pi) are output points and the
+range is exact up to the kinematic solution's error (rtol 1e-8 of lengths
+below 1 m; the bound 1e-6 m leaves a factor 100)."""
+import os
+import sys
+
+import numpy as np
+
+import acausal2d
+from acausal2d import cli
+from acausal2d.analysis.slider_ranges import slider_ranges
+from acausal2d.visual.animation import validate_scene
+from acausal2d.visual.scene import build_scene
+
+ROOT = os.path.join(os.path.dirname(__file__), os.pardir)
+sys.path.insert(0, os.path.join(ROOT, "models"))
+import four_link_mechanisms as flm  # noqa: E402
+
+R, L, TOL = 0.1, 0.35, 1e-6
+
+
+def _run():
+    return acausal2d.simulate(flm.DDDS(), stop_time=1.0, intervals=200, rtol=1e-8)
+
+
+def test_slider_crank_stroke_is_twice_the_crank():
+    res = _run()
+    ranges = slider_ranges(res)
+    assert [r.name for r in ranges] == ["dyad"]
+    (rng,) = ranges
+    assert abs(rng.stroke - 2 * R) < TOL
+    assert abs(rng.s_min - (L - R)) < TOL and abs(rng.s_max - (L + R)) < TOL
+    # the same range from the element's own travel variable
+    assert abs(rng.s_max - np.max(res["dyad.xG"])) < TOL
+
+
+def test_animation_draws_the_guide_over_the_whole_range():
+    """The drawn guide runs from the guide point P2 (s = 0) to the far end
+    of the range in every frame, and the travel marks sit at l -+ r: before,
+    the guide ended at the slider's current position."""
+    scene = build_scene(_run())
+    validate_scene(scene)
+    (sh,) = [s for s in scene["shapes"] if s["type"] == "slider"]
+    sig = scene["signals"]
+    gx = [np.asarray(sig[p[0]]) for p in sh["guide"]]
+    tx = [np.asarray(sig[p[0]]) for p in sh["travel"]]
+    gy = [np.asarray(sig[p[1]]) for p in sh["guide"] + sh["travel"]]
+    assert np.max(np.abs(gx[0])) < TOL and np.max(np.abs(gx[1] - (L + R))) < TOL
+    assert np.max(np.abs(tx[0] - (L - R))) < TOL and np.max(np.abs(tx[1] - (L + R))) < TOL
+    assert np.max(np.abs(np.concatenate(gy) + 0.02)) < TOL     # on the guide line y = -0.02
+    x_slider = np.asarray(sig[sh["x"]])
+    assert np.all(x_slider >= tx[0] - TOL) and np.all(x_slider <= tx[1] + TOL)
+
+
+def test_simulate_prints_the_ranges(tmp_path, capsys):
+    code = cli.main(["simulate", os.path.join(ROOT, "models", "four_link_mechanisms.py"),
+                     "--model", "DDDS", "--out", str(tmp_path / "out")])
+    assert code == 0
+    line = [s for s in capsys.readouterr().out.splitlines() if "slider dyad" in s]
+    assert line and "stroke 0.2 m" in line[0], line
