@@ -62,7 +62,7 @@ import os
 import numpy as np
 
 from acausal2d import Component, simulate, start
-from acausal2d.library import rotational, signals
+from acausal2d.library import signals
 from acausal2d.library.synthesis.balancing import spring_band_transfer
 from acausal2d.library.synthesis.functional import BandStructure, synthesize
 from acausal2d.library.synthesis import Bandkurve, DB_SD
@@ -225,7 +225,7 @@ class BalancedDoor(DoorMechanism):
         v = des.synthesis.evaluate([0.0])
         gamma = math.atan2(B0[1] - v["y_u"][0], B0[0] - v["x_u"][0])
         # the drum's angle is the cam angle: housing turned by -PHI_CLOSED
-        self.cam = CurvedDrum(des.contour.contour, w=-1, x0=A0[0], y0=A0[1], phi0=-PHI_CLOSED,
+        self.cam = CurvedDrum(des.contour.contour, w_i=1, x10=A0[0], y10=A0[1], phi10=-PHI_CLOSED,
                               alpha_fix=k_closed + 0.1 * math.copysign(1.0, k_closed - k_open),
                               kappa1=start(k_closed))
         self.spring = SpringBelt(k=C_SPRING, l0=L0_SPRING, gamma=start(gamma),

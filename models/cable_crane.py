@@ -331,11 +331,11 @@ class CableCrane(Component):
     """Three-rope cable crane of seed ch. 8.1 (see the module docstring)."""
     experiment = {"stop_time": T_STOP, "intervals": 600, "rtol": 1e-7}
     outputs = ["load1.F", "load3.F", "load6.F", "haul1.F", "haul2.F", "sky2.F",
-               "carriage.x", "carriage.y", "hook.x", "hook.y", "D1.ctrR.tau", "D2.ctrR.tau"]
+               "carriage.x", "carriage.y", "hook.x", "hook.y", "D1.ctrR2.tau", "D2.ctrR2.tau"]
     figures = [{"name": "cable_crane_rope_forces", "signals": ["load1.F", "load6.F", "haul1.F"],
                 "title": "rope forces of load and haul-back rope (Bild 8.5)"},
                {"name": "cable_crane_skyline_drums", "title": "skyline forces, drum torques",
-                "signals": ["sky2.F", "sky4.F", "D1.ctrR.tau", "D2.ctrR.tau"]}]
+                "signals": ["sky2.F", "sky4.F", "D1.ctrR2.tau", "D2.ctrR2.tau"]}]
 
     @study
     def paths(ctx):
@@ -362,14 +362,13 @@ class CableCrane(Component):
         self.hook = Hook(m=M_HOOK, x=start(st0["hook"][0], fixed=True),
                          y=start(st0["hook"][1], fixed=True))
         for name, (x0, y0, w) in MAST_PULLEYS.items():
-            setattr(self, name, Pulley(r=R_PULLEY, x0=x0, y0=y0, w=w, J=J_PULLEY))
-        for name, ((ax, ay), w) in CARRIAGE_PULLEYS.items():
-            x0, y0 = _carriage_point((ax, ay), pose)
-            p = Pulley(r=R_PULLEY, x0=x0, y0=y0, w=w, J=J_PULLEY)
+            setattr(self, name, Pulley(r=R_PULLEY, x10=x0, y10=y0, w_i=-w, J=J_PULLEY))
+        for name, (_, w) in CARRIAGE_PULLEYS.items():     # axis at the carriage's port
+            p = Pulley(r=R_PULLEY, w_i=-w, J=J_PULLEY)
             setattr(self, name, p)
             self.connect(getattr(self.carriage, name), p.ctr2D1)
         for name, (x0, y0, w) in DRUMS.items():
-            setattr(self, name, Drum(r=R_DRUM, x0=x0, y0=y0, w=w, J=J_DRUM, n_wound=N_WOUND))
+            setattr(self, name, Drum(r=R_DRUM, x10=x0, y10=y0, w_i=-w, J=J_DRUM, n_wound=N_WOUND))
         self.anchor = Fixed(r=ANCHOR)
         self.top = Fixed(r=TOP)
         phi1, phi2 = drum_angles(strokes)
@@ -377,8 +376,8 @@ class CableCrane(Component):
         self.law1, self.law2 = TimeFunction(phi1), TimeFunction(phi2)
         self.connect(self.law1.y, self.drive1.phi_in)
         self.connect(self.law2.y, self.drive2.phi_in)
-        self.connect(self.drive1.flange, self.D1.ctrR)
-        self.connect(self.drive2.flange, self.D2.ctrR)
+        self.connect(self.drive1.flange, self.D1.ctrR2)
+        self.connect(self.drive2.flange, self.D2.ctrR2)
         for rope, nodes in ROPES.items():
             self._rope(rope, nodes, forces[rope], pose, st0["hook"])
 
