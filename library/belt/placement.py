@@ -193,15 +193,21 @@ class StartPoses:
         for conn in comp._connectors.values():
             if isinstance(conn.ground, dict) and id(conn) not in self._connected:
                 self._put(conn, conn.ground)
-        seed = getattr(comp, "_linkage_seed", None)     # node frames, Carriage mounts
-        if seed is None or not any(isinstance(c, Frame) for c in comp._connectors.values()):
-            seed = tuple                                # (a drive seeds flanges only)
-        for conn, vals in seed():
-            if isinstance(conn, Frame):
-                self._put(conn, {k: vals[k] for k in ("x", "y", "phi") if k in vals})
+        self._seed_frames(comp)
         unplaced = getattr(comp, "_unconnected_pose", None)
         if unplaced is not None and id(comp.ctr2D1) not in self._connected:
             self._put(comp.ctr2D1, unplaced())
+
+    def _seed_frames(self, comp):
+        """Frame poses of a component's ``_linkage_seed()`` (node frames,
+        Carriage mounts); components without frames (drives seed their
+        flanges) are skipped."""
+        seed = getattr(comp, "_linkage_seed", None)
+        if seed is None or not any(isinstance(c, Frame) for c in comp._connectors.values()):
+            return
+        for conn, vals in seed():
+            if isinstance(conn, Frame):
+                self._put(conn, {k: vals[k] for k in ("x", "y", "phi") if k in vals})
 
     def _propagate(self, comp):
         from acausal2d.library import planar
