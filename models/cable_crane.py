@@ -48,7 +48,7 @@ Values the seed does not give, chosen here
   ground): S at (0, 10.0), ML at (0, 9.5), MH at (0, 9.0), MR at
   (50, 22.897) (0.5 m below the right mast top).  Skyline ground anchor G at
   (-15, 0); skyline fastening T at the right mast top (50, 23.397).
-- Drums (r = 0.5 m, J = 20 kg m^2, w = +1, 20 turns = 31.4 m of rope
+- Drums (r = 0.5 m, J = 20 kg m^2, w_i = -1, 20 turns = 31.4 m of rope
   stored at t0): D1 (load rope) at (-8, 1), D2 (haul-back) at (-5, 1).
 - Carriage: 400 kg, J = 80 kg m^2 about its centre of gravity at (0, -0.45)
   in the carriage frame (origin O midway between the wheel axes, x along the
@@ -111,14 +111,14 @@ N_WOUND = 20.0
 
 ANCHOR = (-15.0, 0.0)                      # skyline ground anchor G
 TOP = (SPAN, Y_RIGHT + H_MAST)             # skyline fastening T
-MAST_PULLEYS = {                           # name: (x0, y0, w)
+MAST_PULLEYS = {                           # name: (x10, y10, w = -w_i: side of K1)
     "S": (0.0, H_MAST, -1),
     "ML": (0.0, H_MAST - 0.5, -1),
     "MH": (0.0, H_MAST - 1.0, -1),
     "MR": (SPAN, Y_RIGHT + H_MAST - 0.5, -1),
 }
 DRUMS = {"D1": (-8.0, 1.0, 1), "D2": (-5.0, 1.0, 1)}
-CARRIAGE_PULLEYS = {                       # name: (offset in carriage frame, w)
+CARRIAGE_PULLEYS = {                       # name: (offset in carriage frame, w = -w_i)
     "W1": ((-0.4, 0.0), 1),
     "W2": ((0.4, 0.0), 1),
     "A": ((0.20, -0.30), 1),
@@ -296,7 +296,7 @@ def drive_design():
     Returns (start, end, strokes) with ``strokes`` the drum angle changes
     [rad] of D1 for the transport (``"D1_move"``) and of D2
     (``"D2_move"``), and ``"lift"`` for lifting/lowering.  Rope paid out by
-    a drum of winding direction w = +1: -r dphi + r dkappa1 (library/belt.py
+    a drum of winding direction w_i = -1: -r dphi + r dkappa1 (library/belt.py
     Drum), so dphi = dkappa1 - d(material)/r."""
     st0 = static_pose(X_START, DROP_LOW, F_sky=F_SKY0)
     st1 = static_pose(X_START, DROP_HIGH, F_sky=F_SKY0)
@@ -316,7 +316,7 @@ def drive_design():
 
 
 def drum_angles(strokes):
-    """Drive functions phi_D1(t), phi_D2(t) (w = +1: positive winds up)."""
+    """Drive functions phi_D1(t), phi_D2(t) (w_i = -1: positive winds up)."""
     def phi1(t):
         return (move(t, T_LIFT, D_LIFT, strokes["lift"])
                 + move(t, T_MOVE, D_MOVE, strokes["D1_move"])

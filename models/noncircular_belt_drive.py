@@ -281,7 +281,7 @@ def belt_length(des, phi1, phi2=None):
     C1, C2 = des.contour1, des.contour2
     L, levers = [], []
     for p1, p2 in zip(phi1, phi2):
-        # upper span: from the large pulley's K2 to the small pulley's K1 (w = +1)
+        # upper span: from the large pulley's K2 to the small pulley's K1 (w_i = -1)
         g1 = _ContourGeometry(des.a, 0.0, p2, C2, -1)    # K2 of the large pulley
         s1 = _ContourGeometry(0.0, 0.0, p1, C1, 1)       # K1 of the small pulley
         gu, lu = tangent_any(g1, s1)
