@@ -38,7 +38,6 @@ the geometry of the result.  Lengths in metres.
 import math
 
 from acausal2d import Component, start
-from acausal2d.library import rotational
 from acausal2d.library.belt import (Band, CurvedDrum, Drum, NozzleBelt, SpringBelt,
                                     SupportContour, connect_band, tangent)
 from acausal2d.library.linkage import DAN, DSD, SAN
@@ -66,11 +65,11 @@ class _Drum(Component):
                {"name": "drive_torque", "signals": ["drive.tau"], "x": "drive.phi",
                 "title": "drive torque over the drum angle"}]
 
-    def _drum(self, w=-1):
+    def _drum(self, w_i=1):
         self.drive = Preset(kind="speed", om=OM, phi0=0.0)
-        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w=w, n_wound=2.0)
-        self.connect(self.drive.flange, self.drum.ctrR)
-        return (E, 0.0, w * RC)       # the cam circle at t = 0, contact side w
+        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w_i=w_i, n_wound=2.0)
+        self.connect(self.drive.flange, self.drum.ctrR2)
+        return (E, 0.0, -w_i * RC)    # the cam circle at t = 0, contact side -w_i
 
     def _band_to(self, span, frame, end=1):
         """Band end ``end`` on ``frame``, the other end on the drum."""
@@ -111,11 +110,12 @@ class DBDDInverted(_Drum):
         self.drive = Preset(kind="speed", om=OM, phi0=math.pi / 2)
         self.crank = DAN(lL=0.15, mL=0.0, JL=0.0)
         self.connect(self.drive.flange, self.crank.ctrR2)
-        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w=1, n_wound=2.0,
-                               x0=0.0, y0=0.15)
+        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w_i=-1, n_wound=2.0)
         self.connect(self.crank.ctr2D2, self.drum.ctr2D1)
-        self.load = TorqueSource(tau=1.0)
-        self.connect(self.load.flange, self.drum.ctrR)
+        self.load = TorqueSource(tau=1.0)              # on the drum ...
+        self.connect(self.load.flange, self.drum.ctrR2)
+        self.reaction = TorqueSource(tau=-1.0)         # ... and back on the crank (housing)
+        self.connect(self.reaction.flange, self.drum.ctrR1)
         self.pin = Fixed(r=self.G)
         self.band = Band(**band_start((*self.G, 0.0), (E, 0.15, RC)))
         self._band_to(self.band, self.pin.frame)
@@ -149,9 +149,8 @@ class SBDS(_Drum):
         self.drive = Preset(kind="speed", translational=True, om=0.05, phi0=0.0)
         self.carriage = SAN(mS=0.0, JS=0.0, xS0=0.0)
         self.connect(self.drive.flange, self.carriage.ctrT2)
-        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w=-1, n_wound=2.0)
-        self.hold = rotational.Fixed()
-        self.connect(self.hold.flange, self.drum.ctrR)
+        self.drum = CurvedDrum(SupportContour(RC, a=(E,), b=(0.0,)), w_i=1, n_wound=2.0)
+        self.connect(self.drum.ctrR1, self.drum.ctrR2)   # held on the carriage
         self.connect(self.carriage.ctr2D2, self.drum.ctr2D1)
         self.slider = SAN(x10=0.15, y10=-0.4, phi10=math.pi / 2, mS=0.0, JS=0.0, xS0=0.2,
                           xG=start(0.2))
@@ -169,7 +168,7 @@ class Nozzle3(_Drum):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        cam = self._drum(w=1)
+        cam = self._drum(w_i=-1)
         g1, l1 = tangent((*self.NOZZLE, 0.0), cam)
         self.band = NozzleBelt(c=500.0, eps=start(0.2, fixed=True), gamma1=start(g1 + math.pi),
                                l1=start(l1), l2=start(0.2), gamma2=start(-math.pi / 2))
@@ -187,7 +186,7 @@ class Spring3(_Drum):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        cam = self._drum(w=1)
+        cam = self._drum(w_i=-1)
         self.band = SpringBelt(k=400.0, l0=0.1, l_dF=start(0.05, fixed=True),
                                **band_start(cam, (*self.ANCHOR, 0.0), ("l", "l_x", "l_x0")))
         self.anchor = Fixed(r=self.ANCHOR)
@@ -247,10 +246,10 @@ class NozzleSlottedCrank(Component):
                                gamma2=start(math.atan2(E[1] - N[1], E[0] - N[0])))
         # the drum's inertia J_DRUM and the elastic band swing (the thread
         # tension varies about T / r); at rest at t = 0 with eps = T / (r c)
-        self.drum = Drum(r=self.R_DRUM, w=1, n_wound=3.0, x0=self.DRUM[0], y0=self.DRUM[1],
-                         J=self.J_DRUM, w_rel=start(0.0, fixed=True))
+        self.drum = Drum(r=self.R_DRUM, w_i=-1, n_wound=3.0, x10=self.DRUM[0], y10=self.DRUM[1],
+                         frameRef="global", J=self.J_DRUM, w_rel=start(0.0, fixed=True))
         self.take_up = TorqueSource(tau=self.T_TAKE_UP)
-        self.connect(self.take_up.flange, self.drum.ctrR)
+        self.connect(self.take_up.flange, self.drum.ctrR2)
         self.nozzle = Fixed(r=N)
         self.connect(self.band.ctr2D3, self.nozzle.frame)
         self.connect(self.band.ctr2D2, self.arm.frame_b)

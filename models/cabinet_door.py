@@ -243,7 +243,7 @@ class BalancedDoor(DoorMechanism):
         v = des.synthesis.evaluate([0.0])
         gamma = math.atan2(B0[1] - v["y_u"][0], B0[0] - v["x_u"][0])
         # the drum's angle is the cam angle: housing turned by -PHI_CLOSED
-        self.cam = CurvedDrum(des.contour.contour, w=-1, x0=A0[0], y0=A0[1], phi0=-PHI_CLOSED,
+        self.cam = CurvedDrum(des.contour.contour, w_i=1, x10=A0[0], y10=A0[1], phi10=-PHI_CLOSED,
                               alpha_fix=k_closed + 0.1 * math.copysign(1.0, k_closed - k_open),
                               kappa1=start(k_closed))
         self.spring = SpringBelt(k=C_SPRING, l0=L0_SPRING, gamma=start(gamma),

@@ -48,7 +48,7 @@ Values the seed does not give, chosen here
   ground): S at (0, 10.0), ML at (0, 9.5), MH at (0, 9.0), MR at
   (50, 22.897) (0.5 m below the right mast top).  Skyline ground anchor G at
   (-15, 0); skyline fastening T at the right mast top (50, 23.397).
-- Drums (r = 0.5 m, J = 20 kg m^2, w = +1, 20 turns = 31.4 m of rope
+- Drums (r = 0.5 m, J = 20 kg m^2, w_i = -1, 20 turns = 31.4 m of rope
   stored at t0): D1 (load rope) at (-8, 1), D2 (haul-back) at (-5, 1).
 - Carriage: 400 kg, J = 80 kg m^2 about its centre of gravity at (0, -0.45)
   in the carriage frame (origin O midway between the wheel axes, x along the
@@ -111,14 +111,14 @@ N_WOUND = 20.0
 
 ANCHOR = (-15.0, 0.0)                      # skyline ground anchor G
 TOP = (SPAN, Y_RIGHT + H_MAST)             # skyline fastening T
-MAST_PULLEYS = {                           # name: (x0, y0, w)
+MAST_PULLEYS = {                           # name: (x10, y10, w = -w_i: side of K1)
     "S": (0.0, H_MAST, -1),
     "ML": (0.0, H_MAST - 0.5, -1),
     "MH": (0.0, H_MAST - 1.0, -1),
     "MR": (SPAN, Y_RIGHT + H_MAST - 0.5, -1),
 }
 DRUMS = {"D1": (-8.0, 1.0, 1), "D2": (-5.0, 1.0, 1)}
-CARRIAGE_PULLEYS = {                       # name: (offset in carriage frame, w)
+CARRIAGE_PULLEYS = {                       # name: (offset in carriage frame, w = -w_i)
     "W1": ((-0.4, 0.0), 1),
     "W2": ((0.4, 0.0), 1),
     "A": ((0.20, -0.30), 1),
@@ -296,7 +296,7 @@ def drive_design():
     Returns (start, end, strokes) with ``strokes`` the drum angle changes
     [rad] of D1 for the transport (``"D1_move"``) and of D2
     (``"D2_move"``), and ``"lift"`` for lifting/lowering.  Rope paid out by
-    a drum of winding direction w = +1: -r dphi + r dkappa1 (library/belt.py
+    a drum of winding direction w_i = -1: -r dphi + r dkappa1 (library/belt.py
     Drum), so dphi = dkappa1 - d(material)/r."""
     st0 = static_pose(X_START, DROP_LOW, F_sky=F_SKY0)
     st1 = static_pose(X_START, DROP_HIGH, F_sky=F_SKY0)
@@ -316,7 +316,7 @@ def drive_design():
 
 
 def drum_angles(strokes):
-    """Drive functions phi_D1(t), phi_D2(t) (w = +1: positive winds up)."""
+    """Drive functions phi_D1(t), phi_D2(t) (w_i = -1: positive winds up)."""
     def phi1(t):
         return (move(t, T_LIFT, D_LIFT, strokes["lift"])
                 + move(t, T_MOVE, D_MOVE, strokes["D1_move"])
@@ -331,11 +331,11 @@ class CableCrane(Component):
     """Three-rope cable crane of seed ch. 8.1 (see the module docstring)."""
     experiment = {"stop_time": T_STOP, "intervals": 600, "rtol": 1e-7}
     outputs = ["load1.F", "load3.F", "load6.F", "haul1.F", "haul2.F", "sky2.F",
-               "carriage.x", "carriage.y", "hook.x", "hook.y", "D1.ctrR.tau", "D2.ctrR.tau"]
+               "carriage.x", "carriage.y", "hook.x", "hook.y", "D1.ctrR2.tau", "D2.ctrR2.tau"]
     figures = [{"name": "cable_crane_rope_forces", "signals": ["load1.F", "load6.F", "haul1.F"],
                 "title": "rope forces of load and haul-back rope (Bild 8.5)"},
                {"name": "cable_crane_skyline_drums", "title": "skyline forces, drum torques",
-                "signals": ["sky2.F", "sky4.F", "D1.ctrR.tau", "D2.ctrR.tau"]}]
+                "signals": ["sky2.F", "sky4.F", "D1.ctrR2.tau", "D2.ctrR2.tau"]}]
 
     @study
     def paths(ctx):
@@ -362,14 +362,13 @@ class CableCrane(Component):
         self.hook = Hook(m=M_HOOK, x=start(st0["hook"][0], fixed=True),
                          y=start(st0["hook"][1], fixed=True))
         for name, (x0, y0, w) in MAST_PULLEYS.items():
-            setattr(self, name, Pulley(r=R_PULLEY, x0=x0, y0=y0, w=w, J=J_PULLEY))
-        for name, ((ax, ay), w) in CARRIAGE_PULLEYS.items():
-            x0, y0 = _carriage_point((ax, ay), pose)
-            p = Pulley(r=R_PULLEY, x0=x0, y0=y0, w=w, J=J_PULLEY)
+            setattr(self, name, Pulley(r=R_PULLEY, x10=x0, y10=y0, w_i=-w, J=J_PULLEY))
+        for name, (_, w) in CARRIAGE_PULLEYS.items():     # axis at the carriage's port
+            p = Pulley(r=R_PULLEY, w_i=-w, J=J_PULLEY)
             setattr(self, name, p)
             self.connect(getattr(self.carriage, name), p.ctr2D1)
         for name, (x0, y0, w) in DRUMS.items():
-            setattr(self, name, Drum(r=R_DRUM, x0=x0, y0=y0, w=w, J=J_DRUM, n_wound=N_WOUND))
+            setattr(self, name, Drum(r=R_DRUM, x10=x0, y10=y0, w_i=-w, J=J_DRUM, n_wound=N_WOUND))
         self.anchor = Fixed(r=ANCHOR)
         self.top = Fixed(r=TOP)
         phi1, phi2 = drum_angles(strokes)
@@ -377,8 +376,8 @@ class CableCrane(Component):
         self.law1, self.law2 = TimeFunction(phi1), TimeFunction(phi2)
         self.connect(self.law1.y, self.drive1.phi_in)
         self.connect(self.law2.y, self.drive2.phi_in)
-        self.connect(self.drive1.flange, self.D1.ctrR)
-        self.connect(self.drive2.flange, self.D2.ctrR)
+        self.connect(self.drive1.flange, self.D1.ctrR2)
+        self.connect(self.drive2.flange, self.D2.ctrR2)
         for rope, nodes in ROPES.items():
             self._rope(rope, nodes, forces[rope], pose, st0["hook"])
 

@@ -226,7 +226,7 @@ class Compressor(Component):
                              mu=0.1, r_pin=0.025, omega_s=0.01)
         # on the lever's arm: its start position comes from the lever (T)
         self.tens = Pulley(r=R3, w_i=-1, m=M_TENS, J=1e-4)
-        self.connect(self.clutch.flange_b, self.drive.ctrR)
+        self.connect(self.clutch.flange_b, self.drive.ctrR2)
         eps0 = F0 / C_BELT
         for k in (1, 2, 3):
             setattr(self, "span%d" % k, Belt(c=C_BELT, d=D_BELT, eps=start(eps0, fixed=True)))
@@ -268,7 +268,7 @@ class Compressor(Component):
         self.wrist = Revolute(phi=start(-math.pi / 2))
         self.piston = Body(m=0.6, I=1e-3)
         self.guide = Prismatic(r=(0.0, 1.0), use_flange=True, s=start(LR - RC))
-        self.connect(self.driven.ctrR, self.crank.flange_a)
+        self.connect(self.driven.ctrR2, self.crank.flange_a)
         self.connect(self.shaft.frame, self.crank.frame_a)
         self.connect(self.crank.frame_b, self.crank_body.frame_a)
         self.connect(self.crank.frame_b, self.crank_arm.frame_a)
@@ -290,7 +290,7 @@ class Compressor(Component):
     def topology(self):
         """The shaft coupling for seed eq. 2.1.  The driven pulley and the
         crank are one shaft at P2: the pulley's flange drives the crank
-        joint's flange (``driven.ctrR`` = ``crank.flange_a``), so the two
+        joint's flange (``driven.ctrR2`` = ``crank.flange_a``), so the two
         revolute joints there (pulley bearing, crank joint) are coupled.
         Eq. 2.1 sees only the joints (pulley and crank as two links), so
         the coupling is declared as one more restriction, like the "+ 1"

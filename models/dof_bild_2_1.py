@@ -116,7 +116,7 @@ class Bild21b(_Banded):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        self._band(GuideContour(w=-1, r=R_CONTOUR, x0=C0[0], y0=C0[1],
+        self._band(GuideContour(w_i=1, r=R_CONTOUR, x10=C0[0], y10=C0[1],
                                 phi=start(0.0, fixed=True)))
 
 
@@ -133,7 +133,7 @@ class Bild21c(_Banded):
         self.ground = Fixed(r=C0)
         self.connect(self.ground.frame, self.bearing.frame_a)
         self.connect(self.bearing.frame_b, self.wheel.frame_a)
-        contour = GuideContour(w=-1, r=R_CONTOUR, x0=C0[0], y0=C0[1],
+        contour = GuideContour(w_i=1, r=R_CONTOUR,      # axis on the bearing, at C0
                                phi=start(0.0, fixed=True))
         self._band(contour)
         self.connect(self.bearing.frame_b, contour.ctr2D1)

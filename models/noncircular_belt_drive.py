@@ -281,7 +281,7 @@ def belt_length(des, phi1, phi2=None):
     C1, C2 = des.contour1, des.contour2
     L, levers = [], []
     for p1, p2 in zip(phi1, phi2):
-        # upper span: from the large pulley's K2 to the small pulley's K1 (w = +1)
+        # upper span: from the large pulley's K2 to the small pulley's K1 (w_i = -1)
         g1 = _ContourGeometry(des.a, 0.0, p2, C2, -1)    # K2 of the large pulley
         s1 = _ContourGeometry(0.0, 0.0, p1, C1, 1)       # K1 of the small pulley
         gu, lu = tangent_any(g1, s1)
@@ -339,8 +339,8 @@ class NonCircularBeltDrive(Component):
         m1, J1, cog1 = des.contour1.mass_properties(THICKNESS, DENSITY)
         m2, J2, cog2 = des.contour2.mass_properties(THICKNESS, DENSITY)
         w2_0 = float(g_ratio(0.0, des.lam, des.bet)) * OMEGA1
-        self.small = CurvedPulley(des.contour1, w=1, x0=0.0, y0=0.0, m=m1, J=J1, cog=cog1)
-        self.large = CurvedPulley(des.contour2, w=1, x0=des.a, y0=0.0, m=m2, J=J2, cog=cog2,
+        self.small = CurvedPulley(des.contour1, w_i=-1, x10=0.0, y10=0.0, m=m1, J=J1, cog=cog1)
+        self.large = CurvedPulley(des.contour2, w_i=-1, x10=des.a, y10=0.0, m=m2, J=J2, cog=cog2,
                                   phi=start(0.0, fixed=True), w_rel=start(w2_0, fixed=True))
         eps0 = F0 / c
         self.upper = Belt(c=c, d=d, eps=start(eps0, fixed=True))
@@ -352,7 +352,7 @@ class NonCircularBeltDrive(Component):
         self.drive = rotational.Position()
         self.angle = signals.TimeFunction(lambda t: OMEGA1 * t)
         self.connect(self.angle.y, self.drive.phi_in)
-        self.connect(self.drive.flange, self.small.ctrR)
+        self.connect(self.drive.flange, self.small.ctrR2)
 
     def equations(self):
         import casadi as ca

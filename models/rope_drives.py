@@ -74,10 +74,10 @@ class FactorBlock(_RopeDrive):
         super().__init__(**kw)
         r = 0.05
         xs = [i * r for i in range(9)]          # x of the vertical sections
-        self.U1 = Pulley(r=r, x0=r, y0=Y_TOP, w=-1)
-        self.U3 = Pulley(r=r, x0=5 * r, y0=Y_TOP, w=-1)
-        self.L2 = Pulley(r=r, x0=3 * r, y0=Y_LOW, w=1)
-        self.L4 = Pulley(r=r, x0=7 * r, y0=Y_LOW, w=1)
+        self.U1 = Pulley(r=r, x10=r, y10=Y_TOP, w_i=1)
+        self.U3 = Pulley(r=r, x10=5 * r, y10=Y_TOP, w_i=1)
+        self.L2 = Pulley(r=r, w_i=-1)            # on arm2 (3 r, Y_LOW)
+        self.L4 = Pulley(r=r, w_i=-1)            # on arm4 (7 r, Y_LOW)
         load = self._load("load", 5 * r, Y_LOW - 0.2)
         for name, x in (("arm2", 3 * r), ("arm4", 7 * r)):
             arm = FixedTranslation(r=(x - 5 * r, 0.2))
@@ -117,7 +117,7 @@ class PotentialBlock(_RopeDrive):
         for k in range(2):
             x.append(x[k] + r[k])           # right section of k ends on the axis of k+1
         for k in range(3):
-            setattr(self, "P%d" % (k + 1), Pulley(r=r[k], x0=x[k], y0=y[k], w=1, J=1e-5))
+            setattr(self, "P%d" % (k + 1), Pulley(r=r[k], w_i=-1, J=1e-5))
             body = self._load("load" if k == 0 else "carrier%d" % (k + 1), x[k], y[k],
                               MASS if k == 0 else self.M_PULLEY)
             self.connect(body.frame_a, getattr(self, "P%d" % (k + 1)).ctr2D1)
@@ -150,11 +150,11 @@ class DifferentialBlock(_RopeDrive):
     def __init__(self, **kw):
         super().__init__(**kw)
         R, r = self.R, self.r
-        self.big = Pulley(r=R, x0=0.0, y0=Y_TOP, w=-1, J=1e-4)
-        self.small = Drum(r=r, x0=0.0, y0=Y_TOP, w=-1, J=1e-4, alpha_fix=0.0, n_wound=2.0)
-        self.connect(self.big.ctrR, self.small.ctrR)       # one shaft
+        self.big = Pulley(r=R, x10=0.0, y10=Y_TOP, w_i=1, J=1e-4)
+        self.small = Drum(r=r, x10=0.0, y10=Y_TOP, w_i=1, J=1e-4, alpha_fix=0.0, n_wound=2.0)
+        self.connect(self.big.ctrR2, self.small.ctrR2)       # one shaft
         rl, xl = (R + r) / 2, (R - r) / 2
-        self.loose = Pulley(r=rl, x0=xl, y0=Y_LOW, w=1, J=1e-5)
+        self.loose = Pulley(r=rl, w_i=-1, J=1e-5)         # on the load at (xl, Y_LOW)
         load = self._load("load", xl, Y_LOW)
         self.connect(load.frame_a, self.loose.ctr2D1)
         self._pull(-R, -0.5)

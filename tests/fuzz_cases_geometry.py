@@ -17,7 +17,7 @@ from acausal2d.library.planar.cam import CamFollower
 """
 
 _ATWOOD = """
-self.pulley = Pulley(r={r}, x0=0.0, y0=0.0, w={w}, J={J})
+self.pulley = Pulley(r={r}, x10=0.0, y10=0.0, w_i={w_i}, J={J})
 self.band1, self.band2 = {span}, {span2}
 {left}
 self.m2 = Body(m={m2}, I=0.01, x=start({x2}), y=start({y2}))
@@ -49,7 +49,7 @@ def winding_cases(n=8, seed=29):
                     % (round(rng.uniform(0.5, 5.0), 2), x1, y1))
         elastic = rng.random() < 0.3
         span = ("Belt(c=1e6, d=1e2, eps=start(1e-5, fixed=True))" if elastic else "Band()")
-        body = _ATWOOD.format(r=r, w=w, J=round(rng.uniform(1e-4, 0.05), 4), span=span,
+        body = _ATWOOD.format(r=r, w_i=-w, J=round(rng.uniform(1e-4, 0.05), 4), span=span,
                               span2=span, left=left, m2=round(rng.uniform(0.5, 5.0), 2),
                               x2=x2, y2=y2)
         cases.append(_case("winding-%d" % k, "winding", _model(body, extra=EXTRA),

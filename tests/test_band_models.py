@@ -113,7 +113,7 @@ class RoundTrip(Component):
         k0 = float(des.contour.kappa([0.0])[0])
         v = des.synthesis.evaluate([0.0])
         gamma = math.atan2(door.B0[1] - v["y_u"][0], door.B0[0] - v["x_u"][0])
-        self.cam = CurvedDrum(des.contour.contour, w=-1, x0=0.0, y0=0.0, kappa1=start(k0))
+        self.cam = CurvedDrum(des.contour.contour, w_i=1, x10=0.0, y10=0.0, kappa1=start(k0))
         self.spring = SpringBelt(k=door.C_SPRING, l0=door.L0_SPRING, gamma=start(gamma),
                                  l_dF=start(des.x_closed, fixed=True))
         self.B0 = Fixed(r=door.B0)
@@ -122,7 +122,7 @@ class RoundTrip(Component):
         self.drive = rotational.Position()
         self.angle = signals.TimeFunction(lambda t: t)
         self.connect(self.angle.y, self.drive.phi_in)
-        self.connect(self.drive.flange, self.cam.ctrR)
+        self.connect(self.drive.flange, self.cam.ctrR2)
 
 
 def test_round_trip_reproduces_spring_travel(design):

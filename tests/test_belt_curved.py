@@ -32,12 +32,12 @@ class TwoPulleys(Component):
         super().__init__(**kw)
         eps0 = 100.0 / c
         if kind == "circular":
-            self.p1 = Pulley(r=R1, x0=0.0, y0=0.0, w=1)
-            self.p2 = Pulley(r=R2, x0=C2[0], y0=C2[1], w=1, J=1e-4)
+            self.p1 = Pulley(r=R1, x10=0.0, y10=0.0, w_i=-1)
+            self.p2 = Pulley(r=R2, x10=C2[0], y10=C2[1], w_i=-1, J=1e-4)
         else:
             make = Contour.circle if kind == "polar" else SupportContour
-            self.p1 = CurvedPulley(make(R1), x0=0.0, y0=0.0, w=1)
-            self.p2 = CurvedPulley(make(R2), x0=C2[0], y0=C2[1], w=1, J=1e-4)
+            self.p1 = CurvedPulley(make(R1), x10=0.0, y10=0.0, w_i=-1)
+            self.p2 = CurvedPulley(make(R2), x10=C2[0], y10=C2[1], w_i=-1, J=1e-4)
         self.span_a = Belt(c=c, d=c * 1e-4, eps=start(eps0, fixed=True))
         self.span_b = Belt(c=c, d=c * 1e-4, eps=start(eps0, fixed=True))
         connect_band(self, self.span_a, 1, self.p1, 2)
@@ -47,7 +47,7 @@ class TwoPulleys(Component):
         self.drive = rotational.Position()
         self.sig = signals.TimeFunction(smooth_angle)
         self.connect(self.sig.y, self.drive.phi_in)
-        self.connect(self.drive.flange, self.p1.ctrR)
+        self.connect(self.drive.flange, self.p1.ctrR2)
 
 
 @pytest.fixture(scope="module")
@@ -87,8 +87,8 @@ class EllipseDrive(Component):
 
     def __init__(self, contour, **kw):
         super().__init__(**kw)
-        self.p1 = CurvedPulley(contour, x0=0.0, y0=0.0, w=1)
-        self.p2 = CurvedPulley(Contour.circle(0.06), x0=0.6, y0=-0.05, w=1, J=2e-4)
+        self.p1 = CurvedPulley(contour, x10=0.0, y10=0.0, w_i=-1)
+        self.p2 = CurvedPulley(Contour.circle(0.06), x10=0.6, y10=-0.05, w_i=-1, J=2e-4)
         self.span_a = Belt(c=2e3, d=2.0, eps=start(0.05, fixed=True))
         self.span_b = Belt(c=2e3, d=2.0, eps=start(0.05, fixed=True))
         connect_band(self, self.span_a, 1, self.p1, 2)
@@ -98,7 +98,7 @@ class EllipseDrive(Component):
         self.drive = rotational.Position()
         self.sig = signals.TimeFunction(lambda t: 2 * math.pi * (t - ca.sin(2 * t) / 2))
         self.connect(self.sig.y, self.drive.phi_in)
-        self.connect(self.drive.flange, self.p1.ctrR)
+        self.connect(self.drive.flange, self.p1.ctrR2)
 
 
 def test_elliptic_contour_contacts_and_tangency():
@@ -182,9 +182,9 @@ class Hoist(Component):
     def __init__(self, curved, **kw):
         super().__init__(**kw)
         if curved:
-            self.drum = CurvedDrum(Contour.circle(0.1), x0=-0.1, y0=0.0, w=1, J=0.01)
+            self.drum = CurvedDrum(Contour.circle(0.1), x10=-0.1, y10=0.0, w_i=-1, J=0.01)
         else:
-            self.drum = Drum(r=0.1, x0=-0.1, y0=0.0, w=1, J=0.01)
+            self.drum = Drum(r=0.1, x10=-0.1, y10=0.0, w_i=-1, J=0.01)
         self.rope = Belt(c=1e6, d=1e3, eps=start(2 * 9.81 / 1e6, fixed=True))
         self.guide = Fixed()
         self.slider = Prismatic(r=(0.0, 1.0), s=start(-1.0, fixed=True), v=start(0.0, fixed=True))
@@ -196,7 +196,7 @@ class Hoist(Component):
         self.drive = rotational.Position()
         self.sig = signals.TimeFunction(lambda t: 0.5 * (t - ca.sin(2 * t) / 2))
         self.connect(self.sig.y, self.drive.phi_in)
-        self.connect(self.drive.flange, self.drum.ctrR)
+        self.connect(self.drive.flange, self.drum.ctrR2)
 
 
 def test_curved_drum_with_circle_matches_drum():
@@ -320,7 +320,7 @@ class CurvedDrumRope(Component):
         if variant == "hoist":
             c0, a1, a2, b2 = FOURIER_DRUM
             con = Contour.fourier(c0, a=[a1, a2], b=[0.0, b2])
-            self.drum = CurvedDrum(con, w=1, x0=0.0, y0=0.0, J=0.01, n_wound=1.0)
+            self.drum = CurvedDrum(con, w_i=-1, x10=0.0, y10=0.0, J=0.01, n_wound=1.0)
             self.rope = Belt(c=1e5, d=300.0, eps=start(2 * 9.81 / 1e5, fixed=True))
             self.guide = Fixed(r=(0.1, 0.0))
             self.slider = Prismatic(r=(0.0, 1.0), s=start(-1.5, fixed=True),
@@ -332,14 +332,14 @@ class CurvedDrumRope(Component):
             self.drive = rotational.Position()
             self.sig = signals.TimeFunction(lambda t: 3.0 * (t - ca.sin(2 * t) / 2))
             self.connect(self.sig.y, self.drive.phi_in)
-            self.connect(self.drive.flange, self.drum.ctrR)
+            self.connect(self.drive.flange, self.drum.ctrR2)
         else:
             con = Contour.from_function(ellipse_drum, symmetry=2)
-            self.drum = CurvedDrum(con, w=1, x0=0.0, y0=0.0, J=1e-3, n_wound=3.0,
+            self.drum = CurvedDrum(con, w_i=-1, x10=0.0, y10=0.0, J=1e-3, n_wound=3.0,
                                    phi=start(0.0, fixed=True), w_rel=start(0.0, fixed=True))
             self.rope = Belt(c=1e6, d=1e3, eps=start(60.0 / 1e6, fixed=True))
             self.hold = rotational.ConstantTorque(tau=5.0)
-            self.connect(self.hold.flange, self.drum.ctrR)
+            self.connect(self.hold.flange, self.drum.ctrR2)
             self.pull = RopeDrive(x0=0.085, y0=-1.0, angle=-math.pi / 2)
             self.sig = signals.TimeFunction(lambda t: 0.5 * (t - ca.sin(2 * t) / 2))
             self.connect(self.sig.y, self.pull.s_in)
@@ -443,8 +443,8 @@ class FrictionOverEllipse(Component):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        self.p = CurvedPulley(Contour.from_function(ellipse_drum, symmetry=2), w=-1,
-                              x0=0.0, y0=0.0, mu=MU_CP, r_pin=RPIN_CP, friction=True)
+        self.p = CurvedPulley(Contour.from_function(ellipse_drum, symmetry=2), w_i=1,
+                              x10=0.0, y10=0.0, mu=MU_CP, r_pin=RPIN_CP, friction=True)
         eps0 = M_CP * 9.81 / 1e6
         self.span1 = Belt(c=1e6, d=1e3, eps=start(eps0, fixed=True))
         self.span2 = Belt(c=1e6, d=1e3, eps=start(eps0, fixed=True))

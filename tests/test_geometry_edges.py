@@ -34,7 +34,7 @@ class Atwood(Component):
 
     def __init__(self, w=-1, elastic=False, anchor=False, **kw):
         super().__init__(**kw)
-        self.pulley = Pulley(r=0.1, x0=0.0, y0=0.0, w=w, J=0.02)
+        self.pulley = Pulley(r=0.1, x10=0.0, y10=0.0, w_i=-w, J=0.02)
         if elastic:
             self.band1 = Belt(c=1e7, d=1e3, eps=start(3 * G / 1e7, fixed=True))
             self.band2 = Belt(c=1e7, d=1e3, eps=start(2 * G / 1e7, fixed=True))

@@ -363,8 +363,8 @@ class PulleysOnNodes(NodeModel):
         self.node("Z", 0.0, 0.0)
         self.node("C", *C2, base=True)
         self.n2("ZO", "Z", "O", len="const", ang="const")
-        self.p1 = Pulley(r=R1, x0=0.0, y0=0.0, w=1)          # x0, y0: the belt layout's
-        self.p2 = Pulley(r=R2, x0=C2[0], y0=C2[1], w=1, J=1e-4)   # start positions
+        self.p1 = Pulley(r=R1, w_i=-1)               # axes at the frames they ride on
+        self.p2 = Pulley(r=R2, w_i=-1, J=1e-4)
         self.connect(self.ZO.frame, self.p1.ctr2D1)
         self.connect(self.C.frame, self.p2.ctr2D1)
         self.span_a = Belt(c=1e8, d=1e4, eps=start(1e-6, fixed=True))
@@ -376,7 +376,7 @@ class PulleysOnNodes(NodeModel):
         self.drive = rotational.Position()
         self.sig = signals.TimeFunction(smooth_angle)
         self.connect(self.sig.y, self.drive.phi_in)
-        self.connect(self.drive.flange, self.p1.ctrR)
+        self.connect(self.drive.flange, self.p1.ctrR2)
 
 
 def test_a_node_model_carries_pulleys():
@@ -384,9 +384,11 @@ def test_a_node_model_carries_pulleys():
     times = np.linspace(0.0, 2.0, 101)
     a = acausal2d.simulate(PulleysOnNodes(), rtol=1e-9, output_times=times)
     b = acausal2d.simulate(TwoPulleys(), rtol=1e-9, output_times=times)
-    for k in ("p1.phi_rel", "p2.phi", "p1.beta", "p2.beta", "span_a.F", "span_b.F"):
+    for k in ("p1.phi", "p2.phi", "p1.beta", "p2.beta", "span_a.F", "span_b.F"):
         assert np.max(np.abs(a[k] - b[k])) < 1e-8 * max(1.0, np.max(np.abs(b[k]))), k
     assert np.ptp(b["p2.phi"]) > 1.0
-    # (the bracket points at pi: the first pulley's absolute angle is pi + phi_rel);
+    # (the bracket points at pi: the drive on ctrR2 sets the absolute angle, phi_rel = phi - pi)
+    tol = 1e-8 * max(1.0, np.max(np.abs(b["p1.phi"])))
+    assert np.max(np.abs(a["p1.phi_rel"] - (b["p1.phi"] - math.pi))) < tol
     # the bracket carries the first pulley's bearing force through its held length
     assert np.max(np.abs(a["ZO.len.f"])) > 1.0

@@ -252,8 +252,8 @@ class Overlap(Component):
 
     def __init__(self, crossed=False, **kw):
         super().__init__(**kw)
-        self.p1 = Pulley(r=0.1, x0=0.0, y0=0.0, J=1e-3)
-        self.p2 = Pulley(r=0.05, x0=0.12, y0=0.0, J=1e-4, w=-1 if crossed else 1)
+        self.p1 = Pulley(r=0.1, x10=0.0, y10=0.0, J=1e-3)
+        self.p2 = Pulley(r=0.05, x10=0.12, y10=0.0, J=1e-4, w_i=1 if crossed else -1)
         self.span_a, self.span_b = Belt(c=1e6), Belt(c=1e6)
         connect_band(self, self.span_a, 1, self.p1, 2)
         connect_band(self, self.span_a, 2, self.p2, 1)

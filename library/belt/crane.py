@@ -85,6 +85,20 @@ class Carriage(Component):
             self.mount_offsets[name] = (float(off[0]), float(off[1]))
             setattr(self, name, Frame(doc="mount at %r in the carriage frame" % (off,)))
 
+    def _linkage_seed(self):
+        """Start poses [(mount frame, {x, y, phi})] from the start values of
+        x, y, phi (all three given), for the tangent construction of the
+        belts (:class:`~acausal2d.library.belt.placement.StartPoses`) and
+        the linkage pre-assembly (``_linkage_seed`` protocol of
+        library/linkage/base.py)."""
+        if not all(self.is_given(k) for k in ("x", "y", "phi")):
+            return []
+        x, y, phi = (float(self.start_value(k)) for k in ("x", "y", "phi"))
+        c, s = math.cos(phi), math.sin(phi)
+        return [(getattr(self, name), {"x": x + c * ax - s * ay, "y": y + s * ax + c * ay,
+                                       "phi": phi})
+                for name, (ax, ay) in self.mount_offsets.items()]
+
     def equations(self):
         c, s = ca.cos(self.phi), ca.sin(self.phi)
         eqs = []

@@ -23,6 +23,7 @@ import warnings
 import casadi as ca
 import numpy as np
 
+from acausal2d import Frame
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.language.unionfind import connector_sets
 from acausal2d.library import planar
@@ -150,7 +151,8 @@ class StartPoses:
     """Start poses (x, y, phi) of the frames of a model at t0 from
     parameters and start values alone (numbers, before the model is bound):
     :class:`~acausal2d.library.planar.Fixed` frames, unconnected housings,
-    bodies whose start ``x``/``y`` (and ``phi``) are given, propagated over
+    bodies whose start ``x``/``y`` (and ``phi``) are given, frames seeded by
+    a component's ``_linkage_seed()`` (nodes, Carriage mounts), propagated over
     FixedTranslation, FixedRotation and Revolute joints (the angle of a
     revolute's frame_b only where its start ``phi`` is given).  ``pose(conn)``
     is None where a frame's start pose does not follow this way (then it
@@ -191,9 +193,21 @@ class StartPoses:
         for conn in comp._connectors.values():
             if isinstance(conn.ground, dict) and id(conn) not in self._connected:
                 self._put(conn, conn.ground)
+        self._seed_frames(comp)
         unplaced = getattr(comp, "_unconnected_pose", None)
         if unplaced is not None and id(comp.ctr2D1) not in self._connected:
             self._put(comp.ctr2D1, unplaced())
+
+    def _seed_frames(self, comp):
+        """Frame poses of a component's ``_linkage_seed()`` (node frames,
+        Carriage mounts); components without frames (drives seed their
+        flanges) are skipped."""
+        seed = getattr(comp, "_linkage_seed", None)
+        if seed is None or not any(isinstance(c, Frame) for c in comp._connectors.values()):
+            return
+        for conn, vals in seed():
+            if isinstance(conn, Frame):
+                self._put(conn, {k: vals[k] for k in ("x", "y", "phi") if k in vals})
 
     def _propagate(self, comp):
         if isinstance(comp, planar.FixedTranslation):

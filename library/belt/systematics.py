@@ -37,7 +37,6 @@ import math
 
 from acausal2d import Component, start
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library import rotational
 from acausal2d.library.belt.drum import Drum
 from acausal2d.library.belt.layout import connect_band, tangent
 from acausal2d.library.belt.spans import Band
@@ -92,6 +91,17 @@ def _angle(p, c):
 def _cross(a, b):
     return a[0] * b[1] - a[1] * b[0]
 
+
+
+def _disc(p, on_link):
+    """The disc of a B joint at ``p``: placed by its axis (x10, y10,
+    frameRef='global', seed Anhang A.1) on the ground; on a linkage element
+    its start still comes from the former x0, y0 (the start poses of
+    :mod:`~acausal2d.library.belt.placement` do not follow the linkage
+    elements' frames yet)."""
+    if on_link:
+        return Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
+    return Drum(r=R_DISC, w_i=-1, n_wound=2.0, x10=p[0], y10=p[1], frameRef="global")
 
 class BandStructure(Component):
     """A four-link band mechanism of the structure ``code`` (class
@@ -219,12 +229,13 @@ class BandStructure(Component):
                 conn = getattr(self, "pin%d" % j).frame
             self.connect(getattr(band, "ctr2D%d" % k), conn)
             return name, p
-        disc = Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
+        disc = _disc(p, on_link=conn is not None)
         setattr(self, "disc%d" % j, disc)
-        if winch is None:
-            winch = rotational.Fixed()
-            setattr(self, "lock%d" % j, winch)
-        self.connect(winch.flange, disc.ctrR)
+        if winch is None:                   # the disc is locked to its housing
+            self.connect(disc.ctrR1, disc.ctrR2)
+        else:                               # turned relative to its housing (Tab. 4.14)
+            self.connect(winch.flange, disc.ctrR2)
+            self.connect(winch.support, disc.ctrR1)
         if conn is not None:
             self.connect(conn, disc.ctr2D1)
         connect_band(self, band, k, disc, 1)

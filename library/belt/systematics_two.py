@@ -190,7 +190,7 @@ class TwoBandStructure(BandStructure):
         self.roll1 = IdealRolling(R=R_DISC, x0=p1[0])
         self.arm1 = FixedTranslation(r=(p2[0] - p1[0], p2[1] - p1[1]))
         self.connect(self.roll1.frame_a, self.arm1.frame_a)
-        self.drive = Preset(kind="speed", om=WINCH, phi0=0.0)
+        self.drive = Preset(kind="speed", om=WINCH, phi0=0.0, use_support=True)
         return (self.arm1.frame_b, "arm1.frame_b"), self.drive
 
     def _link34(self, pts):
