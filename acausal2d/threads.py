@@ -12,31 +12,60 @@ entering and leaving a limit then costs well under a millisecond per run
 from __future__ import annotations
 
 import contextlib
+import sys
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["LIMIT", "controller", "our_threads"]
+__all__ = ["LIMIT", "controller", "libraries_loaded", "our_threads"]
 
 LIMIT = 1
 """Threads of each native pool (BLAS, OpenMP) during our runs."""
 
-_CONTROLLER: list[Any] = []
+_CONTROLLER: list[Any] = []         # [(the modules it saw, ThreadpoolController)]
+_ACTIVE: list[Any] = []             # [(limit, ExitStack)] of the runs inside our_threads
+WATCHED = ("scipy", "sksundae")
+"""Packages whose modules load native thread pools (scipy's and
+scikit-sundae's OpenBLAS, libgomp) as they are imported: a controller made
+before more of their modules were imported is made anew (nothing of them is
+imported here: a native run needs none)."""
+
+
+def _seen() -> int:
+    """How many modules of :data:`WATCHED` are loaded (about 50 us)."""
+    return sum(1 for m in list(sys.modules) if m.startswith(WATCHED))
 
 
 def controller() -> Any:
-    """The process's ThreadpoolController, made at the first call (it
-    limits the libraries loaded by then: numpy's and scipy's BLAS)."""
-    if not _CONTROLLER:
-        import scipy.linalg  # noqa: F401  (loads scipy's BLAS, which the runs use, before the
-        import scipy.sparse.linalg  # noqa: F401  controller lists the loaded libraries)
+    """The process's ThreadpoolController: made at the first call and again
+    only when a module of :data:`WATCHED` was imported since."""
+    if "scipy" in sys.modules:         # its BLAS loads with scipy.linalg, often inside a run
+        import scipy.linalg  # noqa: F401
+        import scipy.sparse.linalg  # noqa: F401
+    seen = _seen()
+    if not _CONTROLLER or _CONTROLLER[0][0] != seen:
         from threadpoolctl import ThreadpoolController
-        _CONTROLLER.append(ThreadpoolController())
-    return _CONTROLLER[0]
+        _CONTROLLER[:] = [(seen, ThreadpoolController())]
+    return _CONTROLLER[0][1]
+
+
+def libraries_loaded() -> None:
+    """Called where a run imports a module of :data:`WATCHED`: the pools it
+    brought are limited too, for the rest of the run."""
+    if _CONTROLLER:
+        _CONTROLLER[:] = []          # libraries were loaded: the controller is made anew
+    if _ACTIVE:
+        limit, stack = _ACTIVE[-1]
+        stack.enter_context(controller().limit(limits=limit))
 
 
 @contextlib.contextmanager
 def our_threads(limit: int = LIMIT) -> Iterator[None]:
     """Limit the native thread pools to ``limit`` threads inside the block
     only; the limits the user had are restored on exit."""
-    with controller().limit(limits=limit):
-        yield
+    with contextlib.ExitStack() as stack:
+        _ACTIVE.append((limit, stack))
+        try:
+            stack.enter_context(controller().limit(limits=limit))
+            yield
+        finally:
+            _ACTIVE.pop()

@@ -69,7 +69,8 @@ def acausal2d_run(cm, stop, rtol, n_out):
 
 def the_run(cm, stop, rtol, n_out):
     """The :class:`Simulation` of the same run (its selection, tolerances)."""
-    times, rtol_, atol_ = cm._settings(stop, rtol, None, n_out, 0.0, None)
+    opts = cm.run_options(stop_time=stop, intervals=n_out, rtol=rtol)
+    times, rtol_, atol_ = opts.times(), opts.rtol, opts.atol
     sim = Simulation(cm.system, cm.parameter_values(None), times, rtol_, atol_)
     sim.run()
     return sim

@@ -50,7 +50,7 @@ def test_step_ramp_gain_add_feedback_laws():
     offset + height clip((t - startTime)/duration, 0, 1); Gain k u; Add
     k1 u1 + k2 u2; Feedback u1 - u2."""
     times = np.linspace(0.0, 1.0, 41) + 0.0123
-    res = acausal2d.simulate(Chain(), stop_time=1.1, rtol=RTOL, output_times=times)
+    res = acausal2d.simulate(Chain(), rtol=RTOL, output_times=times)
     t = res.time
     step = 0.5 + np.where(t < 0.3, 0.0, 2.0)
     ramp = -1.0 + 4.0 * np.clip((t - 0.2) / 0.5, 0.0, 1.0)
@@ -90,7 +90,7 @@ class Pulsed(Component):
 def test_pulse_law_and_its_integral():
     """Modelica's Pulse: offset + amplitude on [0.3 + 0.4 k, 0.42 + 0.4 k)
     for k = 0, 1, 2; its integral over 2 s is 0.5 * 2 + 3 * 2 * 0.12."""
-    res = acausal2d.simulate(Pulsed(), stop_time=2.0, rtol=RTOL,
+    res = acausal2d.simulate(Pulsed(), rtol=RTOL,
                              output_times=np.linspace(0.0, 2.0, 201) + 0.001)
     t = res.time
     k = np.floor((t - 0.3) / 0.4)

@@ -169,7 +169,8 @@ def _chain_problem(links, solver):
     if not native.enabled():
         pytest.skip("another SUNDIALS: no native driver")
     cm = acausal2d.compile_model(PendulumChain(links))
-    times, rtol, atol = cm._settings(1.0, 1e-8, None, 100, 0.0, None)
+    opts = cm.run_options(stop_time=1.0, intervals=100, rtol=1e-8)
+    times, rtol, atol = opts.times(), opts.rtol, opts.atol
     sim = Simulation(cm.system, cm.parameter_values(None), times, rtol, atol)
     sim.run()
     form, prob = sim._solver()[:2]

@@ -19,7 +19,8 @@ from bench_core import PendulumChain  # noqa: E402
 
 
 def _run(cm, stop, rtol, intervals):
-    times, rtol, atol = cm._settings(stop, rtol, None, intervals, 0.0, None)
+    opts = cm.run_options(stop_time=stop, intervals=intervals, rtol=rtol)
+    times, rtol, atol = opts.times(), opts.rtol, opts.atol
     sim = Simulation(cm.system, cm.parameter_values(None), times, rtol, atol)
     return sim, sim.run()
 

@@ -13,7 +13,7 @@ import acausal2d
 from acausal2d import RunOptions
 from acausal2d.cli import main
 from acausal2d.options import DEFAULTS, RunOptionError
-from conftest import MODELS, ROOT, same_time
+from conftest import MODELS, ROOT, assert_copied, same_time
 
 PENDULUM = os.path.join(MODELS, "pendulum.py")
 
@@ -76,7 +76,7 @@ def test_options_and_a_keyword_together_name_both():
         RunOptions(stop_time=2.0, output_times=[0.0, 1.0])
     with pytest.raises(RunOptionError, match=r"intervals \(4\) differs from the 1 intervals"):
         RunOptions(intervals=4, output_times=[0.0, 1.0])
-    assert RunOptions(stop_time=1.0, intervals=1, output_times=[0.0, 1.0]).resolved({}).end == 1.0
+    assert_copied(RunOptions(stop_time=1.0, intervals=1, output_times=[0.0, 1.0]).resolved({}).end, 1.0)
 
 
 def test_options_are_frozen_and_replace_checks_again():
@@ -85,7 +85,7 @@ def test_options_are_frozen_and_replace_checks_again():
         opts.rtol = 1e-3
     with pytest.raises(RunOptionError, match="rtol must be between"):
         opts.replace(rtol=1.0)
-    assert opts.replace(rtol=1e-3).stop_time == 2.0
+    assert_copied(opts.replace(rtol=1e-3).stop_time, 2.0)
 
 
 def test_defaults_come_from_the_experiment_then_from_defaults():
@@ -93,9 +93,9 @@ def test_defaults_come_from_the_experiment_then_from_defaults():
     assert (bare.stop_time, bare.rtol, bare.intervals, bare.max_steps) == (
         DEFAULTS["stop_time"], DEFAULTS["rtol"], DEFAULTS["intervals"], DEFAULTS["max_steps"])
     model = RunOptions().resolved({"stop_time": 3.0, "rtol": 1e-8})
-    assert (model.stop_time, model.rtol, model.intervals) == (3.0, 1e-8, DEFAULTS["intervals"])
+    assert_copied((model.stop_time, model.rtol, model.intervals), (3.0, 1e-8, DEFAULTS["intervals"]))
     given = RunOptions(stop_time=0.5).resolved({"stop_time": 3.0})
-    assert given.stop_time == 0.5
+    assert_copied(given.stop_time, 0.5)
 
 
 def test_a_run_with_options_is_the_run_with_keywords():

@@ -42,7 +42,8 @@ def test_stacked_step_is_the_general_step_bitwise():
 def _selection(cm):
     """The selection of a short run (its states are the held nodes)."""
     from acausal2d.runtime.simulation import Simulation
-    times, rtol, atol = cm._settings(0.01, None, None, 2, 0.0, None)
+    opts = cm.run_options(stop_time=0.01, intervals=2)
+    times, rtol, atol = opts.times(), opts.rtol, opts.atol
     sim = Simulation(cm.system, cm.parameter_values(None), times, rtol, atol)
     sim.run()
     return sim.selection

@@ -41,6 +41,7 @@ import numpy as np
 
 from . import blt_layout, cbuild, cstore, ordering, tiers
 from ..options import STEPS_PER_OUTPUT
+from ..threads import libraries_loaded
 from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
                       optimization, too_large)
 from . import codegen, cstraight
@@ -171,6 +172,7 @@ def _model_recipe(form, libraries, folder):
 
 
 def _declare(lib):
+    libraries_loaded()            # SUNDIALS' pools (libgomp, OpenBLAS): limited in this run
     lib.a2d_create.restype = ctypes.c_void_p
     lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
                                ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I, _I]
@@ -240,6 +242,7 @@ def _hand_in_optional(lib, solver):
             found.append(None)
     lib.a2d_set_optional(*found)
     lib.a2d_optional = True
+    libraries_loaded()            # the LAPACK/OpenMP pools they bring: limited in this run
 
 
 def _ptr(a, kind=_P):

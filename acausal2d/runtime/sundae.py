@@ -21,6 +21,8 @@ main thread before any worker threads.
 import sys
 import types
 
+from ..threads import libraries_loaded
+
 _NUMDIFF = "scipy.optimize._numdiff"
 
 
@@ -48,3 +50,4 @@ def _import_sksundae():
 
 
 sksundae = _import_sksundae()
+libraries_loaded()          # its OpenBLAS and libgomp limited too inside a run
