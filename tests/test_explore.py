@@ -350,8 +350,11 @@ def test_bench_explore_small_prints_its_table():
                   "worst diff", "answers compared", "server memory", "memory growth"):
         line = next((r for r in rows if label in r), None)
         assert line is not None, (label, out.stdout)
-        numbers = [float(x) for x in line.split()[-2:] if x.replace(".", "", 1).isdigit()]
-        assert numbers and all(np.isfinite(v) and v >= 0 for v in numbers), line
+        numbers = [float(x) for x in line.split()[-2:]
+                   if x.lstrip("-").replace(".", "", 1).isdigit()]
+        # memory may also shrink between runs (the allocator gives pages back)
+        floor = -np.inf if label == "memory growth" else 0.0
+        assert numbers and all(np.isfinite(v) and v >= floor for v in numbers), line
     assert "memory bounded (last half adds < 20 MB): yes" in out.stdout
     assert "concurrent answers equal to the runs made alone: yes" in out.stdout
 

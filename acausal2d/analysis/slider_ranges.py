@@ -97,11 +97,14 @@ def range_lines(ranges, indent="  "):
 
 
 def travel_shapes(shapes, signals):
-    """Widen the guide of every slider shape in ``shapes`` (in place) to
-    its whole travel range over the run and add the range's end points as
-    ``travel`` (new signals in ``signals``, which holds the shapes' signals
-    as lists).  The guide then runs from G (or the nearest range end beyond
-    it) to the farthest range end, in every frame."""
+    """Add to every slider shape in ``shapes`` (in place) its whole travel
+    range over the run as ``travel``: the range's end points, new signals
+    in ``signals`` (which holds the shapes' signals as lists), drawn as a
+    solid bar with end marks over the dashed guide in every frame.  A guide
+    that follows a moving frame (a linkage element's, drawn up to the
+    slider's current position) is widened to run from G (or the nearest
+    range end beyond it) to the farthest range end; a fixed guide (a
+    planar Prismatic's) stays as the model gives it."""
     n = len(next(iter(signals.values()))) if signals else 0
     k = 0
     for sh in shapes:
@@ -116,6 +119,8 @@ def travel_shapes(shapes, signals):
             base = "slider travel %d %s" % (k, tag)
             signals[base + ".x"], signals[base + ".y"] = p[:, 0].tolist(), p[:, 1].tolist()
             names.append([base + ".x", base + ".y"])
-        sh["travel"], sh["guide"] = names[:2], names[2:]
+        sh["travel"] = names[:2]
+        if any(isinstance(v, str) for pt in sh["guide"] for v in pt):
+            sh["guide"] = names[2:]        # a guide drawn up to the moving slider: the whole range
         k += 1
     return shapes
