@@ -11,19 +11,25 @@ Every figure is measured in a fresh process with a cache folder of its own:
 - "Python path": ``ACAUSAL2D_NATIVE=off``, compile_model + simulate;
 - "first run (auto)": an empty cache in mode auto: compile_model +
   simulate while the worker compiles (target: <= 1.2x the Python path);
-- "background compile": from the worker's start to its end (target for
-  the chain of 81 links: <= 5 s), and the CPU seconds of the worker and its
+- "native in": from the worker's start until every library it builds is
+  published (at -O0 first where the C is large: runs from then on are
+  native; target for the chain of 81 links: <= 5 s);
+- "background": from the worker's start to its end (the -O1 libraries
+  replaced the -O0 ones), and the CPU seconds of the worker and its
   compiler processes ("bg CPU": on a machine shared with other jobs the wall
   time scatters, the CPU time much less);
 - "later run": the next process on the filled cache (native speed);
 - "compile first": mode now on an empty cache (the behaviour before issue
   30; with --classic);
 - ``acausal2d simulate models/piston_engine.py``, whole process, with an
-  empty cache (auto) and with a full one (target: <= 1.2x).
+  empty cache (auto), with a cache that holds only the drivers' objects
+  (compiled once per machine: a new structure on a machine that ran
+  acausal2d before) and with a full one (target: <= 1.2x).
 """
 import json
 import os
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -59,18 +65,22 @@ def _model(kind, n):
 def child(kind, n, stop):
     """One run in this process; prints its times as JSON."""
     import acausal2d
-    from acausal2d.runtime import background
+    from acausal2d.runtime import background, cbuild
     model = _model(kind, n)
     t0 = time.perf_counter()
     cm = acausal2d.compile_model(model)
     res = cm.simulate(stop_time=stop)
     t1 = time.perf_counter()
-    worker = None
-    for proc, start, _ in background._workers:
-        proc.wait()
+    worker = usable = None
+    for proc, start, _, jobs in background._workers:
+        while proc.poll() is None:
+            if usable is None and all(cbuild.lookup(key, name) for key, name in jobs):
+                usable = time.perf_counter() - start
+            time.sleep(0.05)
         worker = max(worker or 0.0, time.perf_counter() - start)
     use = resource.getrusage(resource.RUSAGE_CHILDREN)
     print(json.dumps({"run": t1 - t0, "worker": worker, "steps": res.stats["steps"],
+                      "usable": worker if usable is None else usable,
                       "cpu": use.ru_utime + use.ru_stime,
                       "notes": res.native_notes, "wall": res.stats["wall_time"],
                       "native": res.stats["native_compile_time"]}))
@@ -99,13 +109,15 @@ def _settled(cache, timeout=600.0):
 
 def measure(name, models, repeat, classic):
     """Medians of the figures of one model."""
-    rows = {"python": [], "auto": [], "worker": [], "cpu": [], "later": [], "now": []}
+    rows = {"python": [], "auto": [], "usable": [], "worker": [], "cpu": [], "later": [],
+            "now": []}
     for _ in range(repeat):
         with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
             rows["python"].append(_child(name, models, b, "off")["run"])
             first = _child(name, models, a, "auto")
             rows["auto"].append(first["run"])
             rows["worker"].append(first["worker"] or 0.0)
+            rows["usable"].append(first["usable"] or 0.0)
             rows["cpu"].append(first["cpu"])
             _settled(a)
             rows["later"].append(_child(name, models, a, "auto")["run"])
@@ -114,36 +126,51 @@ def measure(name, models, repeat, classic):
     return {k: statistics.median(v) for k, v in rows.items() if v}
 
 
+def _objects_only(cache, dest):
+    """Copy the drivers' object files (compiled once per machine) of
+    ``cache`` into the empty cache ``dest``: a new structure on a machine
+    that ran acausal2d before."""
+    for name in os.listdir(cache):
+        if name.endswith((".o", ".o.sha256")):
+            shutil.copy(os.path.join(cache, name), os.path.join(dest, name))
+
+
 def whole_process(repeat):
-    """(empty cache, full cache) medians of ``acausal2d simulate`` of the piston engine."""
+    """(empty cache, new structure, full cache) medians of ``acausal2d
+    simulate`` of the piston engine; "new structure": a cache holding only
+    the drivers' objects."""
     model = os.path.join(ROOT, "models", "piston_engine.py")
-    cold, warm = [], []
+    cold, new, warm = [], [], []
     for _ in range(repeat):
-        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
-            env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE="auto")
-            for times in (cold, warm):
+        with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out, \
+                tempfile.TemporaryDirectory() as fresh:
+            for times, where in ((cold, cache), (warm, cache), (new, fresh)):
+                if times is new:
+                    _objects_only(cache, fresh)
+                env = dict(os.environ, ACAUSAL2D_CACHE_DIR=where, ACAUSAL2D_NATIVE="auto")
                 t0 = time.perf_counter()
                 subprocess.run([sys.executable, "-m", "acausal2d", "simulate", model, "--out",
                                 out], env=env, capture_output=True, check=True, cwd=ROOT)
                 times.append(time.perf_counter() - t0)
-                _settled(cache)
-    return statistics.median(cold), statistics.median(warm)
+                _settled(where)
+    return statistics.median(cold), statistics.median(new), statistics.median(warm)
 
 
 def main(models, repeat, classic, piston):
     print("cold start (issue 30), medians of %d, fresh processes, s" % repeat)
-    print("%-22s %10s %12s %8s %12s %8s %10s %14s" % (
-        "model", "Python", "first(auto)", "ratio", "background", "bg CPU", "later",
-        "compile first"))
+    print("%-22s %10s %12s %8s %10s %12s %8s %10s %14s" % (
+        "model", "Python", "first(auto)", "ratio", "native in", "background", "bg CPU",
+        "later", "compile first"))
     for name in models:
         m = measure(name, models, repeat, classic)
-        print("%-22s %10.3f %12.3f %8.2f %12.3f %8.2f %10.3f %14s" % (
-            name, m["python"], m["auto"], m["auto"] / m["python"], m["worker"], m["cpu"],
-            m["later"], "%.3f" % m["now"] if "now" in m else "-"))
+        print("%-22s %10.3f %12.3f %8.2f %10.3f %12.3f %8.2f %10.3f %14s" % (
+            name, m["python"], m["auto"], m["auto"] / m["python"], m["usable"], m["worker"],
+            m["cpu"], m["later"], "%.3f" % m["now"] if "now" in m else "-"))
     if piston:
-        cold, warm = whole_process(repeat)
+        cold, new, warm = whole_process(repeat)
         print("acausal2d simulate models/piston_engine.py, whole process: empty cache %.3f s, "
-              "full cache %.3f s, ratio %.2f" % (cold, warm, cold / warm))
+              "new structure (drivers compiled before) %.3f s, full cache %.3f s; ratios %.2f, "
+              "%.2f" % (cold, new, warm, cold / warm, new / warm))
 
 
 if __name__ == "__main__":

@@ -71,6 +71,9 @@ def test_small_modes_print_their_tables(script, labels):
 def test_bench_cold_small():
     text = _run("bench_cold.py", "--small")
     row = next(s for s in text.splitlines() if s.startswith("chain of 3 links"))
-    assert len(_numbers(row)) == 6          # Python, first (auto), ratio, background, CPU, later
+    numbers = _numbers(row)     # Python, first (auto), ratio, native in, background, CPU, later
+    assert len(numbers) == 7
+    assert numbers[2] == pytest.approx(numbers[1] / numbers[0], rel=0.01, abs=0.01)
+    assert numbers[3] <= numbers[4]         # the libraries are published before the worker ends
     line = next(s for s in text.splitlines() if "piston_engine.py, whole process" in s)
-    assert len(_numbers(line)) == 3
+    assert len(_numbers(line)) == 5         # empty, new structure, full; two ratios

@@ -16,12 +16,18 @@ import time
 import subprocess
 
 from . import cbuild, cstore
+from .codegen import CHARS_PER_INSTRUCTION, QUICK_FROM
 
 SECONDS_PER_INSTRUCTION = 2e-4
 """Expected wall time of the compile per CasADi instruction of a library
 (measured, chain of 81 links: its formulation's 646 kB of C, about 25k
 instructions, 10.6 s of gcc's CPU at -O1 in two units on a loaded 2-core
 machine)."""
+QUICK_SECONDS_PER_INSTRUCTION = 8e-5
+"""The same for a library built at -O0 first (:data:`~acausal2d.runtime.
+codegen.QUICK_FROM`): the chain of 81 links' libraries, about 42k
+instructions, were all published 4.4 s after the worker's start on a quiet
+2-core machine (6e-5 s per instruction after :data:`WORKER_START`)."""
 WORKER_START = 2.0
 """Seconds a worker needs before it compiles (Python, CasADi, the code
 generator; measured 1.5-8 s for the piston engine's whole worker on a
@@ -39,7 +45,7 @@ CHUNKS = 4
 many pieces of its output grid and looks for the library between them."""
 _queue: list = []        # (key, recipe, label) not yet handed to a worker
 _seen: set = set()      # keys queued by this process
-_workers: list = []      # (Popen, start time, expected seconds)
+_workers: list = []      # (Popen, start time, expected seconds, [(key, library name)])
 
 
 def failure_path(key, name):
@@ -86,26 +92,33 @@ def launch(label=None):
                                 stdin=subprocess.DEVNULL, stdout=log, stderr=log,
                                 start_new_session=True)
     expected = _expected(recipe for _, recipe, _ in jobs)
-    _workers.append((proc, time.perf_counter(), expected))
+    _workers.append((proc, time.perf_counter(), expected,
+                     [(key, recipe.name) for key, recipe, _ in jobs]))
     cstore.notice("compiling native code for %s in the background; this run uses the "
                   "Python path" % label)
     return True
 
 
 def _expected(recipes):
-    """Seconds a worker is expected to take for ``recipes``."""
-    return WORKER_START + SECONDS_PER_INSTRUCTION * sum(r.instructions() for r in recipes)
+    """Seconds a worker is expected to take until the libraries of
+    ``recipes`` are published (the large ones at -O0 first)."""
+    total = WORKER_START
+    for recipe in recipes:
+        n = recipe.instructions()
+        quick = n * CHARS_PER_INSTRUCTION >= QUICK_FROM
+        total += n * (QUICK_SECONDS_PER_INSTRUCTION if quick else SECONDS_PER_INSTRUCTION)
+    return total
 
 
 def pending():
     """True while builds are queued or a worker started by this process runs."""
-    return bool(_queue) or any(proc.poll() is None for proc, _, _ in _workers)
+    return bool(_queue) or any(worker[0].poll() is None for worker in _workers)
 
 
 def expected_left():
     """Seconds the running workers are expected to need still."""
     now = time.perf_counter()
-    return max([start + exp - now for proc, start, exp in _workers if proc.poll() is None]
+    return max([start + exp - now for proc, start, exp, _ in _workers if proc.poll() is None]
                + [0.0])
 
 
@@ -120,14 +133,17 @@ def wait(ready, timeout):
 
 class Tiering:
     """A run's view of the background compile: while it runs the run goes
-    in :data:`CHUNKS` pieces (:meth:`outputs`), and after the first piece
-    :meth:`decide` waits for the compile where that pays.  ``notes`` say
-    what was chosen and why (the run log)."""
+    in :data:`CHUNKS` pieces (:meth:`outputs`) and looks for the library
+    between them; :meth:`decide` ends the pieces where the library cannot
+    come before the run ends, and waits for the compile where that pays.
+    ``notes`` say what was chosen and why (the run log)."""
 
     def __init__(self):
         self.notes, self.decided, self.waited = [], False, 0.0
         self.waiting = False       # a library of this run may still appear
-        self.mark = None           # (simulated time, wall clock) at the end of the last piece
+        self.mark = None           # (simulated time, wall clock) at the start of the last piece
+        self.pieces = 0            # pieces measured
+        self.gave_up = False       # the run ends before any compile: no more pieces
 
     def active(self):
         """True while a background compile of this process runs."""
@@ -138,20 +154,35 @@ class Tiering:
         size = max(1, -(-n_total // CHUNKS))
         return outputs[:size]
 
+    def begin(self, t, now):
+        """A piece on the Python path starts at simulated time ``t``, wall clock ``now``."""
+        self.mark = (t, now)
+
     def decide(self, t, t_left, now, ready):
         """At the end of a piece on the Python path (simulated time ``t``,
-        ``t_left`` s to go, wall clock ``now``): from the second piece on
-        (the first carries the run's start-up), wait (until ``ready()``)
-        for the compile if the Python path's estimated rest is :data:`PAYS`
-        times the compile's plus the native rest."""
-        if self.decided or not self.active():
+        ``t_left`` s to go, wall clock ``now``), from the Python path's
+        estimated rest: where it is shorter than the compile, the rest of
+        the run goes in one piece (every piece restarts IDA: chain of 81
+        links, 1271 steps in four pieces against 1175 in one); from the
+        second piece on (the first carries the run's start-up), wait (until
+        ``ready()``) for the compile if the rest is :data:`PAYS` times the
+        compile's plus the native rest."""
+        if self.decided or not self.active() or self.mark is None:
             return
-        mark, self.mark = self.mark, (t, now)
-        if mark is None or t <= mark[0] or now <= mark[1]:
+        mark, self.mark = self.mark, None
+        if t <= mark[0] or now <= mark[1]:
             return
-        self.decided = True
-        t_done, wall = t - mark[0], now - mark[1]
-        rest, compile_left = t_left / t_done * wall, expected_left()
+        self.pieces += 1
+        rest, compile_left = (t_left / (t - mark[0])) * (now - mark[1]), expected_left()
+        if rest < compile_left:
+            self.decided, self.waiting, self.gave_up = True, False, True
+            self.notes.append("Python path: it needs about %.3g s more, the compile about "
+                              "%.3g s" % (rest, compile_left))
+        elif self.pieces >= 2:
+            self.decided = True
+            self._wait_if_it_pays(rest, compile_left, ready)
+
+    def _wait_if_it_pays(self, rest, compile_left, ready):
         if rest > PAYS * (compile_left + rest / NATIVE_SPEEDUP):
             t0 = time.perf_counter()
             wait(ready, min(rest / 2.0, 2.0 * compile_left + 1.0))
@@ -160,13 +191,41 @@ class Tiering:
                               "compile about %.3g s; waited %.3g s for it"
                               % (rest, compile_left, self.waited))
         else:
-            self.notes.append("Python path: it needs about %.3g s more, the compile about "
-                              "%.3g s" % (rest, compile_left))
+            self.notes.append("Python path until the library appears: it needs about %.3g s "
+                              "more, the compile about %.3g s" % (rest, compile_left))
+
+
+def _build(key, recipe, quick):
+    """Build and publish one job's library (at -O0 where ``quick``);
+    False, with the failure marker left, where that fails."""
+    try:
+        cbuild.build_indexed(key, lambda: recipe.make(quick), recipe.name)
+        return True
+    except Exception as exc:       # noqa: BLE001 - recorded for the next run
+        cstore.write_atomic(failure_path(key, recipe.name),
+                            ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
+        return False
+
+
+def _optimize(key, recipe):
+    """The second build of a library published at -O0: the -O1 library
+    replaces it in the index, and the -O0 file goes (a process that loaded
+    it keeps its copy).  A failure keeps the -O0 library."""
+    before = cbuild.lookup(key, recipe.name)
+    try:
+        path = recipe.make()
+    except Exception:              # noqa: BLE001 - the -O0 library stays in use
+        return
+    cbuild.publish_index(key, recipe.name, path)
+    if before is not None and before != path:
+        cstore.discard(before)
 
 
 def _work(path):
-    """The worker: build each job of the job file, leave a marker where
-    one fails."""
+    """The worker: build each job of the job file - large ones at -O0
+    first, all of them published before any is optimized
+    (:meth:`~acausal2d.runtime.codegen.Recipe.builds_twice`) - and leave a
+    marker where one fails."""
     try:
         os.nice(NICE)
     except OSError:
@@ -174,12 +233,13 @@ def _work(path):
     with open(path, "rb") as fh:
         jobs = pickle.load(fh)
     try:
+        twice = []
         for key, recipe in jobs:
-            try:
-                cbuild.build_indexed(key, recipe.make, recipe.name)
-            except Exception as exc:       # noqa: BLE001 - recorded for the next run
-                cstore.write_atomic(failure_path(key, recipe.name),
-                                    ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
+            if cbuild.lookup(key, recipe.name) is None and _build(key, recipe,
+                                                                  recipe.builds_twice()):
+                twice += [(key, recipe)] if recipe.builds_twice() else []
+        for key, recipe in twice:
+            _optimize(key, recipe)
     finally:
         for p in (path, path + ".log"):
             try:

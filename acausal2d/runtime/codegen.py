@@ -14,6 +14,13 @@ import casadi as ca
 from . import cbuild, cstraight
 
 OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
+QUICK_FROM = 200_000
+"""Characters of generated C from which the background worker builds a
+library twice: at -O0 first (published at once, so runs switch to native
+code early), then at -O1, which replaces it.  Chain of 81 links (the model
+library 450 kB of C, the rows library 596 kB), CPU s of gcc: -O0 4.7, -O1
+12.8; warm run 0.344 s with the -O0 libraries, 0.235 s with -O1.  Below it
+the -O1 compile takes about a second and is done once."""
 NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
 CHARS_PER_INSTRUCTION = 20   # generated C per CasADi instruction, low (measured: 23-30)
 """Compile time of the generated C grows with its size and is paid once per
@@ -90,13 +97,14 @@ def _is_gcc(compiler):
     return bool(compiler) and "gcc" in os.path.basename(os.path.realpath(compiler))
 
 
-def optimization(code, compiler=None):
+def optimization(code, compiler=None, quick=False):
     """The compiler flags for generated C of this size, or None: too large
-    to compile at run time (see :data:`NATIVE_BELOW`); gcc's alias query
+    to compile at run time (see :data:`NATIVE_BELOW`); -O0 where ``quick``
+    (the first of two builds, :data:`QUICK_FROM`); gcc's alias query
     limits (:data:`GCC_LIMITS`) where ``compiler`` is gcc."""
     if len(code) >= NATIVE_BELOW:
         return None
-    flags = ["-O1"] if len(code) < OPTIMIZE_BELOW else ["-O0"]
+    flags = ["-O1"] if len(code) < OPTIMIZE_BELOW and not quick else ["-O0"]
     return flags + list(GCC_LIMITS) if _is_gcc(compiler) else flags
 
 
@@ -105,11 +113,14 @@ class Recipe:
     CasADi functions) - how is "plain" (added as it is), "cse" (common
     subexpressions merged, :func:`eliminated`) or
     "ej" (residual and Jacobian as one function); ``suffix`` is C appended
-    to CasADi's code; ``libraries`` and ``library_dirs`` are linked."""
+    to CasADi's code; ``objects`` are (name, C text) compiled once per
+    machine (:func:`~acausal2d.runtime.cbuild.build_object`, at -O1) and
+    linked in; ``libraries`` and ``library_dirs`` are linked."""
 
-    def __init__(self, name, parts, suffix="", libraries=(), library_dirs=()):
+    def __init__(self, name, parts, suffix="", libraries=(), library_dirs=(), objects=()):
         self.name, self.parts, self.suffix = name, list(parts), suffix
         self.libraries, self.library_dirs = list(libraries), list(library_dirs)
+        self.objects = list(objects)
 
     def instructions(self):
         """CasADi instructions of the functions (the size of the C)."""
@@ -124,20 +135,44 @@ class Recipe:
 
     def __getstate__(self):
         parts = [(how, [cbuild.serialized(fn) for fn in fns]) for how, fns in self.parts]
-        return dict(self.__dict__, parts=parts)
+        state = dict(self.__dict__, parts=parts)
+        state.pop("_code", None)
+        return state
 
     def __setstate__(self, state):
         state["parts"] = [(how, [ca.Function.deserialize(s) for s in fns])
                           for how, fns in state["parts"]]
         self.__dict__.update(state)
 
-    def make(self):
+    @staticmethod
+    def _object_flags():
+        return optimization("", cbuild.find_compiler())
+
+    def objects_missing(self):
+        """How many of the objects are not compiled yet (in the cache)."""
+        return sum(not cbuild.object_built(text, self._object_flags(), name)
+                   for name, text in self.objects)
+
+    def code(self):
+        """The generated C (:func:`generate`), made once per recipe."""
+        if getattr(self, "_code", None) is None:
+            self._code = generate(self)
+        return self._code
+
+    def builds_twice(self):
+        """True where the background worker builds this library at -O0
+        first, then at -O1 (:data:`QUICK_FROM`)."""
+        return QUICK_FROM <= len(self.code()) < OPTIMIZE_BELOW
+
+    def make(self, quick=False):
         """Generate the C and compile it (:func:`~acausal2d.runtime.cbuild.
-        build`); the library's path."""
-        code = generate(self)
-        flags = optimization(code, cbuild.find_compiler())
+        build`), at -O0 where ``quick``; the library's path."""
+        code = self.code()
+        flags = optimization(code, cbuild.find_compiler(), quick)
         if flags is None:
             raise cbuild.BuildFailed("the generated C of %s is too large to compile at run "
                                      "time (%d characters)" % (self.name, len(code)))
+        objects = [cbuild.build_object(text, self._object_flags(), name)
+                   for name, text in self.objects]
         return cbuild.build({self.name + ".c": code}, flags=flags, libraries=self.libraries,
-                            library_dirs=self.library_dirs, name=self.name)
+                            library_dirs=self.library_dirs, name=self.name, objects=objects)

@@ -208,7 +208,7 @@ def sweep(folder, older_than=600.0):
                     os.remove(path)
 
 
-SUFFIXES = (".so", DIGEST, LOCK, ".idx", ".failed")
+SUFFIXES = (".so", ".o", DIGEST, LOCK, ".idx", ".failed")
 
 
 def entries():

@@ -21,7 +21,7 @@ from ..errors import Acausal2dError
 from . import cstore
 from .csplit import split
 
-SCHEME = "units-3"
+SCHEME = "units-4"
 """Names how sources are cut and compiled: part of every fingerprint, so a
 library built another way is never found again."""
 TIMEOUT = 600.0   # s per compiler process
@@ -95,10 +95,25 @@ def _units(sources):
     return files
 
 
-def compile_library(cc, sources, args, folder, target):
+def compile_object(cc, fname, text, args, folder, target):
+    """Compile one C text (file name ``fname``) with the flags ``args`` into
+    the object file ``target``, published with its digest."""
+    tmp = cstore.build_folder(folder, target)
+    try:
+        path = os.path.join(tmp, fname)
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        _run_all(cc, [[cc, "-c", path, "-o", path[:-2] + ".o"] + list(args)])
+        cstore.publish(path[:-2] + ".o", target)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def compile_library(cc, sources, args, folder, target, prebuilt=()):
     """Compile ``sources`` (file name -> C text) with the flags ``args``
     (optimisation, ``-fPIC -shared``, include and link options) into
-    ``target`` (see the module docstring)."""
+    ``target`` (see the module docstring), linked with the object files
+    ``prebuilt``."""
     tmp = cstore.build_folder(folder, target)
     try:
         objects, commands = [], []
@@ -113,7 +128,7 @@ def compile_library(cc, sources, args, folder, target):
                 commands.append([cc, "-c", path, "-o", objects[-1]] + compile_flags)
         _run_all(cc, commands)
         out = os.path.join(tmp, "out.so")
-        _run_all(cc, [[cc] + objects + ["-o", out] + list(args)])
+        _run_all(cc, [[cc] + objects + list(prebuilt) + ["-o", out] + list(args)])
         cstore.publish(out, target)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

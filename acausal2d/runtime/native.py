@@ -163,12 +163,33 @@ def _generator():
     return _module_texts[__file__]
 
 
+GENERATED = """#ifndef casadi_real
+#define casadi_real double
+#endif
+#ifndef casadi_int
+#define casadi_int long long int
+#endif
+#define A2D_GENERATED(f) \\
+  int f(const casadi_real **arg, casadi_real **res, casadi_int *iw, casadi_real *w, int mem); \\
+  int f##_work(casadi_int *sz_arg, casadi_int *sz_res, casadi_int *sz_iw, casadi_int *sz_w);
+A2D_GENERATED(res) A2D_GENERATED(iteration_matrix) A2D_GENERATED(events)
+A2D_GENERATED(E) A2D_GENERATED(EJ)
+"""
+"""The declarations of the CasADi-generated functions (their signatures in
+CasADi's code) that the drivers call: the drivers are compiled apart from
+the generated code (:meth:`~acausal2d.runtime.codegen.Recipe` ``objects``)."""
+
+
 def _model_recipe(form, libraries, folder):
-    """The recipe of a formulation's library: generated functions, then the driver."""
-    flags = "#define A2D_EVENTS 1\n" if form.event_fn is not None else ""
+    """The recipe of a formulation's library: generated functions, linked
+    with the driver (an object compiled once per machine; with or without
+    events)."""
+    events = form.event_fn is not None
     fns = [fn for fn in (form.res_fn, form.jac_fn, form.event_fn) if fn is not None]
-    return Recipe("a2d_model", [("cse", fns)], flags + _text(_LU) + _text(_DRIVER),
-                        libraries, [folder])
+    driver = GENERATED + ("#define A2D_EVENTS 1\n" if events else "") + _text(_LU) + \
+        _text(_DRIVER)
+    return Recipe("a2d_model", [("cse", fns)], libraries=libraries, library_dirs=[folder],
+                  objects=[("a2d_driver_events" if events else "a2d_driver", driver)])
 
 
 def _declare(lib):
@@ -395,8 +416,8 @@ def _projector_library(system):
         key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_LU),
                                  _text(_PROJECT))
         recipe = Recipe("a2d_rows", [("cse", [system.residual_fn]),
-                                           ("ej", [system.residual_fn, system.jacobian_fn])],
-                              _text(_LU) + _text(_PROJECT))
+                                     ("ej", [system.residual_fn, system.jacobian_fn])],
+                        objects=[("a2d_project", GENERATED + _text(_LU) + _text(_PROJECT))])
         lib = tiers.obtain(key, recipe, _declare_projector)
         if lib is not None or not tiers.pending():
             _projectors[system] = lib or False

@@ -39,31 +39,36 @@ one iteration, with the LU of an earlier row mostly 3 or 4."""
 _MAPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> its mapped functions
 
 
-def _mapped_functions(system):
+def _mapped_functions(system, native):
     """{name: function} of E and dE/dz of a system mapped over each of
-    :data:`CHUNKS` rows (``E_rows_K``, ``J_rows_K``), compiled to C where a
-    compiler is found (:func:`~acausal2d.runtime.native.compiled`)."""
-    fns = _MAPS.get(system)
+    :data:`CHUNKS` rows (``E_rows_K``, ``J_rows_K``), compiled to C where
+    ``native`` and a compiler is found (:func:`~acausal2d.runtime.native.
+    compiled`).  Only a formulation that the C projector cannot serve asks
+    for them compiled: compiling them beside the C projector's library
+    doubled the background compile of a new structure (chain of 81 links:
+    8 maps of 0.8-9 MB serialized, 0.43 s of the first run spent on their
+    fingerprint alone)."""
+    fns = _MAPS.setdefault(system, {}).get(native)
     if fns is None:
         fns = {}
         for K in CHUNKS:
             for name, fn in (("E_rows_%d" % K, system.residual_fn),
                              ("J_rows_%d" % K, system.jacobian_fn)):
                 fns[name] = fn.map(name, "serial", K, [2, 3], [])
-        if not too_large(system.residual_fn, system.jacobian_fn):
+        if native and not too_large(system.residual_fn, system.jacobian_fn):
             fns = compiled(fns) or fns
-        _MAPS[system] = fns
+        _MAPS[system][native] = fns
     return fns
 
 
 class _Mapped:
     """E and dE/dz of a system mapped over K rows, bound to buffers."""
 
-    def __init__(self, system, K, p):
+    def __init__(self, system, K, p, native):
         args = [np.zeros(K), np.zeros(K * system.structure.n_var), np.asarray(p, float),
                 np.zeros(system.d.numel())]
         self.K = K
-        fns = _mapped_functions(system)
+        fns = _mapped_functions(system, native)
         self.E = Buffered(fns["E_rows_%d" % K], args)
         self.J = Buffered(fns["J_rows_%d" % K], args)
 
@@ -94,8 +99,8 @@ class Projector:
         order = np.lexsort((self.jrows, self.jcols))
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
-        self.native = row_projector(system, self.free) \
-            if 0 < len(self.free) == self.n_eq else None
+        self.in_c = 0 < len(self.free) == self.n_eq     # the C projector can serve it
+        self.native = row_projector(system, self.free) if self.in_c else None
         self.native_iterations = SIMPLIFIED_ITERATIONS
         self.native_slow = 0 if self.n_eq >= NEW_LU_FROM else 1
         self._to_rows = None
@@ -113,7 +118,7 @@ class Projector:
 
     def _map(self, K):
         if K not in self._maps:
-            self._maps[K] = _Mapped(self.system, K, self.p)
+            self._maps[K] = _Mapped(self.system, K, self.p, not self.in_c)
         return self._maps[K]
 
     def _converged(self, E, scale):

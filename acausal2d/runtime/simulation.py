@@ -127,6 +127,8 @@ class Simulation:
             except SimulationError as exc:
                 exc.partial = self._log(wall)       # the motion up to where it stopped
                 raise
+            finally:       # libraries asked for after the last piece (the singular scan's)
+                launch(getattr(self.system, "model_name", None))
         if self.progress is not None:
             self.progress(self.out[-1][0], self.t_end)
         return self._log(wall)
@@ -222,7 +224,7 @@ class Simulation:
 
     def _segment(self):
         form, prob, solver, projector = self._solver()
-        if launch(getattr(self.system, "model_name", None)):
+        if launch(getattr(self.system, "model_name", None)) and not self.tiering.gave_up:
             self.tiering.waiting = prob.native is None
         prob.set_relations(self.d)
         y0, yp0 = form.y_from(self.z)
@@ -231,6 +233,8 @@ class Simulation:
         n0 = self.seg_start = len(self.out)
         self.seg_left = (self.t, np.array(self.z))
         steps0 = prob.steps
+        if prob.native is None and self.tiering.waiting:
+            self.tiering.begin(self.t, _time.perf_counter())
         try:
             outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop)
         except Exception as exc:       # scikit-sundae raises on bad input at the start

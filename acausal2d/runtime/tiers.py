@@ -38,6 +38,12 @@ compiles first, in the process: the Python path costs a small model more
 than its compile (``acausal2d simulate models/piston_engine.py`` on an
 empty cache, CPU seconds of the process and its compilers on a loaded
 machine: Python path 6.87, compile first 4.56, full cache 3.04)."""
+OBJECT_SECONDS = 0.4
+"""Seconds of gcc per driver object (compiled once per machine,
+:func:`~acausal2d.runtime.cbuild.build_object`; measured: the model
+driver with the LU 0.45 s, the rows projector with the LU 0.4 s).  On a
+machine that has not compiled them yet, a small model's first run takes
+the Python path and the worker compiles them."""
 _notes: list = []        # why libraries were compiled first (the next run log takes them)
 _spent = [0.0]          # seconds this process spent compiling native code in the foreground
 _label = ["this model"]  # the model of the current run (its notices name it)
@@ -126,8 +132,10 @@ def _later(key, recipe):
 
 
 def _expected(recipe):
-    """Seconds the compile of ``recipe`` is expected to take."""
-    return SECONDS_PER_INSTRUCTION * recipe.instructions()
+    """Seconds the compile of ``recipe`` is expected to take (its objects
+    that are not in the cache included: :data:`OBJECT_SECONDS`)."""
+    return SECONDS_PER_INSTRUCTION * recipe.instructions() + \
+        OBJECT_SECONDS * recipe.objects_missing()
 
 
 def _small(recipe):

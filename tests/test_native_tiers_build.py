@@ -1,0 +1,175 @@
+"""How the background worker and the foreground build native code (issue
+30, a cheaper compile): a large library is published at -O0 first and
+replaced by its -O1 build; the drivers' constant C is compiled once per
+machine into cached, verified object files that every structure's library
+links; a small model's first run compiles first only where those objects
+are there; a run whose Python path ends before the compile goes on in one
+piece; and the row maps are not compiled where the C projector serves."""
+import os
+import pickle
+import sys
+
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d.runtime import (background, cbuild, codegen, cstore, native, projection,
+                               simulation, tiers)
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "models"))
+from piston_engine import PistonEngine  # noqa: E402
+from pendulum import Pendulum  # noqa: E402
+from double_pendulum import DoublePendulum  # noqa: E402
+
+pytestmark = pytest.mark.skipif(cbuild.find_compiler() is None or not native.enabled(),
+                                reason="no C compiler or another SUNDIALS")
+WAIT = 600.0           # s: a worker that does not end by then is a hang
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    """An empty cache of its own and this process's queue; mode auto."""
+    monkeypatch.setenv(tiers.ENV, "auto")
+    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setattr(background, "_queue", [])
+    monkeypatch.setattr(background, "_seen", set())
+    monkeypatch.setattr(background, "_workers", [])
+    monkeypatch.setattr(cstore, "_said", set())
+    yield tmp_path / "cache"
+    assert not background._queue                           # every library asked for is built
+    background.wait(lambda: False, WAIT)
+
+
+def _run(model, stop_time=0.5, rtol=1e-8, intervals=200):
+    cm = acausal2d.compile_model(model)
+    return cm.simulate(stop_time=stop_time, rtol=rtol, intervals=intervals)
+
+
+def _agree(a, b, names, rtol):
+    """Two runs agree to the integration tolerance (1000 rtol of each
+    signal's range: both runs' global errors, with room)."""
+    for name in names:
+        scale = 1.0 + np.max(np.abs(b[name]))
+        assert np.max(np.abs(a[name] - b[name])) <= 1e3 * rtol * scale, name
+
+
+def test_a_large_library_is_published_at_O0_first_then_replaced_at_O1(cache, monkeypatch):
+    launch = background.launch
+    monkeypatch.setattr(background, "launch", lambda label=None: False)
+    monkeypatch.setattr(simulation, "launch", lambda label=None: False)
+    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)
+    _run(Pendulum())
+    jobs = [(key, recipe) for key, recipe, _ in background._queue]
+    del background._queue[:]                               # this test is the worker
+    assert "a2d_model" in [recipe.name for _, recipe in jobs]
+    path = str(cache / ".tmp-job-test")
+    with open(path, "wb") as fh:
+        pickle.dump(jobs, fh)
+    builds, published = [], []
+    real_build, real_publish = cbuild.build, cbuild.publish_index
+
+    def build(sources, flags=(), **kw):
+        out = real_build(sources, flags=flags, **kw)
+        builds.append((kw.get("name"), list(flags), out))
+        return out
+
+    def publish(key, name, lib):
+        published.append((name, lib))
+        real_publish(key, name, lib)
+    monkeypatch.setattr(cbuild, "build", build)
+    monkeypatch.setattr(cbuild, "publish_index", publish)
+    monkeypatch.setattr(codegen, "QUICK_FROM", 0)         # every library is large
+    monkeypatch.setattr(os, "nice", lambda inc: 0)         # the worker's, not this process's
+    background._work(path)
+    model = [(flags, out) for name, flags, out in builds if name == "a2d_model"]
+    assert [("-O0" in f, "-O1" in f) for f, _ in model] == [(True, False), (False, True)]
+    quick, full = model[0][1], model[1][1]
+    assert [lib for name, lib in published if name == "a2d_model"] == [quick, full]
+    key = next(key for key, recipe in jobs if recipe.name == "a2d_model")
+    assert cbuild.lookup(key, "a2d_model") == full
+    assert not os.path.exists(quick)                       # the -O0 file went
+    assert not os.path.exists(path)                        # the job file too
+    monkeypatch.setattr(background, "_seen", set())
+    monkeypatch.setattr(background, "launch", launch)     # workers again for the rest
+    monkeypatch.setattr(simulation, "launch", launch)
+    cm = acausal2d.compile_model(Pendulum())               # finds the -O1 library
+    with_full = cm.simulate(stop_time=0.5, rtol=1e-8, intervals=200)
+    assert native.library(next(iter(cm.system._formulations.values()))) is not None
+    monkeypatch.setenv(tiers.ENV, "off")
+    ref = _run(Pendulum())
+    _agree(with_full, ref, ("revolute.phi", "revolute.w"), 1e-8)
+
+
+def _objects(folder):
+    return sorted(f for f in os.listdir(folder) if f.endswith(".o"))
+
+
+def test_the_drivers_are_compiled_once_and_verified(cache, monkeypatch, capfd):
+    monkeypatch.setenv(tiers.ENV, "now")
+    first = _run(Pendulum())
+    objects = _objects(cache)
+    assert any(f.startswith("a2d_driver") for f in objects), objects
+    assert any(f.startswith("a2d_project") for f in objects), objects
+    assert all(os.path.exists(os.path.join(cache, f + cstore.DIGEST)) for f in objects)
+    stamps = {f: os.path.getmtime(os.path.join(cache, f)) for f in objects}
+    second = _run(DoublePendulum(phi0=0.3))                 # another structure, same drivers
+    libraries = [f for f in os.listdir(cache) if f.startswith("a2d_model") and f.endswith(".so")]
+    assert len(libraries) == 2, libraries
+    for f in objects:
+        if f in _objects(cache):
+            assert os.path.getmtime(os.path.join(cache, f)) == stamps[f]   # not rebuilt
+    project = os.path.join(cache, next(f for f in objects if f.startswith("a2d_project")))
+    with open(project, "r+b") as fh:                        # damage a byte of the object
+        fh.seek(100)
+        byte = fh.read(1)
+        fh.seek(100)
+        fh.write(bytes([byte[0] ^ 0xFF]))
+    capfd.readouterr()
+    third = _run(PistonEngine())                            # a new structure links it again
+    err = capfd.readouterr().err
+    assert "damaged" in err and os.path.basename(project) in err, err
+    assert cstore.verified(project)                         # rebuilt
+    monkeypatch.setenv(tiers.ENV, "off")
+    _agree(first, _run(Pendulum()), ("revolute.phi", "revolute.w"), 1e-8)
+    _agree(second, _run(DoublePendulum(phi0=0.3)), ("revolute.phi", "revolute1.phi"), 1e-8)
+    _agree(third, _run(PistonEngine()), ("revoluteDrive.phi", "prismatic.s"), 1e-8)
+
+
+def test_a_small_model_compiles_first_only_with_the_drivers_there(cache, monkeypatch):
+    res = _run(PistonEngine())
+    assert not any(n.startswith("compile first") for n in res.native_notes), res.native_notes
+    background.wait(lambda: False, WAIT)                   # the worker compiled the drivers
+    assert _objects(cache)
+    again = _run(Pendulum())                                # a new small structure
+    assert any(n.startswith("compile first: a2d_model is small") for n in again.native_notes), \
+        again.native_notes
+
+
+def test_a_run_whose_python_path_ends_before_the_compile_goes_on_in_one_piece(cache,
+                                                                              monkeypatch):
+    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)
+    monkeypatch.setattr(background, "expected_left", lambda: 1e6)   # a compile of ages
+    res = _run(Pendulum(), stop_time=2.0)
+    assert res.stats["segments"] == 2                      # the first piece, then the rest
+    assert any(n.startswith("Python path: it needs about") for n in res.native_notes)
+    monkeypatch.setenv(tiers.ENV, "off")
+    ref = _run(Pendulum(), stop_time=2.0)
+    assert ref.stats["segments"] == 1
+    _agree(res, ref, ("revolute.phi", "revolute.w"), 1e-8)
+
+
+def test_the_row_maps_are_compiled_only_where_the_c_projector_cannot_serve(cache,
+                                                                          monkeypatch):
+    monkeypatch.setenv(tiers.ENV, "now")
+    asked = []
+    real = projection.compiled
+
+    def compiled(functions):
+        asked.extend(functions)
+        return real(functions)
+    monkeypatch.setattr(projection, "compiled", compiled)
+    res = _run(Pendulum())
+    assert not [name for name in asked if name.startswith(("E_rows", "J_rows"))], asked
+    monkeypatch.setenv(tiers.ENV, "off")
+    _agree(res, _run(Pendulum()), ("revolute.phi", "revolute.w"), 1e-8)
