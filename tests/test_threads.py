@@ -147,6 +147,8 @@ def test_bench_threads_small_prints_its_table():
     assert proc.returncode == 0, proc.stderr[-3000:]
     rows = proc.stdout.strip().splitlines()
     assert [r.split("[ms]")[0].strip() for r in rows] == [
-        "ThreadpoolController made (once per process)", "limit entered and left (every run)",
+        "ThreadpoolController made (once per process)",
+        "check for newly loaded pools (each native library load)",
+        "limit entered and left (every run)",
         "warm run of the pendulum, 0.1 s (for scale)"]
     assert all(0 < float(r.split()[-1]) < math.inf for r in rows)
