@@ -30,7 +30,7 @@ LIMIT = 1
 
 _CONTROLLER: list[Any] = []         # [(pool_libraries() it saw, ThreadpoolController)]
 _ACTIVE: list[Any] = []             # [(limit, ExitStack)] of the runs inside our_threads
-_LOADED: list[Any] = []             # [((adds, subs), pool library paths)] of the last look
+_LOADED: list[tuple[tuple[int, int], frozenset[str]]] = []   # [(counters, pools)] of the last look
 
 
 class _PhdrInfo(ctypes.Structure):
@@ -44,7 +44,7 @@ _CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.POINTER(_PhdrInfo), ctypes.c_s
                              ctypes.c_void_p)
 
 
-def _libc() -> Any:
+def _libc() -> ctypes.CDLL | None:
     """The process's C library if it has ``dl_iterate_phdr`` (Linux, BSD), else None."""
     try:
         libc = ctypes.CDLL(None)
@@ -56,7 +56,7 @@ def _libc() -> Any:
 _LIBC = _libc()
 
 
-def _counters() -> tuple[int, int] | None:
+def _counters(libc: ctypes.CDLL) -> tuple[int, int] | None:
     """(objects loaded, objects unloaded) since the process started, from the
     first entry dl_iterate_phdr gives; None where the C library has no
     counters (nothing then can be told unchanged)."""
@@ -66,11 +66,11 @@ def _counters() -> tuple[int, int] | None:
         if size >= ctypes.sizeof(_PhdrInfo):
             seen[0] = (int(info.contents.dlpi_adds), int(info.contents.dlpi_subs))
         return 1                            # one entry is enough
-    _LIBC.dl_iterate_phdr(_CALLBACK(first), None)
+    libc.dl_iterate_phdr(_CALLBACK(first), None)
     return seen[0]
 
 
-def _names() -> list[str]:
+def _names(libc: ctypes.CDLL) -> list[str]:
     """Paths of every shared library loaded in the process."""
     names: list[bytes] = []
 
@@ -78,7 +78,7 @@ def _names() -> list[str]:
         if info.contents.dlpi_name:
             names.append(info.contents.dlpi_name)
         return 0
-    _LIBC.dl_iterate_phdr(_CALLBACK(each), None)
+    libc.dl_iterate_phdr(_CALLBACK(each), None)
     return [os.fsdecode(n) for n in names]
 
 
@@ -101,11 +101,12 @@ def pool_libraries() -> frozenset[str] | None:
     listed (no ``dl_iterate_phdr``: macOS, Windows)."""
     if _LIBC is None:
         return None
-    counters = _counters()
+    counters = _counters(_LIBC)
     if counters is not None and _LOADED and _LOADED[0][0] == counters:
-        return frozenset(_LOADED[0][1])
+        return _LOADED[0][1]
     prefixes = _prefixes()
-    pools = frozenset(n for n in _names() if os.path.basename(n).lower().startswith(prefixes))
+    pools = frozenset(n for n in _names(_LIBC)
+                      if os.path.basename(n).lower().startswith(prefixes))
     _LOADED[:] = [(counters, pools)] if counters is not None else []
     return pools
 
