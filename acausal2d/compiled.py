@@ -5,10 +5,12 @@ objects."""
 from __future__ import annotations
 
 import copy as _copy
-from typing import TYPE_CHECKING, Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 import time as _time
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .compiler.gc_pause import cyclic_gc_paused
 from .compiler.pipeline import compile_system
@@ -25,11 +27,21 @@ from .analysis.modes import modes
 from .analysis.equilibrium import find_equilibrium
 from .language.dsl import Parameter
 from .options import CHECKS, RunOptionError, RunOptions, number
+from .protocols import ParameterValue, Params, Start
 from .progress import time_progress
 from .threads import our_threads
 
 if TYPE_CHECKING:
+    from .analysis.equilibrium import Equilibrium
+    from .analysis.linearize import Linearization
+    from .analysis.modes import Modes
+    from .compiler.system import ParameterEntry, System
+    from .derived import DerivedSignal
+    from .language.declarations import Parameter as Declaration
     from .language.dsl import Component
+    from .options import Atol, Progress
+    from .runtime.initialize import InitialPoint
+    from .runtime.simulation import RunLog
 
 
 def compile_model(model: Component) -> "CompiledModel":
@@ -38,7 +50,7 @@ def compile_model(model: Component) -> "CompiledModel":
     return CompiledModel(model)
 
 
-def own_copy(model):
+def own_copy(model: Component) -> Component:
     """A deep copy of ``model`` for the compiler to bind its symbols, the
     parameters' values and the resolved ``world`` into, so that compiling
     never writes into the user's objects (compiling twice, or after a change
@@ -56,7 +68,7 @@ def own_copy(model):
             % (model.describe(), where, exc)) from None
 
 
-def _uncopyable(model):
+def _uncopyable(model: Component) -> str:
     """'component.attribute' of the first attribute deepcopy refuses."""
     for comp in model.components():
         for name, value in vars(comp).items():
@@ -74,7 +86,15 @@ class CompiledModel:
 
     ``system`` is the frozen :class:`~acausal2d.compiler.system.System`."""
 
-    def __init__(self, model):
+    model: Component
+    """The compiler's own copy of the model it was given."""
+    system: System
+    derived: list[DerivedSignal]
+    """The components' derived signals (:func:`acausal2d.derived.derived_signals`)."""
+    compile_time: float
+    """Wall seconds the compilation took."""
+
+    def __init__(self, model: Component) -> None:
         t0 = _time.perf_counter()
         model = own_copy(model)
         self.model = model
@@ -82,38 +102,39 @@ class CompiledModel:
             self.system = compile_system(model)
         self.system.model_name = type(model).__name__     # named in the native runtime's notices
         self._whole = self._whole_parameters()
+        self._units: dict[str, str] | None = None
         self.derived = derived_signals(model, self.system.names)
         self.compile_time = _time.perf_counter() - t0
 
     # ------------------------------------------------------------ parameters
     @property
-    def parameters(self):
+    def parameters(self) -> tuple[ParameterEntry, ...]:
         """(name, symbol, value, declaration) of every scalar parameter."""
         return self.system.parameters
 
     @property
-    def names(self):
+    def names(self) -> tuple[str, ...]:
         """Names of all time-varying columns a result of this model holds
         (the system's and the components' derived signals)."""
         return self.system.names + tuple(d[0] for d in self.derived)
 
     @property
-    def outputs(self):
+    def outputs(self) -> list[str]:
         """The signals the model declares as its outputs."""
         return self.system.outputs
 
     @property
-    def parameter_names(self):
+    def parameter_names(self) -> list[str]:
         """Names of all parameters: vectors as a whole and by element."""
         return list(self._whole) + [n for n, *_ in self.system.parameters if n not in self._whole]
 
     @property
-    def units(self):
+    def units(self) -> dict[str, str]:
         """{column or parameter name: unit} from the declarations; the
         k-th derivative of ``x`` gets x's unit divided by s^k."""
-        if getattr(self, "_units", None) is None:
+        if self._units is None:
             s = self.system
-            units = {}
+            units: dict[str, str] = {}
             for j, name in enumerate(s.node_names):
                 units[name] = derivative_unit(s.node_info[j].unit, s.structure.var_level[j])
             for a in s.aliases:
@@ -134,12 +155,12 @@ class CompiledModel:
         return self._units
 
     @property
-    def parameter_declarations(self):
+    def parameter_declarations(self) -> dict[str, tuple[Declaration, list[int]]]:
         """{parameter name (vectors as a whole): (its declaration, indices
         of its elements in :meth:`parameter_values`)}, in declaration order."""
         return dict(self._whole)
 
-    def parameters_table(self):
+    def parameters_table(self) -> str:
         """Every parameter (vectors as a whole) with its value, unit, rule
         and description, as a fixed-width text table (``acausal2d params``)."""
         vals = self.parameter_values()
@@ -153,15 +174,15 @@ class CompiledModel:
         lines.insert(1, "  ".join("-" * w for w in widths) + "  " + "-" * 11)
         return "\n".join(line.rstrip() for line in lines)
 
-    def _whole_parameters(self):
+    def _whole_parameters(self) -> dict[str, tuple[Declaration, list[int]]]:
         """{parameter name (vectors as a whole): (declaration, indices)}."""
-        whole = {}
+        whole: dict[str, tuple[Declaration, list[int]]] = {}
         for k, (name, _, _, decl) in enumerate(self.system.parameters):
             base = name.rsplit("[", 1)[0] if name.endswith("]") else name
             whole.setdefault(base, (decl, []))[1].append(k)
         return whole
 
-    def parameter_values(self, params=None):
+    def parameter_values(self, params: Params | None = None) -> NDArray[np.float64]:
         """Numeric parameter vector with overrides ``{dotted name: value}``
         (vector parameters as a whole, ``"rod.r": (1, 0)``, or by element,
         ``"rod.r[0]"``); every value is checked against its declaration."""
@@ -176,7 +197,7 @@ class CompiledModel:
             vals[index] = np.atleast_1d(self._checked(name, value))
         return vals
 
-    def _indices(self, name):
+    def _indices(self, name: str) -> list[int]:
         if name in self._whole:
             return self._whole[name][1]
         if name in self.system.param_index:
@@ -186,7 +207,7 @@ class CompiledModel:
             name, "; parameters with a similar name: " + ", ".join(close) if close else
             "; parameters: " + ", ".join(list(self._whole)[:20])))
 
-    def _checked(self, name, value):
+    def _checked(self, name: str, value: ParameterValue) -> float | tuple[float, ...]:
         comp = name.rsplit(".", 1)[0] if "." in name else "<model>"
         if name in self._whole:
             decl = self._whole[name][0]
@@ -195,28 +216,29 @@ class CompiledModel:
         return _Scalar(decl).validated(value, comp)
 
     # ------------------------------------------------------------ analysis
-    def initial_point(self, t0=0.0, params=None, start=None):
+    def initial_point(self, t0: float = 0.0, params: Params | None = None,
+                      start: Start | None = None) -> InitialPoint:
         """Consistent values at t0: an
         :class:`~acausal2d.runtime.initialize.InitialPoint` with the
         selection made there; ``start`` as for :meth:`simulate`."""
         p = self.parameter_values(params)
-        start = self.start_indices(start)
+        held = self.start_indices(start)
         with translated("initializing %s" % type(self.model).__name__), cyclic_gc_paused():
             ev = Evaluator(self.system, p)
-            point = initial_point(self.system, ev, t0, p, start)
+            point = initial_point(self.system, ev, t0, p, held)
             if point.selection is None:
                 point.selection = select(self.system, ev, t0, point.z, point.d)
         return point
 
     @property
-    def start_names(self):
+    def start_names(self) -> list[str]:
         """Names of the unknowns whose start values a run may replace
         (``simulate(start=...)``): those of level 0 (no derivative of
         another unknown), with the fixed ones."""
         s = self.system
         return [s.node_names[j] for j in s.level0]
 
-    def start_indices(self, start):
+    def start_indices(self, start: Start | None) -> dict[int, float] | None:
         """``start`` ({unknown: value}) as {node index: value}, checked: the
         names among :attr:`start_names`, the values finite numbers."""
         if not start:
@@ -224,7 +246,7 @@ class CompiledModel:
         if not isinstance(start, dict):
             raise Acausal2dError("start must be a dict {'joint.phi': value}, got %r" % (start,))
         index = {self.system.node_names[j]: int(j) for j in self.system.level0}
-        out = {}
+        out: dict[int, float] = {}
         for name, value in start.items():
             if name not in index:
                 raise Acausal2dError("start %r: not an unknown that takes a start value; those "
@@ -232,33 +254,36 @@ class CompiledModel:
             out[index[name]] = float(number("start %s" % name, value))
         return out
 
-    def linearize(self, at=None, equilibrium=False, params=None, inputs=(), outputs=None,
-                  start=None):
+    def linearize(self, at: float | None = None, equilibrium: bool = False,
+                  params: Params | None = None, inputs: Sequence[str] = (),
+                  outputs: Sequence[str] | None = None, start: Start | None = None) -> Linearization:
         """State-space matrices A, B, C, D at time ``at`` of a run or at the
         static equilibrium: a
         :class:`~acausal2d.analysis.linearize.Linearization` (see
         :func:`acausal2d.analysis.modes.linearize`)."""
         return linearize(self, at, equilibrium, params, inputs, outputs, start)
 
-    def modes(self, at=None, equilibrium=False, params=None, start=None):
+    def modes(self, at: float | None = None, equilibrium: bool = False,
+              params: Params | None = None, start: Start | None = None) -> Modes:
         """Natural frequencies, damping ratios and mode shapes: a
         :class:`~acausal2d.analysis.modes.Modes` (see
         :func:`acausal2d.analysis.modes.modes`)."""
         return modes(self, at, equilibrium, params, start)
 
-    def equilibrium(self, t=0.0, params=None, start=None):
+    def equilibrium(self, t: float = 0.0, params: Params | None = None,
+                    start: Start | None = None) -> Equilibrium:
         """The static equilibrium (all state derivatives zero) at time t: an
         :class:`~acausal2d.analysis.equilibrium.Equilibrium` (see
         :func:`acausal2d.analysis.equilibrium.find_equilibrium`)."""
         with translated("searching the equilibrium of %s" % type(self.model).__name__):
             return find_equilibrium(self, t, params, start)
 
-    def describe_equation(self, i):
+    def describe_equation(self, i: int) -> str:
         """Text of index-reduced equation i with its origin and order."""
         return self.system.describe_equation(i)
 
     # ------------------------------------------------------------ simulate
-    def run_options(self, options=None, **keywords):
+    def run_options(self, options: RunOptions | None = None, **keywords: object) -> RunOptions:
         """The :class:`~acausal2d.options.RunOptions` of a run of this model:
         ``options`` or the keywords (not both), resolved with the model's
         ``experiment`` and checked against the model (atol, output times)."""
@@ -266,14 +291,17 @@ class CompiledModel:
         _check_atol(opts.atol, self.system.node_names)
         times = opts.times()
         if opts.output_times is None:
+            assert opts.intervals is not None           # resolved() fills it
             _check_size(opts.intervals, len(self.names))
         _check_clock(times)
         return opts
 
-    def simulate(self, stop_time: Any = None, params: Any = None, rtol: Any = None,
-                 atol: Any = None, intervals: Any = None, start_time: Any = None,
-                 output_times: Any = None, progress: Any = None, max_steps: Any = None,
-                 max_wall_time: Any = None, start: Any = None,
+    def simulate(self, stop_time: float | None = None, params: Params | None = None,
+                 rtol: float | None = None, atol: Atol = None, intervals: int | None = None,
+                 start_time: float | None = None,
+                 output_times: Sequence[float] | NDArray[np.float64] | None = None,
+                 progress: Progress | None = None, max_steps: int | None = None,
+                 max_wall_time: float | None = None, start: Start | None = None,
                  options: RunOptions | None = None) -> Result:
         """Simulate and return a :class:`~acausal2d.result.Result`.
 
@@ -291,15 +319,16 @@ class CompiledModel:
                                 output_times=output_times, progress=progress,
                                 max_steps=max_steps, max_wall_time=max_wall_time)
         p = self.parameter_values(params)
-        start = self.start_indices(start)
+        held = self.start_indices(start)
         self.system.check_fixed_values(p)
-        atol = np.asarray(opts.atol) if isinstance(opts.atol, tuple) else opts.atol
+        tol = np.asarray(opts.atol) if isinstance(opts.atol, tuple) else opts.atol
         times = opts.times()
+        assert opts.rtol is not None                    # resolved() fills it
         try:
             with translated("simulating %s" % type(self.model).__name__), our_threads(), \
                     time_progress(opts.progress, times[0], times[-1]) as progress:
-                log = Simulation(self.system, p, times, opts.rtol, atol, progress,
-                                 opts.max_steps, opts.max_wall_time, start).run()
+                log = Simulation(self.system, p, times, opts.rtol, tol, progress,
+                                 opts.max_steps, opts.max_wall_time, held).run()
         except SimulationError as exc:
             partial = getattr(exc, "partial", None)
             if partial is not None:
@@ -307,7 +336,7 @@ class CompiledModel:
             raise
         return self._result(log, p)
 
-    def _result(self, log, p):
+    def _result(self, log: RunLog, p: NDArray[np.float64]) -> Result:
         """The :class:`Result` of a run log."""
         log.stats.compile_time = self.compile_time
         s = self.system
@@ -323,7 +352,7 @@ class CompiledModel:
         return res
 
 
-def _check_atol(atol, names):
+def _check_atol(atol: float | tuple[float, ...] | None, names: Sequence[str]) -> None:
     """atol of one number per unknown has as many values as the model has
     unknowns (``names``, in that order)."""
     if isinstance(atol, tuple) and len(atol) != len(names):
@@ -332,7 +361,7 @@ def _check_atol(atol, names):
                                             + (", ..." if len(names) > 6 else "")))
 
 
-def _check_size(intervals, columns):
+def _check_size(intervals: int, columns: int) -> None:
     """Refuse a result too large for memory (:data:`MAX_RESULT_BYTES`)."""
     size = 8.0 * (intervals + 1) * (columns + 1)
     if size > MAX_RESULT_BYTES:
@@ -341,7 +370,7 @@ def _check_size(intervals, columns):
                              % (intervals, columns, size / 1e9, MAX_RESULT_BYTES / 1e9))
 
 
-def _check_clock(times):
+def _check_clock(times: NDArray[np.float64]) -> None:
     """Refuse output times the run cannot tell apart: when their mean spacing
     is below the run's time resolution the clock would not advance, and the
     run would write one row and call it done.  Single pairs closer together
@@ -362,7 +391,7 @@ MAX_RESULT_BYTES = 4e9
 _EXPERIMENT_KEYS = ("stop_time", "rtol", "intervals")
 
 
-def _experiment(model):
+def _experiment(model: Component) -> dict[str, float]:
     """The model's ``experiment`` settings, checked."""
     exp = getattr(model, "experiment", None) or {}
     if not isinstance(exp, dict):
@@ -383,7 +412,7 @@ def _experiment(model):
     return dict(exp)
 
 
-def derivative_unit(unit, order=1):
+def derivative_unit(unit: str, order: int = 1) -> str:
     """Unit of the ``order``-th time derivative of a quantity of ``unit``:
     ``m`` -> ``m/s`` -> ``m/s2``, ``rad/s`` -> ``rad/s2``, ``""`` -> ``1/s``,
     ``N/m`` -> ``N/(m.s)``."""
@@ -409,10 +438,12 @@ def derivative_unit(unit, order=1):
 class _Scalar:
     """The rules of a vector parameter's declaration applied to one element."""
 
-    def __init__(self, decl):
+    def __init__(self, decl: Declaration) -> None:
         self.decl = decl
 
-    def validated(self, value, where):
+    def validated(self, value: ParameterValue, where: str) -> float | tuple[float, ...]:
+        """``value`` checked by the declaration's rules (see
+        :meth:`acausal2d.language.declarations.Parameter.validated`)."""
         d = self.decl
         one = Parameter(0.0, d.unit, d.doc, d.min, d.max, d.positive)
         one.name = d.name

@@ -9,9 +9,23 @@ from the new name to the source name, or to a tuple of alternative source
 names tried in order (all relative to the component, ``der(...)`` allowed),
 e.g. ``{"z": ("der(w)", "der(der(phi))")}``.
 """
-import numpy as np
+from __future__ import annotations
 
-__all__ = ["derived_signals", "derived_columns"]
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Optional
+
+import numpy as np
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from .language.dsl import Component
+    from .protocols import ResultData
+
+__all__ = ["DerivedSignal", "derived_signals", "derived_columns"]
+
+DerivedSignal = tuple[str, Optional[str], tuple[str, int]]
+"""(name, source column or None for a constant's derivative, (base variable,
+derivative order)) of a derived signal."""
 
 
 def _split(expr):
@@ -48,7 +62,7 @@ def _source(path, sources, names):
     return False
 
 
-def derived_signals(model, names):
+def derived_signals(model: Component, names: Iterable[str]) -> list[DerivedSignal]:
     """[(name, source, (base, order))] of the derived signals the components
     of ``model`` declare (class attribute ``derived_signals``): the source
     column among ``names`` (the system's columns), None for a constant's
@@ -56,7 +70,7 @@ def derived_signals(model, names):
     first declared source (for the unit).  Signals without a source column
     are left out, as are names that are already columns."""
     names = set(names)
-    out = []
+    out: list[DerivedSignal] = []
     for comp in model.components():
         for own, sources in (getattr(type(comp), "derived_signals", None) or {}).items():
             name = qualify(comp.path, own)
@@ -67,7 +81,8 @@ def derived_signals(model, names):
     return out
 
 
-def derived_columns(result, signals):
+def derived_columns(result: ResultData, signals: Iterable[DerivedSignal]
+                    ) -> list[tuple[str, NDArray[np.float64]]]:
     """Values of ``signals`` (from :func:`derived_signals`) in ``result``:
     a list of (name, array over result.time)."""
     n = len(result.time)

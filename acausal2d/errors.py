@@ -4,6 +4,10 @@ Every error a user can act on derives from :class:`Acausal2dError`; the
 message names the component, equation or variable involved and what to
 change.  Raw CasADi or SUNDIALS errors are translated into these.
 """
+from __future__ import annotations
+
+from types import TracebackType
+from typing import Literal
 
 
 class Acausal2dError(Exception):
@@ -30,6 +34,11 @@ class SimulationError(Acausal2dError):
     ``result`` holds the motion up to that time (a
     :class:`~acausal2d.result.Result`) when there is one."""
 
+    partial: object
+    """The run's log up to where it stopped (a
+    :class:`~acausal2d.runtime.simulation.RunLog`, set by the run that raised
+    it; the errors module imports nothing of the package)."""
+
     def __init__(self, message, time=None, status=None, variable=None):
         super().__init__(message)
         self.time = time
@@ -45,14 +54,15 @@ class translated:
     :class:`Acausal2dError` subclass) saying what was being done, without
     the foreign traceback; the project's errors and interrupts pass."""
 
-    def __init__(self, what, error=None):
+    def __init__(self, what: str, error: type[Acausal2dError] | None = None) -> None:
         self.what = what
         self.error = error or SimulationError
 
-    def __enter__(self):
+    def __enter__(self) -> translated:
         return self
 
-    def __exit__(self, kind, exc, tb):
+    def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> Literal[False]:
         if exc is None or isinstance(exc, (Acausal2dError, KeyboardInterrupt, SystemExit,
                                            MemoryError)):
             return False

@@ -1,8 +1,15 @@
 """Simulation results: every variable by its dotted name."""
+from __future__ import annotations
+
 import csv
 import difflib
+import os
+import pathlib
+from collections.abc import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Protocol, TypeVar, Union, runtime_checkable
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .errors import Acausal2dError
 from .io.files import atomic_path
@@ -13,6 +20,27 @@ from .visual.notebook import Animation
 from .visual.scene import build_scene
 from .io.dymola_mat import write_mat
 from .visual.notebook import summary_html
+
+if TYPE_CHECKING:
+    from _typeshed import SupportsWrite
+    from matplotlib.figure import Figure
+    import pandas
+
+    from .protocols import CompiledData
+    from .runtime.selection import Singularity
+
+PathT = TypeVar("PathT", bound=Union[str, "os.PathLike[str]"])
+"""A file path, handed back as it was given (a str or a path object)."""
+
+
+@runtime_checkable
+class ColumnSource(Protocol):
+    """Columns computed on demand: ``column(k)`` gives the values of the
+    k-th name over the result's time (e.g. the system's
+    :class:`~acausal2d.compiler.system.AliasColumns`)."""
+
+    def column(self, k: int) -> NDArray[np.float64]:
+        """The values of column ``k`` over ``time``."""
 
 
 class Result:
@@ -29,21 +57,41 @@ class Result:
     ``units`` maps every signal and parameter to its declared unit.
     """
 
-    def __init__(self, time, node_names, node_values, alias_names, alias_values,
-                 param_names, param_values, events=(), stats=None, outputs=(), model=None):
+    time: NDArray[np.float64]
+    parameters: dict[str, float]
+    events: list[tuple[float, str]]
+    stats: dict[str, float]
+    outputs: list[str]
+    model: CompiledData | None
+    """The compiled model that made the result (None for a result made otherwise)."""
+    singularities: list[Singularity]
+    stopped: str | None
+    states: list[str]
+    """Names of the states the run integrated (set by the run)."""
+    native_notes: list[str]
+    """What the native runtime said about the run (set by the run)."""
+
+    def __init__(self, time: ArrayLike, node_names: Sequence[str],
+                 node_values: ArrayLike | ColumnSource, alias_names: Sequence[str],
+                 alias_values: ArrayLike | ColumnSource, param_names: Iterable[str],
+                 param_values: Iterable[float], events: Iterable[tuple[float, str]] = (),
+                 stats: Mapping[str, float] | None = None, outputs: Iterable[str] = (),
+                 model: CompiledData | None = None) -> None:
         self.time = np.asarray(time)
-        self._index = {}
-        self._cols = []
+        self._index: dict[str, int] = {}
+        self._cols: list[NDArray[np.float64] | _Lazy] = []
         for names, values in ((node_names, node_values), (alias_names, alias_values)):
-            if hasattr(values, "column"):      # computed when first read
+            if isinstance(values, ColumnSource):      # computed when first read
                 for k, name in enumerate(names):
                     self._index[name] = len(self._cols)
                     self._cols.append(_Lazy(values, k))
                 continue
-            values = np.asarray(values).reshape(len(self.time), -1) if len(names) else None
+            if not len(names):
+                continue
+            table = np.asarray(values).reshape(len(self.time), -1)
             for k, name in enumerate(names):
                 self._index[name] = len(self._cols)
-                self._cols.append(values[:, k])
+                self._cols.append(table[:, k])
         self.parameters = dict(zip(param_names, (float(v) for v in param_values)))
         self.events = list(events)
         self.stats = dict(stats or {})
@@ -52,7 +100,7 @@ class Result:
         self.singularities = []
         self.stopped = None
 
-    def add_columns(self, columns):
+    def add_columns(self, columns: Iterable[tuple[str, ArrayLike]]) -> None:
         """Append (name, values over ``time``) columns, e.g. the derived
         signals of :mod:`acausal2d.derived`."""
         for name, values in columns:
@@ -60,58 +108,61 @@ class Result:
             self._cols.append(np.asarray(values, dtype=float))
 
     @property
-    def success(self):
+    def success(self) -> bool:
         """True if the run reached its stop time (``stopped`` is None)."""
         return self.stopped is None
 
     @property
-    def message(self):
+    def message(self) -> str:
         """Why the run ended: "reached the stop time" or the reason it
         stopped early (``stopped``)."""
         return "reached the stop time" if self.stopped is None else str(self.stopped)
 
     @property
-    def units(self):
+    def units(self) -> dict[str, str]:
         """{name: unit} of ``time``, every column and every parameter, from
         the components' declarations ('' where none is declared)."""
         return {n: self.unit(n) for n in ["time"] + self.names + list(self.parameters)}
 
     @property
-    def names(self):
+    def names(self) -> list[str]:
         """Names of all time-varying columns (unknowns, aliases, derivatives)."""
         return list(self._index)
 
-    def __contains__(self, name):
+    def __contains__(self, name: object) -> bool:
         return name in self._index or name in self.parameters or name == "time"
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        """The values of ``name`` (a column, a parameter or ``"time"``) over
+        ``time``; an unknown name is an error that suggests close names."""
         if name == "time":
             return self.time
         k = self._index.get(name)
         if k is not None:
-            if isinstance(self._cols[k], _Lazy):
-                self._cols[k] = self._cols[k].values()
-            return self._cols[k]
+            column = self._cols[k]
+            if isinstance(column, _Lazy):
+                column = self._cols[k] = column.values()
+            return column
         if name in self.parameters:
             return np.full(len(self.time), self.parameters[name])
         raise Acausal2dError("no variable %r in the result%s" % (name, _did_you_mean(
             name, list(self._index) + list(self.parameters))))
 
-    def at(self, name, t):
+    def at(self, name: str, t: float) -> float:
         """Value of ``name`` at time ``t`` (linear interpolation)."""
         return float(np.interp(t, self.time, self[name]))
 
-    def final(self, name):
+    def final(self, name: str) -> float:
         """Value of ``name`` at the end of the run."""
         return float(self[name][-1])
 
-    def unit(self, name):
+    def unit(self, name: str) -> str:
         """Unit of a column or parameter from its declaration ('' if none)."""
         if name == "time":
             return "s"
         return self.model.units.get(name, "") if self.model is not None else ""
 
-    def to_csv(self, path, names=None):
+    def to_csv(self, path: PathT, names: Iterable[str] | None = None) -> PathT:
         """Write a CSV file with a ``time`` column and the given variables (all
         by default, derivatives excluded); creates the folder if needed and
         replaces an existing file atomically."""
@@ -120,26 +171,29 @@ class Result:
                 self.write_csv(fh, names)
         return path
 
-    def write_csv(self, fh, names=None):
+    def write_csv(self, fh: SupportsWrite[str], names: Iterable[str] | None = None) -> None:
         """The CSV text of :meth:`to_csv` written to the open text stream
         ``fh`` (a file opened with ``newline=""``, or an ``io.StringIO``)."""
-        if names is None:
-            names = [n for n in self._index if not n.startswith("der(")]
+        columns = [n for n in self._index if not n.startswith("der(")] if names is None \
+            else list(names)
         w = csv.writer(fh)
-        w.writerow(["time"] + list(names))
-        cols = [self.time] + [self[n] for n in names]
+        w.writerow(["time"] + columns)
+        cols = [self.time] + [self[n] for n in columns]
         for row in zip(*cols):
             w.writerow(["%.17g" % v for v in row])
 
-    def plot(self, names=None, path=None, title=None, x=None):
+    def plot(self, names: Sequence[str] | Sequence[Sequence[str]] | None = None,
+             path: str | os.PathLike[str] | None = None, title: str | None = None,
+             x: str | None = None) -> Figure | str | os.PathLike[str]:
         """Plot signals (default: the model's outputs) over time or over the
         signal ``x``, with units in the labels; same-unit signals share an
         axes with a legend.  Writes ``path`` or returns a matplotlib Figure.
         See :func:`acausal2d.visual.plotting.plot`."""
         return plot(self, names, path, title, x=x)
 
-    def animate(self, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
-                poles=None):
+    def animate(self, path: str | os.PathLike[str], traces: Iterable[str] = (),
+                title: str | None = None, arrows: Iterable[str] = (), signal: str | None = None,
+                autoplay: bool = False, poles: Mapping[str, str] | None = None) -> pathlib.Path:
         """Write a self-contained HTML animation of the mechanism, drawn from
         the components' ``shapes()``; ``traces`` are frame names (or
         ``"x_name:y_name"`` pairs) whose path is drawn, ``arrows`` frames or
@@ -150,8 +204,9 @@ class Result:
         :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
         return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
-    def animation(self, traces=(), title=None, arrows=(), signal=None, autoplay=False,
-                  poles=None, height=560):
+    def animation(self, traces: Iterable[str] = (), title: str | None = None,
+                  arrows: Iterable[str] = (), signal: str | None = None, autoplay: bool = False,
+                  poles: Mapping[str, str] | None = None, height: int = 560) -> Animation:
         """The animation (options as for :meth:`animate`) as an object a
         notebook displays inline (:class:`acausal2d.visual.notebook.Animation`,
         whose ``save(path)`` writes the page)."""
@@ -159,7 +214,7 @@ class Result:
         return Animation(render_html(scene), height)
 
     # ------------------------------------------------- other formats
-    def to_pandas(self, names=None):
+    def to_pandas(self, names: Iterable[str] | None = None) -> pandas.DataFrame:
         """A :class:`pandas.DataFrame` indexed by ``time`` with the given
         columns (all by default, derivatives included); event instants
         appear twice in the index, as in the result.  Needs pandas."""
@@ -168,24 +223,25 @@ class Result:
         except ImportError:
             raise Acausal2dError("Result.to_pandas needs pandas, an optional dependency: "
                                  "pip install 'acausal2d[pandas]' (or pip install pandas)") from None
-        names = self.names if names is None else list(names)
-        frame = pd.DataFrame({n: self[n] for n in names}, index=pd.Index(self.time, name="time"))
-        frame.attrs["units"] = {n: self.unit(n) for n in names}
+        columns = self.names if names is None else list(names)
+        frame: pandas.DataFrame = pd.DataFrame({n: self[n] for n in columns},
+                                               index=pd.Index(self.time, name="time"))
+        frame.attrs["units"] = {n: self.unit(n) for n in columns}
         return frame
 
-    def to_mat(self, path, names=None):
+    def to_mat(self, path: PathT, names: Iterable[str] | None = None) -> PathT:
         """Write the result in Dymola's result format (MAT v4 ``Aclass``,
         ``name``, ``description``, ``dataInfo``, ``data_1`` with the
         parameters, ``data_2`` with the trajectories; columns equal to
         another or its negation shared) for Modelica plotting tools; every
         column (derivatives included) unless ``names`` is given.  See
         :mod:`acausal2d.io.dymola_mat`.  Returns ``path``."""
-        names = self.names if names is None else list(names)
-        units = {n: self.unit(n) for n in list(names) + list(self.parameters)}
-        return write_mat(path, self.time, {n: self[n] for n in names}, self.parameters,
+        columns = self.names if names is None else list(names)
+        units = {n: self.unit(n) for n in columns + list(self.parameters)}
+        return write_mat(path, self.time, {n: self[n] for n in columns}, self.parameters,
                          {n: "[%s]" % u for n, u in units.items() if u})
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         """``<Result PistonEngine: t 0..1 s, 5001 points, 126 signals, success:
         reached the stop time>`` (or ``stopped early: <why>``)."""
         t = self.time
@@ -196,12 +252,12 @@ class Result:
             len(self._index), len(self.events),
             "success" if self.success else "stopped early", self.message)
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         """Jupyter's display: a summary table and a small figure of the outputs."""
         return summary_html(self)
 
 
-def _did_you_mean(name, names):
+def _did_you_mean(name: str, names: list[str]) -> str:
     """'; did you mean a, b?' with the names closest to ``name`` (spelling,
     then the same last part), or ''."""
     close = difflib.get_close_matches(name, names, n=4, cutoff=0.75)
@@ -214,8 +270,9 @@ class _Lazy:
     """A column of a Result computed when first read (``source.column(k)``)."""
     __slots__ = ("source", "k")
 
-    def __init__(self, source, k):
+    def __init__(self, source: ColumnSource, k: int) -> None:
         self.source, self.k = source, k
 
-    def values(self):
+    def values(self) -> NDArray[np.float64]:
+        """The column's values (computed now)."""
         return self.source.column(self.k)

@@ -1,7 +1,9 @@
 """What scoping the thread limits to our runs costs (issue 34): making the
-process's threadpoolctl ``ThreadpoolController`` (once per process, at the
-first run) and entering and leaving a limit (every run), beside a warm run
-of the pendulum for scale.  Prints a table.
+process's threadpoolctl ``ThreadpoolController`` (at the first run, and again
+only after a library with a thread pool was loaded), the check that no such
+library was loaded (where a run loads native code), and entering and leaving
+a limit (every run), beside a warm run of the pendulum for scale.  Prints a
+table.
 
     python benchmarks/bench_threads.py [--small] [repeats]
 
@@ -57,6 +59,8 @@ def main(argv):
 
     rows = [("ThreadpoolController made (once per process) [ms]",
              1e3 * statistics.median(controller_seconds() for _ in range(3 if small else 5))),
+            ("check for newly loaded pools (each native library load) [ms]",
+             1e3 * median_seconds(threads.libraries_loaded, repeats)),
             ("limit entered and left (every run) [ms]", 1e3 * median_seconds(enter_leave, repeats)),
             ("warm run of the pendulum, 0.1 s (for scale) [ms]",
              1e3 * median_seconds(run, repeats))]

@@ -27,7 +27,7 @@ def test_mypy_passes_on_the_package():
 STRICT_FLAGS = ("disallow_untyped_defs", "disallow_incomplete_defs", "disallow_untyped_calls",
                 "disallow_any_generics", "check_untyped_defs", "warn_return_any")
 PUBLIC_MODULES = ("acausal2d", "acausal2d.options", "acausal2d.arguments", "acausal2d.progress",
-                  "acausal2d.threads")
+                  "acausal2d.threads", "acausal2d.compiled", "acausal2d.result")
 
 
 def test_the_public_modules_are_type_checked_strictly():
@@ -64,3 +64,29 @@ def test_the_public_functions_and_run_options_are_fully_annotated():
             bare.append("%s.%s: %s" % (f.__module__, f.__qualname__, names or "return"))
     assert not bare, bare
     assert all(f.type is not None for f in dataclasses.fields(acausal2d.RunOptions))
+
+
+def test_compiled_model_and_result_are_fully_annotated():
+    """Every method and property of CompiledModel and Result (theirs, not
+    object's) carries annotations on every parameter and its return, and
+    their modules' functions too (mypy strict checks the same statically)."""
+    import inspect
+    from acausal2d import compiled, result
+    members = []
+    for cls in (compiled.CompiledModel, result.Result):
+        for name, value in vars(cls).items():
+            if isinstance(value, property):
+                members.append(value.fget)
+            elif inspect.isfunction(value):
+                members.append(value)
+    members += [f for module in (compiled, result) for f in vars(module).values()
+                if inspect.isfunction(f) and f.__module__ == module.__name__]
+    assert len(members) >= 40
+    bare = []
+    for f in members:
+        sig = inspect.signature(f)
+        names = [p.name for p in sig.parameters.values() if p.name not in ("self", "cls")
+                 and p.annotation is inspect.Parameter.empty]
+        if names or sig.return_annotation is inspect.Signature.empty:
+            bare.append("%s: %s" % (f.__qualname__, names or "return"))
+    assert not bare, bare

@@ -9,6 +9,7 @@ import sys
 import textwrap
 
 import pytest
+from threadpoolctl import ThreadpoolController as _CONTROLLER_CLASS
 from threadpoolctl import threadpool_info, threadpool_limits
 
 import acausal2d
@@ -75,6 +76,67 @@ def test_the_controller_is_made_once_per_process():
     assert threads.controller() is threads.controller()
 
 
+@pytest.fixture
+def builds(monkeypatch):
+    """The ThreadpoolControllers made while the test runs (threadpoolctl's
+    constructor, counted)."""
+    import threadpoolctl
+    made = []
+    real = threadpoolctl.ThreadpoolController
+
+    def counted(*args, **kwargs):
+        made.append(real(*args, **kwargs))
+        return made[-1]
+    monkeypatch.setattr(threadpoolctl, "ThreadpoolController", counted)
+    return made
+
+
+def test_a_second_run_of_the_same_model_makes_no_controller(builds):
+    """Compiling and running the pendulum again loads its native library
+    again (the same file): no library with a thread pool is new, so the
+    controller of the first run is kept, also where a run reports loaded
+    libraries (the native driver and scikit-sundae call libraries_loaded)."""
+    acausal2d.compile_model(PENDULUM).simulate(stop_time=0.2, intervals=4, progress=False)
+    first = len(builds)
+    controller = threads.controller()
+    acausal2d.compile_model(PENDULUM).simulate(stop_time=0.2, intervals=4, progress=False)
+    with threads.our_threads():
+        threads.libraries_loaded()
+    assert len(builds) == first
+    assert threads.controller() is controller
+
+
+def test_a_newly_loaded_pool_library_makes_the_controller_anew(builds, tmp_path):
+    """A library with a thread pool loaded inside a run (a copy of this
+    process's OpenBLAS or OpenMP runtime under a new path) makes one new
+    controller, and its pool is limited for the rest of the run and given
+    back afterwards."""
+    import ctypes
+    import shutil
+    pools = threads.pool_libraries()
+    if not pools:
+        pytest.skip("the loaded libraries cannot be listed here, or none carries a thread pool")
+    source = min(pools, key=os.path.getsize)
+    copy = tmp_path / os.path.basename(source)
+    shutil.copyfile(source, copy)
+    threads.controller()
+    with threads.our_threads():
+        ctypes.CDLL(str(copy))
+        loaded = _uncounted()[str(copy)]             # its own default, before any limit
+        threads.libraries_loaded()
+        assert len(builds) == 1
+        assert str(copy) in threads.pool_libraries()
+        assert _uncounted()[str(copy)] == threads.LIMIT
+        threads.libraries_loaded()                   # nothing new since: no further controller
+        assert len(builds) == 1
+    assert _uncounted()[str(copy)] == loaded
+
+
+def _uncounted():
+    """{library path: threads} read by a controller the builds fixture does not count."""
+    return {i["filepath"]: i["num_threads"] for i in _CONTROLLER_CLASS().info()}
+
+
 def test_bench_threads_small_prints_its_table():
     """The benchmark of the scoping's cost runs (small mode) and prints its
     rows with positive, finite numbers (no speed is asserted here)."""
@@ -85,6 +147,8 @@ def test_bench_threads_small_prints_its_table():
     assert proc.returncode == 0, proc.stderr[-3000:]
     rows = proc.stdout.strip().splitlines()
     assert [r.split("[ms]")[0].strip() for r in rows] == [
-        "ThreadpoolController made (once per process)", "limit entered and left (every run)",
+        "ThreadpoolController made (once per process)",
+        "check for newly loaded pools (each native library load)",
+        "limit entered and left (every run)",
         "warm run of the pendulum, 0.1 s (for scale)"]
     assert all(0 < float(r.split()[-1]) < math.inf for r in rows)

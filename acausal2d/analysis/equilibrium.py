@@ -29,7 +29,10 @@ point's values, the others (a free rotation, the gas mass in a closed
 cylinder) stay near them (minimum-norm steps); a start moved along them
 leads to another equilibrium of the same equations.
 """
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -38,6 +41,9 @@ from .linearize import (OperatingPoint, index1_states, linearize_point, point_at
                         relation_values)
 from ..runtime.newton import NoConvergence, solve_consistent
 from ..runtime.evaluator import Evaluator
+
+if TYPE_CHECKING:
+    from ..protocols import CompiledData, Params, Start
 
 SHIFTS = (0.3, 1.5)
 """Shifts of a position state for further starts, in units of its nominal value (at least 1)."""
@@ -258,7 +264,8 @@ def _continuation(compiled, first, p0):
     return found
 
 
-def find_equilibrium(compiled, t=0.0, params=None, start=None):
+def find_equilibrium(compiled: CompiledData, t: float = 0.0, params: Params | None = None,
+                     start: Start | None = None) -> Equilibrium:
     """The static equilibrium of ``compiled`` at time ``t`` for the
     parameter values ``params``, searched from the model's start values
     (``start``: {node name: value} overrides); see the module docstring.

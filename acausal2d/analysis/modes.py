@@ -14,13 +14,21 @@ phi of every frame, node coordinates, 1D flange positions s and angles
 phi) to the states; it is scaled to 1 + 0j at the point that moves most
 (``dominant``; the largest rotation where no point moves).
 """
+from __future__ import annotations
+
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import translated
 from .equilibrium import operating_point
 from .linearize import linearize_point, signal_rows
+
+if TYPE_CHECKING:
+    from ..protocols import CompiledData, Params, Start
+    from .linearize import Linearization
 
 POSITION_SUFFIXES = (".x", ".y", ".phi", ".s")
 """Names of the positions a mode shape is given in."""
@@ -145,8 +153,10 @@ def modes_of(lin):
     return Modes(modes, _rigid_count(A), lin, V[:, keep])
 
 
-def linearize(compiled, at=None, equilibrium=False, params=None, inputs=(), outputs=None,
-              start=None, rtol=None):
+def linearize(compiled: CompiledData, at: float | None = None, equilibrium: bool = False,
+              params: Params | None = None, inputs: Sequence[str] = (),
+              outputs: Sequence[str] | None = None, start: Start | None = None,
+              rtol: float | None = None) -> Linearization:
     """The :class:`~acausal2d.analysis.linearize.Linearization` of
     ``compiled`` at time ``at`` of a run (the start point by default) or,
     with ``equilibrium=True``, at its static equilibrium
@@ -158,7 +168,9 @@ def linearize(compiled, at=None, equilibrium=False, params=None, inputs=(), outp
         return linearize_point(compiled, point, inputs, outputs)
 
 
-def modes(compiled, at=None, equilibrium=False, params=None, start=None, rtol=None):
+def modes(compiled: CompiledData, at: float | None = None, equilibrium: bool = False,
+          params: Params | None = None, start: Start | None = None,
+          rtol: float | None = None) -> Modes:
     """Natural frequencies and mode shapes of ``compiled`` at time ``at`` of
     a run or at its static equilibrium (see :func:`linearize`)."""
     lin = linearize(compiled, at, equilibrium, params, start=start, rtol=rtol)

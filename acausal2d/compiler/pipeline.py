@@ -7,7 +7,7 @@ of one compilation live in its own
 :class:`~acausal2d.language.symbols.SymbolTable`, owned by the system.
 """
 from ..errors import ModelDefinitionError, StructuralError
-from ..language.dsl import STATE_SELECT
+from ..language.dsl import STATE_SELECT, Component
 from ..language.symbols import SymbolTable
 from .aliases import eliminate_all_aliases
 from .always_states import differentiate_for_always
@@ -32,7 +32,7 @@ def _balanced(model, equations, variables, table):
         raise StructuralError("%s\n%s" % (hint, exc)) from None
 
 
-def compile_system(model):
+def compile_system(model: Component) -> System:
     """Compile a model instance into a :class:`System` (see the module
     docstring; the cyclic garbage collector is paused meanwhile)."""
     with cyclic_gc_paused():

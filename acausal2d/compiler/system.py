@@ -9,19 +9,28 @@ values, the crossing functions and, per dummy selection, the semi-explicit
 index-1 formulation (cached: a new parameter value or a second run never
 generates code again).  Parameters stay symbolic inputs of every function.
 """
+from __future__ import annotations
+
+from typing import Any
+
 import casadi as ca
 import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import InitializationError, ModelDefinitionError
 
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import as_sx, time
-from .aliases import substitution
+from .aliases import Alias, substitution
 from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
-from .structure import column
+from .structure import Structure, column
 from ..language.context import ModelContext
 from ..language.dsl import Component
+from ..language.declarations import Parameter, VarInfo
+
+ParameterEntry = tuple[str, Any, float, Parameter]
+"""(dotted name, CasADi symbol, value, declaration) of a scalar parameter."""
 
 
 def _param_function(exprs, p, name):
@@ -39,6 +48,19 @@ class System:
     (VarInfo of each node's variable), ``priority``, ``nominal``,
     ``residual_fn``/``jacobian_fn`` (E and dE/dz), ``crossing_fn``,
     ``start_fn``."""
+
+    structure: Structure
+    parameters: tuple[ParameterEntry, ...]
+    param_index: dict[str, int]
+    outputs: list[str]
+    node_names: tuple[str, ...]
+    node_info: tuple[VarInfo, ...]
+    level0: NDArray[np.int_]
+    aliases: tuple[Alias, ...]
+    alias_names: tuple[str, ...]
+    alias_der_names: tuple[str, ...]
+    model_name: str
+    """The model class's name (set by :class:`~acausal2d.compiled.CompiledModel`)."""
 
     def __init__(self, model, flat, equations, variables, aliases, relations, structure):
         self.model = model
@@ -224,11 +246,11 @@ class System:
 
     # ------------------------------------------------------------ queries
     @property
-    def names(self):
+    def names(self) -> tuple[str, ...]:
         """All time-varying columns of a result (nodes, aliases, derivatives)."""
         return self.node_names + self.alias_names + self.alias_der_names
 
-    def describe_equation(self, i):
+    def describe_equation(self, i: int) -> str:
         """Text of index-reduced equation i with its origin and order."""
         s = self.structure
         lvl = s.eq_level[i]
@@ -272,7 +294,7 @@ class System:
             self._formulations[selection.dummies] = f
         return f
 
-    def check_fixed_values(self, p):
+    def check_fixed_values(self, p: NDArray[np.float64]) -> None:
         """Raise ModelDefinitionError if a variable fixed by parameters alone
         (an eliminated alias with no remaining unknown) is inf or NaN for the
         parameter values ``p``, naming it and the equations that fix it; and
@@ -309,7 +331,7 @@ class System:
                         name, given, name, by_eq, "\n".join("  - " + e for e in eqs), name,
                         by_eq))
 
-    def alias_columns(self, Z, p):
+    def alias_columns(self, Z: NDArray[np.float64], p: NDArray[np.float64]) -> AliasColumns:
         """The columns of :meth:`alias_values` as an :class:`AliasColumns`:
         each is computed when it is first read (a run's Result reads few)."""
         return AliasColumns(self, np.asarray(Z, dtype=float),

@@ -20,14 +20,21 @@ Dymola's own description of the format:
 A trajectory that equals another one, or its negation, bit for bit (the
 aliases the compiler eliminated) is stored once and shared, as Dymola does.
 """
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TypeVar, Union
 import os
 import re
 import struct
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import Acausal2dError
 from .files import atomic_path
+
+PathT = TypeVar("PathT", bound=Union[str, "os.PathLike[str]"])
 
 __all__ = ["write_mat", "read_mat", "mat_units"]
 
@@ -77,7 +84,9 @@ def _share_columns(names, columns):
     return rows, where
 
 
-def write_mat(path, time, columns, parameters=None, descriptions=None):
+def write_mat(path: PathT, time: ArrayLike, columns: Mapping[str, ArrayLike],
+              parameters: Mapping[str, float] | None = None,
+              descriptions: Mapping[str, str] | None = None) -> PathT:
     """Write a Dymola result file: ``time`` (1-D), ``columns`` ({name:
     values over time}, trajectories), ``parameters`` ({name: value},
     constants), ``descriptions`` ({name: text}, e.g. the unit).  Folders are

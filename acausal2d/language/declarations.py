@@ -34,14 +34,15 @@ class Parameter:
     value.
     """
 
-    def __init__(self, default, unit="", doc="", min=None, max=None, positive=False,
-                 nonzero=False):
+    def __init__(self, default: float | tuple[float, ...], unit: str = "", doc: str = "",
+                 min: float | None = None, max: float | None = None, positive: bool = False,
+                 nonzero: bool = False) -> None:
         self.default = default
         self.unit = unit
         self.doc = doc
         self.min, self.max, self.positive = min, max, bool(positive)
         self.nonzero = bool(nonzero)
-        self.name = None
+        self.name: str | None = None
 
     def __set_name__(self, owner, name):
         self.name = name
@@ -70,7 +71,7 @@ class Parameter:
             parts.append("nonzero length" if self.size > 1 else "!= 0")
         return " and ".join(parts)
 
-    def validated(self, value, where):
+    def validated(self, value: object, where: str) -> float | tuple[float, ...]:
         """``value`` as float (scalar) or tuple of floats; raises
         :class:`ModelDefinitionError` naming ``where`` (component and
         parameter) if it has the wrong type or size, is not finite or breaks

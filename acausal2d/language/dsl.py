@@ -33,6 +33,7 @@ from the whole model), :meth:`~Component.guesses` (start guesses),
 and :meth:`~Component.topology` describe drawing and structure.
 """
 import numbers
+from collections.abc import Iterator
 
 import numpy as np
 import difflib
@@ -379,11 +380,11 @@ class Component:
             comp = comp._parent
         return comp
 
-    def describe(self):
+    def describe(self) -> str:
         """'ClassName 'path'' for messages."""
         return "%s '%s'" % (type(self).__name__, self.path or "<model>")
 
-    def components(self):
+    def components(self) -> "Iterator[Component]":
         """This component and all sub-components, depth first."""
         yield self
         for child in self._children.values():

@@ -3,16 +3,24 @@ through :class:`~acausal2d.runtime.buffered.Buffered` (about 1 us a call):
 the residuals E of all index-reduced equations, their Jacobian dE/dz
 (dense below :data:`~acausal2d.compiler.index1.SPARSE_FROM` nodes, else
 sparse) and the relations' crossing functions."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import NDArray
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
+
+if TYPE_CHECKING:
+    from ..compiler.system import System
 
 
 class Evaluator:
     """Buffered E, dE/dz and g of ``system`` for the parameter vector ``p``."""
 
-    def __init__(self, system, p):
+    def __init__(self, system: System, p: NDArray[np.float64]) -> None:
         s = system.structure
         self.system = system
         self.n, self.n_eq = s.n_var, s.n_eq

@@ -9,8 +9,12 @@ The relations start with the values the start point gives them and are
 settled by the event iteration (:mod:`~acausal2d.runtime.events`).  The
 dummy-derivative selection made here is handed on to the integration.
 """
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..compiler.matching import Matching
 from ..errors import Acausal2dError, InitializationError
@@ -19,6 +23,10 @@ from .diagnose import non_finite
 from .events import EventIteration, values_from
 from .newton import NoConvergence, solve_consistent
 from .selection import SINGULAR_CONDITION, select, worst_level
+
+if TYPE_CHECKING:
+    from ..compiler.system import System
+    from .evaluator import Evaluator
 
 
 class InitialPoint:
@@ -131,7 +139,8 @@ def _guess_selection(system, ev, t0, z, d):
         return None      # a singular or not finite guess: decided at the consistent point
 
 
-def initial_point(system, ev, t0, p, start=None):
+def initial_point(system: System, ev: Evaluator, t0: float, p: NDArray[np.float64],
+                  start: dict[int, float] | None = None) -> InitialPoint:
     """Consistent :class:`InitialPoint` at t0 for the parameter vector p;
     ``start`` ({level-0 node index: value}) replaces those start values
     (a fixed one stays fixed, a guess counts as given)."""

@@ -1,7 +1,12 @@
 """State selection at run time: the dummy derivatives chosen at a point,
 how regular a chosen block is there, and which components take part in a
 block that has become singular."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, TypedDict
+
 import numpy as np
+from numpy.typing import NDArray
 
 from ..compiler.dummy_derivatives import select_dummies
 from ..errors import SimulationError
@@ -10,8 +15,14 @@ from .diagnose import non_finite
 MONITOR_THRESHOLD = 0.25     # re-check the selection when a block's |det| drops 4x
 SINGULAR_CONDITION = 1e-4    # relative smallest singular value of a singular block
 
+if TYPE_CHECKING:
+    from ..compiler.structure import Level, Selection
+    from ..compiler.system import System
+    from .evaluator import Evaluator
 
-def select(system, ev, t, z, d):
+
+def select(system: System, ev: Evaluator, t: float, z: NDArray[np.float64],
+           d: NDArray[np.float64]) -> Selection:
     """Dummy-derivative selection at the point z."""
     J = ev.jacobian(t, z, d, dense=not ev.sparse)    # dense below SPARSE_FROM: no scipy per block
     bad = ~np.isfinite(J if isinstance(J, np.ndarray) else J.data)
@@ -83,7 +94,18 @@ def singular_elements(system, eqs, weights):
     return names
 
 
-def singularity(system, t, kind, worst):
+class Singularity(TypedDict):
+    """A singular position met in a run: its time, the components taking
+    part, its kind ("singular position passed", ...) and the block's
+    relative smallest singular value."""
+    time: float
+    elements: list[str]
+    kind: str
+    condition: float
+
+
+def singularity(system: System, t: float, kind: str,
+                worst: tuple[float, Level, NDArray[np.float64]]) -> Singularity:
     """A record of a singular position: time, elements, kind, condition."""
     cond, lv, u = worst
     return {"time": t, "elements": singular_elements(system, lv.eqs, u), "kind": kind,

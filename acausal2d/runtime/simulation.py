@@ -11,9 +11,14 @@ each: time events and state events (:mod:`~acausal2d.runtime.events`),
 state re-selection (:mod:`~acausal2d.runtime.selection`), singular positions
 passed or reached (:mod:`~acausal2d.runtime.singularities`).
 """
+from __future__ import annotations
+
 import time as _time
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import SimulationError
 from . import singularities as sing
@@ -32,6 +37,10 @@ from .initialize import initial_point, initialization_error
 from .locate import exact_point, exact_rows, locate_on_solution
 from .newton import NoConvergence, solve_consistent
 from .selection import reselect, select, singularity, worst_level
+
+if TYPE_CHECKING:
+    from ..compiler.system import System
+    from .selection import Singularity
 
 
 OUTPUTS_PER_CALL = 20000   # output points of one IDA call (budgets are looked at between)
@@ -73,7 +82,7 @@ class RunLog:
         self.states = list(states or [])
 
 
-def time_resolution(t_end):
+def time_resolution(t_end: float) -> float:
     """The smallest time step a run resolves: times closer than this
     (1e-12 s, relative to |t_end| above 1 s) are one time to the run, so
     output times must lie further apart."""
@@ -86,8 +95,11 @@ class Simulation:
     replacing those start values (see :func:`.initialize.initial_point`);
     see module docstring."""
 
-    def __init__(self, system, p, times, rtol, atol=None, progress=None, max_steps=None,
-                 max_wall_time=None, start=None):
+    def __init__(self, system: System, p: NDArray[np.float64], times: NDArray[np.float64],
+                 rtol: float, atol: float | NDArray[np.float64] | None = None,
+                 progress: Callable[[float, float], object] | None = None,
+                 max_steps: int | None = None, max_wall_time: float | None = None,
+                 start: dict[int, float] | None = None) -> None:
         self.system, self.p = system, np.asarray(p, dtype=float)
         self.start = start
         self.max_steps, self.max_wall_time = max_steps, max_wall_time
@@ -97,10 +109,12 @@ class Simulation:
         self.atol = None if atol is None else atol * STATE_TOL_FACTOR
         self.progress = progress
         self.ev = Evaluator(system, self.p)
-        self.out, self.events, self.singular = OutputRows(system.structure.n_var), [], []
+        self.out = OutputRows(system.structure.n_var)
+        self.events: list[tuple[float, str]] = []
+        self.singular: list[Singularity] = []
         self.stats = Stats()
-        self.stopped = None
-        self.solvers = {}
+        self.stopped: str | None = None
+        self.solvers: dict[Any, tuple[Any, Any, Any, Projector]] = {}
         self.n_singular, self.watch = 0, True
         self.chatter = ChatterWatch(system, self.t_end - float(self.times[0]))
         self.eps = time_resolution(self.t_end)
@@ -108,7 +122,7 @@ class Simulation:
         tiers.set_label(getattr(system, "model_name", None))
 
     # ------------------------------------------------------------ run
-    def run(self):
+    def run(self) -> RunLog:
         """Integrate to the stop time (or an early stop); returns a :class:`RunLog`."""
         wall = _time.perf_counter()
         self.spent0 = tiers.spent()

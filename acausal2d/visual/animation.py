@@ -125,6 +125,7 @@ Long results are subsampled to at most ``max_frames`` frames (default 2000),
 evenly in time, always keeping the first and the last sample; numbers are
 rounded to 6 significant digits, and only signals used by shapes are embedded.
 """
+from typing import Any
 import html
 import importlib.resources
 import json
@@ -567,7 +568,7 @@ def _json_for_script(data):
 # --------------------------------------------------------------------------
 # the page
 
-def render_html(scene, *, max_frames=MAX_FRAMES):
+def render_html(scene: dict[str, Any], *, max_frames: int = MAX_FRAMES) -> str:
     """Return a self-contained HTML page (a string) that animates ``scene``.
 
     The scene is validated first (see :func:`validate_scene`).  Results

@@ -5,11 +5,17 @@ figure of the outputs, and ``result.animation()`` an :class:`Animation`
 whose ``_repr_html_`` embeds the self-contained animation page of
 :mod:`acausal2d.visual.animation` in an ``iframe``.
 """
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
 import base64
 import html
 import io
 from .plotting import plot
 from ..io.files import write_text
+
+if TYPE_CHECKING:
+    from ..protocols import ResultData
 
 __all__ = ["Animation", "summary_html"]
 
@@ -58,7 +64,7 @@ def _figure_png(result):
     return base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def summary_html(result):
+def summary_html(result: ResultData) -> str:
     """The notebook display of a result: the summary table and a small
     figure of its outputs (an inline PNG)."""
     cells = "".join("<tr><th style='text-align:left'>%s</th><td style='text-align:left'>%s"
@@ -74,7 +80,7 @@ class Animation:
     :func:`acausal2d.visual.animation.render_html`) in an ``iframe``;
     ``html`` is that page and ``save(path)`` writes it."""
 
-    def __init__(self, page, height=560):
+    def __init__(self, page: str, height: int = 560) -> None:
         self.html = page
         self.height = int(height)
 

@@ -17,6 +17,10 @@ dicts ``{"signals": [...], "x": name, "title": text, "name": file stem}``
 (only ``signals`` is required); ``acausal2d simulate`` then writes those
 instead of one figure per declared output.
 """
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 import os
 
 import numpy as np
@@ -25,6 +29,11 @@ from ..analysis.poles import transfer
 from ..errors import Acausal2dError
 from ..io.files import atomic_path
 from ..io.files import safe_filename
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from ..protocols import ResultData
 
 
 def unit_of(result, name):
@@ -127,7 +136,9 @@ def save_figure(fig, path, dpi=110):
     return path
 
 
-def plot(result, names=None, path=None, title=None, x=None):
+def plot(result: ResultData, names: Sequence[str] | Sequence[Sequence[str]] | None = None,
+         path: str | os.PathLike[str] | None = None, title: str | None = None,
+         x: str | None = None) -> Figure | str | os.PathLike[str]:
     """Plot ``names`` (default: the model's declared outputs) over time or
     over the signal ``x``.  ``names`` is a list of signals (one group:
     same-unit signals overlaid with a legend) or a list of such lists.

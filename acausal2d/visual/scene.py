@@ -6,6 +6,12 @@ A component declares how it is drawn by returning shape dicts from
 names relative to the component (``"frame_a.x"``); this module qualifies
 them with the component's path and collects the signals from the result.
 """
+from __future__ import annotations
+
+import os
+import pathlib
+from collections.abc import Iterable, Mapping
+from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .animation import write_html
@@ -14,6 +20,9 @@ from ..analysis.poles import cartesian, pole_homogeneous, poles
 from ..analysis.slider_ranges import travel_shapes
 from ..errors import Acausal2dError
 from .plotting import axis_label, unit_of
+
+if TYPE_CHECKING:
+    from ..protocols import ResultData
 
 _SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width", "fx", "fy", "t", "angle", "scale",
                 "offset")
@@ -223,8 +232,9 @@ def parse_links(text):
     return links
 
 
-def build_scene(result, traces=(), title=None, arrows=(), signal=None, autoplay=False,
-                poles=None):
+def build_scene(result: ResultData, traces: Iterable[str] = (), title: str | None = None,
+                arrows: Iterable[str] = (), signal: str | None = None, autoplay: bool = False,
+                poles: Mapping[str, str] | None = None) -> dict[str, Any]:
     """Scene dict for :func:`acausal2d.visual.animation.render_html` from a result
     of a compiled model; ``traces`` are points whose path is drawn (coupler
     curves): frame names or ``"x_name:y_name"`` pairs, see
@@ -286,8 +296,9 @@ def _drag_system(model):
     return None
 
 
-def animate(result, path, traces=(), title=None, arrows=(), signal=None, autoplay=False,
-            poles=None):
+def animate(result: ResultData, path: str | os.PathLike[str], traces: Iterable[str] = (),
+            title: str | None = None, arrows: Iterable[str] = (), signal: str | None = None,
+            autoplay: bool = False, poles: Mapping[str, str] | None = None) -> pathlib.Path:
     """Write the self-contained HTML animation of ``result`` to ``path``
     (options as for :func:`build_scene`)."""
     return write_html(build_scene(result, traces, title, arrows, signal, autoplay, poles), path)

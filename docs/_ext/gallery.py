@@ -51,7 +51,7 @@ GROUPS = [
 API_PARTS = [
     ("Top level", ["acausal2d", "acausal2d.compiled", "acausal2d.result", "acausal2d.derived",
                    "acausal2d.errors", "acausal2d.arguments", "acausal2d.options",
-                   "acausal2d.progress", "acausal2d.threads"]),
+                   "acausal2d.progress", "acausal2d.threads", "acausal2d.protocols"]),
     ("Modelling language", ["acausal2d.language"]),
     ("Library", ["acausal2d.library"]),
     ("Analysis", ["acausal2d.analysis"]),
