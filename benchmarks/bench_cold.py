@@ -11,6 +11,9 @@ Every figure is measured in a fresh process with a cache folder of its own:
 - "Python path": ``ACAUSAL2D_NATIVE=off``, compile_model + simulate;
 - "first run (auto)": an empty cache in mode auto: compile_model +
   simulate while the worker compiles (target: <= 1.2x the Python path);
+- "new structure": the same on a cache that holds only the drivers'
+  objects (compiled once per machine): a new structure on a machine that
+  ran acausal2d before;
 - "native in": from the worker's start until every library it builds is
   published (at -O0 first where the C is large: runs from then on are
   native; target for the chain of 81 links: <= 5 s);
@@ -110,7 +113,7 @@ def _settled(cache, timeout=600.0):
 def measure(name, models, repeat, classic):
     """Medians of the figures of one model."""
     rows = {"python": [], "auto": [], "usable": [], "worker": [], "cpu": [], "later": [],
-            "now": []}
+            "new": [], "now": []}
     for _ in range(repeat):
         with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
             rows["python"].append(_child(name, models, b, "off")["run"])
@@ -121,6 +124,10 @@ def measure(name, models, repeat, classic):
             rows["cpu"].append(first["cpu"])
             _settled(a)
             rows["later"].append(_child(name, models, a, "auto")["run"])
+            with tempfile.TemporaryDirectory() as c:
+                _objects_only(a, c)
+                rows["new"].append(_child(name, models, c, "auto")["run"])
+                _settled(c)
             if classic:
                 rows["now"].append(_child(name, models, b, "now")["run"])
     return {k: statistics.median(v) for k, v in rows.items() if v}
@@ -158,14 +165,15 @@ def whole_process(repeat):
 
 def main(models, repeat, classic, piston):
     print("cold start (issue 30), medians of %d, fresh processes, s" % repeat)
-    print("%-22s %10s %12s %8s %10s %12s %8s %10s %14s" % (
-        "model", "Python", "first(auto)", "ratio", "native in", "background", "bg CPU",
-        "later", "compile first"))
+    print("%-22s %8s %12s %6s %12s %6s %10s %11s %7s %7s %14s" % (
+        "model", "Python", "first(auto)", "ratio", "new struct.", "ratio", "native in",
+        "background", "bg CPU", "later", "compile first"))
     for name in models:
         m = measure(name, models, repeat, classic)
-        print("%-22s %10.3f %12.3f %8.2f %10.3f %12.3f %8.2f %10.3f %14s" % (
-            name, m["python"], m["auto"], m["auto"] / m["python"], m["usable"], m["worker"],
-            m["cpu"], m["later"], "%.3f" % m["now"] if "now" in m else "-"))
+        print("%-22s %8.3f %12.3f %6.2f %12.3f %6.2f %10.3f %11.3f %7.2f %7.3f %14s" % (
+            name, m["python"], m["auto"], m["auto"] / m["python"], m["new"],
+            m["new"] / m["python"], m["usable"], m["worker"], m["cpu"], m["later"],
+            "%.3f" % m["now"] if "now" in m else "-"))
     if piston:
         cold, new, warm = whole_process(repeat)
         print("acausal2d simulate models/piston_engine.py, whole process: empty cache %.3f s, "
