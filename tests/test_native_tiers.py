@@ -14,28 +14,23 @@ import pytest
 
 import acausal2d
 from acausal2d.runtime import background, cbuild, cstore, native, tiers
+from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
+from tiers_support import agree as _agree
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "models"))
 from piston_engine import PistonEngine  # noqa: E402
 from pendulum import Pendulum  # noqa: E402
 
-pytestmark = pytest.mark.skipif(cbuild.find_compiler() is None or not native.enabled(),
-                                reason="no C compiler or another SUNDIALS")
-WAIT = 600.0           # s: a worker that does not end by then is a hang
+pytestmark = NEEDS_NATIVE
 
 
 @pytest.fixture
 def auto(tmp_path, monkeypatch):
     """Mode auto with an empty cache of its own and this process's queue."""
-    monkeypatch.setenv(tiers.ENV, "auto")
-    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path / "cache"))
-    monkeypatch.setattr(background, "_queue", [])
-    monkeypatch.setattr(background, "_seen", set())
-    monkeypatch.setattr(background, "_workers", [])
-    monkeypatch.setattr(cstore, "_said", set())
+    folder = fresh_cache(tmp_path, monkeypatch)
     monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)   # no library is small enough to wait
-    yield tmp_path / "cache"
+    yield folder
     background.wait(lambda: False, WAIT)
 
 
@@ -44,15 +39,6 @@ def _run(model, stop_time=0.5, rtol=1e-8):
     res = cm.simulate(stop_time=stop_time, rtol=rtol, intervals=200)
     form = next(iter(cm.system._formulations.values()))
     return res, form
-
-
-def _agree(a, b, names, rtol):
-    """Two runs agree to the integration tolerance: each signal within
-    1000 rtol of its range (both runs' global errors, a few hundred rtol
-    at most over these short runs, with room)."""
-    for name in names:
-        scale = 1.0 + np.max(np.abs(b[name]))
-        assert np.max(np.abs(a[name] - b[name])) <= 1e3 * rtol * scale, name
 
 
 def _libraries(folder):

@@ -9,12 +9,13 @@ import os
 import pickle
 import sys
 
-import numpy as np
 import pytest
 
 import acausal2d
 from acausal2d.runtime import (background, cbuild, codegen, cstore, native, projection,
                                simulation, tiers)
+from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
+from tiers_support import agree as _agree
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "models"))
@@ -22,21 +23,14 @@ from piston_engine import PistonEngine  # noqa: E402
 from pendulum import Pendulum  # noqa: E402
 from double_pendulum import DoublePendulum  # noqa: E402
 
-pytestmark = pytest.mark.skipif(cbuild.find_compiler() is None or not native.enabled(),
-                                reason="no C compiler or another SUNDIALS")
-WAIT = 600.0           # s: a worker that does not end by then is a hang
+pytestmark = NEEDS_NATIVE
 
 
 @pytest.fixture
 def cache(tmp_path, monkeypatch):
     """An empty cache of its own and this process's queue; mode auto."""
-    monkeypatch.setenv(tiers.ENV, "auto")
-    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path / "cache"))
-    monkeypatch.setattr(background, "_queue", [])
-    monkeypatch.setattr(background, "_seen", set())
-    monkeypatch.setattr(background, "_workers", [])
-    monkeypatch.setattr(cstore, "_said", set())
-    yield tmp_path / "cache"
+    folder = fresh_cache(tmp_path, monkeypatch)
+    yield folder
     assert not background._queue                           # every library asked for is built
     background.wait(lambda: False, WAIT)
 
@@ -44,14 +38,6 @@ def cache(tmp_path, monkeypatch):
 def _run(model, stop_time=0.5, rtol=1e-8, intervals=200):
     cm = acausal2d.compile_model(model)
     return cm.simulate(stop_time=stop_time, rtol=rtol, intervals=intervals)
-
-
-def _agree(a, b, names, rtol):
-    """Two runs agree to the integration tolerance (1000 rtol of each
-    signal's range: both runs' global errors, with room)."""
-    for name in names:
-        scale = 1.0 + np.max(np.abs(b[name]))
-        assert np.max(np.abs(a[name] - b[name])) <= 1e3 * rtol * scale, name
 
 
 def test_a_large_library_is_published_at_O0_first_then_replaced_at_O1(cache, monkeypatch):

@@ -28,6 +28,12 @@ QUICK_SECONDS_PER_INSTRUCTION = 8e-5
 codegen.QUICK_FROM`): the chain of 81 links' libraries, about 42k
 instructions, were all published 4.4 s after the worker's start on a quiet
 2-core machine (6e-5 s per instruction after :data:`WORKER_START`)."""
+OBJECT_SECONDS = 0.4
+"""Seconds of gcc per driver object (compiled once per machine,
+:func:`~acausal2d.runtime.cbuild.build_object`; measured: the model
+driver with the LU 0.45 s, the rows projector with the LU 0.4 s).  On a
+machine that has not compiled them yet, a small model's first run takes
+the Python path and the worker compiles them."""
 WORKER_START = 2.0
 """Seconds a worker needs before it compiles (Python, CasADi, the code
 generator; measured 1.5-8 s for the piston engine's whole worker on a
@@ -99,15 +105,21 @@ def launch(label=None):
     return True
 
 
+def compile_seconds(recipe):
+    """Seconds the compile of ``recipe`` is expected to take until its
+    library is published: per CasADi instruction (at -O0 first where the C
+    is large, :data:`QUICK_SECONDS_PER_INSTRUCTION`), plus its driver
+    objects that are not in the cache (:data:`OBJECT_SECONDS`)."""
+    n = recipe.instructions()
+    quick = n * CHARS_PER_INSTRUCTION >= QUICK_FROM
+    rate = QUICK_SECONDS_PER_INSTRUCTION if quick else SECONDS_PER_INSTRUCTION
+    return n * rate + OBJECT_SECONDS * recipe.objects_missing()
+
+
 def _expected(recipes):
     """Seconds a worker is expected to take until the libraries of
-    ``recipes`` are published (the large ones at -O0 first)."""
-    total = WORKER_START
-    for recipe in recipes:
-        n = recipe.instructions()
-        quick = n * CHARS_PER_INSTRUCTION >= QUICK_FROM
-        total += n * (QUICK_SECONDS_PER_INSTRUCTION if quick else SECONDS_PER_INSTRUCTION)
-    return total
+    ``recipes`` are published."""
+    return WORKER_START + sum(compile_seconds(recipe) for recipe in recipes)
 
 
 def pending():
@@ -199,7 +211,7 @@ def _build(key, recipe, quick):
     """Build and publish one job's library (at -O0 where ``quick``);
     False, with the failure marker left, where that fails."""
     try:
-        cbuild.build_indexed(key, lambda: recipe.make(quick), recipe.name)
+        cbuild.publish_index(key, recipe.name, recipe.make(quick))
         return True
     except Exception as exc:       # noqa: BLE001 - recorded for the next run
         cstore.write_atomic(failure_path(key, recipe.name),
@@ -235,9 +247,11 @@ def _work(path):
     try:
         twice = []
         for key, recipe in jobs:
-            if cbuild.lookup(key, recipe.name) is None and _build(key, recipe,
-                                                                  recipe.builds_twice()):
-                twice += [(key, recipe)] if recipe.builds_twice() else []
+            if cbuild.lookup(key, recipe.name) is not None:     # another worker built it
+                continue
+            quick = recipe.builds_twice()
+            if _build(key, recipe, quick) and quick:
+                twice.append((key, recipe))
         for key, recipe in twice:
             _optimize(key, recipe)
     finally:

@@ -91,9 +91,16 @@ def build(sources, flags=(), libraries=(), library_dirs=(), include_dirs=(), nam
     if store.verified(target):
         return target
     store.sweep(folder)
+    return _once(target, lambda: units.compile_library(cc, sources, args, folder, target,
+                                                       objects))
+
+
+def _once(target, compile_):
+    """``target`` after ``compile_()`` made it, under its lock, unless a
+    verified one is there (another process may have built it meanwhile)."""
     with store.locked(target):
-        if not store.verified(target):          # another process may have built it meanwhile
-            units.compile_library(cc, sources, args, folder, target, objects)
+        if not store.verified(target):
+            compile_()
     return target
 
 
@@ -123,10 +130,8 @@ def build_object(text, flags=(), name="obj"):
     args, target = _object_target(text, flags, name, cc)
     if store.verified(target):
         return target
-    with store.locked(target):
-        if not store.verified(target):
-            units.compile_object(cc, name + ".c", text, args, store.folder(), target)
-    return target
+    return _once(target, lambda: units.compile_object(cc, name + ".c", text, args,
+                                                      store.folder(), target))
 
 
 def copy_verified(path, dest):

@@ -13,6 +13,7 @@ A compiler that cannot run, fails, or exits 0 without writing its output
 (e.g. ``CC=/bin/true``) is a :class:`BuildFailed`
 naming the compiler, the command and its output.
 """
+import contextlib
 import os
 import shutil
 import subprocess
@@ -95,18 +96,25 @@ def _units(sources):
     return files
 
 
+@contextlib.contextmanager
+def _build_folder(folder, target):
+    """A build folder for ``target``, removed afterwards."""
+    tmp = cstore.build_folder(folder, target)
+    try:
+        yield tmp
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
 def compile_object(cc, fname, text, args, folder, target):
     """Compile one C text (file name ``fname``) with the flags ``args`` into
     the object file ``target``, published with its digest."""
-    tmp = cstore.build_folder(folder, target)
-    try:
+    with _build_folder(folder, target) as tmp:
         path = os.path.join(tmp, fname)
         with open(path, "w", encoding="utf-8") as fh:
             fh.write(text)
         _run_all(cc, [[cc, "-c", path, "-o", path[:-2] + ".o"] + list(args)])
         cstore.publish(path[:-2] + ".o", target)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
 
 
 def compile_library(cc, sources, args, folder, target, prebuilt=()):
@@ -114,8 +122,7 @@ def compile_library(cc, sources, args, folder, target, prebuilt=()):
     (optimisation, ``-fPIC -shared``, include and link options) into
     ``target`` (see the module docstring), linked with the object files
     ``prebuilt``."""
-    tmp = cstore.build_folder(folder, target)
-    try:
+    with _build_folder(folder, target) as tmp:
         objects, commands = [], []
         compile_flags = [a for a in args if a.startswith("-") and a != "-shared" and
                          not a.startswith(("-l", "-L", "-Wl,"))]
@@ -130,5 +137,3 @@ def compile_library(cc, sources, args, folder, target, prebuilt=()):
         out = os.path.join(tmp, "out.so")
         _run_all(cc, [[cc] + objects + list(prebuilt) + ["-o", out] + list(args)])
         cstore.publish(out, target)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)

@@ -26,24 +26,18 @@ import os
 import time
 
 from . import cbuild, cstore
-from .background import (SECONDS_PER_INSTRUCTION, failure_path, launch, pending, queue,  # noqa: F401
+from .background import (compile_seconds, failure_path, launch, pending, queue,  # noqa: F401
                          wait)  # the worker side
 
 ENV = "ACAUSAL2D_NATIVE"
 MODES = ("auto", "now", "off")
 FOREGROUND_BELOW = 0.3
-"""Seconds of expected compile (:data:`~acausal2d.runtime.background.
-SECONDS_PER_INSTRUCTION` per CasADi instruction) below which mode auto
+"""Seconds of expected compile (:func:`~acausal2d.runtime.background.
+compile_seconds`) below which mode auto
 compiles first, in the process: the Python path costs a small model more
 than its compile (``acausal2d simulate models/piston_engine.py`` on an
 empty cache, CPU seconds of the process and its compilers on a loaded
 machine: Python path 6.87, compile first 4.56, full cache 3.04)."""
-OBJECT_SECONDS = 0.4
-"""Seconds of gcc per driver object (compiled once per machine,
-:func:`~acausal2d.runtime.cbuild.build_object`; measured: the model
-driver with the LU 0.45 s, the rows projector with the LU 0.4 s).  On a
-machine that has not compiled them yet, a small model's first run takes
-the Python path and the worker compiles them."""
 _notes: list = []        # why libraries were compiled first (the next run log takes them)
 _spent = [0.0]          # seconds this process spent compiling native code in the foreground
 _label = ["this model"]  # the model of the current run (its notices name it)
@@ -101,7 +95,7 @@ def obtain(key, recipe, loader):
         return None
     if first:
         _notes.append("compile first: %s is small (about %.2g s to compile)"
-                      % (recipe.name, _expected(recipe)))
+                      % (recipe.name, compile_seconds(recipe)))
     elif path is None and cbuild.find_compiler() is not None:
         cstore.notice("compiling native code for %s before the run (native mode 'now')"
                       % _label[0])
@@ -131,20 +125,13 @@ def _later(key, recipe):
                                    os.path.join(cstore.folder(), "")))
 
 
-def _expected(recipe):
-    """Seconds the compile of ``recipe`` is expected to take (its objects
-    that are not in the cache included: :data:`OBJECT_SECONDS`)."""
-    return SECONDS_PER_INSTRUCTION * recipe.instructions() + \
-        OBJECT_SECONDS * recipe.objects_missing()
-
-
 def _small(recipe):
     """True where compiling ``recipe`` first costs less than the Python
     path would (:data:`FOREGROUND_BELOW`) and a compiler is there.  Only
     SX functions are judged by their instructions: a map counts only its
     own few (the chain of 20 links' row maps, 60 instructions, were 1 MB of C)."""
     plain = all(fn.is_a("SXFunction") for _, fns in recipe.parts for fn in fns)
-    return plain and _expected(recipe) < FOREGROUND_BELOW and cbuild.find_compiler() is not None
+    return plain and compile_seconds(recipe) < FOREGROUND_BELOW and cbuild.find_compiler() is not None
 
 
 def take_notes():

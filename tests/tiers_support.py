@@ -1,0 +1,33 @@
+"""What the tier tests share (tests/test_native_tiers.py,
+tests/test_native_tiers_build.py): the skip where no native code can be
+built, a fresh cache with this process's queue emptied, and the agreement
+of two runs to the integration tolerance."""
+import numpy as np
+import pytest
+
+from acausal2d.runtime import background, cbuild, cstore, native, tiers
+
+NEEDS_NATIVE = pytest.mark.skipif(cbuild.find_compiler() is None or not native.enabled(),
+                                  reason="no C compiler or another SUNDIALS")
+WAIT = 600.0           # s: a worker that does not end by then is a hang
+
+
+def fresh_cache(tmp_path, monkeypatch):
+    """Mode auto with an empty cache of its own and this process's queue
+    (undone by ``monkeypatch``); the cache folder."""
+    monkeypatch.setenv(tiers.ENV, "auto")
+    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setattr(background, "_queue", [])
+    monkeypatch.setattr(background, "_seen", set())
+    monkeypatch.setattr(background, "_workers", [])
+    monkeypatch.setattr(cstore, "_said", set())
+    return tmp_path / "cache"
+
+
+def agree(a, b, names, rtol):
+    """Two runs agree to the integration tolerance: each signal within
+    1000 rtol of its range (both runs' global errors, a few hundred rtol
+    at most over these short runs, with room)."""
+    for name in names:
+        scale = 1.0 + np.max(np.abs(b[name]))
+        assert np.max(np.abs(a[name] - b[name])) <= 1e3 * rtol * scale, name
