@@ -11,9 +11,10 @@ Every figure is measured in a fresh process with a cache folder of its own:
 - "Python path": ``ACAUSAL2D_NATIVE=off``, compile_model + simulate;
 - "first run (auto)": an empty cache in mode auto: compile_model +
   simulate while the worker compiles (target: <= 1.2x the Python path);
-- "new structure": the same on a cache that holds only the drivers'
-  objects (compiled once per machine): a new structure on a machine that
-  ran acausal2d before;
+  the drivers' objects are those ``pip install`` compiled into the package
+  (:mod:`acausal2d.runtime.drivers`; the header says whether there are);
+- "no drivers": the same with ``ACAUSAL2D_PREBUILT=0``: an install that
+  found no compiler, so that the first run also compiles the drivers;
 - "native in": from the worker's start until every library it builds is
   published (at -O0 first where the C is large: runs from then on are
   native; target for the chain of 81 links: <= 5 s);
@@ -25,14 +26,13 @@ Every figure is measured in a fresh process with a cache folder of its own:
 - "compile first": mode now on an empty cache (the behaviour before issue
   30; with --classic);
 - ``acausal2d simulate models/piston_engine.py``, whole process, with an
-  empty cache (auto), with a cache that holds only the drivers' objects
-  (compiled once per machine: a new structure on a machine that ran
-  acausal2d before) and with a full one (target: <= 1.2x).
+  empty cache (auto), the same without the installed drivers
+  (``ACAUSAL2D_PREBUILT=0``) and with a full cache (target: <= 1.2x);
+  medians of 5 (3 with --small), the three alternating.
 """
 import json
 import os
 import resource
-import shutil
 import statistics
 import subprocess
 import sys
@@ -89,9 +89,10 @@ def child(kind, n, stop):
                       "native": res.stats["native_compile_time"]}))
 
 
-def _child(name, models, cache, mode):
+def _child(name, models, cache, mode, prebuilt="1"):
     kind, n, stop = models[name]
-    env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE=mode)
+    env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE=mode,
+               ACAUSAL2D_PREBUILT=prebuilt)
     out = subprocess.run([sys.executable, __file__, "--child", kind, str(n), str(stop)],
                          env=env, capture_output=True, text=True, check=True, timeout=1800)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -125,48 +126,47 @@ def measure(name, models, repeat, classic):
             _settled(a)
             rows["later"].append(_child(name, models, a, "auto")["run"])
             with tempfile.TemporaryDirectory() as c:
-                _objects_only(a, c)
-                rows["new"].append(_child(name, models, c, "auto")["run"])
+                rows["new"].append(_child(name, models, c, "auto", prebuilt="0")["run"])
                 _settled(c)
             if classic:
                 rows["now"].append(_child(name, models, b, "now")["run"])
     return {k: statistics.median(v) for k, v in rows.items() if v}
 
 
-def _objects_only(cache, dest):
-    """Copy the drivers' object files (compiled once per machine) of
-    ``cache`` into the empty cache ``dest``: a new structure on a machine
-    that ran acausal2d before."""
-    for name in os.listdir(cache):
-        if name.endswith((".o", ".o.sha256")):
-            shutil.copy(os.path.join(cache, name), os.path.join(dest, name))
-
-
 def whole_process(repeat):
-    """(empty cache, new structure, full cache) medians of ``acausal2d
-    simulate`` of the piston engine; "new structure": a cache holding only
-    the drivers' objects."""
+    """(empty cache, empty cache without the installed drivers, full cache)
+    medians of ``acausal2d simulate`` of the piston engine, alternating."""
     model = os.path.join(ROOT, "models", "piston_engine.py")
-    cold, new, warm = [], [], []
+    cold, bare, warm = [], [], []
     for _ in range(repeat):
         with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out, \
                 tempfile.TemporaryDirectory() as fresh:
-            for times, where in ((cold, cache), (warm, cache), (new, fresh)):
-                if times is new:
-                    _objects_only(cache, fresh)
-                env = dict(os.environ, ACAUSAL2D_CACHE_DIR=where, ACAUSAL2D_NATIVE="auto")
+            for times, where, prebuilt in ((cold, cache, "1"), (warm, cache, "1"),
+                                           (bare, fresh, "0")):
+                env = dict(os.environ, ACAUSAL2D_CACHE_DIR=where, ACAUSAL2D_NATIVE="auto",
+                           ACAUSAL2D_PREBUILT=prebuilt)
                 t0 = time.perf_counter()
                 subprocess.run([sys.executable, "-m", "acausal2d", "simulate", model, "--out",
                                 out], env=env, capture_output=True, check=True, cwd=ROOT)
                 times.append(time.perf_counter() - t0)
                 _settled(where)
-    return statistics.median(cold), statistics.median(new), statistics.median(warm)
+    return statistics.median(cold), statistics.median(bare), statistics.median(warm)
 
 
-def main(models, repeat, classic, piston):
-    print("cold start (issue 30), medians of %d, fresh processes, s" % repeat)
+def _installed():
+    """How many driver objects were compiled into the package at install."""
+    sys.path.insert(0, ROOT)
+    from acausal2d.runtime import drivers
+    folder = drivers.PREBUILT
+    return len([f for f in os.listdir(folder) if f.endswith(".o")]) if os.path.isdir(folder) \
+        else 0
+
+
+def main(models, repeat, classic, piston, whole_repeat):
+    print("cold start (issue 30), medians of %d, fresh processes, s; driver objects installed "
+          "with the package: %d" % (repeat, _installed()))
     print("%-22s %8s %12s %6s %12s %6s %10s %11s %7s %7s %14s" % (
-        "model", "Python", "first(auto)", "ratio", "new struct.", "ratio", "native in",
+        "model", "Python", "first(auto)", "ratio", "no drivers", "ratio", "native in",
         "background", "bg CPU", "later", "compile first"))
     for name in models:
         m = measure(name, models, repeat, classic)
@@ -175,10 +175,11 @@ def main(models, repeat, classic, piston):
             m["new"] / m["python"], m["usable"], m["worker"], m["cpu"], m["later"],
             "%.3f" % m["now"] if "now" in m else "-"))
     if piston:
-        cold, new, warm = whole_process(repeat)
-        print("acausal2d simulate models/piston_engine.py, whole process: empty cache %.3f s, "
-              "new structure (drivers compiled before) %.3f s, full cache %.3f s; ratios %.2f, "
-              "%.2f" % (cold, new, warm, cold / warm, new / warm))
+        cold, bare, warm = whole_process(whole_repeat)
+        print("acausal2d simulate models/piston_engine.py, whole process, medians of %d: empty "
+              "cache %.3f s, empty cache without the installed drivers %.3f s, full cache %.3f "
+              "s; ratios %.2f, %.2f" % (whole_repeat, cold, bare, warm, cold / warm,
+                                        bare / warm))
 
 
 if __name__ == "__main__":
@@ -186,8 +187,8 @@ if __name__ == "__main__":
     if args[:1] == ["--child"]:
         child(args[1], int(args[2]), None if args[3] == "None" else float(args[3]))
     elif "--small" in args:
-        main(SMALL, 1, "--classic" in args, True)
+        main(SMALL, 1, "--classic" in args, True, 3)
     else:
         chosen = [a for a in args if not a.startswith("--")]
         picked = {k: v for k, v in MODELS.items() if not chosen or any(c in k for c in chosen)}
-        main(picked, 3, "--classic" in args, not chosen or "piston" in chosen)
+        main(picked, 3, "--classic" in args, not chosen or "piston" in chosen, 5)

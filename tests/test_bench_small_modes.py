@@ -71,10 +71,13 @@ def test_small_modes_print_their_tables(script, labels):
 def test_bench_cold_small():
     text = _run("bench_cold.py", "--small")
     row = next(s for s in text.splitlines() if s.startswith("chain of 3 links"))
-    numbers = _numbers(row)     # Python, first (auto), ratio, new structure, ratio, native in,
+    numbers = _numbers(row)     # Python, first (auto), ratio, no drivers, ratio, native in,
     assert len(numbers) == 9    # background, CPU, later
     assert numbers[2] == pytest.approx(numbers[1] / numbers[0], rel=0.01, abs=0.01)
     assert numbers[4] == pytest.approx(numbers[3] / numbers[0], rel=0.01, abs=0.01)
     assert numbers[5] <= numbers[6]         # the libraries are published before the worker ends
     line = next(s for s in text.splitlines() if "piston_engine.py, whole process" in s)
-    assert len(_numbers(line)) == 5         # empty, new structure, full; two ratios
+    numbers = _numbers(line)    # empty, without the installed drivers, full; two ratios
+    assert len(numbers) == 5
+    assert numbers[3] == pytest.approx(numbers[0] / numbers[2], rel=0.01, abs=0.01)
+    assert numbers[4] == pytest.approx(numbers[1] / numbers[2], rel=0.01, abs=0.01)

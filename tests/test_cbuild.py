@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-from acausal2d.runtime import cbuild
+from acausal2d.runtime import cbuild, cunits
 
 SOURCE = """
 double poly(double x) { return 3.0 * x * x - 2.0 * x + 0.5; }
@@ -44,7 +44,7 @@ def test_a_refused_source_is_a_build_error(tmp_path, monkeypatch):
 
 def test_missing_compiler_names_what_to_install(monkeypatch):
     monkeypatch.setenv("CC", "no-such-compiler-xyz")
-    monkeypatch.setattr(cbuild, "COMPILERS", ())
+    monkeypatch.setattr(cunits, "COMPILERS", ())
     assert cbuild.find_compiler() is None
     with pytest.raises(cbuild.CompilerMissing, match="apt-get install gcc"):
         cbuild.build({"poly.c": SOURCE})

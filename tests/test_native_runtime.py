@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.runtime import cbuild, native
+from acausal2d.runtime import cbuild, cunits, native
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "models"))
 from piston_engine import PistonEngine  # noqa: E402
@@ -40,7 +40,7 @@ def test_native_and_python_paths_take_the_same_steps(monkeypatch):
 
 
 def test_without_a_compiler_the_python_path_runs(monkeypatch):
-    monkeypatch.setattr(cbuild, "COMPILERS", ())
+    monkeypatch.setattr(cunits, "COMPILERS", ())
     monkeypatch.delenv("CC", raising=False)
     monkeypatch.setenv(cbuild.CACHE_ENV, "/nonexistent-acausal2d-cache")
     res, used = _run()

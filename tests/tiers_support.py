@@ -5,7 +5,7 @@ of two runs to the integration tolerance."""
 import numpy as np
 import pytest
 
-from acausal2d.runtime import background, cbuild, cstore, native, tiers
+from acausal2d.runtime import background, cbuild, cstore, drivers, native, tiers
 
 NEEDS_NATIVE = pytest.mark.skipif(cbuild.find_compiler() is None or not native.enabled(),
                                   reason="no C compiler or another SUNDIALS")
@@ -13,9 +13,11 @@ WAIT = 600.0           # s: a worker that does not end by then is a hang
 
 
 def fresh_cache(tmp_path, monkeypatch):
-    """Mode auto with an empty cache of its own and this process's queue
-    (undone by ``monkeypatch``); the cache folder."""
+    """Mode auto with an empty cache of its own and this process's queue,
+    the driver objects installed with the package ignored (a machine that
+    never compiled them; undone by ``monkeypatch``); the cache folder."""
     monkeypatch.setenv(tiers.ENV, "auto")
+    monkeypatch.setenv(drivers.ENV, "0")
     monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path / "cache"))
     monkeypatch.setattr(background, "_queue", [])
     monkeypatch.setattr(background, "_seen", set())

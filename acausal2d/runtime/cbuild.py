@@ -30,23 +30,13 @@ import weakref
 import casadi as ca
 
 from . import cstore as store, cunits as units
-from .cstore import CACHE_ENV, _sha256, cache_dir  # noqa: F401 - names of this module
-from .cunits import BuildFailed, CompilerMissing  # noqa: F401 - names of this module
+from . import drivers
+from .cstore import CACHE_ENV, _sha256, build_key, cache_dir  # noqa: F401 - names of this module
+from .cunits import BuildFailed, CompilerMissing, find_compiler  # noqa: F401 - names of this module
 
-COMPILERS = ("cc", "gcc", "clang")
 DEFAULT_FLAGS = ("-O2", "-fPIC", "-shared")
 INSTALL_HINT = ("install a C compiler (Debian/Ubuntu: 'apt-get install gcc'; macOS: "
                 "'xcode-select --install'; or set $CC to one)")
-
-
-def find_compiler():
-    """The path of a C compiler (``$CC``, ``cc``, ``gcc``, ``clang``), or None."""
-    names = [os.environ["CC"]] if os.environ.get("CC") else []
-    for name in names + list(COMPILERS):
-        path = shutil.which(name.split()[0]) if name.strip() else None
-        if path:
-            return path
-    return None
 
 
 def require_compiler():
@@ -56,19 +46,6 @@ def require_compiler():
     if path is None:
         raise CompilerMissing("No C compiler found ($CC, cc, gcc, clang): " + INSTALL_HINT)
     return path
-
-
-def build_key(sources, flags=(), compiler=""):
-    """SHA-256 (hex) of the sources (name -> text), the flags and the compiler."""
-    h = _sha256()
-    for name in sorted(sources):
-        for part in (name, sources[name]):
-            data = part.encode("utf-8")
-            h.update(len(data).to_bytes(8, "little"))
-            h.update(data)
-    for part in list(flags) + [compiler]:
-        h.update(b"\0" + str(part).encode("utf-8"))
-    return h.hexdigest()
 
 
 def build(sources, flags=(), libraries=(), library_dirs=(), include_dirs=(), name="lib",
@@ -105,15 +82,16 @@ def _once(target, compile_):
 
 
 def _object_target(text, flags, name, cc):
-    """(compiler flags, path) of the object file of :func:`build_object`."""
-    args = ["-fPIC"] + list(flags)
-    key = build_key({name + ".c": text}, args, cc)
-    return args, os.path.join(store.folder(), "%s-%s.o" % (name, key[:32]))
+    """(compiler flags, path) of the object file of :func:`build_object`:
+    the one installed with the package (:func:`~acausal2d.runtime.drivers.
+    prebuilt`), else its place in the cache."""
+    args, filename = drivers.object_file(name, text, flags, cc)
+    return args, drivers.prebuilt(filename) or os.path.join(store.folder(), filename)
 
 
 def object_built(text, flags=(), name="obj"):
-    """True where the object file of :func:`build_object` is in the cache
-    (and verified)."""
+    """True where the object file of :func:`build_object` was installed
+    with the package or is in the cache (and verified)."""
     cc = find_compiler()
     return cc is not None and store.verified(_object_target(text, flags, name, cc)[1])
 
@@ -122,10 +100,12 @@ def build_object(text, flags=(), name="obj"):
     """The path of the position-independent object file compiled from the C
     ``text`` with ``flags``, cached and verified as libraries are
     (:func:`build`; its name carries the SHA-256 of the text, flags and
-    compiler).  The constant C of the native drivers is compiled so once
-    per machine and linked into each structure's library: it was most of
-    a small model's compile (piston engine: the driver and LU 0.45 s of
-    the model library's 0.64 s of gcc, the generated code 0.19 s)."""
+    compiler), or the same object installed with the package
+    (:mod:`~acausal2d.runtime.drivers`).  The constant C of the native
+    drivers is compiled so once per machine and linked into each
+    structure's library: it was most of a small model's compile (piston
+    engine: the driver and LU 0.45 s of the model library's 0.64 s of gcc,
+    the generated code 0.19 s)."""
     cc = require_compiler()
     args, target = _object_target(text, flags, name, cc)
     if store.verified(target):

@@ -7,11 +7,12 @@ and :func:`too_large` refuses sizes that would take too long to compile at
 run time.  Recipes are pickled (their functions serialized) for the
 background worker (:mod:`~acausal2d.runtime.background`).
 """
-import os
 
 import casadi as ca
 
 from . import cbuild, cstraight
+from . import drivers
+from .drivers import GCC_LIMITS, is_gcc
 
 OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
 QUICK_FROM = 200_000
@@ -81,22 +82,6 @@ def too_large(*functions):
     return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
 
 
-GCC_LIMITS = ("--param=sccvn-max-alias-queries-per-access=20",
-              "--param=dse-max-alias-queries-per-store=20")
-"""gcc's alias queries per memory access in value numbering and dead-store
-elimination (defaults 1000 and 256).  In a straight-line body
-(:mod:`~acausal2d.runtime.cstraight`) every load of an input may alias every
-earlier store of an output, and walking those chains was 42% of gcc's -O1
-time (chain of 81 links, model library unit of 248 kB: 5.0 -> 3.3 s CPU,
-``-ftime-report``); CasADi's code loads each input element once, so the
-queries found nothing to reuse."""
-
-
-def _is_gcc(compiler):
-    """True where ``compiler`` is gcc (``cc`` is often a link to it)."""
-    return bool(compiler) and "gcc" in os.path.basename(os.path.realpath(compiler))
-
-
 def optimization(code, compiler=None, quick=False):
     """The compiler flags for generated C of this size, or None: too large
     to compile at run time (see :data:`NATIVE_BELOW`); -O0 where ``quick``
@@ -105,7 +90,7 @@ def optimization(code, compiler=None, quick=False):
     if len(code) >= NATIVE_BELOW:
         return None
     flags = ["-O1"] if len(code) < OPTIMIZE_BELOW and not quick else ["-O0"]
-    return flags + list(GCC_LIMITS) if _is_gcc(compiler) else flags
+    return flags + list(GCC_LIMITS) if is_gcc(compiler) else flags
 
 
 class Recipe:
@@ -146,7 +131,7 @@ class Recipe:
 
     @staticmethod
     def _object_flags():
-        return optimization("", cbuild.find_compiler())
+        return drivers.flags(cbuild.find_compiler())
 
     def objects_missing(self):
         """How many of the objects are not compiled yet (in the cache)."""

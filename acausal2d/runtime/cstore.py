@@ -83,6 +83,19 @@ def folder():
     return want
 
 
+def build_key(sources, flags=(), compiler=""):
+    """SHA-256 (hex) of the sources (name -> text), the flags and the compiler."""
+    h = _sha256()
+    for name in sorted(sources):
+        for part in (name, sources[name]):
+            data = part.encode("utf-8")
+            h.update(len(data).to_bytes(8, "little"))
+            h.update(data)
+    for part in list(flags) + [compiler]:
+        h.update(b"\0" + str(part).encode("utf-8"))
+    return h.hexdigest()
+
+
 def file_digest(path):
     """SHA-256 (hex) of a file's bytes."""
     h = _sha256()

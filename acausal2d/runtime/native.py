@@ -39,7 +39,7 @@ import weakref
 import casadi as ca
 import numpy as np
 
-from . import blt_layout, cbuild, cstore, ordering, tiers
+from . import blt_layout, cbuild, cstore, drivers, ordering, tiers
 from ..options import STEPS_PER_OUTPUT
 from ..threads import libraries_loaded
 from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
@@ -70,13 +70,10 @@ LU is also the faster one at 39 (the piston's warm simulate 0.0153 ->
 path, whose steps it takes exactly (piston engine 1463 steps, asserted in
 tests/test_native_runtime.py; 1437 with the LU)."""
 MAX_PASSES = 256
-_DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_driver.c")
-_LU = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_lu.c")
 
 
 def _declared_version():
-    with open(_DRIVER, encoding="utf-8") as fh:
-        text = fh.read()
+    text = drivers.source("driver")
     return ".".join(re.search(r"#define A2D_SUNDIALS_%s (\d+)" % part, text).group(1)
                     for part in ("MAJOR", "MINOR", "PATCH"))
 
@@ -158,26 +155,9 @@ def _generator():
     so a library generated differently is never found again."""
     if __file__ not in _module_texts:
         _module_texts[__file__] = _text(__file__) + _text(codegen.__file__) + \
-            _text(cstraight.__file__) + \
+            _text(cstraight.__file__) + _text(drivers.__file__) + \
             "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
     return _module_texts[__file__]
-
-
-GENERATED = """#ifndef casadi_real
-#define casadi_real double
-#endif
-#ifndef casadi_int
-#define casadi_int long long int
-#endif
-#define A2D_GENERATED(f) \\
-  int f(const casadi_real **arg, casadi_real **res, casadi_int *iw, casadi_real *w, int mem); \\
-  int f##_work(casadi_int *sz_arg, casadi_int *sz_res, casadi_int *sz_iw, casadi_int *sz_w);
-A2D_GENERATED(res) A2D_GENERATED(iteration_matrix) A2D_GENERATED(events)
-A2D_GENERATED(E) A2D_GENERATED(EJ)
-"""
-"""The declarations of the CasADi-generated functions (their signatures in
-CasADi's code) that the drivers call: the drivers are compiled apart from
-the generated code (:meth:`~acausal2d.runtime.codegen.Recipe` ``objects``)."""
 
 
 def _model_recipe(form, libraries, folder):
@@ -186,10 +166,9 @@ def _model_recipe(form, libraries, folder):
     events)."""
     events = form.event_fn is not None
     fns = [fn for fn in (form.res_fn, form.jac_fn, form.event_fn) if fn is not None]
-    driver = GENERATED + ("#define A2D_EVENTS 1\n" if events else "") + _text(_LU) + \
-        _text(_DRIVER)
+    driver = "a2d_driver_events" if events else "a2d_driver"
     return Recipe("a2d_model", [("cse", fns)], libraries=libraries, library_dirs=[folder],
-                  objects=[("a2d_driver_events" if events else "a2d_driver", driver)])
+                  objects=[(driver, drivers.text(driver))])
 
 
 def _declare(lib):
@@ -230,7 +209,7 @@ def library(form):
         linked = [libs[k] for k in LIBRARIES if k in libs]
         if form not in _keys:
             _keys[form] = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
-                                             _text(_LU), _text(_DRIVER), *linked)
+                                             drivers.text("a2d_driver"), *linked)
         lib = tiers.obtain(_keys[form], _model_recipe(form, linked, folder),
                            lambda path: _declare(ctypes.CDLL(path)))
         if lib is not None or not tiers.pending():
@@ -404,21 +383,44 @@ def compiled(functions):
 
 
 _projectors: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> loaded library (or False)
-_PROJECT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "native_project.c")
+
+
+_plans: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> (key, recipe)
+
+
+def _projector_plan(system):
+    """(fingerprint, recipe) of the C projector's library of ``system``, or
+    None where native code is off or too large for it."""
+    if not enabled() or too_large(system.residual_fn, system.jacobian_fn):
+        return None
+    if system not in _plans:
+        key = cbuild.fingerprint((system.residual_fn,), _derived(system),
+                                 drivers.text("a2d_project"))
+        _plans[system] = key, Recipe("a2d_rows", [
+            ("cse", [system.residual_fn]), ("ej", [system.residual_fn, system.jacobian_fn])],
+            objects=[("a2d_project", drivers.text("a2d_project"))])
+    return _plans[system]
+
+
+def prepare_projector(system):
+    """Start compiling the C projector's library of ``system`` where it is
+    missing and would be compiled before the run
+    (:func:`~acausal2d.runtime.tiers.ahead`): beside the model's library,
+    which is asked for next."""
+    if _projectors.get(system) is None:
+        plan = _projector_plan(system)
+        if plan is not None:
+            tiers.ahead(*plan)
 
 
 def _projector_library(system):
     lib = _projectors.get(system)
     if lib is None:
-        if not enabled() or too_large(system.residual_fn, system.jacobian_fn):
+        plan = _projector_plan(system)
+        if plan is None:
             _projectors[system] = False
             return None
-        key = cbuild.fingerprint((system.residual_fn,), _derived(system), _text(_LU),
-                                 _text(_PROJECT))
-        recipe = Recipe("a2d_rows", [("cse", [system.residual_fn]),
-                                     ("ej", [system.residual_fn, system.jacobian_fn])],
-                        objects=[("a2d_project", GENERATED + _text(_LU) + _text(_PROJECT))])
-        lib = tiers.obtain(key, recipe, _declare_projector)
+        lib = tiers.obtain(plan[0], plan[1], _declare_projector)
         if lib is not None or not tiers.pending():
             _projectors[system] = lib or False
     return lib or None

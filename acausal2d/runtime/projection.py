@@ -16,7 +16,7 @@ import numpy as np
 
 from ..compiler.index1 import SPARSE_FROM
 from .buffered import Buffered
-from .native import compiled, row_projector, too_large
+from .native import compiled, prepare_projector, row_projector, too_large
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
@@ -61,6 +61,20 @@ def _mapped_functions(system, native):
     return fns
 
 
+def _in_c(system, form):
+    """True where the C projector can serve the rows of ``form``: its
+    non-state unknowns are as many as the system's equations."""
+    return 0 < int(np.count_nonzero(~form.differential)) == system.structure.n_eq
+
+
+def prepare(system, form):
+    """Start compiling the C projector's library for the rows of ``form``
+    beside the model's library, where it serves them and would be compiled
+    before the run (:func:`~acausal2d.runtime.native.prepare_projector`)."""
+    if _in_c(system, form):
+        prepare_projector(system)
+
+
 class _Mapped:
     """E and dE/dz of a system mapped over K rows, bound to buffers."""
 
@@ -99,7 +113,7 @@ class Projector:
         order = np.lexsort((self.jrows, self.jcols))
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
-        self.in_c = 0 < len(self.free) == self.n_eq     # the C projector can serve it
+        self.in_c = _in_c(system, form)
         self.native = row_projector(system, self.free) if self.in_c else None
         self.native_iterations = SIMPLIFIED_ITERATIONS
         self.native_slow = 0 if self.n_eq >= NEW_LU_FROM else 1

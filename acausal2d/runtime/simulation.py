@@ -31,7 +31,7 @@ from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, adv
 from . import tiers
 from .background import Tiering, launch
 from .native import library as native_library, native_ida
-from .projection import Projector
+from .projection import Projector, prepare as prepare_projection
 from .rows import OutputRows
 from .initialize import initial_point, initialization_error
 from .locate import exact_point, exact_rows, locate_on_solution
@@ -206,6 +206,7 @@ class Simulation:
             atol = self.atol if self.atol is not None else self.rtol * self.system.nominal
             atol = np.broadcast_to(np.asarray(atol, dtype=float), (form.n,)).copy()
             y0, yp0 = form.y_from(self.z)
+            prepare_projection(self.system, form)     # its compile beside the model's
             prob.native = native_ida(prob, self.rtol, atol)
             prob.atol = atol
             solver = LazySolver(lambda t=self.t: start_solver(

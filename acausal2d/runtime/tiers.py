@@ -23,6 +23,7 @@ that fails leaves a marker beside the library; later runs say so once and
 keep the Python path (``acausal2d cache clear`` removes it).
 """
 import os
+import threading
 import time
 
 from . import cbuild, cstore
@@ -80,6 +81,12 @@ def _failed_before(key, name):
         return None
 
 
+def _first(key, recipe):
+    """True where mode auto compiles the missing library of ``recipe``
+    first, in this process (:func:`_small`, no failure before)."""
+    return _small(recipe) and _failed_before(key, recipe.name) is None
+
+
 def obtain(key, recipe, loader):
     """``loader(path)`` of the library of ``key`` made by ``recipe``, or
     None: off, a compile in the background (auto), a compile that failed
@@ -87,9 +94,9 @@ def obtain(key, recipe, loader):
     m = mode()
     if m == "off":
         return None
+    waited = _join(key)
     path = cbuild.lookup(key, recipe.name)
-    first = path is None and m == "auto" and _small(recipe) and \
-        _failed_before(key, recipe.name) is None
+    first = path is None and m == "auto" and _first(key, recipe)
     if path is None and m == "auto" and not first:
         _later(key, recipe)
         return None
@@ -108,8 +115,53 @@ def obtain(key, recipe, loader):
                                 ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
         return None
     finally:
-        if path is None:
-            _spent[0] += time.perf_counter() - t0
+        _spent[0] += waited + (time.perf_counter() - t0 if path is None else 0.0)
+
+
+_ahead: dict = {}       # key -> the thread compiling its library ahead (:func:`ahead`)
+
+
+def ahead(key, recipe):
+    """Start compiling the library of ``key`` now, beside the foreground
+    compile that comes next, where :func:`obtain` would compile it first
+    (mode now, or auto and small): the C projector's library is so compiled
+    while the model's library is (two compilers on two cores; piston
+    engine, a new structure: 0.48 -> 0.25 s of compile before its run).
+    CasADi's code generator runs here, in this thread; a thread runs only
+    the compiler (and publishes the library); :func:`obtain` of ``key``
+    waits for it.  A build that fails there is made again, and reported,
+    by :func:`obtain`."""
+    m = mode()
+    if m == "off" or key in _ahead or cbuild.find_compiler() is None or \
+            cbuild.lookup(key, recipe.name) is not None:
+        return
+    if m == "auto":
+        if not _first(key, recipe):
+            return
+        _notes.append("compile first: %s is small (about %.2g s to compile), beside the "
+                      "next library" % (recipe.name, compile_seconds(recipe)))
+    recipe.code()
+    thread = threading.Thread(target=_build_ahead, args=(key, recipe), daemon=True,
+                              name="acausal2d-compile-%s" % recipe.name)
+    _ahead[key] = thread
+    thread.start()
+
+
+def _build_ahead(key, recipe):
+    try:
+        cbuild.build_indexed(key, recipe.make, recipe.name)
+    except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
+        pass                    # obtain() builds it again and reports the failure
+
+
+def _join(key):
+    """Wait for the compile of ``key`` started by :func:`ahead`; the seconds waited."""
+    thread = _ahead.pop(key, None)
+    if thread is None:
+        return 0.0
+    t0 = time.perf_counter()
+    thread.join()
+    return time.perf_counter() - t0
 
 
 def _later(key, recipe):
@@ -131,7 +183,8 @@ def _small(recipe):
     SX functions are judged by their instructions: a map counts only its
     own few (the chain of 20 links' row maps, 60 instructions, were 1 MB of C)."""
     plain = all(fn.is_a("SXFunction") for _, fns in recipe.parts for fn in fns)
-    return plain and compile_seconds(recipe) < FOREGROUND_BELOW and cbuild.find_compiler() is not None
+    return plain and compile_seconds(recipe) < FOREGROUND_BELOW and \
+        cbuild.find_compiler() is not None
 
 
 def take_notes():

@@ -82,6 +82,7 @@ def _child(jobs_fd, answers_fd, mask):
         signal.signal(signal.SIGINT, _interrupt_once)
         signal.signal(signal.SIGTERM, _interrupt_once)
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        _yield_cpu()
         draw = _drawing()
         while True:
             jobs = _receive(jobs_fd)
@@ -92,6 +93,20 @@ def _child(jobs_fd, answers_fd, mask):
             except Exception as exc:     # noqa: BLE001 - handed to the parent, which raises
                 _send(answers_fd, ("error", "%s: %s" % (type(exc).__name__, exc)))
     except BaseException:                # noqa: B036 - Ctrl-C or a broken pipe: just end
+        pass
+
+
+NICE = 5
+"""The child's priority below the parent's: its import of matplotlib must
+not slow what the parent does meanwhile (compiling a new structure's
+native code on both cores); while the parent writes the CSV and the
+child draws, each has a core and the priority changes nothing."""
+
+
+def _yield_cpu():
+    try:
+        os.nice(NICE)
+    except OSError:
         pass
 
 
