@@ -4,9 +4,11 @@ replaced by its -O1 build; the drivers' constant C is compiled once per
 machine into cached, verified object files that every structure's library
 links; a small model's first run compiles first only where those objects
 are there; a run whose Python path ends before the compile goes on in one
-piece; and the row maps are not compiled where the C projector serves."""
+piece, its worker held until the run ends; and the row maps are not
+compiled where the C projector serves."""
 import os
 import pickle
+import subprocess
 import sys
 
 import pytest
@@ -138,7 +140,9 @@ def test_a_run_whose_python_path_ends_before_the_compile_goes_on_in_one_piece(ca
     monkeypatch.setattr(background, "expected_left", lambda: 1e6)   # a compile of ages
     res = _run(Pendulum(), stop_time=2.0)
     assert res.stats["segments"] == 2                      # the first piece, then the rest
-    assert any(n.startswith("Python path: it needs about") for n in res.native_notes)
+    assert any(n.startswith("Python path: it needs about") and "waits for the run's end" in n
+               for n in res.native_notes), res.native_notes
+    assert not background._holds                           # released at the run's end
     monkeypatch.setenv(tiers.ENV, "off")
     ref = _run(Pendulum(), stop_time=2.0)
     assert ref.stats["segments"] == 1
@@ -159,3 +163,27 @@ def test_the_row_maps_are_compiled_only_where_the_c_projector_cannot_serve(cache
     assert not [name for name in asked if name.startswith(("E_rows", "J_rows"))], asked
     monkeypatch.setenv(tiers.ENV, "off")
     _agree(res, _run(Pendulum()), ("revolute.phi", "revolute.w"), 1e-8)
+
+
+def test_a_held_worker_waits_for_the_release(tmp_path, monkeypatch):
+    """The lock of :func:`background.hold`: a worker process (here one that
+    only waits at ``_held`` and then writes a file) goes on only after
+    :func:`background.release`."""
+    monkeypatch.setattr(background, "_holds", {})
+    job = str(tmp_path / "job")
+    background._holds[job + background.HOLD] = os.open(job + background.HOLD,
+                                                       os.O_CREAT | os.O_RDWR, 0o600)
+    background.hold()
+    done = tmp_path / "went on"
+    code = ("import sys; from acausal2d.runtime import background; "
+            "background._held(sys.argv[1]); open(sys.argv[2], 'w').close()")
+    proc = subprocess.Popen([sys.executable, "-c", code, job, str(done)])
+    try:
+        with pytest.raises(subprocess.TimeoutExpired):
+            proc.wait(timeout=2.0)                     # held: still waiting
+        assert not done.exists()
+        background.release()
+        assert proc.wait(timeout=WAIT) == 0
+        assert done.exists() and not background._holds
+    finally:
+        proc.kill()

@@ -29,7 +29,7 @@ from .failure import Approach
 from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, advance,
                   make_solver, start_solver)
 from . import tiers
-from .background import Tiering, launch
+from .background import Tiering, launch, release as release_workers
 from .native import library as native_library, native_ida
 from .projection import Projector, prepare as prepare_projection
 from .rows import OutputRows
@@ -142,6 +142,7 @@ class Simulation:
                 exc.partial = self._log(wall)       # the motion up to where it stopped
                 raise
             finally:       # libraries asked for after the last piece (the singular scan's)
+                release_workers()
                 launch(getattr(self.system, "model_name", None))
         if self.progress is not None:
             self.progress(self.out[-1][0], self.t_end)
