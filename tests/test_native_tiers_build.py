@@ -187,3 +187,26 @@ def test_a_held_worker_waits_for_the_release(tmp_path, monkeypatch):
         assert done.exists() and not background._holds
     finally:
         proc.kill()
+
+
+def test_a_run_that_outlives_its_estimate_releases_its_worker(tmp_path, monkeypatch):
+    """The estimate from the first piece can be far off (the compressor's
+    valves start after it): past :data:`background.HELD_AT_MOST` times the
+    estimated rest the held worker is released, so that formulations met
+    later in the run may use its library."""
+    monkeypatch.setattr(background, "_holds", {})
+    job = str(tmp_path / "job")
+    background._holds[job + background.HOLD] = os.open(job + background.HOLD,
+                                                       os.O_CREAT | os.O_RDWR, 0o600)
+    monkeypatch.setattr(background.Tiering, "active", lambda self: True)
+    monkeypatch.setattr(background, "expected_left", lambda: 10.0)
+    tiering = background.Tiering()
+    tiering.begin(0.0, 100.0)
+    tiering.decide(1.0, 1.0, 101.0, lambda: False)        # rest 1 s < compile 10 s: held
+    assert tiering.gave_up and background._holds
+    limit = 101.0 + background.HELD_AT_MOST * 1.0 + 0.5
+    tiering.overdue(limit - 0.01)
+    assert background._holds                               # within the estimate: still held
+    tiering.overdue(limit + 0.01)
+    assert not background._holds
+    assert tiering.notes[-1].startswith("the run outlived its estimate")

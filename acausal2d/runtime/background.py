@@ -54,6 +54,12 @@ _queue: list = []        # (key, recipe, label) not yet handed to a worker
 _seen: set = set()      # keys queued by this process
 _workers: list = []      # (Popen, start time, expected seconds, [(key, library name)])
 HOLD = ".hold"
+HELD_AT_MOST = 2.0
+"""A held worker (:func:`hold`) is released once the run has gone on this
+many times its estimated rest (plus half a second): the estimate from the
+first piece was wrong (the compressor's valves start after it: 0.55 s
+estimated, 6 s taken), and a formulation met later in the run (after an
+event or a state re-selection) may use the library."""
 _holds: dict = {}        # hold file of a worker of this process -> its open descriptor
 
 
@@ -200,6 +206,7 @@ class Tiering:
         self.mark = None           # (simulated time, wall clock) at the start of the last piece
         self.pieces = 0            # pieces measured
         self.gave_up = False       # the run ends before any compile: no more pieces
+        self.held_until = None     # wall clock at which a held worker is released
 
     def active(self):
         """True while a background compile of this process runs."""
@@ -233,11 +240,20 @@ class Tiering:
         if rest < compile_left:
             self.decided, self.waiting, self.gave_up = True, False, True
             hold()
+            self.held_until = now + HELD_AT_MOST * rest + 0.5
             self.notes.append("Python path: it needs about %.3g s more, the compile about "
                               "%.3g s; the compile waits for the run's end" % (rest, compile_left))
         elif self.pieces >= 2:
             self.decided = True
             self._wait_if_it_pays(rest, compile_left, ready)
+
+    def overdue(self, now):
+        """Release a held worker where the run has outlived its estimate
+        (:data:`HELD_AT_MOST`); called between segments at wall clock ``now``."""
+        if self.held_until is not None and now > self.held_until:
+            self.held_until = None
+            release()
+            self.notes.append("the run outlived its estimate: the compile goes on beside it")
 
     def _wait_if_it_pays(self, rest, compile_left, ready):
         if rest > PAYS * (compile_left + rest / NATIVE_SPEEDUP):

@@ -239,6 +239,7 @@ class Simulation:
         return lambda t: progress(t, t_end)
 
     def _segment(self):
+        self.tiering.overdue(_time.perf_counter())
         form, prob, solver, projector = self._solver()
         if launch(getattr(self.system, "model_name", None)) and not self.tiering.gave_up:
             self.tiering.waiting = prob.native is None
