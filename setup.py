@@ -8,6 +8,7 @@ and the drivers are compiled on first use instead.  Because the package
 then holds object files of this machine, its wheel is tagged for this
 platform (:class:`PlatformDistribution`).
 """
+import importlib
 import os
 import sys
 import types
@@ -20,16 +21,18 @@ ROOT = os.path.dirname(os.path.abspath(__file__))
 
 
 def _drivers():
-    """``acausal2d.runtime.drivers`` imported from the source tree without
-    running the package's ``__init__`` (its dependencies are not installed
-    yet: the module and what it imports use the standard library only)."""
-    for name, folder in (("acausal2d", "acausal2d"), ("acausal2d.runtime", "acausal2d/runtime")):
+    """``acausal2d/runtime/drivers.py`` of this source tree, imported as
+    ``_acausal2d_source.runtime.drivers`` without running the package's
+    ``__init__`` (its dependencies are not installed yet: the module and
+    what it imports use the standard library only), and never an installed
+    acausal2d of the same name."""
+    for name, folder in (("_acausal2d_source", "acausal2d"),
+                         ("_acausal2d_source.runtime", "acausal2d/runtime")):
         if name not in sys.modules:
             module = types.ModuleType(name)
             module.__path__ = [os.path.join(ROOT, folder)]
             sys.modules[name] = module
-    from acausal2d.runtime import drivers
-    return drivers
+    return importlib.import_module("_acausal2d_source.runtime.drivers")
 
 
 class BuildWithDrivers(build_py):

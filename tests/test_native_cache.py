@@ -219,6 +219,7 @@ def test_cache_command_lists_sizes_and_clears(tmp_path, monkeypatch, capsys):
     assert main(["cache", "list"]) == 0
     out = capsys.readouterr().out
     assert os.path.basename(path) in out and "1 library" in out
+    assert "compiled at install" in out                # the drivers' objects, or that there are none
     assert main(["cache", "size"]) == 0
     size = os.path.getsize(path) + os.path.getsize(path + cstore.DIGEST)
     kb = float(capsys.readouterr().out.split()[0])
@@ -226,3 +227,24 @@ def test_cache_command_lists_sizes_and_clears(tmp_path, monkeypatch, capsys):
     assert main(["cache", "clear"]) == 0
     assert "removed" in capsys.readouterr().out
     assert sorted(os.listdir(tmp_path)) == ["pulley-0123.npz"]    # only the native cache's files
+
+
+def test_cache_list_names_the_installed_driver_objects_and_a_damaged_one(tmp_path, monkeypatch,
+                                                                         capsys):
+    from acausal2d.cli import main
+    from acausal2d.runtime import drivers
+    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path / "cache"))
+    folder = tmp_path / "prebuilt"
+    monkeypatch.setattr(drivers, "PREBUILT", str(folder))
+    assert main(["cache", "list"]) == 0
+    assert "no driver objects were compiled at install" in capsys.readouterr().out
+    folder.mkdir()
+    for name, data in (("a2d_driver-0.o", b"object"), ("a2d_project-1.o", b"object")):
+        (folder / name).write_bytes(data)
+        (folder / (name + cstore.DIGEST)).write_text(cstore.file_digest(str(folder / name)))
+    assert main(["cache", "list"]) == 0
+    assert "2 driver objects compiled at install" in capsys.readouterr().out
+    (folder / "a2d_project-1.o").write_bytes(b"changed")
+    assert main(["cache", "list"]) == 0
+    out = capsys.readouterr().out
+    assert "not matching" in out and "a2d_project-1.o" in out and "a2d_driver-0.o" not in out

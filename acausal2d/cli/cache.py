@@ -19,6 +19,7 @@ def cmd_cache(args):
             print("%10s  %s" % (_mb(size), name))
         print("%d librar%s, %s in %s" % (len(libs), "y" if len(libs) == 1 else "ies", _mb(total),
                                           where))
+        _print_installed()
     elif args.action == "size":
         libs, total = cstore.entries()
         print("%s (%d librar%s) in %s" % (_mb(total), len(libs), "y" if len(libs) == 1 else "ies",
@@ -31,12 +32,27 @@ def cmd_cache(args):
     return 0
 
 
+def _print_installed():
+    """The drivers' objects compiled at install (not part of the cache)."""
+    from ..runtime import drivers
+    found = drivers.installed()
+    damaged = [name for name, ok in found if not ok]
+    if not found:
+        print("no driver objects were compiled at install; they are compiled into the cache "
+              "on first use")
+    else:
+        print("%d driver objects compiled at install in %s%s" % (
+            len(found), drivers.PREBUILT, "; SHA-256 not matching (reinstall acausal2d): " +
+            ", ".join(damaged) if damaged else "; each matches its SHA-256"))
+
+
 def add_parsers(sub):
     """``acausal2d cache``."""
     c = sub.add_parser("cache", help="the native cache: where it lives (path), its libraries "
                        "(list), its size, or clear it")
     c.add_argument("action", nargs="?", default="list", choices=("path", "list", "size", "clear"),
                    help="path: the folder ($ACAUSAL2D_CACHE_DIR, else ~/.cache/acausal2d/"
-                   "cbuild); list (default): the libraries; size; clear: remove them (they are "
+                   "cbuild); list (default): the libraries, and the driver objects compiled at "
+                   "install; size; clear: remove them (they are "
                    "compiled again when needed)")
     c.set_defaults(func=cmd_cache)

@@ -118,6 +118,24 @@ def prebuilt(filename):
     return None
 
 
+def installed():
+    """(file name, whether its SHA-256 matches) of the objects in the
+    package (:data:`PREBUILT`), for ``acausal2d cache list``."""
+    try:
+        names = sorted(f for f in os.listdir(PREBUILT) if f.endswith(".o"))
+    except OSError:
+        return []
+    found = []
+    for name in names:
+        path = os.path.join(PREBUILT, name)
+        try:
+            ok = cstore.file_digest(path) == cstore.recorded(path)
+        except OSError:
+            ok = False
+        found.append((name, ok))
+    return found
+
+
 def install(dest=PREBUILT, compiler=None, log=print):
     """Compile every object of :data:`OBJECTS` into ``dest`` (each with its
     SHA-256 beside it) with ``compiler`` (default: the one found at run
