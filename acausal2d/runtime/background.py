@@ -124,7 +124,7 @@ def hold():
     that decision): the two share the machine's caches and memory.  The
     hold is a lock (``fcntl.flock``), so it ends with :func:`release` at
     the run's end, or with this process."""
-    for fd in _holds.values():
+    for fd in list(_holds.values()):          # a copy: runs in other threads may launch
         try:
             fcntl.flock(fd, fcntl.LOCK_EX)
         except OSError:
@@ -133,12 +133,13 @@ def hold():
 
 def release():
     """End :func:`hold` (the run ended); the hold files are closed."""
-    for fd in _holds.values():
+    for path in list(_holds):                 # a copy: runs in other threads may launch
+        fd = _holds.pop(path, None)
         try:
-            os.close(fd)               # closing drops the lock
+            if fd is not None:
+                os.close(fd)           # closing drops the lock
         except OSError:
             pass
-    _holds.clear()
 
 
 def _held(path):
