@@ -98,9 +98,9 @@ class Recipe:
     CasADi functions) - how is "plain" (added as it is), "cse" (common
     subexpressions merged, :func:`eliminated`) or
     "ej" (residual and Jacobian as one function); ``suffix`` is C appended
-    to CasADi's code; ``objects`` are (name, C text) compiled once per
-    machine (:func:`~acausal2d.runtime.cbuild.build_object`, at -O1) and
-    linked in; ``libraries`` and ``library_dirs`` are linked."""
+    to CasADi's code; ``objects`` name the drivers' objects
+    (:data:`~acausal2d.runtime.drivers.OBJECTS`, compiled once per machine
+    by :func:`~acausal2d.runtime.cbuild.build_object`) linked in; ``libraries`` and ``library_dirs`` are linked."""
 
     def __init__(self, name, parts, suffix="", libraries=(), library_dirs=(), objects=()):
         self.name, self.parts, self.suffix = name, list(parts), suffix
@@ -135,8 +135,8 @@ class Recipe:
 
     def objects_missing(self):
         """How many of the objects are not compiled yet (in the cache)."""
-        return sum(not cbuild.object_built(text, self._object_flags(), name)
-                   for name, text in self.objects)
+        return sum(not cbuild.object_built(drivers.text(name), self._object_flags(), name)
+                   for name in self.objects)
 
     def code(self):
         """The generated C (:func:`generate`), made once per recipe."""
@@ -157,7 +157,7 @@ class Recipe:
         if flags is None:
             raise cbuild.BuildFailed("the generated C of %s is too large to compile at run "
                                      "time (%d characters)" % (self.name, len(code)))
-        objects = [cbuild.build_object(text, self._object_flags(), name)
-                   for name, text in self.objects]
+        objects = [cbuild.build_object(drivers.text(name), self._object_flags(), name)
+                   for name in self.objects]
         return cbuild.build({self.name + ".c": code}, flags=flags, libraries=self.libraries,
                             library_dirs=self.library_dirs, name=self.name, objects=objects)

@@ -168,7 +168,7 @@ def _model_recipe(form, libraries, folder):
     fns = [fn for fn in (form.res_fn, form.jac_fn, form.event_fn) if fn is not None]
     driver = "a2d_driver_events" if events else "a2d_driver"
     return Recipe("a2d_model", [("cse", fns)], libraries=libraries, library_dirs=[folder],
-                  objects=[(driver, drivers.text(driver))])
+                  objects=[driver])
 
 
 def _declare(lib):
@@ -398,7 +398,7 @@ def _projector_plan(system):
                                  drivers.text("a2d_project"))
         _plans[system] = key, Recipe("a2d_rows", [
             ("cse", [system.residual_fn]), ("ej", [system.residual_fn, system.jacobian_fn])],
-            objects=[("a2d_project", drivers.text("a2d_project"))])
+            objects=["a2d_project"])
     return _plans[system]
 
 
