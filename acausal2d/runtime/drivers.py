@@ -107,11 +107,8 @@ def prebuilt(filename):
     path = os.path.join(PREBUILT, filename)
     if os.environ.get(ENV, "1").strip() == "0" or not os.path.exists(path):
         return None
-    try:
-        if cstore.file_digest(path) == cstore.recorded(path):
-            return path
-    except OSError:
-        pass
+    if _matches(path):
+        return path
     cstore.notice("the driver object %s installed with acausal2d does not match its recorded "
                   "SHA-256; it is compiled into the cache instead (reinstall acausal2d to "
                   "mend the installation)" % path)
@@ -125,15 +122,16 @@ def installed():
         names = sorted(f for f in os.listdir(PREBUILT) if f.endswith(".o"))
     except OSError:
         return []
-    found = []
-    for name in names:
-        path = os.path.join(PREBUILT, name)
-        try:
-            ok = cstore.file_digest(path) == cstore.recorded(path)
-        except OSError:
-            ok = False
-        found.append((name, ok))
-    return found
+    return [(name, _matches(os.path.join(PREBUILT, name))) for name in names]
+
+
+def _matches(path):
+    """True where the installed object ``path`` has its recorded SHA-256
+    (unlike :func:`~acausal2d.runtime.cstore.verified`, nothing is removed)."""
+    try:
+        return cstore.file_digest(path) == cstore.recorded(path)
+    except OSError:
+        return False
 
 
 def install(dest=PREBUILT, compiler=None, log=print):
