@@ -68,6 +68,7 @@ def test_a_large_library_is_published_at_O0_first_then_replaced_at_O1(cache, mon
     monkeypatch.setattr(cbuild, "build", build)
     monkeypatch.setattr(cbuild, "publish_index", publish)
     monkeypatch.setattr(codegen, "QUICK_FROM", 0)         # every library is large
+    monkeypatch.setattr(codegen, "QUICK_BODY", 0)         # and long
     monkeypatch.setattr(os, "nice", lambda inc: 0)         # the worker's, not this process's
     background._work(path)
     model = [(flags, out) for name, flags, out in builds if name == "a2d_model"]

@@ -10,18 +10,27 @@ background worker (:mod:`~acausal2d.runtime.background`).
 
 import casadi as ca
 
-from . import cbuild, cstraight
+from . import cbuild, cparts, cstraight
 from . import drivers
 from .drivers import GCC_LIMITS, is_gcc
 
 OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
 QUICK_FROM = 200_000
 """Characters of generated C from which the background worker builds a
-library twice: at -O0 first (published at once, so runs switch to native
-code early), then at -O1, which replaces it.  Chain of 81 links (the model
-library 450 kB of C, the rows library 596 kB), CPU s of gcc: -O0 4.7, -O1
-12.8; warm run 0.344 s with the -O0 libraries, 0.235 s with -O1.  Below it
-the -O1 compile takes about a second and is done once."""
+library twice - at -O0 first (published at once, so runs switch to native
+code early), then at -O1, which replaces it - where a function of it is
+still long after :func:`~acausal2d.runtime.cparts.partition`
+(:data:`QUICK_BODY`).  Measured (seconds of wall time from the code
+generator to the published library, a 2-core machine): belt drive, whose
+bodies are not cut, -O1 2.9 and 4.5 s, -O0 1.3 and 1.4 s, and its -O0 code
+ran 3.6x slower; chain of 81 links, cut into parts, -O1 2.2 and 2.3 s, -O0
+1.1 and 2.2 s, so it is built once, at -O1.  Below it the -O1 compile takes
+about a second and is done once."""
+QUICK_BODY = 4000
+"""Lines of a library's longest function from which it is built twice
+(:data:`QUICK_FROM`; the belt drive's are 9449 and 10263 lines, the chain
+of 81 links' 1201 and 2254 after :func:`~acausal2d.runtime.cparts.
+partition`)."""
 NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
 CHARS_PER_INSTRUCTION = 20   # generated C per CasADi instruction, low (measured: 23-30)
 """Compile time of the generated C grows with its size and is paid once per
@@ -59,7 +68,9 @@ slower: :mod:`~acausal2d.runtime.csplit`)."""
 def generate(recipe):
     """The C text of a :class:`Recipe`: CasADi's
     code of its functions, made straight-line (:func:`~acausal2d.runtime.
-    cstraight.straighten`), then its suffix."""
+    cstraight.straighten`), then its suffix.  Its size is what the size
+    limits measure (:func:`optimization`); :meth:`Recipe.code` then cuts
+    its large bodies into parts."""
     cg = ca.CodeGenerator(recipe.name + ".c", CODEGEN)
     for how, fns in recipe.parts:
         if how == "ej":
@@ -82,14 +93,15 @@ def too_large(*functions):
     return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
 
 
-def optimization(code, compiler=None, quick=False):
-    """The compiler flags for generated C of this size, or None: too large
-    to compile at run time (see :data:`NATIVE_BELOW`); -O0 where ``quick``
-    (the first of two builds, :data:`QUICK_FROM`); gcc's alias query
-    limits (:data:`GCC_LIMITS`) where ``compiler`` is gcc."""
-    if len(code) >= NATIVE_BELOW:
+def optimization(size, compiler=None, quick=False):
+    """The compiler flags for ``size`` characters of generated C
+    (:func:`generate`), or None: too large to compile at run time (see
+    :data:`NATIVE_BELOW`); -O0 where ``quick`` (the first of two builds,
+    :data:`QUICK_FROM`); gcc's alias query limits (:data:`GCC_LIMITS`)
+    where ``compiler`` is gcc."""
+    if size >= NATIVE_BELOW:
         return None
-    flags = ["-O1"] if len(code) < OPTIMIZE_BELOW and not quick else ["-O0"]
+    flags = ["-O1"] if size < OPTIMIZE_BELOW and not quick else ["-O0"]
     return flags + list(GCC_LIMITS) if is_gcc(compiler) else flags
 
 
@@ -122,6 +134,7 @@ class Recipe:
         parts = [(how, [cbuild.serialized(fn) for fn in fns]) for how, fns in self.parts]
         state = dict(self.__dict__, parts=parts)
         state.pop("_code", None)
+        state.pop("_size", None)
         return state
 
     def __setstate__(self, state):
@@ -139,24 +152,33 @@ class Recipe:
                    for name in self.objects)
 
     def code(self):
-        """The generated C (:func:`generate`), made once per recipe."""
+        """The C compiled: :func:`generate`'s, its large bodies cut into
+        parts (:func:`~acausal2d.runtime.cparts.partition`), made once per
+        recipe."""
         if getattr(self, "_code", None) is None:
-            self._code = generate(self)
+            text = generate(self)
+            self._size, self._code = len(text), cparts.partition(text)
         return self._code
+
+    def size(self):
+        """Characters of :func:`generate`'s C (what the limits measure)."""
+        self.code()
+        return self._size
 
     def builds_twice(self):
         """True where the background worker builds this library at -O0
-        first, then at -O1 (:data:`QUICK_FROM`)."""
-        return QUICK_FROM <= len(self.code()) < OPTIMIZE_BELOW
+        first, then at -O1 (:data:`QUICK_FROM`, :data:`QUICK_BODY`)."""
+        return QUICK_FROM <= self.size() < OPTIMIZE_BELOW and \
+            cparts.longest(self.code()) >= QUICK_BODY
 
     def make(self, quick=False):
         """Generate the C and compile it (:func:`~acausal2d.runtime.cbuild.
         build`), at -O0 where ``quick``; the library's path."""
         code = self.code()
-        flags = optimization(code, cbuild.find_compiler(), quick)
+        flags = optimization(self.size(), cbuild.find_compiler(), quick)
         if flags is None:
             raise cbuild.BuildFailed("the generated C of %s is too large to compile at run "
-                                     "time (%d characters)" % (self.name, len(code)))
+                                     "time (%d characters)" % (self.name, self.size()))
         objects = [cbuild.build_object(drivers.text(name), self._object_flags(), name)
                    for name in self.objects]
         return cbuild.build({self.name + ".c": code}, flags=flags, libraries=self.libraries,
