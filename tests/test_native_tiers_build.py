@@ -4,12 +4,15 @@ replaced by its -O1 build; the drivers' constant C is compiled once per
 machine into cached, verified object files that every structure's library
 links; a small model's first run compiles first only where those objects
 are there; a run whose Python path ends before the compile goes on in one
-piece, its worker held until the run ends; and the row maps are not
-compiled where the C projector serves."""
+piece, its worker held until the run ends; the row maps are not compiled
+where the C projector serves; and the worker generates the next library's
+C while this one compiles."""
 import os
 import pickle
 import subprocess
 import sys
+import threading
+import time
 
 import pytest
 
@@ -211,3 +214,35 @@ def test_a_run_that_outlives_its_estimate_releases_its_worker(tmp_path, monkeypa
     tiering.overdue(limit + 0.01)
     assert not background._holds
     assert tiering.notes[-1].startswith("the run outlived its estimate")
+
+
+class _Slow:
+    """A recipe whose C takes a while to generate (or cannot be generated)."""
+
+    def __init__(self, name, fails=False):
+        self.name, self.fails, self.threads = name, fails, []
+
+    def code(self):
+        self.threads.append(threading.current_thread().name)
+        time.sleep(0.05)
+        if self.fails:
+            raise RuntimeError("CasADi refused %s" % self.name)
+        return "/* %s */" % self.name
+
+
+def test_the_worker_generates_the_next_library_while_this_one_compiles():
+    jobs = [("k%d" % i, _Slow("lib%d" % i, fails=(i == 1))) for i in range(3)]
+    seen = []
+    for key, recipe in background._generated(jobs):
+        seen.append(key)
+        assert recipe.threads                  # its C was generated before it is compiled
+        nxt = int(key[1:]) + 1
+        if nxt < len(jobs):                    # the next one is generated meanwhile
+            end = time.perf_counter() + WAIT
+            while not jobs[nxt][1].threads and time.perf_counter() < end:
+                time.sleep(0.01)
+            assert jobs[nxt][1].threads and jobs[nxt][1].threads[0] != \
+                threading.current_thread().name
+    assert seen == ["k0", "k1", "k2"]
+    with pytest.raises(RuntimeError, match="CasADi refused lib1"):
+        jobs[1][1].code()                      # a failure is met again where it is built

@@ -12,9 +12,10 @@ marker (:func:`failure_path`) with the message.
 import fcntl
 import os
 import pickle
-import sys
-import time
 import subprocess
+import sys
+import threading
+import time
 
 from . import cbuild, cstore
 from .codegen import CHARS_PER_INSTRUCTION, QUICK_FROM
@@ -25,10 +26,13 @@ SECONDS_PER_INSTRUCTION = 2e-4
 instructions, 10.6 s of gcc's CPU at -O1 in two units on a loaded 2-core
 machine)."""
 QUICK_SECONDS_PER_INSTRUCTION = 8e-5
-"""The same for a library built at -O0 first (:data:`~acausal2d.runtime.
-codegen.QUICK_FROM`): the chain of 81 links' libraries, about 42k
-instructions, were all published 4.4 s after the worker's start on a quiet
-2-core machine (6e-5 s per instruction after :data:`WORKER_START`)."""
+"""The same for a large library (:data:`~acausal2d.runtime.codegen.
+QUICK_FROM`): built at -O0 first where a function of it stays long, else
+at -O1 with its bodies cut into parts (:mod:`~acausal2d.runtime.cparts`).
+The chain of 81 links' two libraries, about 51k instructions, were
+published 4.8 s after the worker's start with no run beside it (2-core
+machine, medians of 3; 8.7e-5 s per instruction after the worker's own
+start of 0.4 s)."""
 OBJECT_SECONDS = 0.4
 """Seconds of gcc per driver object (compiled once per machine,
 :func:`~acausal2d.runtime.cbuild.build_object`; measured: the model
@@ -295,6 +299,34 @@ def _optimize(key, recipe):
         cstore.discard(before)
 
 
+def _generated(jobs):
+    """The jobs in order, each recipe's C generated; the next recipe's C is
+    generated in a thread while the caller compiles this one (the compiler
+    runs in processes of its own, so the worker's CasADi is used by one
+    thread at a time).  Chain of 81 links: the rows library's C, 0.5 s,
+    is made while the model library compiles."""
+    thread = None
+    for k, (key, recipe) in enumerate(jobs):
+        if thread is not None:
+            thread.join()
+        else:
+            _generate(recipe)
+        thread = None
+        if k + 1 < len(jobs):
+            thread = threading.Thread(target=_generate, args=(jobs[k + 1][1],), daemon=True)
+            thread.start()
+        yield key, recipe
+
+
+def _generate(recipe):
+    """Generate ``recipe``'s C; a failure is met again, and recorded, where
+    the recipe is built."""
+    try:
+        recipe.code()
+    except Exception:              # noqa: BLE001 - Recipe.make raises it again
+        pass
+
+
 def _work(path):
     """The worker: build each job of the job file - large ones at -O0
     first, all of them published before any is optimized
@@ -308,12 +340,12 @@ def _work(path):
         jobs = pickle.load(fh)
     try:
         twice = []
-        for key, recipe in jobs:
+        _held(path)
+        for key, recipe in _generated(jobs):
             _held(path)
             if cbuild.lookup(key, recipe.name) is not None:     # another worker built it
                 continue
             quick = recipe.builds_twice()
-            _held(path)
             if _build(key, recipe, quick) and quick:
                 twice.append((key, recipe))
         for key, recipe in twice:
