@@ -5,14 +5,15 @@ machine into cached, verified object files that every structure's library
 links; a small model's first run compiles first only where those objects
 are there; a run whose Python path ends before the compile goes on in one
 piece, its worker held until the run ends; the row maps are not compiled
-where the C projector serves; and the worker generates the next library's
-C while this one compiles."""
+where the C projector serves; and the worker compiles two libraries at
+once, their C generated in its main thread."""
 import os
 import pickle
 import subprocess
 import sys
 import threading
 import time
+import types
 
 import pytest
 
@@ -217,32 +218,49 @@ def test_a_run_that_outlives_its_estimate_releases_its_worker(tmp_path, monkeypa
 
 
 class _Slow:
-    """A recipe whose C takes a while to generate (or cannot be generated)."""
+    """A recipe whose C takes a while to compile, or cannot be generated."""
 
     def __init__(self, name, fails=False):
-        self.name, self.fails, self.threads = name, fails, []
+        self.name, self.fails, self.events = name, fails, []
 
     def code(self):
-        self.threads.append(threading.current_thread().name)
-        time.sleep(0.05)
+        self.events.append(("generate", threading.current_thread().name))
         if self.fails:
             raise RuntimeError("CasADi refused %s" % self.name)
         return "/* %s */" % self.name
 
+    def builds_twice(self):
+        return False
 
-def test_the_worker_generates_the_next_library_while_this_one_compiles():
-    jobs = [("k%d" % i, _Slow("lib%d" % i, fails=(i == 1))) for i in range(3)]
-    seen = []
-    for key, recipe in background._generated(jobs):
-        seen.append(key)
-        assert recipe.threads                  # its C was generated before it is compiled
-        nxt = int(key[1:]) + 1
-        if nxt < len(jobs):                    # the next one is generated meanwhile
-            end = time.perf_counter() + WAIT
-            while not jobs[nxt][1].threads and time.perf_counter() < end:
-                time.sleep(0.01)
-            assert jobs[nxt][1].threads and jobs[nxt][1].threads[0] != \
-                threading.current_thread().name
-    assert seen == ["k0", "k1", "k2"]
-    with pytest.raises(RuntimeError, match="CasADi refused lib1"):
-        jobs[1][1].code()                      # a failure is met again where it is built
+    def make(self, quick=False):
+        self.code()
+        self.events.append(("start", time.perf_counter()))
+        time.sleep(0.3)
+        self.events.append(("end", time.perf_counter()))
+        return "/nonexistent/%s.so" % self.name
+
+
+def test_the_worker_compiles_two_libraries_at_once_and_generates_in_one_thread(
+        cache, monkeypatch):
+    published = []
+    monkeypatch.setattr(cbuild, "publish_index", lambda key, name, lib: published.append(name))
+    monkeypatch.setattr(os, "nice", lambda inc: 0)         # the worker's, not this process's
+    monkeypatch.setattr(background, "BUILDS_AT_ONCE", 2)
+    jobs = [("k%d" % i, _Slow("lib%d" % i, fails=(i == 3))) for i in range(4)]
+    os.makedirs(cache, exist_ok=True)
+    path = str(cache / ".tmp-job-test")
+    with open(path, "wb") as fh:
+        fh.write(b"")
+    monkeypatch.setattr(background, "pickle", types.SimpleNamespace(load=lambda fh: jobs))
+    background._work(path)
+    main = threading.current_thread().name
+    for _, recipe in jobs:                 # CasADi (the C's generation): this thread only
+        assert [who for what, who in recipe.events if what == "generate"][0] == main
+    times = {r.name: dict((w, t) for w, t in r.events if w in ("start", "end")) for _, r in jobs}
+    assert times["lib1"]["start"] < times["lib0"]["end"]    # compiled beside each other
+    assert times["lib2"]["start"] >= times["lib0"]["end"]   # BUILDS_AT_ONCE at most
+    assert sorted(published) == ["lib0", "lib1", "lib2"]
+    marker = background.failure_path("k3", "lib3")          # the failure recorded
+    with open(marker, encoding="utf-8") as fh:
+        assert "CasADi refused lib3" in fh.read()
+    os.remove(marker)
