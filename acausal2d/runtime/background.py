@@ -320,13 +320,16 @@ class _Builds:
     def start(self, key, recipe, generated):
         """Build ``recipe`` (published under ``key``) beside the others;
         where its C could not be ``generated``, the build meets the error
-        again and records it."""
+        again, in this thread, and records it."""
+        if not generated:
+            _build(key, recipe, False)
+            return
         for build in [b for b in self.running if not b[0].is_alive()]:
             self.running.remove(build)
             self._finish(build)
         while len(self.running) >= BUILDS_AT_ONCE:
             self._finish(self.running.pop(0))
-        quick = generated and recipe.builds_twice()
+        quick = recipe.builds_twice()
         box = []
         thread = threading.Thread(target=lambda: box.append(_build(key, recipe, quick)),
                                   daemon=True, name="acausal2d-build-%s" % recipe.name)
