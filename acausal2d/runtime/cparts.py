@@ -34,6 +34,8 @@ loaded 2-core machine): model library 3.65 -> 2.03 s, rows library 8.15 ->
 """
 import re
 
+from . import csplit
+
 PART = 500
 """Statements per part, about (measured on the chain: 150-500 compiled
 fastest; smaller parts repeat more declarations and reads)."""
@@ -200,11 +202,8 @@ def partition(text):
     return out[:first.start()] + _MACRO + out[first.start():]
 
 
-_ANY_BODY = re.compile(r"^static (?:%s )?int casadi_f\w+\([^)]*\) \{\n(.*?)^\}\n" % NOINLINE,
-                       re.M | re.S)
-
-
 def longest(text):
     """Lines of the longest function body of generated C ``text`` (0 where
-    it has none): what gcc's -O1 time grows with."""
-    return max((m.group(1).count("\n") for m in _ANY_BODY.finditer(text)), default=0)
+    it has none; the bodies as :func:`~acausal2d.runtime.csplit.split`
+    finds them): what gcc's -O1 time grows with."""
+    return max((m.group(3).count("\n") for m in csplit.BODY.finditer(text)), default=0)

@@ -27,7 +27,9 @@ import re
 SPLIT_FROM = 150_000
 """Characters of C from which a file is cut (below, one compiler process
 starts faster than two)."""
-_BODY = re.compile(r"^static (?:A2D_NOINLINE )?int (casadi_f\d+(?:_s\d*)?)\(([^)]*)\) \{\n(.*?)^\}\n", re.M | re.S)
+BODY = re.compile(r"^static (?:A2D_NOINLINE )?int (casadi_f\d+(?:_s\d*)?)\(([^)]*)\) \{\n(.*?)^\}\n", re.M | re.S)
+"""A function body of the generated C: name, parameters, body (CasADi's,
+its straight form ``_s``, and the parts of :mod:`~acausal2d.runtime.cparts`)."""
 _HELPER = re.compile(r"^(casadi_real|casadi_int|void|int) (casadi_\w+)\(", re.M)
 _EXPORTED = re.compile(r"^CASADI_SYMBOL_EXPORT [^\n]*\{(?:[^\n]*\}\n|\n.*?^\}\n)", re.M | re.S)
 
@@ -35,7 +37,7 @@ _EXPORTED = re.compile(r"^CASADI_SYMBOL_EXPORT [^\n]*\{(?:[^\n]*\}\n|\n.*?^\}\n)
 def split(text, k):
     """The C file ``text`` as a list of at most ``k`` translation units (see
     the module docstring)."""
-    bodies = list(_BODY.finditer(text)) if len(text) >= SPLIT_FROM else []
+    bodies = list(BODY.finditer(text)) if len(text) >= SPLIT_FROM else []
     first = bodies[0].start() if bodies else 0
     preamble = _HELPER.sub(r"static \1 \2(", text[:first])     # helpers: one copy per unit
     if not bodies or "CASADI_PREFIX" not in preamble:
