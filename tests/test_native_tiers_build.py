@@ -48,8 +48,8 @@ def _run(model, stop_time=0.5, rtol=1e-8, intervals=200):
 
 def test_a_large_library_is_published_at_O0_first_then_replaced_at_O1(cache, monkeypatch):
     launch = background.launch
-    monkeypatch.setattr(background, "launch", lambda label=None: False)
-    monkeypatch.setattr(simulation, "launch", lambda label=None: False)
+    monkeypatch.setattr(background, "launch", lambda label=None, held=False: False)
+    monkeypatch.setattr(simulation, "launch", lambda label=None, held=False: False)
     monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)
     _run(Pendulum())
     jobs = [(key, recipe) for key, recipe, _ in background._queue]
@@ -141,16 +141,22 @@ def test_a_small_model_compiles_first_only_with_the_drivers_there(cache, monkeyp
 
 def test_a_run_whose_python_path_ends_before_the_compile_goes_on_in_one_piece(cache,
                                                                               monkeypatch):
+    """The checkpoint decides without ending the call of IDA: the run takes
+    the same steps as the Python path alone, its worker held until the end."""
     monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)
     monkeypatch.setattr(background, "expected_left", lambda: 1e6)   # a compile of ages
+    held = []
+    monkeypatch.setattr(background.Tiering, "held",
+                        lambda self, now: held.append(bool(background._holds)))
     res = _run(Pendulum(), stop_time=2.0)
-    assert res.stats["segments"] == 2                      # the first piece, then the rest
+    assert held == [True]                                  # launched held
+    assert res.stats["segments"] == 1
     assert any(n.startswith("Python path: it needs about") and "waits for the run's end" in n
                for n in res.native_notes), res.native_notes
     assert not background._holds                           # released at the run's end
     monkeypatch.setenv(tiers.ENV, "off")
     ref = _run(Pendulum(), stop_time=2.0)
-    assert ref.stats["segments"] == 1
+    assert ref.stats["segments"] == 1 and res.stats["steps"] == ref.stats["steps"]
     _agree(res, ref, ("revolute.phi", "revolute.w"), 1e-8)
 
 
@@ -206,7 +212,7 @@ def test_a_run_that_outlives_its_estimate_releases_its_worker(tmp_path, monkeypa
     monkeypatch.setattr(background.Tiering, "active", lambda self: True)
     monkeypatch.setattr(background, "expected_left", lambda: 10.0)
     tiering = background.Tiering()
-    tiering.begin(0.0, 100.0)
+    tiering.begin(0.0, 100.0, 4.0)
     tiering.decide(1.0, 1.0, 101.0, lambda: False)        # rest 1 s < compile 10 s: held
     assert tiering.gave_up and background._holds
     limit = 101.0 + background.HELD_AT_MOST * 1.0 + 0.5

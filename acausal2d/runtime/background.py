@@ -48,20 +48,28 @@ NATIVE_SPEEDUP = 5.0
 PAYS = 2.0
 """Waiting for the compile is chosen where the Python path's estimated rest
 is this many times the compile's plus the native rest: the estimate is from
-one piece (measured, belt drive on a loaded machine: 23 s estimated, 9 s
+one stretch between checkpoints (measured, belt drive on a loaded machine: 23 s estimated, 9 s
 taken), and a wait that ends before the library is there is lost."""
 NICE = 19                # the lowest priority: the run itself is never slowed for the compile
 CHUNKS = 4
-"""While a library is compiled in the background, a run advances in this
-many pieces of its output grid and looks for the library between them."""
+"""While a library is compiled in the background, a run on the Python path
+looks for it at this many checkpoints, evenly spaced over the run
+(:meth:`Tiering.pause`)."""
 _queue: list = []        # (key, recipe, label) not yet handed to a worker
 _seen: set = set()      # keys queued by this process
 _workers: list = []      # (Popen, start time, expected seconds, [(key, library name)])
 HOLD = ".hold"
+FIRST_HOLD = 1.0
+"""A worker launched beside a run on the Python path is held
+(:meth:`Tiering.held`) until the run's first checkpoint tells whether its
+compile can be done before the run ends, but at most this many seconds.
+Belt drive, Python path, 7 alternating processes (medians): 1.43 s alone,
+1.70 s with the worker compiling beside its first quarter, 1.44 s with the
+worker held (it starts Python and reads its jobs, then waits)."""
 HELD_AT_MOST = 2.0
 """A held worker (:func:`hold`) is released once the run has gone on this
 many times its estimated rest (plus half a second): the estimate from the
-first piece was wrong (the compressor's valves start after it: 0.55 s
+first checkpoint was wrong (the compressor's valves start after it: 0.55 s
 estimated, 6 s taken), and a formulation met later in the run (after an
 event or a state re-selection) may use the library."""
 _holds: dict = {}        # hold file of a worker of this process -> its open descriptor
@@ -88,10 +96,12 @@ def _environment():
     return env
 
 
-def launch(label=None):
+def launch(label=None, held=False):
     """Start one worker for the queued builds (the model's own library
-    first); one notice on stderr naming the model (``label``).  Returns
-    whether one was started."""
+    first); one notice on stderr naming the model (``label``).  Where
+    ``held``, the worker waits before its first library until
+    :func:`release` (:func:`hold` from its start).  Returns whether one
+    was started."""
     if not _queue:
         return False
     jobs = sorted(_queue, key=lambda job: job[1].name != "a2d_model")
@@ -104,6 +114,8 @@ def launch(label=None):
         with open(path, "wb") as fh:
             pickle.dump([(key, recipe) for key, recipe, _ in jobs], fh)
         _holds[path + HOLD] = os.open(path + HOLD, os.O_CREAT | os.O_RDWR, 0o600)
+        if held:
+            fcntl.flock(_holds[path + HOLD], fcntl.LOCK_EX)
         log = open(path + ".log", "ab")
     except OSError:
         return False
@@ -127,12 +139,15 @@ def hold():
     1.26-1.72 s with the worker compiling, 1.14-1.47 s with it stopped at
     that decision): the two share the machine's caches and memory.  The
     hold is a lock (``fcntl.flock``), so it ends with :func:`release` at
-    the run's end, or with this process."""
+    the run's end, or with this process.  Returns whether a worker is held."""
+    held = False
     for fd in list(_holds.values()):          # a copy: runs in other threads may launch
         try:
             fcntl.flock(fd, fcntl.LOCK_EX)
+            held = True
         except OSError:
             pass
+    return held
 
 
 def release():
@@ -199,66 +214,103 @@ def wait(ready, timeout):
 
 
 class Tiering:
-    """A run's view of the background compile: while it runs the run goes
-    in :data:`CHUNKS` pieces (:meth:`outputs`) and looks for the library
-    between them; :meth:`decide` ends the pieces where the library cannot
+    """A run's view of the background compile: while it runs, the run on
+    the Python path stops at :data:`CHUNKS` checkpoints (:meth:`pause`, at
+    output times, IDA going on where nothing changes) and looks for the
+    library there; :meth:`decide` stops the checks where the library cannot
     come before the run ends, and waits for the compile where that pays.
     ``notes`` say what was chosen and why (the run log)."""
 
     def __init__(self):
         self.notes, self.decided, self.waited = [], False, 0.0
         self.waiting = False       # a library of this run may still appear
-        self.mark = None           # (simulated time, wall clock) at the start of the last piece
-        self.pieces = 0            # pieces measured
-        self.gave_up = False       # the run ends before any compile: no more pieces
+        self.mark = None           # (simulated time, wall clock) since the speed is measured
+        self.every = self.next_check = None    # the checkpoints' spacing, the next one
+        self.pieces = 0            # stretches between checkpoints measured
+        self.gave_up = False       # the run ends before any compile: no more checks
         self.held_until = None     # wall clock at which a held worker is released
 
     def active(self):
         """True while a background compile of this process runs."""
         return bool(_workers) and pending()
 
-    def outputs(self, outputs, n_total):
-        """The output times of the next piece of a run."""
-        size = max(1, -(-n_total // CHUNKS))
-        return outputs[:size]
+    def held(self, now):
+        """A worker was launched held (:func:`launch`) at wall clock ``now``
+        beside this run on the Python path: it waits for the first
+        :meth:`decide`, at most :data:`FIRST_HOLD` s (:meth:`overdue`)."""
+        self.held_until = now + FIRST_HOLD
 
-    def begin(self, t, now):
-        """A piece on the Python path starts at simulated time ``t``, wall clock ``now``."""
+    def tick(self):
+        """:meth:`overdue` now; called on each step of IDA on the Python
+        path (a call of IDA can be long) while a worker is held."""
+        if self.held_until is not None:
+            self.overdue(time.perf_counter())
+
+    def begin(self, t, now, t_end):
+        """A call of IDA on the Python path, looking for the library, starts
+        at simulated time ``t``, wall clock ``now``; the run ends at ``t_end``."""
         self.mark = (t, now)
+        if self.next_check is None:
+            self.every = (t_end - t) / CHUNKS
+            self.next_check = t + self.every
+
+    def pause(self, t, t_left, now, ready):
+        """At output time ``t`` of the Python path (``t_left`` s to go, wall
+        clock ``now``): True where the call of IDA ends here because the
+        library is there (``ready()``) or the run waited for it.  Acts at
+        the checkpoints only; between them, and after :meth:`decide` gave
+        up, IDA goes on (every new call re-initializes it: belt drive,
+        1434 steps against 1387 when its run was cut once)."""
+        if not self.waiting or self.next_check is None or t < self.next_check:
+            return False
+        self.next_check += self.every
+        if not ready():
+            self.decide(t, t_left, now, ready)
+        self.mark = (t, time.perf_counter())
+        return self.waiting and ready()
 
     def decide(self, t, t_left, now, ready):
-        """At the end of a piece on the Python path (simulated time ``t``,
+        """At a checkpoint of the Python path (simulated time ``t``,
         ``t_left`` s to go, wall clock ``now``), from the Python path's
-        estimated rest: where it is shorter than the compile, the rest of
-        the run goes in one piece (every piece restarts IDA: chain of 81
-        links, 1271 steps in four pieces against 1175 in one); from the
-        second piece on (the first carries the run's start-up), wait (until
-        ``ready()``) for the compile if the rest is :data:`PAYS` times the
-        compile's plus the native rest."""
+        estimated rest: where it is shorter than the compile, no more
+        checks, and the worker is held until the run ends; from the second
+        checkpoint on (the stretch before the first carries the run's
+        start-up), wait (until ``ready()``) for the compile if the rest is
+        :data:`PAYS` times the compile's plus the native rest.  A worker
+        held since its launch (:meth:`held`) is released where its compile
+        can be done first."""
         if self.decided or not self.active() or self.mark is None:
             return
-        mark, self.mark = self.mark, None
+        mark = self.mark
         if t <= mark[0] or now <= mark[1]:
             return
         self.pieces += 1
         rest, compile_left = (t_left / (t - mark[0])) * (now - mark[1]), expected_left()
         if rest < compile_left:
             self.decided, self.waiting, self.gave_up = True, False, True
-            hold()
-            self.held_until = now + HELD_AT_MOST * rest + 0.5
+            if hold():
+                self.held_until = now + HELD_AT_MOST * rest + 0.5
             self.notes.append("Python path: it needs about %.3g s more, the compile about "
                               "%.3g s; the compile waits for the run's end" % (rest, compile_left))
-        elif self.pieces >= 2:
+            return
+        if self.held_until is not None:      # held since its launch: it can finish first
+            self.held_until = None
+            release()
+        if self.pieces >= 2:
             self.decided = True
             self._wait_if_it_pays(rest, compile_left, ready)
 
     def overdue(self, now):
         """Release a held worker where the run has outlived its estimate
-        (:data:`HELD_AT_MOST`); called between segments at wall clock ``now``."""
+        (:data:`HELD_AT_MOST`) or, held since its launch, no decision came
+        within :data:`FIRST_HOLD` s; called between segments (and
+        by :meth:`tick`) at wall clock ``now``."""
         if self.held_until is not None and now > self.held_until:
             self.held_until = None
             release()
-            self.notes.append("the run outlived its estimate: the compile goes on beside it")
+            self.notes.append("the run outlived its estimate: the compile goes on beside it"
+                              if self.decided else "no decision within %g s: the compile goes "
+                              "on beside the run" % FIRST_HOLD)
 
     def _wait_if_it_pays(self, rest, compile_left, ready):
         if rest > PAYS * (compile_left + rest / NATIVE_SPEEDUP):

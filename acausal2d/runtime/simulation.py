@@ -141,7 +141,7 @@ class Simulation:
             except SimulationError as exc:
                 exc.partial = self._log(wall)       # the motion up to where it stopped
                 raise
-            finally:       # libraries asked for after the last piece (the singular scan's)
+            finally:       # libraries asked for after the last segment (the singular scan's)
                 release_workers()
                 launch(getattr(self.system, "model_name", None))
         if self.progress is not None:
@@ -241,8 +241,7 @@ class Simulation:
     def _segment(self):
         self.tiering.overdue(_time.perf_counter())
         form, prob, solver, projector = self._solver()
-        if launch(getattr(self.system, "model_name", None)) and not self.tiering.gave_up:
-            self.tiering.waiting = prob.native is None
+        self._launch(prob)
         prob.set_relations(self.d)
         y0, yp0 = form.y_from(self.z)
         prob.reset_monitors(self.t, y0, yp0, self.watch)
@@ -250,18 +249,14 @@ class Simulation:
         n0 = self.seg_start = len(self.out)
         self.seg_left = (self.t, np.array(self.z))
         steps0 = prob.steps
-        if prob.native is None and self.tiering.waiting:
-            self.tiering.begin(self.t, _time.perf_counter())
         try:
-            outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop)
+            outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop,
+                                                self._pause(form, prob))
         except Exception as exc:       # scikit-sundae raises on bad input at the start
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
         rows = projector.project(T, Y, self.d)
         self.out.add_block(T, rows)
-        if prob.native is None and self.tiering.waiting and len(T):
-            self.tiering.decide(float(T[-1]), self.t_end - float(T[-1]), _time.perf_counter(),
-                                lambda: native_library(form) is not None)
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
         self.stats.nfev += nfev
@@ -270,6 +265,33 @@ class Simulation:
         self._scan(form, n0, T, rows)
         return outcome
 
+    def _launch(self, prob):
+        """Start the background worker of libraries asked for (tiers); on
+        the Python path it is held until the run's first checkpoint tells whether
+        its compile can be done before the run ends
+        (:meth:`~acausal2d.runtime.background.Tiering.held`)."""
+        python = prob.native is None and not self.tiering.gave_up
+        if launch(getattr(self.system, "model_name", None), held=python) and \
+                not self.tiering.gave_up:
+            self.tiering.waiting = prob.native is None
+            if python:
+                self.tiering.held(_time.perf_counter())
+                prob.tick = self.tiering.tick
+
+    def _pause(self, form, prob):
+        """While the run looks for its library on the Python path: the
+        ``pause`` of :func:`~acausal2d.runtime.ida.advance`, which ends the
+        call of IDA where the library is there or the run waits for it
+        (:meth:`~acausal2d.runtime.background.Tiering.pause`); else None."""
+        if prob.native is not None or not self.tiering.waiting:
+            return None
+        tiering, t_end = self.tiering, self.t_end
+        tiering.begin(self.t, _time.perf_counter(), t_end)
+
+        def ready():
+            return native_library(form) is not None
+        return lambda t: tiering.pause(t, t_end - t, _time.perf_counter(), ready)
+
     def _stop_and_outputs(self):
         """(stop time, output times) of the next IDA call: up to the next
         time event, with at most :data:`OUTPUTS_PER_CALL` output points (a
@@ -277,9 +299,6 @@ class Simulation:
         do not depend on the output grid of ordinary runs)."""
         self.time_event = self._next_time_event()
         outputs = self.times[(self.times > self.t + self.eps) & (self.times <= self.time_event)]
-        if self.tiering.waiting and len(outputs) > 1:      # look for the library between pieces
-            outputs = self.tiering.outputs(outputs, len(self.times))
-            return float(outputs[-1]), outputs
         if len(outputs) > OUTPUTS_PER_CALL:
             outputs = outputs[:OUTPUTS_PER_CALL]
             return float(outputs[-1]), outputs
