@@ -1,8 +1,9 @@
 """Cold start (issue 30): the first run of a new model structure against the
 Python path, the background compile, and later runs at native speed.
 
-    python benchmarks/bench_cold.py            (the table of issue 30; medians of 3)
-    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run: the suite)
+    python benchmarks/bench_cold.py            (the table of issue 30; medians of 3, the
+                                                Python path and the first run of 9 pairs)
+    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, two pairs: the suite)
     python benchmarks/bench_cold.py --classic  (also compile first, as before issue 30)
     python benchmarks/bench_cold.py belt chain (only the models whose names contain these)
 
@@ -38,12 +39,18 @@ Every figure is measured in a fresh process with a cache folder of its own:
 import json
 import os
 import resource
+import signal
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
 
+PAIRS = 9
+"""Alternating pairs of the Python path and the first run: on a shared
+machine a short run's time scatters by 20-40%, and the belt drive's ratio
+was 0.98 and 1.28 as medians of 3 in two full runs of one build."""
+KILL = "BENCH_COLD_STOP_WORKER"
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 MODELS = {
@@ -80,6 +87,11 @@ def child(kind, n, stop):
     res = cm.simulate(stop_time=stop)
     t1 = time.perf_counter()
     worker = usable = None
+    if os.environ.get(KILL) == "1":       # a first run measured only: its worker is not waited for
+        for proc, _, _, _ in background._workers:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+        background._workers.clear()
     for proc, start, _, jobs in background._workers:
         while proc.poll() is None:
             if usable is None and all(cbuild.lookup(key, name) for key, name in jobs):
@@ -94,11 +106,11 @@ def child(kind, n, stop):
                       "native": res.stats["native_compile_time"]}))
 
 
-def _child(name, models, cache, mode, prebuilt="1", stop=None):
+def _child(name, models, cache, mode, prebuilt="1", stop=None, kill=False):
     kind, n, default = models[name]
     stop = default if stop is None else stop
     env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE=mode,
-               ACAUSAL2D_PREBUILT=prebuilt)
+               ACAUSAL2D_PREBUILT=prebuilt, **{KILL: "1" if kill else "0"})
     out = subprocess.run([sys.executable, __file__, "--child", kind, str(n), str(stop)],
                          env=env, capture_output=True, text=True, check=True, timeout=1800)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -117,8 +129,10 @@ def _settled(cache, timeout=600.0):
         time.sleep(0.05)
 
 
-def measure(name, models, repeat, classic):
-    """Medians of the figures of one model."""
+def measure(name, models, repeat, classic, pairs):
+    """Medians of the figures of one model: of ``repeat`` rounds, and for
+    the Python path and the first run, of ``pairs`` alternating pairs (the
+    rounds' and more, whose workers are stopped after the run)."""
     rows = {"python": [], "auto": [], "usable": [], "worker": [], "cpu": [], "later": [],
             "new": [], "now": [], "alone": []}
     for _ in range(repeat):
@@ -139,6 +153,10 @@ def measure(name, models, repeat, classic):
                 _settled(d)
             if classic:
                 rows["now"].append(_child(name, models, b, "now")["run"])
+    for _ in range(pairs - repeat):
+        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+            rows["python"].append(_child(name, models, b, "off")["run"])
+            rows["auto"].append(_child(name, models, a, "auto", kill=True)["run"])
     return {k: statistics.median(v) for k, v in rows.items() if v}
 
 
@@ -171,14 +189,15 @@ def _installed():
         else 0
 
 
-def main(models, repeat, classic, piston, whole_repeat):
-    print("cold start (issue 30), medians of %d, fresh processes, s; driver objects installed "
-          "with the package: %d" % (repeat, _installed()))
+def main(models, repeat, classic, piston, whole_repeat, pairs):
+    print("cold start (issue 30), fresh processes, s: Python and first run medians of %d "
+          "alternating pairs, the rest medians of %d; driver objects installed with the "
+          "package: %d" % (pairs, repeat, _installed()))
     print("%-22s %8s %12s %6s %12s %6s %10s %7s %11s %7s %7s %14s" % (
         "model", "Python", "first(auto)", "ratio", "no drivers", "ratio", "native in", "alone",
         "background", "bg CPU", "later", "compile first"))
     for name in models:
-        m = measure(name, models, repeat, classic)
+        m = measure(name, models, repeat, classic, pairs)
         print("%-22s %8.3f %12.3f %6.2f %12.3f %6.2f %10.3f %7.3f %11.3f %7.2f %7.3f %14s" % (
             name, m["python"], m["auto"], m["auto"] / m["python"], m["new"],
             m["new"] / m["python"], m["usable"], m["alone"], m["worker"], m["cpu"], m["later"],
@@ -196,8 +215,8 @@ if __name__ == "__main__":
     if args[:1] == ["--child"]:
         child(args[1], int(args[2]), None if args[3] == "None" else float(args[3]))
     elif "--small" in args:
-        main(SMALL, 1, "--classic" in args, True, 3)
+        main(SMALL, 1, "--classic" in args, True, 3, 2)
     else:
         chosen = [a for a in args if not a.startswith("--")]
         picked = {k: v for k, v in MODELS.items() if not chosen or any(c in k for c in chosen)}
-        main(picked, 3, "--classic" in args, not chosen or "piston" in chosen, 5)
+        main(picked, 3, "--classic" in args, not chosen or "piston" in chosen, 5, PAIRS)
