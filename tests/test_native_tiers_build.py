@@ -200,6 +200,30 @@ def test_a_held_worker_waits_for_the_release(tmp_path, monkeypatch):
         proc.kill()
 
 
+@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="reads /proc/PID/maps")
+def test_a_worker_launched_held_waits_before_it_imports_then_builds(cache, monkeypatch):
+    """:data:`background.BOOT`: held, the worker has started Python only
+    (no CasADi in its memory map); released, it builds and publishes."""
+    import casadi as ca
+    x = ca.SX.sym("x")
+    recipe = codegen.Recipe("a2d_held", [("plain", [ca.Function("f", [x], [ca.sin(x) * x])])])
+    background.queue("held-test-key", recipe, "HeldTest")
+    monkeypatch.setattr(background, "_holds", {})
+    assert background.launch(held=True)
+    proc = background._workers[-1][0]
+    try:
+        time.sleep(1.0)                                    # Python has long started by now
+        assert proc.poll() is None                         # waiting, not ended
+        with open("/proc/%d/maps" % proc.pid) as fh:
+            assert "casadi" not in fh.read()
+        assert cbuild.lookup("held-test-key", "a2d_held") is None
+        background.release()
+        assert proc.wait(timeout=WAIT) == 0
+        assert cbuild.lookup("held-test-key", "a2d_held") is not None
+    finally:
+        proc.kill()
+
+
 def test_a_run_that_outlives_its_estimate_releases_its_worker(tmp_path, monkeypatch):
     """The estimate from the first piece can be far off (the compressor's
     valves start after it): past :data:`background.HELD_AT_MOST` times the

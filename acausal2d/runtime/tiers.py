@@ -4,7 +4,7 @@ wait for the C compiler.
 ``ACAUSAL2D_NATIVE`` (and ``acausal2d simulate --native``) chooses:
 
 - ``auto`` (the default): a library that is not in the cache is compiled by
-  a background worker (``python -m acausal2d.runtime.background``, a separate
+  a background worker (:data:`~acausal2d.runtime.background.BOOT`, a separate
   process at lower priority, one build at a time per library: a lock per
   key), which publishes it into the cache and ends; the run goes on with
   the Python path and switches to the library when it appears
