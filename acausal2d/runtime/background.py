@@ -48,8 +48,9 @@ NATIVE_SPEEDUP = 5.0
 PAYS = 2.0
 """Waiting for the compile is chosen where the Python path's estimated rest
 is this many times the compile's plus the native rest: the estimate is from
-one stretch between checkpoints (measured, belt drive on a loaded machine: 23 s estimated, 9 s
-taken), and a wait that ends before the library is there is lost."""
+one stretch between checkpoints (measured, belt drive on a loaded machine:
+23 s estimated, 9 s taken), and a wait that ends before the library is
+there is lost."""
 NICE = 19                # the lowest priority: the run itself is never slowed for the compile
 CHUNKS = 4
 """While a library is compiled in the background, a run on the Python path
@@ -65,7 +66,8 @@ FIRST_HOLD = 1.0
 compile can be done before the run ends, but at most this many seconds.
 Belt drive, Python path, 7 alternating processes (medians): 1.43 s alone,
 1.70 s with the worker compiling beside its first quarter, 1.44 s with the
-worker held (it starts Python and reads its jobs, then waits)."""
+worker held (it had imported acausal2d and read its jobs; now it waits
+before it imports anything, :data:`BOOT`)."""
 HELD_AT_MOST = 2.0
 """A held worker (:func:`hold`) is released once the run has gone on this
 many times its estimated rest (plus half a second): the estimate from the

@@ -267,14 +267,15 @@ class Simulation:
 
     def _launch(self, prob):
         """Start the background worker of libraries asked for (tiers); on
-        the Python path it is held until the run's first checkpoint tells whether
-        its compile can be done before the run ends
-        (:meth:`~acausal2d.runtime.background.Tiering.held`)."""
-        python = prob.native is None and not self.tiering.gave_up
-        if launch(getattr(self.system, "model_name", None), held=python) and \
+        the Python path, before the run has decided, it is held until the
+        run's first checkpoint tells whether its compile can be done before
+        the run ends (:meth:`~acausal2d.runtime.background.Tiering.held`)."""
+        python = prob.native is None
+        held = python and not self.tiering.decided
+        if launch(getattr(self.system, "model_name", None), held=held) and \
                 not self.tiering.gave_up:
-            self.tiering.waiting = prob.native is None
-            if python:
+            self.tiering.waiting = python
+            if held:
                 self.tiering.held(_time.perf_counter())
                 prob.tick = self.tiering.tick
 
