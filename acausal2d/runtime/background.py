@@ -145,7 +145,8 @@ _work(sys.argv[1])
 """ % HOLD
 """The worker process's program (``python -c BOOT JOBFILE``): a worker
 launched held (:func:`launch`) waits before it imports anything, so that
-beside the run it costs no more than Python's start.  Belt drive, first
+beside the run it costs no more than Python's start.  Its wait is
+:func:`_held` written out: importing that would import acausal2d first.  Belt drive, first
 run: a worker that imported acausal2d and read its jobs before the hold
 took 0.34-0.51 CPU seconds beside the run."""
 
@@ -313,8 +314,7 @@ class Tiering:
                               "%.3g s; the compile waits for the run's end" % (rest, compile_left))
             return
         if self.held_until is not None:      # held since its launch: it can finish first
-            self.held_until = None
-            release()
+            self._free()
         if self.pieces >= 2:
             self.decided = True
             self._wait_if_it_pays(rest, compile_left, ready)
@@ -325,11 +325,15 @@ class Tiering:
         within :data:`FIRST_HOLD` s; called between segments (and
         by :meth:`tick`) at wall clock ``now``."""
         if self.held_until is not None and now > self.held_until:
-            self.held_until = None
-            release()
+            self._free()
             self.notes.append("the run outlived its estimate: the compile goes on beside it"
                               if self.decided else "no decision within %g s: the compile goes "
                               "on beside the run" % FIRST_HOLD)
+
+    def _free(self):
+        """Release the held worker (:func:`release`); nothing is held any more."""
+        self.held_until = None
+        release()
 
     def _wait_if_it_pays(self, rest, compile_left, ready):
         if rest > PAYS * (compile_left + rest / NATIVE_SPEEDUP):

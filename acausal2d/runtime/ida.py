@@ -29,6 +29,7 @@ from ..options import STEPS_PER_OUTPUT  # noqa: E402
 
 ALGEBRAIC_ATOL = 1e10    # fallback: an absolute tolerance that leaves an unknown untested
 TOO_MUCH_WORK = -1    # IDA's status when it used up STEPS_PER_OUTPUT for one output interval
+ROOT_RETURN, TSTOP_RETURN = 2, 1      # IDASolve's flags: a root found, the stop time reached
 MONITOR_THRESHOLD = 0.25    # a watched block whose |det| dropped 4x: re-check the selection
 NEAR_SINGULAR = 1e-3        # the highest block's |det| this small: a singular position ahead
 
@@ -358,7 +359,7 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     if budget:       # only the step budget of one output interval: as the Python path reports it
         outcome = Failed(*last, TOO_MUCH_WORK, "IDA took %d steps without reaching the next "
                          "output time" % STEPS_PER_OUTPUT)
-    elif flag == 2:
+    elif flag == ROOT_RETURN:
         idx = np.nonzero(roots)[0]
         m = prob.n_rel + prob.n_mon
         outcome = RootFound(last[0], last[1], last[2], [int(k) for k in idx if k < prob.n_rel],
@@ -370,9 +371,6 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     if keep.all():        # every row an output time (the usual case): no copy
         return outcome, T, Y, nfev, njev
     return outcome, T[keep], Y[keep], nfev, njev
-
-
-ROOT_RETURN, TSTOP_RETURN = 2, 1      # IDASolve's flags: a root found, the stop time reached
 
 
 def _solve(solver, prob, tspan, y0, yp0, pause):
