@@ -174,15 +174,17 @@ def whole_process(repeat):
                            ACAUSAL2D_PREBUILT=prebuilt)
                 t0 = time.perf_counter()
                 subprocess.run([sys.executable, "-m", "acausal2d", "simulate", model, "--out",
-                                out], env=env, capture_output=True, check=True, cwd=ROOT)
+                                out], env=env, capture_output=True, check=True, cwd=out)
                 times.append(time.perf_counter() - t0)
                 _settled(where)
     return statistics.median(cold), statistics.median(bare), statistics.median(warm)
 
 
 def _installed():
-    """How many driver objects were compiled into the package at install."""
-    sys.path.insert(0, ROOT)
+    """How many driver objects were compiled into the package at install
+    (the installed acausal2d, which the runs import: from a clone's folder a
+    non-editable install's copy would be shadowed by the sources, which
+    have none)."""
     from acausal2d.runtime import drivers
     folder = drivers.PREBUILT
     return len([f for f in os.listdir(folder) if f.endswith(".o")]) if os.path.isdir(folder) \
