@@ -26,6 +26,7 @@ from typing import Any
 import os
 
 from ..errors import Acausal2dError
+from ..usercode import user_error_text
 
 
 class Study:
@@ -183,5 +184,4 @@ def _run_study(st, ctx, label):
     except (KeyboardInterrupt, SystemExit, MemoryError):
         raise
     except Exception as exc:           # noqa: BLE001 - the model author's code
-        raise Acausal2dError("study %s failed: %s: %s (fix the study in the model file)"
-                             % (label, type(exc).__name__, exc)) from exc
+        raise Acausal2dError(user_error_text("study %s" % label, exc)) from exc

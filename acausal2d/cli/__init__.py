@@ -24,6 +24,7 @@ from .. import __version__
 from ..io.loader import load_model
 from ..analysis.study import declared_studies
 from .examples import add_examples
+from ..usercode import TRACEBACK_ENV, has_user_cause, print_traceback, wants_traceback
 
 
 COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",
@@ -36,6 +37,9 @@ def build_parser():
     p = argparse.ArgumentParser(prog="acausal2d", description="simulate, check and compare "
                                 "models of planar linkages and belt drives")
     p.add_argument("--version", action="version", version="acausal2d " + __version__)
+    p.add_argument("--traceback", action="store_true",
+                   help="on an error, print the whole Python traceback too (also "
+                   "$%s=1); may be given after the command as well" % TRACEBACK_ENV)
     sub = p.add_subparsers(dest="command", required=True)
     for name in COMMAND_MODULES:
         importlib.import_module("." + name, __name__).add_parsers(sub)
@@ -52,6 +56,17 @@ def run_model_file(path, model=None, out="out"):
     if code == 0 and declared_studies(type(load_model(path, model))):
         code = main(["study", path, "--out", out] + extra)
     return code
+
+
+def _print_error(exc, show_traceback):
+    """``error: MESSAGE`` on stderr; the whole traceback with ``--traceback``
+    (or $ACAUSAL2D_TRACEBACK=1), else, for an error of the user's own code,
+    how to see it."""
+    if show_traceback:
+        print_traceback(exc)
+    print("error: %s" % exc, file=sys.stderr)
+    if not show_traceback and has_user_cause(exc):
+        print("  (the whole traceback: --traceback or %s=1)" % TRACEBACK_ENV, file=sys.stderr)
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
@@ -71,6 +86,9 @@ def main(argv=None):
 
 
 def _main(argv):
+    argv = list(sys.argv[1:] if argv is None else argv)
+    show_traceback = wants_traceback("--traceback" in argv)
+    argv = [a for a in argv if a != "--traceback"]      # accepted before or after the command
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:        # argparse: --help, --version, or a usage error (2)
@@ -80,7 +98,7 @@ def _main(argv):
             warnings.showwarning = _show_warning
             return args.func(args)
     except Acausal2dError as exc:
-        print("error: %s" % exc, file=sys.stderr)
+        _print_error(exc, show_traceback)
         return 2
     except OSError as exc:      # files: --out on an existing file, unreadable CSV ...
         print("error: %s" % exc, file=sys.stderr)

@@ -9,6 +9,7 @@ from ..analysis.check import grounded_lines
 from ..compiler.flatten import grounded_ports
 from ..analysis.slider_ranges import range_lines, slider_ranges
 from ..io.loader import load_model
+from ..usercode import user_error_text
 from .args import add_run_options, run_options
 
 
@@ -195,9 +196,9 @@ def _model_files(res, out):
     except (Acausal2dError, KeyboardInterrupt, MemoryError):
         raise
     except Exception as exc:            # noqa: BLE001 - the model author's code
-        raise Acausal2dError("%s.write_outputs failed: %s: %s (nothing of this run is kept; "
-                             "fix write_outputs in the model file)"
-                             % (type(model).__name__, type(exc).__name__, exc)) from None
+        raise Acausal2dError(user_error_text("%s.write_outputs" % type(model).__name__, exc)
+                             + "\n  (nothing of this run is kept; fix write_outputs in the "
+                             "model file)") from exc
 
 
 def add_parsers(sub):

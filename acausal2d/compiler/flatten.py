@@ -12,6 +12,7 @@ from ..errors import Acausal2dError, ModelDefinitionError
 from ..language.context import ModelContext
 from ..language.symbols import as_sx
 from ..language.unionfind import UnionFind
+from ..usercode import user_error_text
 
 
 class Equation:
@@ -146,8 +147,8 @@ def _hook(comp, name, *args):
     except Acausal2dError:
         raise
     except Exception as exc:
-        raise ModelDefinitionError("%s: %s() failed: %s: %s"
-                                   % (comp.describe(), name, type(exc).__name__, exc)) from None
+        raise ModelDefinitionError(user_error_text("%s: %s()" % (comp.describe(), name), exc)) \
+            from exc
 
 
 def _is_descendant(comp, ancestor):

@@ -9,6 +9,13 @@ from typing import Any, Callable
 
 from ..errors import Acausal2dError, ModelDefinitionError
 from ..language.dsl import Component
+from ..usercode import user_error_text
+
+
+def _source_line(exc):
+    """The offending source line of a SyntaxError, indented on a line of its own."""
+    text = (exc.text or "").rstrip()
+    return "\n    " + text.strip() if text.strip() else ""
 
 
 def _import(path):
@@ -32,11 +39,10 @@ def _import(path):
                                    "must define its model classes and return" % (path, exc.code)) \
             from None
     except SyntaxError as exc:
-        raise ModelDefinitionError("%s is not valid Python (line %s: %s)"
-                                   % (path, exc.lineno, exc.msg)) from None
+        raise ModelDefinitionError("%s is not valid Python (line %s: %s)%s"
+                                   % (path, exc.lineno, exc.msg, _source_line(exc))) from exc
     except Exception as exc:
-        raise ModelDefinitionError("importing %s failed: %s: %s"
-                                   % (path, type(exc).__name__, exc)) from None
+        raise ModelDefinitionError(user_error_text("importing %s" % path, exc)) from exc
     return module, modname
 
 
@@ -114,8 +120,7 @@ def load_model(path: "str | os.PathLike[str]", name: "str | None" = None,
         raise ModelDefinitionError("building %s: it calls sys.exit(%s)" % (cls.__name__, exc.code)) \
             from None
     except Exception as exc:
-        raise ModelDefinitionError("building %s failed: %s: %s"
-                                   % (cls.__name__, type(exc).__name__, exc)) from None
+        raise ModelDefinitionError(user_error_text("building %s" % cls.__name__, exc)) from exc
 
 
 READERS: dict = {}
