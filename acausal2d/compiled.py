@@ -12,6 +12,7 @@ import time as _time
 import numpy as np
 from numpy.typing import NDArray
 
+from .compiler.connectors import loose_connectors_first
 from .compiler.gc_pause import cyclic_gc_paused
 from .compiler.pipeline import compile_system
 from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
@@ -98,7 +99,8 @@ class CompiledModel:
         t0 = _time.perf_counter()
         model = own_copy(model)
         self.model = model
-        with translated("compiling %s" % type(model).__name__, StructuralError):
+        with loose_connectors_first(model), \
+                translated("compiling %s" % type(model).__name__, StructuralError):
             self.system = compile_system(model)
         self.system.model_name = type(model).__name__     # named in the native runtime's notices
         self._whole = self._whole_parameters()
@@ -223,7 +225,8 @@ class CompiledModel:
         selection made there; ``start`` as for :meth:`simulate`."""
         p = self.parameter_values(params)
         held = self.start_indices(start)
-        with translated("initializing %s" % type(self.model).__name__), cyclic_gc_paused():
+        with loose_connectors_first(self.model), \
+                translated("initializing %s" % type(self.model).__name__), cyclic_gc_paused():
             ev = Evaluator(self.system, p)
             point = initial_point(self.system, ev, t0, p, held)
             if point.selection is None:
@@ -325,7 +328,8 @@ class CompiledModel:
         times = opts.times()
         assert opts.rtol is not None                    # resolved() fills it
         try:
-            with translated("simulating %s" % type(self.model).__name__), our_threads(), \
+            with loose_connectors_first(self.model), \
+                    translated("simulating %s" % type(self.model).__name__), our_threads(), \
                     time_progress(opts.progress, times[0], times[-1]) as progress:
                 log = Simulation(self.system, p, times, opts.rtol, tol, progress,
                                  opts.max_steps, opts.max_wall_time, held).run()

@@ -116,6 +116,8 @@ class _SupportFriction(_Friction):
     a = Variable(unit="rad/s2", doc="angular acceleration relative to the support")
     tau = Variable(unit="N.m", doc="friction torque (flange_a.tau + flange_b.tau)")
 
+    power_sides = (("flange_a",), ("flange_b",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange_a = RotationalFlange()
@@ -219,6 +221,8 @@ class OneWayClutch(_Friction):
     a_rel = Variable(unit="rad/s2", doc="relative angular acceleration")
     tau = Variable(unit="N.m", doc="torque acting on flange_b")
     fn = Variable(unit="N", doc="normal force (0 if f_normalized <= 0)")
+
+    power_sides = (("flange_a",), ("flange_b",))
 
     def __init__(self, mu_pos=None, **kw):
         super().__init__(**kw)

@@ -33,6 +33,8 @@ class IdealGear(Component):
     phi_a = Variable(unit="rad", doc="angle of flange_a relative to the support")
     phi_b = Variable(unit="rad", doc="angle of flange_b relative to the support")
 
+    power_sides = (("flange_a",), ("flange_b",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange_a = RotationalFlange(doc="driving flange (input shaft)")
@@ -63,6 +65,8 @@ class IdealPlanetary(Component):
     ``-1/ratio`` of its speed; with the ring held, the carrier turns at
     ``1/(1 + ratio)`` of the sun's speed (the usual reduction stage)."""
     ratio = Parameter(2.0, "1", "number of ring teeth / number of sun teeth", positive=True)
+
+    power_sides = (("sun",), ("carrier",), ("ring",))
 
     def __init__(self, **kw):
         super().__init__(**kw)

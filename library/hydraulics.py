@@ -90,6 +90,8 @@ class PressureSource(Component):
 class PressureSensor(Component):
     """Pressure at ``port`` as the signal ``p`` [Pa]; takes no flow."""
 
+    power_sides = (("port",), ("p",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.port = HydraulicPort(nominal={"p": 1e6, "q": 1e-4})
@@ -116,6 +118,8 @@ class _Machine(Component):
     P_mech = Variable(unit="W", nominal=1e3, doc="shaft power into the machine tau w")
     P_hyd = Variable(unit="W", nominal=1e3, doc="hydraulic power out of the machine dp q")
     loss_power = Variable(unit="W", nominal=1e3, doc="power lost P_mech - P_hyd (>= 0)")
+
+    power_sides = (("port_a",), ("port_b",), ("flange",))
 
     def __init__(self, variable=False, **kw):
         super().__init__(**kw)
@@ -186,6 +190,8 @@ class ReliefValve(Component):
     q = Variable(unit="m3/s", nominal=1e-4, doc="flow from a to b")
     loss_power = Variable(unit="W", nominal=1e3, doc="power throttled dp q")
 
+    power_sides = (("port_a",), ("port_b",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.port_a = HydraulicPort(nominal={"p": 1e6, "q": 1e-4}, doc="protected line")
@@ -227,6 +233,8 @@ class _TwoPort(Component):
     dp = Variable(unit="Pa", nominal=1e6, doc="pressure drop port_a.p - port_b.p")
     q = Variable(unit="m3/s", nominal=1e-4, doc="flow from a to b")
     loss_power = Variable(unit="W", nominal=1e3, doc="power throttled dp q (>= 0)")
+
+    power_sides = (("port_a",), ("port_b",))
 
     def __init__(self, **kw):
         super().__init__(**kw)

@@ -88,6 +88,8 @@ class GasCylinder(Component):
     F = Variable(unit="N", nominal=1e3, doc="gas force on the piston (p - p_amb) A")
     P_gas = Variable(unit="W", nominal=1e3, doc="power from the piston into the gas")
 
+    power_sides = (("flange_a",), ("flange_b",))
+
     def __init__(self, intake=True, discharge=True, **kw):
         super().__init__(**kw)
         self.intake = bool(intake)

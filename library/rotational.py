@@ -42,6 +42,8 @@ class _Compliant(Component):
     phi_rel = Variable(unit="rad", doc="relative angle flange_b - flange_a")
     tau = Variable(unit="N.m", doc="torque transmitted (acting on flange_b)")
 
+    power_sides = (("flange_a",), ("flange_b",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange_a = RotationalFlange()
@@ -93,6 +95,8 @@ class AngleSensor(Component):
     (Modelica.Mechanics.Rotational.Sensors.AngleSensor); takes no torque,
     so a joint it measures stays free.  Seed eq. 4.1 at the flange."""
 
+    power_sides = (("flange",), ("phi",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange = RotationalFlange()
@@ -107,6 +111,8 @@ class SpeedSensor(Component):
     (Modelica.Mechanics.Rotational.Sensors.SpeedSensor: ``w =
     der(flange.phi)``, ``0 = flange.tau``); takes no torque.  Feeds the
     measurement input ``u_m`` of a :class:`~acausal2d.library.controllers.LimPID`."""
+
+    power_sides = (("flange",), ("w",))
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -230,6 +236,8 @@ class Clutch(Component):
     tau = Variable(unit="N.m", doc="friction torque acting on flange_b")
     fn = Variable(unit="N", doc="normal force fn_max f_normalized (free for fn <= 0)")
     T_max = Variable(unit="N.m", doc="sliding torque at w_rel = 0: mu0 cgeo max(fn, 0)")
+
+    power_sides = (("flange_a",), ("flange_b",))
 
     def __init__(self, mu_pos=None, **kw):
         super().__init__(**kw)

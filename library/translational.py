@@ -38,6 +38,8 @@ class _Compliant(Component):
     s_rel = Variable(unit="m", doc="relative position flange_b - flange_a")
     f = Variable(unit="N", doc="force transmitted (acting on flange_b)")
 
+    power_sides = (("flange_a",), ("flange_b",))
+
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange_a = TranslationalFlange()
@@ -119,6 +121,8 @@ class PositionSensor(Component):
     """Absolute position of the flange as the signal ``s``
     (Modelica.Mechanics.Translational.Sensors.PositionSensor); takes no
     force.  Seed eq. 4.1 at the flange."""
+
+    power_sides = (("flange",), ("s",))
 
     def __init__(self, **kw):
         super().__init__(**kw)

@@ -6,6 +6,7 @@ from typing import Any
 from collections import Counter
 
 
+from ..compiler.connectors import connector_report
 from ..compiler.flatten import grounded_ports
 from ..language.unionfind import UnionFind, connector_sets
 
@@ -32,6 +33,7 @@ class CheckReport:
                  "  states:            %s" % (", ".join(self.states) or "none"),
                  "  closed loops:      %d" % self.loops]
         lines += grounded_lines(self.grounded)
+        lines += connector_lines(self.connectors)
         if self.nodes is not None:
             lines += _node_lines(self.nodes)
         if self.grubler is not None:
@@ -66,6 +68,50 @@ def grounded_lines(grounded, head="  grounded ports:    "):
     lines = textwrap.wrap(text, 100, initial_indent=head, subsequent_indent=" " * len(head),
                           break_on_hyphens=False)      # no break inside a port's entry
     return [line.replace("\xa0", " ") for line in lines]
+
+
+CONNECTOR_GROUPS = (
+    ("held", "  held ports:        ", "%d unconnected, held by their own element: %s"),
+    ("free", "  free connectors:   ", "%d unconnected, no force or torque acts there: %s"),
+    ("closed", "  closed ports:      ", "%d hydraulic port%s unconnected, so closed (no flow): %s"),
+    ("open_bands", "  open band ports:   ", "%d unconnected, no band wound there: %s"),
+    ("inputs", "  signal inputs:     ", "%d unconnected, nothing gives them a value: %s"),
+)
+"""(field of the ConnectorReport, head of the line, text) of the report's
+groups of unconnected connectors besides the grounded ports."""
+
+
+def _wrapped(text, head):
+    lines = textwrap.wrap(text, 100, initial_indent=head, subsequent_indent=" " * len(head),
+                          break_on_hyphens=False)
+    return [line.replace("\xa0", " ") for line in lines]
+
+
+def connector_lines(report):
+    """The lines of the connector report (:class:`~acausal2d.compiler.
+    connectors.ConnectorReport`) after the grounded ports: free, closed,
+    open and unfed connectors by group, then the likely mistakes."""
+    lines = []
+    for name, head, fmt in CONNECTOR_GROUPS:
+        paths = getattr(report, name)
+        if paths:
+            args = (len(paths),) + (("s" if len(paths) > 1 else "",) if "%s unc" in fmt
+                                    else ()) + (", ".join(paths),)
+            lines += _wrapped(fmt % args, head)
+    for text in report.suspect_texts():
+        lines += _wrapped("likely mistake: %s; a connect() missing?" % text, "  ")
+    return lines
+
+
+def unconnected_line(report, head="  unconnected: "):
+    """One line naming the unconnected connectors besides the grounded
+    ports (those have their own line), by group; '' when there are none."""
+    parts = ["%d %s (%s)" % (len(paths), word, ", ".join(paths))
+             for word, paths in (("held by their element", report.held),
+                                 ("free", report.free), ("closed", report.closed),
+                                 ("open band port%s" % ("s" if len(report.open_bands) > 1 else ""),
+                                  report.open_bands)) if paths]
+    return head + "; ".join(parts) if parts else ""
 
 
 def _with_grounded(grounded):
@@ -209,6 +255,50 @@ def _index(structure, states):
     return 0 if len(covered) == structure.n_var else 1
 
 
+POSITION_UNITS = ("rad", "m")
+"""Units of the unknowns a position state can be: an angle or a length."""
+
+
+def _velocity_states(system, states):
+    """Derivative nodes that a state gives: der(phi) of a state w with
+    ``w == der(phi)`` (the 'always' pass's pairs, or an equation holding
+    der(phi) and the state alone, linearly), and the states' own
+    derivative nodes that are states themselves."""
+    s = system.structure
+    st = set(states)
+    given = {d for w, d in s.velocity_of if w in st}
+    for i in range(s.n_eq):
+        nodes = set(s.eq_vars[i])
+        if len(nodes) != 2:
+            continue
+        for d in nodes:
+            (other,) = nodes - {d}
+            if s.var_level[d] == 1 and other in st and \
+                    is_linear_pair(s.eq_expr[i], s.var_sym[d], s.var_sym[other]):
+                given.add(d)
+    return st | given
+
+
+def is_linear_pair(expr, a, b):
+    """Whether ``expr`` is c1 a + c2 b with constant nonzero c1, c2."""
+    import casadi as ca
+    grad = ca.gradient(expr, ca.vertcat(a, b))
+    return bool(grad.is_constant()) and all(abs(float(g)) > 0 for g in ca.DM(grad).full().ravel())
+
+
+def _position_states(system, states):
+    """The states that are positions of a second-order motion: an angle or
+    a length (:data:`POSITION_UNITS`) of level 0 whose derivative is a
+    state or is given by one (:func:`_velocity_states`): a joint's phi with
+    w, a motor's phi with ``w == der(phi)``, a clutch's phi_rel with
+    der(phi_rel).  A first-order state (an angle integrated from a speed
+    input, a filter's output) is not one."""
+    s = system.structure
+    given = _velocity_states(system, states)
+    return [j for j in states if s.var_level[j] == 0 and s.var_to_diff[j] in given
+            and system.node_info[j].unit in POSITION_UNITS]
+
+
 def check(model: Any) -> "CheckReport":
     """Compile ``model`` (a model file's path, a Component subclass or
     instance, or a CompiledModel) and return a :class:`CheckReport`; raises
@@ -222,10 +312,7 @@ def check(model: Any) -> "CheckReport":
     point = cm.initial_point()
     state_nodes = s.state_nodes(point.selection)
     states = [system.node_names[j] for j in state_nodes]
-    st = set(state_nodes)
-    st |= {d for w, d in s.velocity_of if w in st}     # der(phi) given by the state w
-    position_states = [j for j in state_nodes
-                       if s.var_level[j] == 0 and s.var_to_diff[j] in st]
+    position_states = _position_states(system, state_nodes)
     topo = _planar_topology(root)
     nodes = _node_counts(root)
     kinds = Counter(type(c).__name__ for c in root.components() if c is not root)
@@ -241,6 +328,7 @@ def check(model: Any) -> "CheckReport":
         states=states, structural_dof=len(position_states),
         loops=_loops(topo, nodes), nodes=nodes,
         grounded=grounded_ports(system.flat_equations),
+        connectors=connector_report(root),
         grubler=topo[2] if topo else None, links=topo[0] if topo else 0,
         joints=topo[1] if topo else 0,
         dof_terms=topo[4] if topo else {})

@@ -5,7 +5,8 @@ import sys
 
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
-from ..analysis.check import grounded_lines
+from ..analysis.check import grounded_lines, unconnected_line
+from ..compiler.connectors import connector_report
 from ..compiler.flatten import grounded_ports
 from ..analysis.slider_ranges import range_lines, slider_ranges
 from ..io.loader import load_model
@@ -73,9 +74,20 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
     for line in grounded_lines(grounded_ports(res.model.system.flat_equations),
                                "  grounded ports: "):
         print(line)
+    _print_connectors(connector_report(res.model.model))
     _print_events(res.events)
     for line in range_lines(slider_ranges(res)):
         print(line)
+
+
+def _print_connectors(report):
+    """The unconnected connectors in one line; a warning on stderr for each
+    element that passes power to a side connected to nothing."""
+    line = unconnected_line(report)
+    if line:
+        print(line)
+    for text in report.suspect_texts():
+        print("warning: %s; a connect() missing?" % text, file=sys.stderr)
 
 
 def _print_events(events, first=5):

@@ -351,6 +351,22 @@ class Component:
         element that models sticking itself should replace."""
         return None
 
+    power_sides: tuple = ()
+    """Connector names (tuples, one per side) between which the element
+    passes power: a gear's ``(("flange_a",), ("flange_b",))``, a joint
+    with a drive flange ``(("frame_a", "frame_b"), ("flange_a",))``, a
+    sensor's ``(("flange",), ("w",))``.  With one side connected and
+    another left unconnected (free, not grounded) the element passes
+    nothing, which :func:`acausal2d.check` reports as a likely mistake.
+    Names of connectors the instance does not have are skipped, and a side
+    of signal outputs only is never loose.  Default: none."""
+
+    held_connectors: tuple = ()
+    """Names of connectors the element's own equations hold in place while
+    nothing is connected to them (a joint's drive ``support``, fixed at 0
+    inside the joint): the connector report lists them as held, not free.
+    Default: none."""
+
     def topology(self):
         """Planar topology for the degree-of-freedom count (seed eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames

@@ -32,6 +32,9 @@ class Revolute(Component):
     w = Variable(unit="rad/s", doc="relative angular velocity")
     derived_signals = {"z": ("der(w)", "der(der(phi))")}
 
+    power_sides = (("frame_a", "frame_b"), ("flange_a",))
+    held_connectors = ("support",)
+
     def __init__(self, use_flange=False, state_select="prefer", **kw):
         super().__init__(**kw)
         self.variable("phi").state_select = state_select
@@ -86,6 +89,9 @@ class Prismatic(Component):
     s = Variable(unit="m", doc="relative position")
     v = Variable(unit="m/s", doc="relative velocity")
     derived_signals = {"a": ("der(v)", "der(der(s))")}
+
+    power_sides = (("frame_a", "frame_b"), ("flange_a",))
+    held_connectors = ("support",)
 
     def __init__(self, use_flange=False, state_select="prefer", guide=None, **kw):
         super().__init__(**kw)
