@@ -353,6 +353,7 @@ class CompiledModel:
         res.stopped = log.stopped
         res.states = log.states
         res.native_notes = getattr(log, "native_notes", [])
+        res.event_texts = list(getattr(log, "event_texts", log.events))
         return res
 
 

@@ -28,6 +28,12 @@ class InitializationError(Acausal2dError):
     assemble)."""
 
 
+class StartPoseError(InitializationError, ModelDefinitionError):
+    """The start pose of a part does not follow from the model's parameters
+    and start values (often: a frame it hangs on is connected to nothing);
+    raised while the model is compiled."""
+
+
 class SimulationError(Acausal2dError):
     """The integrator failed or the motion cannot go on; the message gives
     the time and names the variable, relation or component responsible.

@@ -94,6 +94,10 @@ class Result:
                 self._cols.append(table[:, k])
         self.parameters = dict(zip(param_names, (float(v) for v in param_values)))
         self.events = list(events)
+        self.event_texts: list = list(self.events)
+        """(time, text) of every event in the elements' own words
+        (:mod:`acausal2d.runtime.event_words`); ``events`` holds the raw
+        relation expressions."""
         self.stats = dict(stats or {})
         self.outputs = list(outputs)
         self.model = model

@@ -91,6 +91,22 @@ def friction_law(w, w_s, tau0_max, tau_slide):
     return sat * (tau0_max + (tau_slide(w * sat) - tau0_max) * (1 - ca.exp(-e * e)))
 
 
+def stick_mode(speed, zone, normal=None, normal_max=None):
+    """The mode of a friction with a stick zone in words (the element's
+    :meth:`~acausal2d.language.dsl.Component.mode`): "stuck" inside the
+    zone ``|speed| < zone``, else "sliding forward" or "sliding backward";
+    with a normal force ``normal`` not above 1e-9 of ``normal_max`` "free"
+    and how the sides turn ("free, slipping backward")."""
+    if abs(speed) < zone:
+        mode = "stuck"
+    else:
+        mode = "sliding forward" if speed > 0 else "sliding backward"
+    if normal is not None and not normal > 1e-9 * abs(normal_max or 1.0):
+        return "free, " + {"stuck": "no slip", "sliding forward": "slipping forward",
+                           "sliding backward": "slipping backward"}[mode]
+    return mode
+
+
 class _Friction(Component):
     """Parameters every friction element has: peak, w_s, w_small."""
     peak = Parameter(1.0, "1", "peak of the friction at w = 0: tau0_max = peak * tau0", min=1.0)
@@ -116,13 +132,17 @@ class _SupportFriction(_Friction):
     a = Variable(unit="rad/s2", doc="angular acceleration relative to the support")
     tau = Variable(unit="N.m", doc="friction torque (flange_a.tau + flange_b.tau)")
 
-    power_sides = (("flange_a",), ("flange_b",))
-
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange_a = RotationalFlange()
         self.flange_b = RotationalFlange()
         self.support = RotationalFlange(ground={"phi": 0.0}, doc="housing (fixed if unconnected)")
+
+    def mode(self, value):
+        """stuck, sliding forward or backward (free: a brake's fn <= 0)."""
+        if self.has_variable("fn"):
+            return stick_mode(value("w"), value("w_s"), value("fn"), value("fn_max"))
+        return stick_mode(value("w"), value("w_s"))
 
     def _kinematics(self, tau):
         return [self.phi == self.flange_a.phi - self.support.phi,
@@ -237,6 +257,13 @@ class OneWayClutch(_Friction):
         self.flange_b = RotationalFlange()
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
+    def mode(self, value):
+        """locked (the freewheel's backward lock), stuck, sliding forward or
+        free (fn <= 0, overrunning)."""
+        if value("w_rel") < 0:
+            return "locked backward"
+        return stick_mode(value("w_rel"), value("w_s"), value("fn"), value("fn_max"))
+
     def equations(self):
         mu0 = interpolate(self.mu_pos, 0.0)
         slide = lambda v: self.cgeo * self.fn * interpolate(self.mu_pos, v)  # noqa: E731
@@ -279,6 +306,10 @@ class SupportFriction(Component):
         self.flange_a = TranslationalFlange()
         self.flange_b = TranslationalFlange()
         self.support = TranslationalFlange(ground={"s": 0.0}, doc="support (fixed if unconnected)")
+
+    def mode(self, value):
+        """stuck, sliding forward or backward."""
+        return stick_mode(value("v"), value("v_s"))
 
     def equations(self):
         f0 = interpolate(self.f_pos, 0.0)

@@ -6,7 +6,7 @@ import casadi as ca
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
                        Variable)
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library.friction1d import friction_law, interpolate, table_rows
+from acausal2d.library.friction1d import friction_law, interpolate, stick_mode, table_rows
 
 
 class Fixed(Component):
@@ -256,6 +256,10 @@ class Clutch(Component):
                 "narrow cannot be resolved at the speeds of the run. Give it a larger w_s "
                 "(the lock time changes by about J_eff w_s / T_max only), or make its "
                 "f_normalized input continuous." % self.describe())
+
+    def mode(self, value):
+        """free (fn <= 0), stuck, sliding forward or backward."""
+        return stick_mode(value("w_rel"), value("w_s"), value("fn"), value("fn_max"))
 
     def _slide(self, v):
         """Sliding torque at the speed magnitude v: T_max for a constant mu,

@@ -10,6 +10,7 @@ from ..compiler.connectors import connector_report
 from ..compiler.flatten import grounded_ports
 from ..analysis.slider_ranges import range_lines, slider_ranges
 from ..io.loader import load_model
+from ..runtime.event_words import event_line
 from ..usercode import user_error_text
 from .args import add_run_options, run_options
 
@@ -48,7 +49,7 @@ def _animation_options(args, cm):
     return {"arrows": arrows, "signal": args.signal, "autoplay": args.autoplay, "poles": poles}
 
 
-def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
+def _print_summary(model, res, out, pngs, extra=(), table="result.csv", verbose=False):
     """The run's summary: singular positions, early stop, solver counts,
     the files written (``table``: the result file, ``extra``: those the
     model wrote itself), states and the ports fixed to ground because nothing
@@ -75,7 +76,7 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
                                "  grounded ports: "):
         print(line)
     _print_connectors(connector_report(res.model.model))
-    _print_events(res.events)
+    _print_events(res, verbose)
     for line in range_lines(slider_ranges(res)):
         print(line)
 
@@ -90,13 +91,17 @@ def _print_connectors(report):
         print("warning: %s; a connect() missing?" % text, file=sys.stderr)
 
 
-def _print_events(events, first=5):
-    """The first events (time and the relations that switched, e.g. a cam's
-    lift-off ``cam.Fn < 0``) and how many more there were."""
-    for t, text in events[:first]:
-        print("  event at t=%.9g: %s" % (t, text))
-    if len(events) > first:
-        print("  ... and %d more events" % (len(events) - first))
+def _print_events(res, verbose=False, first=5):
+    """The first events in the elements' words (``Brake 'brake': stuck ->
+    sliding forward at t = 0.5000033 s``), with ``verbose`` also the
+    relation expressions that switched, and how many more there were."""
+    texts = getattr(res, "event_texts", res.events)
+    for (t, words), (_, raw) in list(zip(texts, res.events))[:first]:
+        print("  " + event_line(t, words))
+        if verbose and raw != words:
+            print("      relations: %s" % raw)
+    if len(res.events) > first:
+        print("  ... and %d more events" % (len(res.events) - first))
 
 
 def cmd_simulate(args):
@@ -115,7 +120,8 @@ def cmd_simulate(args):
             if drawer is not None:
                 drawer.close()
     model = res.model.model
-    _print_summary(model, res, args.out, pngs, [tx.final(f) for f in extra], _result_name(args))
+    _print_summary(model, res, args.out, pngs, [tx.final(f) for f in extra], _result_name(args),
+                   args.verbose)
     if res.stopped:
         print("stopped early: %s" % res.stopped, file=sys.stderr)
         return 3
@@ -250,4 +256,6 @@ def add_parsers(sub):
                    help="result.csv (default) or result.mat in Dymola's result format (MAT v4, "
                    "read by Modelica plotting tools, DyMat, buildingspy)")
     s.add_argument("--out", default="out", help="output directory (default: out)")
+    s.add_argument("--verbose", action="store_true", help="also print the relation "
+                   "expressions that switched at each event")
     s.set_defaults(func=cmd_simulate)

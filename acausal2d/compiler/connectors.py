@@ -60,13 +60,26 @@ class ConnectorReport:
 
     def likely_cause(self):
         """The sentence a failed initialization or state selection starts
-        with when elements pass power to a loose side ('' when none do)."""
+        with: the loose sides of the suspect elements, else the connectors
+        left unconnected and fixed to ground or free (at most
+        :data:`MAX_NAMED` of them); '' when every connector is connected."""
         loose = self.loose()
-        if not loose:
+        if loose:
+            return ("Likely cause: %s %s connected to nothing (%s; a connect() missing?). "
+                    % (", ".join(loose), "is" if len(loose) == 1 else "are",
+                       "; ".join(self.suspect_texts())))
+        named = ["%s (fixed to ground)" % p for p in self.grounded] + \
+            ["%s (free)" % p for p in self.free + self.closed]
+        if not named:
             return ""
-        return ("Likely cause: %s %s connected to nothing (%s; a connect() missing?). "
-                % (", ".join(loose), "is" if len(loose) == 1 else "are",
-                   "; ".join(self.suspect_texts())))
+        more = len(named) - MAX_NAMED
+        return ("Unconnected, a likely cause if a connect() is missing: %s%s. "
+                % (", ".join(named[:MAX_NAMED]),
+                   " and %d more (acausal2d check lists them)" % more if more > 0 else ""))
+
+
+MAX_NAMED = 24
+"""The most unconnected connectors a failure's message names."""
 
 
 def _names(paths):
@@ -172,7 +185,7 @@ def loose_connectors_first(model):
     try:
         yield
     except Acausal2dError as exc:
-        if not _caused_by_structure(exc) or str(exc).startswith("Likely cause"):
+        if not _caused_by_structure(exc) or str(exc).startswith(("Likely cause", "Unconnected")):
             raise
         cause = connector_report(model).likely_cause()
         if not cause:

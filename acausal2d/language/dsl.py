@@ -351,6 +351,17 @@ class Component:
         element that models sticking itself should replace."""
         return None
 
+    def mode(self, value):
+        """Hook: the element's operating mode in words ("stuck", "sliding
+        forward", "free") at a point of the run; ``value(name)`` is the value
+        of its variable or parameter ``name`` (relative to the element, e.g.
+        ``"w_rel"``, ``"w_s"``).  An event that switches relations of its
+        equations reads ``Clutch 'clutch': sliding forward -> stuck at t =
+        0.7 s`` (:mod:`acausal2d.runtime.event_words`, which reads the mode
+        just before and after the event).  Default: None, the event names
+        the condition that switched."""
+        return None
+
     power_sides: tuple = ()
     """Connector names (tuples, one per side) between which the element
     passes power: a gear's ``(("flange_a",), ("flange_b",))``, a joint

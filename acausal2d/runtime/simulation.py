@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from ..errors import SimulationError
 from . import singularities as sing
 from .evaluator import Evaluator
+from .event_words import describe_event
 from .events import (ChatterWatch, EventIteration, check_assertions, check_jumps,
                      relation_text)
 from .failure import Approach
@@ -111,6 +112,7 @@ class Simulation:
         self.ev = Evaluator(system, self.p)
         self.out = OutputRows(system.structure.n_var)
         self.events: list[tuple[float, str]] = []
+        self.words: dict[int, str] = {}      # event index: the event in the elements' words
         self.singular: list[Singularity] = []
         self.stats = Stats()
         self.stopped: str | None = None
@@ -159,6 +161,7 @@ class Simulation:
         states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
             self.selection)] if self.selection is not None else []
         log = RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
+        log.event_texts = [(t, self.words.get(i, raw)) for i, (t, raw) in enumerate(self.events)]
         log.native_notes = tiers.take_notes() + list(self.tiering.notes)
         return log
 
@@ -405,12 +408,13 @@ class Simulation:
         z, d = it.settle(self.t, z_left, d, held)
         changed = list(np.nonzero(d != self.d)[0])
         check_jumps(self.system, self.t, z_left, z, changed)
-        self.z, self.d = z, d
+        d_left, self.z, self.d = self.d, z, d
         self.out.append((self.t, z.copy()))
         self.chatter.record(self.t, changed or flipped)
         if changed:      # else a root IDA found again just past one settled by its rate
             self.stats.events += 1
             text = "; ".join(self.system.relations[k].text for k in changed)
+            self.words[len(self.events)] = describe_event(self, changed, z_left, d_left, z, d)
             self.events.append((self.t, text))
         self.stats.event_time += _time.perf_counter() - wall
         check_assertions(self.system, self.p, self.t, z)

@@ -9,7 +9,7 @@ import casadi as ca
 import numpy as np
 
 from acausal2d import BandPort, der, Frame, Outer, Parameter, RotationalFlange, Variable
-from acausal2d.errors import ModelDefinitionError
+from acausal2d.errors import ModelDefinitionError, StartPoseError
 from acausal2d.library.planar import PlanarWorld, is_connected
 
 from .base import _PI, _BandElement, _num
@@ -96,7 +96,7 @@ class _Wheel(_BandElement):
             if self._legacy_xy:             # former x0, y0: a start estimate
                 return given[:2], {}
             if need or self.frameRef == "global":
-                raise ModelDefinitionError(self._unknown_start_message())
+                raise StartPoseError(self._unknown_start_message())
             return None, {}
         if self.frameRef == "relative":
             return place(c0, given)[:2], {}
