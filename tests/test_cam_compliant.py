@@ -105,8 +105,9 @@ def test_lift_off_and_re_contact_from_the_cli(tmp_path, capsys):
                      "--out", str(tmp_path)])
     out = capsys.readouterr().out
     assert code == 0
-    assert "event at t=0.0191445246: cam.delta <= 0" in out          # lift-off
-    assert "event at t=0.0732978896: cam.delta <= 0" in out          # re-contact
+    assert "CamFollower 'cam': touching without force -> lifted off at t = 0.01914452 s" \
+        in out                                                        # lift-off
+    assert "CamFollower 'cam': lifted off -> in contact at t = 0.07329789 s" in out   # re-contact
     assert (tmp_path / "penetration.png").exists() and (tmp_path / "lift.png").exists()
 
 

@@ -59,21 +59,28 @@ class ConnectorReport:
                 for path, side, loose in self.suspects]
 
     def likely_cause(self):
-        """The sentence a failed initialization or state selection starts
-        with: the loose sides of the suspect elements, else the connectors
-        left unconnected and fixed to ground or free (at most
-        :data:`MAX_NAMED` of them); '' when every connector is connected."""
+        """The sentence a failure a loose connector typically causes starts
+        with: the loose sides of the suspect elements ('' when there are
+        none)."""
         loose = self.loose()
-        if loose:
-            return ("Likely cause: %s %s connected to nothing (%s; a connect() missing?). "
-                    % (", ".join(loose), "is" if len(loose) == 1 else "are",
-                       "; ".join(self.suspect_texts())))
+        if not loose:
+            return ""
+        return ("Likely cause: %s %s connected to nothing (%s; a connect() missing?). "
+                % (", ".join(loose), "is" if len(loose) == 1 else "are",
+                   "; ".join(self.suspect_texts())))
+
+    def unconnected_note(self):
+        """Where no element is suspect, the note such a failure ends with:
+        the connectors left unconnected and fixed to ground or free (at
+        most :data:`MAX_NAMED`); '' when there are none."""
+        if self.suspects:
+            return ""
         named = ["%s (fixed to ground)" % p for p in self.grounded] + \
             ["%s (free)" % p for p in self.free + self.closed]
         if not named:
             return ""
         more = len(named) - MAX_NAMED
-        return ("Unconnected, a likely cause if a connect() is missing: %s%s. "
+        return (" Unconnected (a likely cause if a connect() is missing): %s%s."
                 % (", ".join(named[:MAX_NAMED]),
                    " and %d more (acausal2d check lists them)" % more if more > 0 else ""))
 
@@ -161,17 +168,19 @@ def connector_report(model):
     return report
 
 
-FIRST_FAILURES = ("State selection failed",)
-"""Message starts of runtime errors that a loose connector typically causes
-(besides every initialization and structural error)."""
+FIRST_FAILURES = ("State selection failed", "No consistent initial values")
+"""Message starts of the failures that a loose connector typically causes
+(besides every structural error and an unknown start pose)."""
 
 
 def _caused_by_structure(exc):
-    """Whether ``exc`` is a failure a loose connector typically causes: an
-    initialization or structural error, or a failed state selection."""
-    from ..errors import InitializationError, StructuralError
-    return isinstance(exc, (InitializationError, StructuralError)) or \
-        str(exc).startswith(FIRST_FAILURES)
+    """Whether ``exc`` is a failure a loose connector typically causes: a
+    structural error, a start pose that cannot be known, a part that cannot
+    assemble, no consistent initial values or a failed state selection."""
+    from ..errors import StartPoseError, StructuralError
+    text = str(exc)
+    return isinstance(exc, (StructuralError, StartPoseError)) or text.startswith(FIRST_FAILURES) \
+        or " cannot assemble at the start" in text
 
 
 @contextmanager
@@ -185,11 +194,12 @@ def loose_connectors_first(model):
     try:
         yield
     except Acausal2dError as exc:
-        if not _caused_by_structure(exc) or str(exc).startswith(("Likely cause", "Unconnected")):
+        if not _caused_by_structure(exc) or "connect() missing" in str(exc):
             raise
-        cause = connector_report(model).likely_cause()
-        if not cause:
+        report = connector_report(model)
+        first, last = report.likely_cause(), report.unconnected_note()
+        if not (first or last):
             raise
         named = copy.copy(exc)
-        named.args = (cause + str(exc),) + tuple(exc.args[1:])
+        named.args = (first + str(exc) + last,) + tuple(exc.args[1:])
         raise named from exc

@@ -160,6 +160,16 @@ class CamFollower(Component):
             return [ang == b.phi - math.pi / 2], pen, roll
         return [ang == b.phi - math.pi / 2, pen == 0], None, roll
 
+    def mode(self, value):
+        """lifted off (a compliant contact without penetration, a rigid one
+        with a pulling normal force), in contact, or touching without force
+        (penetrating while the compliant law would pull)."""
+        if self.contact == "compliant":
+            if not value("delta") > 0:
+                return "lifted off"
+            return "in contact" if value("Fs") > 0 else "touching without force"
+        return "in contact" if value("Fn") >= 0 else "lifted off"
+
     def _normal_force(self, pen):
         """Closure and contact law: Fn, delta, Fs and lifted."""
         if pen is None:
