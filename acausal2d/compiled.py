@@ -5,6 +5,7 @@ objects."""
 from __future__ import annotations
 
 import copy as _copy
+import difflib
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 import time as _time
@@ -121,6 +122,20 @@ class CompiledModel:
         return self.system.names + tuple(d[0] for d in self.derived)
 
     @property
+    def signal_names(self) -> dict[str, str]:
+        """{signal connector: its column}: ``close.y`` for ``close.y.u``, the
+        name a signal is written by (a result reads both)."""
+        known = set(self.names)
+        out = {}
+        for comp in self.model.components():
+            for conn in comp._connectors.values():
+                if conn.signal is not None:
+                    full = conn.path + ".u"
+                    if full in known and conn.path not in known:
+                        out[conn.path] = full
+        return out
+
+    @property
     def outputs(self) -> list[str]:
         """The signals the model declares as its outputs."""
         return self.system.outputs
@@ -204,10 +219,15 @@ class CompiledModel:
             return self._whole[name][1]
         if name in self.system.param_index:
             return [self.system.param_index[name]]
-        close = [n for n in self._whole if str(name).split(".")[-1] in n][:8]
-        raise ModelDefinitionError("unknown parameter %r%s" % (
-            name, "; parameters with a similar name: " + ", ".join(close) if close else
-            "; parameters: " + ", ".join(list(self._whole)[:20])))
+        known = list(self._whole)
+        close = difflib.get_close_matches(str(name), known, n=3, cutoff=0.75)
+        close += [n for n in known if str(name).split(".")[-1] in n and n not in close]
+        if close:
+            raise ModelDefinitionError("unknown parameter %r; did you mean %s?" % (
+                name, ", ".join(close[:6])))
+        raise ModelDefinitionError("unknown parameter %r; parameters: %s%s" % (
+            name, ", ".join(known[:20]), " ... (acausal2d params lists all %d)" % len(known)
+            if len(known) > 20 else ""))
 
     def _checked(self, name: str, value: ParameterValue) -> float | tuple[float, ...]:
         comp = name.rsplit(".", 1)[0] if "." in name else "<model>"
@@ -354,6 +374,7 @@ class CompiledModel:
         res.states = log.states
         res.native_notes = getattr(log, "native_notes", [])
         res.event_texts = list(getattr(log, "event_texts", log.events))
+        res.short_names = self.signal_names
         return res
 
 

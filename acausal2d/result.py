@@ -94,6 +94,9 @@ class Result:
                 self._cols.append(table[:, k])
         self.parameters = dict(zip(param_names, (float(v) for v in param_values)))
         self.events = list(events)
+        self.short_names: dict[str, str] = {}
+        """{name as written: column}: a signal connector's value by the
+        connector's name (``close.y`` for the column ``close.y.u``)."""
         self.event_texts: list = list(self.events)
         """(time, text) of every event in the elements' own words
         (:mod:`acausal2d.runtime.event_words`); ``events`` holds the raw
@@ -134,14 +137,15 @@ class Result:
         return list(self._index)
 
     def __contains__(self, name: object) -> bool:
-        return name in self._index or name in self.parameters or name == "time"
+        return name in self._index or name in self.parameters or name == "time" \
+            or name in self.short_names
 
     def __getitem__(self, name: str) -> NDArray[np.float64]:
         """The values of ``name`` (a column, a parameter or ``"time"``) over
         ``time``; an unknown name is an error that suggests close names."""
         if name == "time":
             return self.time
-        k = self._index.get(name)
+        k = self._index.get(self.short_names.get(name, name))
         if k is not None:
             column = self._cols[k]
             if isinstance(column, _Lazy):
@@ -164,6 +168,7 @@ class Result:
         """Unit of a column or parameter from its declaration ('' if none)."""
         if name == "time":
             return "s"
+        name = self.short_names.get(name, name)
         return self.model.units.get(name, "") if self.model is not None else ""
 
     def to_csv(self, path: PathT, names: Iterable[str] | None = None) -> PathT:

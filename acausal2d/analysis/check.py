@@ -311,7 +311,7 @@ def check(model: Any) -> "CheckReport":
     s = system.structure
     point = cm.initial_point()
     state_nodes = s.state_nodes(point.selection)
-    states = [system.node_names[j] for j in state_nodes]
+    states = [system.display_name(j) for j in state_nodes]
     position_states = _position_states(system, state_nodes)
     topo = _planar_topology(root)
     nodes = _node_counts(root)

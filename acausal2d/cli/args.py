@@ -8,6 +8,13 @@ from ..errors import Acausal2dError
 from ..options import DEFAULTS, RunOptionError, RunOptions
 
 
+MODEL_FILE_HELP = ("the model file: Python source defining the model classes (any file name), "
+                   "or a mec2 model (.json)")
+"""Help of every command's ``model_file`` argument."""
+MODEL_HELP = "the model class in the file (needed when the file defines several)"
+"""Help of every command's ``--model`` option."""
+
+
 def _parse_set(items):
     params = {}
     for item in items or ():
@@ -40,7 +47,7 @@ class Once(argparse.Action):
 
 def _check_names(names, cm, option):
     """Signal names given on the command line exist (checked before the run)."""
-    known = set(cm.names) | {"time"}
+    known = set(cm.names) | set(cm.signal_names) | {"time"}
     for name in names:
         if name not in known:
             close = [n for n in cm.names if name.split(".")[-1] in n][:8]

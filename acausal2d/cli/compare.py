@@ -25,13 +25,19 @@ def cmd_compare(args):
 def add_parsers(sub):
     """``acausal2d compare``."""
     m = sub.add_parser("compare", help="compare a result CSV with a reference CSV")
-    m.add_argument("result")
-    m.add_argument("reference")
+    m.add_argument("result", help="the result CSV to check (e.g. result.csv of a simulate "
+                   "output folder)")
+    m.add_argument("reference", help="the reference CSV (a time column and one column per "
+                   "signal, e.g. exported from a Modelica tool)")
     m.add_argument("--signals", help="comma-separated reference columns to check")
     m.add_argument("--map", action="append", metavar="REF=OURS",
                    help="reference column = our column; repeatable")
-    m.add_argument("--abs-tol", type=float)
-    m.add_argument("--rel-tol", type=float)
+    m.add_argument("--abs-tol", type=float, metavar="TOL",
+                   help="absolute half-width of the tube around the reference, in the signal's "
+                   "unit (default 2e-3 when --rel-tol is not given either)")
+    m.add_argument("--rel-tol", type=float, metavar="TOL",
+                   help="half-width of the tube relative to the largest |reference value| of "
+                   "each signal (with --abs-tol: the larger of the two)")
     m.add_argument("--time-tol", type=_nonnegative, metavar="SECONDS",
                    help="time tolerance: compare in the csv-compare tube of the reference "
                    "widened by this in time (steps may be shifted by up to this much)")

@@ -4,6 +4,7 @@ parameter, see the mechanism and its curves change at once (see
 import socket
 import sys
 
+from .args import MODEL_FILE_HELP
 from ..errors import Acausal2dError
 from .args import _positive_float
 
@@ -51,7 +52,7 @@ def add_parsers(sub):
     """``acausal2d explore``."""
     s = sub.add_parser("explore", help="a local web page: change parameters and start "
                        "positions, see the mechanism and its curves change at once")
-    s.add_argument("model_file")
+    s.add_argument("model_file", help=MODEL_FILE_HELP)
     s.add_argument("--model", help="model class in the file (if it defines several)")
     s.add_argument("--port", type=int, default=8765, help="TCP port (default 8765; 0: a free "
                    "one, printed)")

@@ -1,5 +1,6 @@
 """``acausal2d export-fmu``: a model as an FMI 2.0 FMU (native code, no
 Python needed by the importer); see :func:`acausal2d.fmu.export_fmu`."""
+from .args import MODEL_FILE_HELP, MODEL_HELP
 from ..io.loader import load_model
 from .args import add_run_options, run_options
 
@@ -22,8 +23,8 @@ def add_parsers(sub):
     """``acausal2d export-fmu``."""
     e = sub.add_parser("export-fmu", help="export a model as an FMI 2.0 FMU (Model Exchange "
                        "or Co-Simulation) with native binaries and C sources")
-    e.add_argument("model_file")
-    e.add_argument("--model")
+    e.add_argument("model_file", help=MODEL_FILE_HELP)
+    e.add_argument("--model", help=MODEL_HELP)
     e.add_argument("--kind", choices=("me", "cs"), default="me",
                    help="me: Model Exchange (the importer integrates), cs: Co-Simulation "
                    "(integrator inside the FMU)")

@@ -8,6 +8,7 @@ optimality check fails or a bound holds an estimate (not a regular
 optimum), 1 when the fitted run leaves the tube."""
 import sys
 
+from .args import MODEL_FILE_HELP
 from ..analysis.fit_report import COMPARE_TUBE
 from ..errors import Acausal2dError
 from .args import Once, _nonnegative, _parse_set, _positive_float, _positive_int, \
@@ -101,7 +102,7 @@ def add_parsers(sub):
     """``acausal2d fit``."""
     f = sub.add_parser("fit", help="fit model parameters to measured curves (least squares "
                        "with standard errors, 95%% intervals and correlations)")
-    f.add_argument("model_file")
+    f.add_argument("model_file", help=MODEL_FILE_HELP)
     f.add_argument("--model", action=Once,
                    help="model class in the file (default: the file's model)")
     f.add_argument("--data", action=Once, required=True,

@@ -6,6 +6,7 @@ import json
 import os
 import sys
 
+from .args import MODEL_FILE_HELP
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
 from ..io.files import atomic_path
@@ -93,7 +94,7 @@ def cmd_linearize(args):
 
 def add_point_arguments(p):
     """The model and operating-point options shared by linearize and modes."""
-    p.add_argument("model_file")
+    p.add_argument("model_file", help=MODEL_FILE_HELP)
     p.add_argument("--model", help="model class in the file (if it defines several)")
     p.add_argument("--at", type=float, metavar="T", help="linearise at time T of the run "
                    "(default: the start point); with --equilibrium: the inputs at time T")

@@ -1,5 +1,6 @@
 """``acausal2d check`` (the structure report) and ``acausal2d params`` (the
 parameter table) of a model file."""
+from .args import MODEL_FILE_HELP, MODEL_HELP
 from ..analysis.check import check
 from ..io.loader import load_model
 
@@ -23,11 +24,11 @@ def cmd_params(args):
 def add_parsers(sub):
     """``acausal2d check`` and ``acausal2d params``."""
     c = sub.add_parser("check", help="print the structure of a model")
-    c.add_argument("model_file")
-    c.add_argument("--model")
+    c.add_argument("model_file", help=MODEL_FILE_HELP)
+    c.add_argument("--model", help=MODEL_HELP)
     c.set_defaults(func=cmd_check)
     r = sub.add_parser("params", help="list a model's parameters with value, unit, rule and "
                        "description")
-    r.add_argument("model_file")
-    r.add_argument("--model")
+    r.add_argument("model_file", help=MODEL_FILE_HELP)
+    r.add_argument("--model", help=MODEL_HELP)
     r.set_defaults(func=cmd_params)

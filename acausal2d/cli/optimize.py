@@ -8,6 +8,7 @@ import os
 import sys
 import numpy as np
 
+from .args import MODEL_FILE_HELP
 from ..errors import Acausal2dError
 from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_options, \
     add_run_options, run_options
@@ -68,7 +69,7 @@ def add_parsers(sub):
     """``acausal2d optimize``."""
     o = sub.add_parser("optimize", help="choose parameter values that minimise a run metric "
                        "(e.g. max(abs(drive.tau))) subject to bounds and constraints")
-    o.add_argument("model_file")
+    o.add_argument("model_file", help=MODEL_FILE_HELP)
     o.add_argument("--model", action=Once,
                    help="model class in the file (default: the file's model)")
     o.add_argument("--vary", action="append", required=True, metavar="NAME=START:LO:HI",

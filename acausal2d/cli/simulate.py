@@ -3,6 +3,7 @@ the animation page and the run's manifest."""
 import os
 import sys
 
+from .args import MODEL_FILE_HELP
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
 from ..analysis.check import grounded_lines, unconnected_line
@@ -222,7 +223,7 @@ def _model_files(res, out):
 def add_parsers(sub):
     """``acausal2d simulate``."""
     s = sub.add_parser("simulate", help="simulate a model file; write CSV, plots, animation")
-    s.add_argument("model_file")
+    s.add_argument("model_file", help=MODEL_FILE_HELP)
     s.add_argument("--model", help="model class in the file (if it defines several)")
     s.add_argument("--set", action="append", metavar="COMP.PARAM=VALUE",
                    help="parameter value (vectors as 1,0); repeatable")

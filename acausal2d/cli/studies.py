@@ -1,6 +1,7 @@
 """``acausal2d sweep`` (parameter studies on Dask) and ``acausal2d study``
 (the studies a model declares)."""
 
+from .args import MODEL_FILE_HELP, MODEL_HELP
 from ..errors import Acausal2dError
 from .args import _check_names, _nonnegative, _parse_set, add_dask_options
 from ..io.loader import load_model
@@ -92,8 +93,8 @@ def add_parsers(sub):
     """``acausal2d sweep`` and ``acausal2d study``."""
     w = sub.add_parser("sweep", help="parameter study on Dask: simulate every combination of "
                        "the --vary values; write sweep.csv and sweep.png")
-    w.add_argument("model_file")
-    w.add_argument("--model")
+    w.add_argument("model_file", help=MODEL_FILE_HELP)
+    w.add_argument("--model", help=MODEL_HELP)
     w.add_argument("--vary", action="append", required=True, metavar="PARAM=START:STOP:COUNT",
                    help="values of a parameter: START:STOP:COUNT or v1,v2,...; tie parameters "
                    "to one value with a.p,b.p=...; repeatable (all combinations)")
@@ -112,9 +113,9 @@ def add_parsers(sub):
     w.set_defaults(func=cmd_sweep)
     t = sub.add_parser("study", help="run the studies the model declares (sweeps, plots over "
                        "an angle, ...) and write their figures and tables")
-    t.add_argument("model_file")
+    t.add_argument("model_file", help=MODEL_FILE_HELP)
     t.add_argument("names", nargs="*", help="studies to run (default: all)")
-    t.add_argument("--model")
+    t.add_argument("--model", help=MODEL_HELP)
     t.add_argument("--list", action="store_true", help="list the model's studies")
     add_run_options(t)
     add_dask_options(t, "Dask scheduler address for the studies' sweeps "

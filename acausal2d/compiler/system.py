@@ -257,6 +257,15 @@ class System:
         text = self.equations[s.eq_origin[i]].describe()
         return text + ("" if lvl == 0 else "  [differentiated %d times]" % lvl)
 
+    def display_name(self, j):
+        """The name a user knows node j by: a derivative node that a declared
+        variable equals (``der(clutch.phi_rel)`` is ``clutch.w_rel``, from
+        ``w_rel == der(phi_rel)``: an eliminated alias, or an equation of
+        the two alone) by that variable's name, else :meth:`node_name`."""
+        if getattr(self, "_display", None) is None:
+            self._display = _derivative_names(self)
+        return self._display.get(j, self.node_names[j])
+
     def node_name(self, j):
         """Name of variable node j (``der(...)`` for derivative nodes)."""
         return self.node_names[j]
@@ -380,6 +389,31 @@ class AliasColumns:
         if self.node[k] < 0:
             return np.full(len(self.Z), self.offsets[k])
         return self.Z[:, self.node[k]] * self.sign[k] + self.offsets[k]
+
+
+def _derivative_names(system):
+    """{derivative node: the declared variable equal to it}: aliases ``v =
+    der(x)`` and equations ``v - der(x) == 0`` (two nodes, coefficients 1
+    and -1)."""
+    s = system.structure
+    out = {}
+    for a, node, sign in zip(system.aliases, system.alias_node, system.alias_sign):
+        if node >= 0 and s.var_level[node] > 0 and sign == 1.0 and _is_zero(a.offset):
+            out.setdefault(int(node), a.var.name)
+    for i in range(s.n_eq):
+        nodes = list(s.eq_vars[i])
+        if len(nodes) != 2 or s.eq_level[i] != 0:
+            continue
+        levels = [s.var_level[k] for k in nodes]
+        if sorted(levels) != [0, 1]:
+            continue
+        d, v = (nodes[0], nodes[1]) if levels[0] == 1 else (nodes[1], nodes[0])
+        grad = ca.gradient(s.eq_expr[i], ca.vertcat(s.var_sym[d], s.var_sym[v]))
+        if grad.is_constant():
+            g = ca.DM(grad).full().ravel()
+            if abs(g[0] + g[1]) == 0.0 and g[0] != 0.0:
+                out.setdefault(int(d), system.node_names[v])
+    return out
 
 
 def _is_zero(v):

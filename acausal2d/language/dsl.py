@@ -85,6 +85,12 @@ class Outer:
         return found
 
 
+def _deprecated(conn):
+    """Whether a connector is kept only for old models (its ``doc`` starts
+    with "deprecated"): never suggested for a misspelt name."""
+    return conn is not None and str(getattr(conn, "doc", "")).lower().startswith("deprecated")
+
+
 def _unknown_attribute(comp, name):
     """The message of an unknown attribute: the names the component has,
     by kind, and the closest one."""
@@ -94,7 +100,8 @@ def _unknown_attribute(comp, name):
     names = [n for _, group in groups for n in group]
     optional = {n: cond for n, _, _, cond in connector_rows(type(comp))
                 if cond and n not in d["_connectors"]}
-    close = difflib.get_close_matches(name, names, n=1)
+    current = [n for n in names if not _deprecated(d["_connectors"].get(n))]
+    close = difflib.get_close_matches(name, current, n=1)
     text = "%s has no attribute %r" % (comp.describe(), name)
     if name in optional:
         text += " (the connector exists with %s)" % optional[name]

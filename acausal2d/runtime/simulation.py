@@ -158,7 +158,7 @@ class Simulation:
         self.stats.native_compile_time = native
         self.stats.wall_time = _time.perf_counter() - wall - native
         T, Z = self.out.arrays()
-        states = [self.system.node_names[j] for j in self.system.structure.state_nodes(
+        states = [self.system.display_name(j) for j in self.system.structure.state_nodes(
             self.selection)] if self.selection is not None else []
         log = RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
         log.event_texts = [(t, self.words.get(i, raw)) for i, (t, raw) in enumerate(self.events)]

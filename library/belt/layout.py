@@ -195,7 +195,7 @@ def _named_tangent(span, ends, a, b):
         if dist < abs(a[2]) + abs(b[2]):
             raise ModelDefinitionError(
                 "%s, which overlap: centre distance %.6g m < sum of the radii %.6g m; move "
-                "them apart (x0, y0) or make them smaller (r)" % (where, dist,
+                "them apart (x10, y10) or make them smaller (r)" % (where, dist,
                                                                  abs(a[2]) + abs(b[2])))
     try:
         return tangent_any(a, b)
