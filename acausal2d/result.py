@@ -17,7 +17,7 @@ from .visual.plotting import plot
 from .visual.scene import animate
 from .visual.animation import render_html
 from .visual.notebook import Animation
-from .visual.scene import build_scene
+from .visual.scene import NO_GEOMETRY, build_scene, has_geometry
 from .io.dymola_mat import write_mat
 from .visual.notebook import summary_html
 
@@ -219,6 +219,8 @@ class Result:
         """The animation (options as for :meth:`animate`) as an object a
         notebook displays inline (:class:`acausal2d.visual.notebook.Animation`,
         whose ``save(path)`` writes the page)."""
+        if self.model is not None and not has_geometry(self.model.model):
+            raise Acausal2dError(NO_GEOMETRY % type(self.model.model).__name__)
         scene = build_scene(self, traces, title, arrows, signal, autoplay, poles)
         return Animation(render_html(scene), height)
 

@@ -14,12 +14,14 @@ the end; a failed or interrupted run leaves neither partial nor earlier
 results there.
 """
 import argparse
+import logging
 import sys
 import warnings
 import importlib
 import signal
 
 from ..errors import Acausal2dError
+from ..runtime import cstore
 from .. import __version__
 from ..io.loader import load_model
 from ..analysis.study import declared_studies
@@ -76,10 +78,15 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
 
 def main(argv=None):
     """Entry point of the ``acausal2d`` command; returns the exit code (see
-    the module docstring).  Called as the program (``argv`` None), Ctrl-C is
+    the module docstring).  SIGTERM is handled as Ctrl-C (exit 143 after
+    the clean-ups: the output transaction's rollback, the process's
+    temporary folder).  Called as the program (``argv`` None), Ctrl-C is
     ignored once the command has ended: the interpreter's shutdown must not
     turn a finished command into a death by SIGINT."""
-    code = _main(argv)
+    from ..io.output import terminate_as_interrupt
+    cstore.logger().setLevel(logging.INFO)      # the first-run notices, on stderr
+    with terminate_as_interrupt():     # SIGTERM ends the command as Ctrl-C does: clean-ups run
+        code = _main(argv)
     if argv is None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     return code

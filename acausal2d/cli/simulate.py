@@ -55,6 +55,7 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv", verbose=
     the files written (``table``: the result file, ``extra``: those the
     model wrote itself), states and the ports fixed to ground because nothing
     is connected to them."""
+    from ..visual.scene import NO_GEOMETRY, has_geometry
     for sing in res.singularities:
         print("  %s at t=%.6g in %s" % (sing["kind"], sing["time"], ", ".join(sing["elements"])))
     if res.stopped:
@@ -62,14 +63,17 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv", verbose=
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s%s); %d steps, %d output points, "
           "%d events, %d state re-selections, %d residual evaluations -> %s/ (%s, "
-          "%d plot%s, animation.html%s)" % (
+          "%d plot%s%s%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], ", native code %.3f s" % st["native_compile_time"]
               if st.get("native_compile_time") else "", st["steps"], len(res.time),
               st["events"], st["reselections"], st["nfev"], out, table, len(pngs),
               "" if len(pngs) == 1 else "s",
+              ", animation.html" if has_geometry(model) else "",
               "".join(", " + os.path.basename(f) for f in extra)))
-    for note in getattr(res, "native_notes", None) or []:
+    if not has_geometry(model):
+        print("  " + NO_GEOMETRY % type(model).__name__)
+    for note in (getattr(res, "native_notes", None) or []) if verbose else []:
         print("  native: " + note)
     states = getattr(res, "states", None) or []
     print("  states: %s" % (", ".join(states) if states else "none (the motion is prescribed)"))
@@ -171,6 +175,7 @@ def _write_outputs(res, tx, settings, args, drawer=None):
     model writes itself, into the transaction ``tx``'s folder (the manifest
     lists every file there); returns the figures and the model's files."""
     from ..visual.plotting import draw_jobs, figure_jobs
+    from ..visual.scene import has_geometry
     out = tx.path
     if settings["transfer"]:
         from ..visual.plotting import write_transfer_figures
@@ -186,7 +191,9 @@ def _write_outputs(res, tx, settings, args, drawer=None):
         res.to_mat(table)
     else:
         res.to_csv(table)
-    res.animate(tx.file("animation.html"), traces=settings["traces"], **settings["animation"])
+    if has_geometry(res.model.model):
+        res.animate(tx.file("animation.html"), traces=settings["traces"],
+                    **settings["animation"])
     if jobs is not None:
         pngs = drawer.collect() if drawer is not None else draw_jobs(jobs)
     if not settings["specs"]:
@@ -258,5 +265,6 @@ def add_parsers(sub):
                    "read by Modelica plotting tools, DyMat, buildingspy)")
     s.add_argument("--out", default="out", help="output directory (default: out)")
     s.add_argument("--verbose", action="store_true", help="also print the relation "
-                   "expressions that switched at each event")
+                   "expressions that switched at each event and how the native code was "
+                   "chosen")
     s.set_defaults(func=cmd_simulate)

@@ -9,6 +9,7 @@ started, and a running one is stopped at its next output row.  Nothing is
 kept between runs but a counter per session (at most ``MAX_SESSIONS``).
 """
 import collections
+import html
 import concurrent.futures
 import io
 import math
@@ -24,7 +25,7 @@ from ..options import RunOptions
 from .drag import movable
 from .requests import parse_run
 from ..visual.animation import render_html
-from ..visual.scene import build_scene
+from ..visual.scene import NO_GEOMETRY, build_scene, has_geometry
 from ..visual.plotting import declared_figures
 from .drag import drag_start
 
@@ -230,5 +231,10 @@ class Explorer:
 
 def scene_page(res):
     """The animation page of a run (the scene of ``simulate``'s
-    animation.html, at most 1000 frames)."""
+    animation.html, at most 1000 frames); a model without geometry gets a
+    page that says so in one line, never an empty grid."""
+    model = res.model.model if res.model is not None else None
+    if model is not None and not has_geometry(model):
+        return "<!DOCTYPE html><html><body><p>%s</p></body></html>" % html.escape(
+            NO_GEOMETRY % type(model).__name__)
     return render_html(build_scene(res), max_frames=1000)

@@ -129,7 +129,7 @@ def launch(label=None, held=False):
     _workers.append((proc, time.perf_counter(), expected,
                      [(key, recipe.name) for key, recipe, _ in jobs]))
     cstore.notice("compiling native code for %s in the background; this run uses the "
-                  "Python path" % label)
+                  "Python path" % label, first_run=True)
     return True
 
 

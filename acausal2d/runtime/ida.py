@@ -10,18 +10,22 @@ typed outcome.  The messages scikit-sundae prints for SUNDIALS errors are
 taken out of ``sys.stdout`` while IDA runs (:class:`SundialsMessages`); no
 file descriptor is redirected.
 """
-import atexit
 import os
 import sys
-import tempfile
 import warnings
 
 import numpy as np
 
+from .rundir import PREFIX, run_dir
+
 # SUNDIALS' own warnings (its logger writes them to stderr by default) go to a
-# file of this process, read into SundialsMessages, read when a context is made
-WARNINGS_FILE = os.path.join(tempfile.gettempdir(), "acausal2d-sundials-%d.log" % os.getpid())
-os.environ.setdefault("SUNLOGGER_WARNING_FILENAME", WARNINGS_FILE)
+# file in this process's temporary folder (removed when the process ends),
+# read into SundialsMessages, read when a context is made
+WARNINGS_FILE = os.path.join(run_dir(), "sundials-warnings.log")
+if not os.environ.get("SUNLOGGER_WARNING_FILENAME") or \
+        os.path.basename(os.path.dirname(os.environ["SUNLOGGER_WARNING_FILENAME"])).startswith(
+            PREFIX):        # unset, or a parent process's folder: this process's own
+    os.environ["SUNLOGGER_WARNING_FILENAME"] = WARNINGS_FILE
 
 from .buffered import Buffered  # noqa: E402
 from .sundials_ext import ida_memory, suppress_algebraic  # noqa: E402
@@ -33,15 +37,6 @@ ROOT_RETURN, TSTOP_RETURN = 2, 1      # IDASolve's flags: a root found, the stop
 MONITOR_THRESHOLD = 0.25    # a watched block whose |det| dropped 4x: re-check the selection
 NEAR_SINGULAR = 1e-3        # the highest block's |det| this small: a singular position ahead
 
-
-def _remove_warnings_file():
-    try:
-        os.remove(WARNINGS_FILE)
-    except OSError:
-        pass
-
-
-atexit.register(_remove_warnings_file)
 
 
 def _warnings_size():

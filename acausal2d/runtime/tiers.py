@@ -105,7 +105,7 @@ def obtain(key, recipe, loader):
                       % (recipe.name, compile_seconds(recipe)))
     elif path is None and cbuild.find_compiler() is not None:
         cstore.notice("compiling native code for %s before the run (native mode 'now')"
-                      % _label[0])
+                      % _label[0], first_run=True)
     t0 = time.perf_counter()
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)

@@ -296,9 +296,30 @@ def _drag_system(model):
     return None
 
 
+NO_GEOMETRY = ("no animation: %s has no planar geometry to draw (its elements declare no "
+               "shapes, as in a drive train or a hydraulic circuit)")
+"""The one line said instead of an animation of a model without geometry."""
+
+
+def has_geometry(model: Any) -> bool:
+    """Whether ``model`` (a compiled model's own copy) has anything to draw:
+    a component with :meth:`~acausal2d.language.dsl.Component.shapes`.  A
+    model without (a drive train, a hydraulic circuit) gets no animation,
+    never an empty grid."""
+    return model is not None and bool(model_shapes(model))
+
+
+def _check_geometry(result: ResultData) -> None:
+    model = result.model.model if result.model is not None else None
+    if model is not None and not has_geometry(model):
+        raise Acausal2dError(NO_GEOMETRY % type(model).__name__)
+
+
 def animate(result: ResultData, path: str | os.PathLike[str], traces: Iterable[str] = (),
             title: str | None = None, arrows: Iterable[str] = (), signal: str | None = None,
             autoplay: bool = False, poles: Mapping[str, str] | None = None) -> pathlib.Path:
     """Write the self-contained HTML animation of ``result`` to ``path``
-    (options as for :func:`build_scene`)."""
+    (options as for :func:`build_scene`); a model without geometry
+    (:func:`has_geometry`) is an error saying so, never an empty grid."""
+    _check_geometry(result)
     return write_html(build_scene(result, traces, title, arrows, signal, autoplay, poles), path)

@@ -1,0 +1,108 @@
+"""A run's side effects: first-run notices through the named logger
+'acausal2d' (quiet in Python and a notebook unless asked, on stderr on the
+command line), the process's temporary files in a folder of its own that
+is removed at exit, on SIGINT and on SIGTERM, and no animation (said in one
+line) for a model without planar geometry."""
+import logging
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+import acausal2d
+from acausal2d import Acausal2dError
+from acausal2d.runtime import cstore, rundir
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CLUTCH = os.path.join(HERE, "data", "user_models", "clutch_drive.py")
+PENDULUM = os.path.join(ROOT, "models", "pendulum.py")
+
+
+@pytest.fixture
+def fresh_notices(monkeypatch):
+    monkeypatch.setattr(cstore, "_said", set())
+    log = cstore.logger()
+    level = log.level
+    yield log
+    log.setLevel(level)
+
+
+def test_a_first_run_notice_is_quiet_in_python_unless_asked(fresh_notices, capfd):
+    fresh_notices.setLevel(logging.WARNING)          # Python's and a notebook's default
+    cstore.notice("compiling native code for M in the background", first_run=True)
+    assert capfd.readouterr().err == ""
+    fresh_notices.setLevel(logging.INFO)             # asked for
+    cstore.notice("compiling native code for N in the background", first_run=True)
+    assert capfd.readouterr().err == "acausal2d: compiling native code for N in the background\n"
+
+
+def test_a_failure_notice_is_said_once_and_goes_through_the_named_logger(fresh_notices,
+                                                                        capfd):
+    assert fresh_notices is logging.getLogger("acausal2d")
+    for _ in range(2):
+        cstore.notice("the cached library x is damaged; rebuilding it")
+    assert capfd.readouterr().err == "acausal2d: the cached library x is damaged; rebuilding it\n"
+
+
+def _folders(base):
+    return [n for n in os.listdir(base) if n.startswith(rundir.PREFIX)]
+
+
+def test_a_stale_run_folder_of_a_gone_process_is_swept(tmp_path):
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True).stdout.strip()
+    (tmp_path / ("%s%s-abc" % (rundir.PREFIX, dead))).mkdir()
+    (tmp_path / ("%s%d-def" % (rundir.PREFIX, os.getppid()))).mkdir()      # alive
+    removed = rundir.sweep_stale(str(tmp_path))
+    assert [os.path.basename(p) for p in removed] == ["%s%s-abc" % (rundir.PREFIX, dead)]
+    assert _folders(tmp_path) == ["%s%d-def" % (rundir.PREFIX, os.getppid())]
+
+
+@pytest.mark.parametrize("signum,code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
+def test_the_run_folder_is_removed_on_a_signal(tmp_path, signum, code):
+    """The command's SUNDIALS log lives in <tmp>/acausal2d-run-<pid>-*; the
+    folder is gone after SIGTERM or SIGINT in the middle of the run."""
+    base = tmp_path / "tmp"
+    base.mkdir()
+    env = dict(os.environ, TMPDIR=str(base))
+    env.pop("SUNLOGGER_WARNING_FILENAME", None)
+    proc = subprocess.Popen([sys.executable, "-m", "acausal2d", "simulate", CLUTCH, "--model",
+                             "ClutchDrive", "--stop-time", "200", "--native", "off", "--out",
+                             str(tmp_path / "o")], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while not _folders(base) and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    assert _folders(base) == ["%s%d-%s" % (rundir.PREFIX, proc.pid, _folders(base)[0].split(
+        "-")[-1])]
+    time.sleep(1.0)                                    # inside the run
+    proc.send_signal(signum)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == code, err
+    assert _folders(base) == []
+
+
+def test_a_model_without_geometry_gets_no_animation_and_says_so(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "acausal2d", "simulate", CLUTCH, "--model",
+                           "ClutchDrive", "--stop-time", "0.05", "--native", "off", "--out",
+                           str(tmp_path / "o")], capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert not (tmp_path / "o" / "animation.html").exists()
+    assert "animation.html" not in proc.stdout
+    assert ("  no animation: ClutchDrive has no planar geometry to draw (its elements declare "
+            "no shapes, as in a drive train or a hydraulic circuit)") in proc.stdout.splitlines()
+    res = acausal2d.simulate(acausal2d.load_model(CLUTCH, "ClutchDrive"), stop_time=0.05)
+    with pytest.raises(Acausal2dError, match="no animation: ClutchDrive has no planar"):
+        res.animate(tmp_path / "a.html")
+    with pytest.raises(Acausal2dError, match="no animation"):
+        res.animation()
+
+
+def test_a_planar_model_still_gets_its_animation(tmp_path):
+    res = acausal2d.simulate(acausal2d.load_model(PENDULUM), stop_time=0.1)
+    page = res.animate(tmp_path / "a.html")
+    assert os.path.getsize(page) > 1000
