@@ -220,7 +220,7 @@ class CompiledModel:
         if name in self.system.param_index:
             return [self.system.param_index[name]]
         known = list(self._whole)
-        close = difflib.get_close_matches(str(name), known, n=3, cutoff=0.75)
+        close = difflib.get_close_matches(str(name), known, n=3, cutoff=0.85)
         close += [n for n in known if str(name).split(".")[-1] in n and n not in close]
         if close:
             raise ModelDefinitionError("unknown parameter %r; did you mean %s?" % (

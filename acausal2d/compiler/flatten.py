@@ -246,8 +246,10 @@ def _unconnected_equations(comp, conn):
         return [_conn_eq(getattr(conn, pot) - value, conn.path + GROUNDED,
                          "%s.%s == %s" % (conn.path, pot, value)) for pot, value in ground.items()]
     if conn.required:
-        raise ModelDefinitionError("connector %s must be connected (it is required by %s)"
-                                   % (conn.path, comp.describe()))
+        what = ("a signal input: nothing gives it a value; connect a source to it, e.g. "
+                "signals.Constant(k=...).y" if conn.signal == "input" else
+                "it is required by %s" % comp.describe())
+        raise ModelDefinitionError("connector %s must be connected (%s)" % (conn.path, what))
     return [_conn_eq(getattr(conn, flow), "%s (unconnected)" % conn.path,
                      "%s.%s == 0" % (conn.path, flow)) for flow in type(conn).flows]
 
