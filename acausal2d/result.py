@@ -97,7 +97,7 @@ class Result:
         self.short_names: dict[str, str] = {}
         """{name as written: column}: a signal connector's value by the
         connector's name (``close.y`` for the column ``close.y.u``)."""
-        self.event_texts: list = list(self.events)
+        self.event_texts: list[tuple[float, str]] = list(self.events)
         """(time, text) of every event in the elements' own words
         (:mod:`acausal2d.runtime.event_words`); ``events`` holds the raw
         relation expressions."""

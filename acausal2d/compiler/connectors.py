@@ -133,6 +133,14 @@ def _classify(report, comp, conn):
         report.free.append(conn.path)
 
 
+def _loose(comp, side, connected):
+    """Whether ``side`` (connectors of ``comp``) is loose: it has power
+    connectors (not signal outputs), none connected, grounded or held."""
+    power = [c for c in side if c.signal != "output"]
+    return bool(power) and not any(id(c) in connected or c.ground is not None
+                                   or c._name in comp.held_connectors for c in power)
+
+
 def _suspect(comp, connected):
     """(path, connected side, loose side) of an element whose
     ``power_sides`` have one side connected and another loose, or None."""
@@ -140,14 +148,12 @@ def _suspect(comp, connected):
              for names in comp.power_sides]
     sides = [side for side in sides if side]
     for k, side in enumerate(sides):
-        power = [c for c in side if c.signal != "output"]
-        if not power or any(id(c) in connected or c.ground is not None
-                            or c._name in comp.held_connectors for c in power):
+        if not _loose(comp, side, connected):
             continue
         driven = [c.path for j, other in enumerate(sides) if j != k
                   for c in other if id(c) in connected]
         if driven:
-            return (comp.path, driven, [c.path for c in power])
+            return (comp.path, driven, [c.path for c in side if c.signal != "output"])
     return None
 
 
