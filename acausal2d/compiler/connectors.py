@@ -22,7 +22,6 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 
-
 @dataclass
 class ConnectorReport:
     """What :func:`connector_report` found: ``grounded`` {path: potentials
