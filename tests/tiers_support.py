@@ -1,7 +1,9 @@
 """What the tier tests share (tests/test_native_tiers.py,
 tests/test_native_tiers_build.py): the skip where no native code can be
-built, a fresh cache with this process's queue emptied, and the agreement
-of two runs to the integration tolerance."""
+built, a fresh cache with this process's queue emptied (and its notices
+shown), and the agreement of two runs to the integration tolerance."""
+import logging
+
 import numpy as np
 import pytest
 
@@ -23,6 +25,9 @@ def fresh_cache(tmp_path, monkeypatch):
     monkeypatch.setattr(background, "_seen", set())
     monkeypatch.setattr(background, "_workers", [])
     monkeypatch.setattr(cstore, "_said", set())
+    log = cstore.logger()           # the first-run notices asked for, as the command line does
+    monkeypatch.setattr(log, "level", logging.INFO)
+    monkeypatch.setattr(log, "_cache", {})
     return tmp_path / "cache"
 
 
