@@ -106,3 +106,17 @@ def test_a_planar_model_still_gets_its_animation(tmp_path):
     res = acausal2d.simulate(acausal2d.load_model(PENDULUM), stop_time=0.1)
     page = res.animate(tmp_path / "a.html")
     assert os.path.getsize(page) > 1000
+
+
+def test_a_first_run_says_one_notice_and_no_contradicting_notes(tmp_path):
+    """A first run with an empty native cache: at most one notice on
+    stderr, and the tier notes ("native: compile first ...") only with
+    --verbose."""
+    env = dict(os.environ, ACAUSAL2D_CACHE_DIR=str(tmp_path / "cache"), ACAUSAL2D_NATIVE="auto")
+    proc = subprocess.run([sys.executable, "-m", "acausal2d", "simulate", PENDULUM,
+                           "--stop-time", "0.2", "--out", str(tmp_path / "o")], env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    notices = [line for line in proc.stderr.splitlines() if line.startswith("acausal2d: ")]
+    assert len(notices) <= 1, notices
+    assert not any(line.startswith("  native: ") for line in proc.stdout.splitlines())
