@@ -30,6 +30,7 @@ import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RotationalFlange,
                        TranslationalFlange, Variable)
+from acausal2d.language.symbols import define_latch, latch
 from acausal2d.errors import ModelDefinitionError
 
 
@@ -89,6 +90,115 @@ def friction_law(w, w_s, tau0_max, tau_slide):
     sat = ca.fmin(ca.fmax(x, -1.0), 1.0)
     e = (x - sat) * sat
     return sat * (tau0_max + (tau_slide(w * sat) - tau0_max) * (1 - ca.exp(-e * e)))
+
+
+LAWS = ("modes", "zone")
+
+
+def check_law(comp, law):
+    """``law`` if it is one of :data:`LAWS`, else an error naming the component."""
+    if law not in LAWS:
+        raise ModelDefinitionError("%s: law must be 'modes' (Modelica's PartialFriction) or "
+                                   "'zone' (a stick zone of width w_s), not %r"
+                                   % (type(comp).__name__, law))
+    return law
+
+
+def _named(comp, name):
+    return "%s.%s" % (comp.path, name) if comp.path else name
+
+
+def mode_latches(comp, w, sa, free, tau0, tau0_max, block=(None, None)):
+    """The latches of Modelica's PartialFriction state machine for the
+    relative speed ``w`` and the path parameter ``sa``: ``(fw, wp, bw, wn)``
+    = sliding forward (startForward or Forward), forward with ``w`` > 0
+    reached (Forward), and the same backward.  ``free``: the relation (0/1)
+    of an inactive element; ``block``: relations (0/1) that forbid sliding
+    forward/backward (the hard stops of MassWithStopAndFriction), or None.
+
+    Crossing functions (a latch is 1 where its function is > 0; the
+    function depends on the latch values, which gives the hysteresis of
+    Modelica's ``pre(mode)``)::
+
+        fw = 1:  free: w;  Forward (wp): w;  startForward: sa - tau0
+        fw = 0:  free: w;  backward: -1;     stuck: sa - tau0_max
+        wp:      fw: w;    else -1
+        (bw, wn mirrored: -w, -sa - tau0, -sa - tau0_max)
+
+    A blocked direction has -1.  At the start (Modelica's ``initial() and
+    w > 0``) fw and wp are ``w > 0``, bw and wn ``w < 0``.  While stuck no
+    crossing function is near zero by rounding: the speed, held constant
+    there, is watched by none of them."""
+    fw, wp, bw, wn = (latch(_named(comp, n)) for n in
+                      ("sliding_forward", "forward", "sliding_backward", "backward"))
+
+    def side(mine, reached, other, sgn):
+        g_on = ca.if_else(free, sgn * w, ca.if_else(reached, sgn * w, sgn * sa - tau0))
+        g_off = ca.if_else(free, sgn * w, ca.if_else(other, -1.0, sgn * sa - tau0_max))
+        return ca.if_else(mine, g_on, g_off)
+    gs = [side(fw, wp, bw, 1.0), ca.if_else(fw, w, -1.0),
+          side(bw, wn, fw, -1.0), ca.if_else(bw, -w, -1.0)]
+    for k, stop in ((0, block[0]), (2, block[1])):
+        if stop is not None:
+            gs[k] = ca.if_else(stop, -1.0, gs[k])
+    texts = ("sliding forward (%s)" % _named(comp, "startForward/Forward"),
+             "forward speed reached (%s)" % _named(comp, "mode = Forward"),
+             "sliding backward (%s)" % _named(comp, "startBackward/Backward"),
+             "backward speed reached (%s)" % _named(comp, "mode = Backward"))
+    for sym, g, sgn, text in zip((fw, wp, bw, wn), gs, (1, 1, -1, -1), texts):
+        define_latch(sym, g, text, g_start=sgn * w)
+    return fw, wp, bw, wn
+
+
+def partial_friction(comp, w, a, sa, free, tau0, tau0_max, slide, block=(None, None)):
+    """Modelica's PartialFriction (MSL 4.0, Modelica.Mechanics.Rotational.
+    Interfaces.PartialFriction) for the relative speed ``w``, its
+    acceleration ``a`` and the path parameter ``sa`` (an unknown of the
+    element); returns ``(tau, equations)``: the friction torque (force) as
+    an expression and the equations of ``a`` and of the mode outputs
+    ``mode``, ``locked``, ``startForward``, ``startBackward`` (variables
+    of ``comp``)::
+
+        locked = not free and not (Forward or startForward or Backward or startBackward)
+        a = if locked then 0 else if free then sa else if forward then sa - tau0_max
+            else sa + tau0_max
+        tau = if locked then sa else if free then 0 else if forward then slide(w)
+              else -slide(-w)
+        mode = 2 free, 1 Forward, -1 Backward, 0 stuck (locked or starting)
+
+    ``slide(v)``: the sliding torque for the forward speed ``v >= 0``.
+    While locked ``a`` is 0: ``w`` keeps the value of the locking event
+    (0 up to its location), any torque up to ``tau0_max`` passes; it slides
+    when ``sa`` leaves [-tau0_max, tau0_max].  Latches: :func:`mode_latches`."""
+    fw, wp, bw, wn = mode_latches(comp, w, sa, free, tau0, tau0_max, block)
+    moving = ca.if_else(fw, 1.0, bw)
+    locked = (1 - free) * (1 - moving)
+    tau = ca.if_else(locked, sa, ca.if_else(free, 0.0, ca.if_else(fw, slide(w), -slide(-w))))
+    acc = ca.if_else(locked, 0.0, ca.if_else(free, sa, ca.if_else(fw, sa - tau0_max,
+                                                                   sa + tau0_max)))
+    mode = ca.if_else(free, 2.0, fw * wp - bw * wn)
+    return tau, [a == acc, comp.mode == mode, comp.locked == locked,
+                 comp.startForward == (1 - free) * fw * (1 - wp),
+                 comp.startBackward == (1 - free) * bw * (1 - wn)]
+
+
+class _Modes(Component):
+    """The mode outputs of Modelica's PartialFriction (MSL's names and codes)."""
+    sa = Variable(unit="1", doc="path parameter: torque (force) while locked, else "
+                                "acceleration + tau0_max")
+    mode = Variable(unit="1", doc="-1 Backward, 0 Stuck (locked or starting), 1 Forward, 2 Free")
+    locked = Variable(unit="1", doc="1 if the speed is 0 and not sliding")
+    startForward = Variable(unit="1", doc="1 while starting to slide forward from rest")
+    startBackward = Variable(unit="1", doc="1 while starting to slide backward from rest")
+
+
+def zone_outputs(comp, w, w_s):
+    """The mode outputs under the stick-zone law: ``mode`` 0 inside the
+    zone ``|w| < w_s`` (``locked`` 1), the sign of ``w`` outside; ``sa``
+    the friction torque; never starting."""
+    mode = ca.if_else(w >= w_s, 1.0, ca.if_else(w <= -w_s, -1.0, 0.0))
+    return [comp.mode == mode, comp.locked == 1 - mode * mode, comp.startForward == 0,
+            comp.startBackward == 0, comp.sa == comp.tau]
 
 
 class _Friction(Component):

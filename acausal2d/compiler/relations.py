@@ -7,6 +7,12 @@ symbol ``d`` that holds 0 or 1 between events, and a zero-crossing function
 of ``g`` (or, for relations of time alone, schedules them), flips ``d`` and
 re-initializes consistently (Modelica event semantics).  Relations among
 parameters only stay as they are.  ``fabs`` is kept continuous.
+
+Latches (:func:`~acausal2d.language.symbols.latch`) are relations whose
+crossing function a component gives and which may depend on the latch
+values themselves; their crossing functions are scanned with the
+equations (a relation in them becomes a relation of its own) and they come
+after the relations found in the equations.
 """
 from dataclasses import dataclass
 
@@ -30,14 +36,22 @@ class Relation:
     text: str
     equation: int = -1
     time_only: bool = False
+    g_start: object = None
+
+    @property
+    def start_g(self):
+        """The crossing function that decides the value at the start."""
+        return self.g if self.g_start is None else self.g_start
 
     def value(self, g_value):
         """Relation value (0.0 or 1.0) for a crossing-function value."""
         return 1.0 if (g_value > 0 if self.strict else g_value >= 0) else 0.0
 
-    def with_g(self, g):
-        """The same relation with crossing function ``g``."""
-        return Relation(self.sym, g, self.strict, self.text, self.equation, self.time_only)
+    def with_g(self, g, g_start=None):
+        """The same relation with crossing function ``g`` (and ``g_start``
+        for a latch)."""
+        return Relation(self.sym, g, self.strict, self.text, self.equation, self.time_only,
+                        g_start if self.g_start is not None else None)
 
 
 def _short(e):
@@ -80,8 +94,27 @@ class _Scan:
 
 def extract_relations(exprs, table):
     """Replace relations in the list of scalar SX ``exprs``; returns
-    (new_exprs, relations).  ``table``: the compilation's symbol table.
-    Only the equations that contain a relation are rebuilt, and of their
+    (new_exprs, relations), the latches of ``table`` last.  ``table``: the
+    compilation's symbol table."""
+    latches = table.latch_list()
+    n, m = len(exprs), len(latches)
+    extra = [g for _, g, _, _ in latches] + [g0 for _, _, g0, _ in latches]
+    out, found = _replace(list(exprs) + extra, table)
+    rels = _with_equations(found, out[:n])
+    for k, (sym, _, _, text) in enumerate(latches):
+        rels.append(Relation(sym, out[n + k], True, text, _first_use(out[:n], sym), False,
+                             out[n + m + k]))
+    return out[:n], rels
+
+
+def _first_use(exprs, sym):
+    """Index of the first expression that uses ``sym`` (-1: none)."""
+    return next((i for i, e in enumerate(exprs) if ca.depends_on(e, sym)), -1)
+
+
+def _replace(exprs, table):
+    """(new_exprs, found) with the relations of ``exprs`` replaced.  Only
+    the expressions that contain a relation are rebuilt, and of their
     expression graphs only the instructions they need (:func:`_needed`);
     the others are returned as they are."""
     if not exprs:
@@ -106,7 +139,7 @@ def extract_relations(exprs, table):
             work[outs[0]] = ca.SX(f.instruction_constant(k))
         else:
             work[outs[0]] = scan.op(op, [work[i] for i in ins])
-    return out, _with_equations(scan.found, out)
+    return out, scan.found
 
 
 def _needed(ops, args):

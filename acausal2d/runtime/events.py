@@ -152,11 +152,16 @@ class EventIteration:
         relation values ``d``.  When the values go round in a cycle, the
         relations of the cycle that leave the motion unchanged (:meth:`idle`)
         take the value of their crossing function; if there are none, the
-        motion is in a sliding mode (an error)."""
+        motion is in a sliding mode (an error).  The components' reinits
+        (:class:`Reinits`) whose condition comes on set their states."""
         seen = [np.array(d, dtype=float)]
         pinned = set()
+        reinit = Reinits(self.system, self.ev.p, z)
         for _ in range(MAX_ITERATIONS):
             z = self.consistent(t, z, d, held)
+            z_new = reinit.apply(t, z, held)
+            if z_new is not None:
+                z = self.consistent(t, z_new, d, held)
             if not len(d):
                 return z, d
             g, gdot = crossing_rates(self.ev, t, z, d)
@@ -207,6 +212,44 @@ class EventIteration:
             "drives it to the other (a sliding mode, e.g. Coulomb friction at zero speed, "
             "where the part should stick). %s"
             % (t, names, sliding_mode_advice(self.system, flipping)), time=t)
+
+
+class Reinits:
+    """The components' ``reinits()`` at one event (Modelica's ``when c then
+    reinit(x, v)``): each whose condition was off at the entry point and
+    is on at a consistent point of the event iteration sets its state once."""
+
+    def __init__(self, system, p, z_entry):
+        self.system, self.p = system, p
+        self.before = [system.value(cond, z_entry, p) > 0.5 for _, cond, _, _ in system.reinits]
+        self.done = set()
+
+    def apply(self, t, z, held):
+        """New node values with the due reinits applied, or None if none is due."""
+        out = None
+        for k, (comp, cond, var, value) in enumerate(self.system.reinits):
+            if k in self.done or self.before[k] or self.system.value(cond, z, self.p) <= 0.5:
+                continue
+            self.done.add(k)
+            out = np.array(z if out is None else out, dtype=float)
+            v = value if isinstance(value, float) else self.system.value(value, out, self.p)
+            j, sign, offset = self._node(var)
+            if j not in set(held):
+                raise EventError("At t=%.6g %s re-initializes %s, which is no state here; "
+                                 "connect it so that %s stays a state (e.g. through a spring, "
+                                 "not rigidly to another mass)" % (t, comp.describe(), var, var),
+                                 time=t, variable=var)
+            out[j] = (v - offset) / sign
+        return out
+
+    def _node(self, name):
+        """(node, sign, offset) with ``name = sign * z[node] + offset``."""
+        s = self.system
+        if name in s.node_names:
+            return s.node_names.index(name), 1.0, 0.0
+        k = s.alias_names.index(name)
+        offset = float(s.alias_offset_fn(self.p).full().ravel()[k])
+        return int(s.alias_node[k]), float(s.alias_sign[k]), offset
 
 
 class ChatterWatch:
