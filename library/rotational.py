@@ -268,7 +268,7 @@ class Clutch(_Modes):
             return common + zone_outputs(self, self.w_rel, self.w_s) + [
                 self.tau == friction_law(self.w_rel, self.w_s, self.peak * self.T_max, slide)]
         tau0 = mu0 * self.cgeo * self.fn
-        tau, eqs = partial_friction(self, self.w_rel, self.a_rel, self.sa, free, tau0,
+        tau, eqs, _ = partial_friction(self, self.w_rel, self.a_rel, self.sa, free, tau0,
                                     self.peak * tau0,
                                     lambda v: self.cgeo * self.fn * self._mu(v))
         return common + eqs + [self.tau == tau]
