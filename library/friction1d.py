@@ -79,17 +79,23 @@ def interpolate(rows, v):
     return out
 
 
-def friction_law(w, w_s, tau0_max, tau_slide):
-    """Friction torque for the relative speed ``w``: the stick zone of
-    width ``w_s`` up to ``tau0_max``, outside it ``sign(w) tau_slide(|w|)``
-    (``tau_slide``: a function of the speed magnitude), joined continuously
-    (module docstring).  ``exp(-e^2)`` stays bounded where a held relation
-    value makes ``e`` negative (between a crossing and its event), which
-    ``exp(-e)`` would overflow."""
+def zone_torque(w, w_s, tau0_max, tau_slide):
+    """(torque, sat) of the stick-zone law for the relative speed ``w``:
+    the stick zone of width ``w_s`` up to ``tau0_max``, outside it
+    ``sign(w) tau_slide(|w|)`` (``tau_slide``: a function of the speed
+    magnitude), joined continuously (module docstring); ``sat`` is
+    ``w / w_s`` clipped to [-1, 1].  ``exp(-e^2)`` stays bounded where a
+    held relation value makes ``e`` negative (between a crossing and its
+    event), which ``exp(-e)`` would overflow."""
     x = w / w_s
     sat = ca.fmin(ca.fmax(x, -1.0), 1.0)
     e = (x - sat) * sat
-    return sat * (tau0_max + (tau_slide(w * sat) - tau0_max) * (1 - ca.exp(-e * e)))
+    return sat * (tau0_max + (tau_slide(w * sat) - tau0_max) * (1 - ca.exp(-e * e))), sat
+
+
+def friction_law(w, w_s, tau0_max, tau_slide):
+    """The friction torque of :func:`zone_torque`."""
+    return zone_torque(w, w_s, tau0_max, tau_slide)[0]
 
 
 LAWS = ("modes", "zone")
@@ -193,13 +199,16 @@ class _Modes(Component):
     startBackward = Variable(unit="1", doc="1 while starting to slide backward from rest")
 
 
-def zone_outputs(comp, w, w_s):
-    """The mode outputs under the stick-zone law: ``mode`` 0 inside the
-    zone ``|w| < w_s`` (``locked`` 1), the sign of ``w`` outside; ``sa``
-    the friction torque; never starting."""
-    mode = ca.if_else(w >= w_s, 1.0, ca.if_else(w <= -w_s, -1.0, 0.0))
-    return [comp.mode == mode, comp.locked == 1 - mode * mode, comp.startForward == 0,
-            comp.startBackward == 0, comp.sa == comp.tau]
+def zone_law(comp, tau, w, w_s, tau0_max, tau_slide):
+    """The equations of the stick-zone law (:func:`zone_torque`) for the
+    torque variable ``tau`` and the mode outputs it gives: ``mode`` 0
+    inside the zone ``|w| < w_s`` (``locked`` 1), the sign of ``w``
+    outside (from the zone's own relations: no event of their own);
+    ``sa`` the friction torque; never starting."""
+    torque, sat = zone_torque(w, w_s, tau0_max, tau_slide)
+    mode = ca.eq(sat, 1.0) - ca.eq(sat, -1.0)
+    return [tau == torque, comp.mode == mode, comp.locked == 1 - mode * mode,
+            comp.startForward == 0, comp.startBackward == 0, comp.sa == tau]
 
 
 class _Friction(_Modes):
@@ -235,9 +244,7 @@ class _Friction(_Modes):
         ``slide(v)`` for ``v >= 0``, by the element's law."""
         tau0_max = self.peak * tau0
         if self.law == "zone":
-            zone = getattr(self, self.ZONE)
-            return zone_outputs(self, w, zone) + [
-                self.tau_name() == friction_law(w, zone, tau0_max, slide)]
+            return zone_law(self, self.tau_name(), w, getattr(self, self.ZONE), tau0_max, slide)
         tau, eqs, _ = partial_friction(self, w, a, self.sa, free, tau0, tau0_max, slide)
         return eqs + [self.tau_name() == tau]
 
@@ -366,7 +373,8 @@ class OneWayClutch(_Modes):
     ``startForward``, ``mode`` (0 stuck, 1 forward, 2 free and sliding).
     ``law="zone"``: the former regularisation (a stick zone ``w_s``
     forward, a stiff viscous lock ``tau = peak mu0 cgeo fn_max w_rel / w_s``
-    backward, which creeps at ``w_s |tau| / (peak mu0 cgeo fn_max)``)."""
+    backward, which creeps at ``w_s |tau| / (peak mu0 cgeo fn_max)``; its
+    mode outputs are 0)."""
     peak = Parameter(1.0, "1", "peak of the friction at w = 0: tau0_max = peak * tau0", min=1.0)
     w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect here)",
                         positive=True)
@@ -415,8 +423,9 @@ class OneWayClutch(_Modes):
                                    self.peak * mu0 * self.cgeo * self.fn, slide)
             lock = self.peak * mu0 * self.cgeo * self.fn_max / self.w_s * \
                 ca.fmin(self.w_rel, 0.0)
-            return common + zone_outputs(self, self.w_rel, self.w_s) + [
-                self.stuck == self.locked, self.tau == forward + lock]
+            return common + [self.mode == 0, self.locked == 0, self.stuck == 0,
+                             self.startForward == 0, self.startBackward == 0,
+                             self.sa == self.tau, self.tau == forward + lock]
         return common + self._modes(free, mu0, slide)
 
     def _modes(self, free, mu0, slide):
@@ -574,8 +583,7 @@ class MassWithStopAndFriction(_Friction):
                   0 == self.flange_a.f + self.flange_b.f - self.f - self.m * self.a]
         if self.law == "zone":
             at = ca.if_else(self.s <= left, -1.0, ca.if_else(self.s >= right, 1.0, 0.0))
-            return common + zone_outputs(self, self.v, self.v_s) + [
-                self.f == friction_law(self.v, self.v_s, self.peak * f0, slide),
+            return common + zone_law(self, self.f, self.v, self.v_s, self.peak * f0, slide) + [
                 self.stopped == at, self.at_stop == at * at, self.s_stop == self.s]
         hi, lo = latch(_named(self, "at_smax")), latch(_named(self, "at_smin"))
         free = (f0 <= 0) * (self.F_prop <= 0) * (1 - hi) * (1 - lo)

@@ -6,8 +6,8 @@ import casadi as ca
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
                        Variable)
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library.friction1d import (_Modes, check_law, friction_law, interpolate,
-                                          partial_friction, table_rows, zone_outputs)
+from acausal2d.library.friction1d import (_Modes, check_law, interpolate, partial_friction,
+                                          table_rows, zone_law)
 
 
 class Fixed(Component):
@@ -264,9 +264,14 @@ class Clutch(_Modes):
                   self.T_max == ca.if_else(free, 0.0, mu0 * self.cgeo * self.fn),
                   self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
         if self.law == "zone":
-            slide = lambda v: self._mu(v) * self.cgeo * ca.if_else(free, 0.0, self.fn)  # noqa
-            return common + zone_outputs(self, self.w_rel, self.w_s) + [
-                self.tau == friction_law(self.w_rel, self.w_s, self.peak * self.T_max, slide)]
+            fn_pos = ca.fmax(self.fn, 0.0)
+            common[4] = self.T_max == mu0 * self.cgeo * fn_pos
+
+            def slide(v):
+                return self.T_max if self.mu_pos is None else \
+                    interpolate(self.mu_pos, v) * self.cgeo * fn_pos
+            return common + zone_law(self, self.tau, self.w_rel, self.w_s,
+                                     self.peak * self.T_max, slide)
         tau0 = mu0 * self.cgeo * self.fn
         tau, eqs, _ = partial_friction(self, self.w_rel, self.a_rel, self.sa, free, tau0,
                                     self.peak * tau0,
