@@ -182,3 +182,61 @@ def _with_equations(found, exprs):
         first[c] = min(first.get(c, r), r)
     return [Relation(d, g, strict, text, first.get(k, -1), time_only)
             for k, (d, g, strict, text, time_only) in enumerate(found)]
+
+
+def explicit_in_time(exprs, table):
+    """The unknowns that the residuals ``exprs`` give explicitly as
+    functions of time, parameters and relation values alone (a source
+    block's output, a gain or a feedback of such outputs, an input), as
+    (symbols, expressions): an equation whose unknowns but one are such
+    functions, affine in that one with a constant nonzero coefficient,
+    gives it.  A relation of such unknowns is decided on the exact value of
+    the function (:func:`exact_crossings`): the Newton solution of them
+    (``1 - ramp`` solved as +-1e-32 where it is 0) must not make events."""
+    eq_vars, var_eqs, known = [], {}, {}
+    for i, e in enumerate(exprs):
+        vs = {s.element_hash(): s for s in ca.symvar(e) if table.kind(s) == VAR}
+        eq_vars.append(vs)
+        for h in vs:
+            var_eqs.setdefault(h, []).append(i)
+    missing = [len(vs) for vs in eq_vars]
+    queue = [i for i, n in enumerate(missing) if n == 1]
+    while queue:
+        i = queue.pop()
+        left = [s for h, s in eq_vars[i].items() if h not in known]
+        if len(left) != 1:
+            continue
+        v = left[0]
+        e = ca.substitute(exprs[i], ca.vertcat(*[eq_vars[i][h] for h in eq_vars[i] if h in known]
+                                               or [ca.SX(0, 1)]),
+                          ca.vertcat(*[known[h] for h in eq_vars[i] if h in known]
+                                     or [ca.SX(0, 1)])) if len(eq_vars[i]) > 1 else exprs[i]
+        a = ca.jacobian(e, v)
+        if table.base_and_level(v)[1] != 0 or not a.is_constant() or float(a) == 0.0:
+            continue
+        known[v.element_hash()] = ca.substitute(e, v, ca.SX(0.0)) / -float(a)
+        for j in var_eqs[v.element_hash()]:
+            missing[j] -= 1
+            if missing[j] == 1:
+                queue.append(j)
+    syms = {h: s for vs in eq_vars for h, s in vs.items()}
+    return [syms[h] for h in known], [known[h] for h in known]
+
+
+def exact_crossings(relations, exprs, table):
+    """``relations`` with the unknowns their crossing functions use that
+    are explicit in time (:func:`explicit_in_time` of the residuals
+    ``exprs``) replaced by their functions of time, parameters and
+    relation values."""
+    if not relations:
+        return list(relations)
+    used = {s.element_hash() for r in relations for s in ca.symvar(r.g)}
+    src, dst = explicit_in_time(exprs, table)
+    pairs = [(s, e) for s, e in zip(src, dst) if s.element_hash() in used]
+    if not pairs:
+        return list(relations)
+    src = ca.vertcat(*[s for s, _ in pairs])
+    dst = ca.vertcat(*[e for _, e in pairs])
+    n = len(relations)
+    gs = ca.substitute([r.g for r in relations] + [r.start_g for r in relations], [src], [dst])
+    return [r.with_g(g, g0) for r, g, g0 in zip(relations, gs[:n], gs[n:])]

@@ -22,6 +22,7 @@ from ..errors import InitializationError, ModelDefinitionError
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import as_sx, time
 from .aliases import Alias, substitution
+from .relations import exact_crossings
 from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
 from .structure import Structure, column
@@ -76,7 +77,8 @@ class System:
         self.param_index = {name: k for k, (name, *_) in enumerate(self.parameters)}
         self.p = ca.vertcat(*[sym for _, sym, _, _ in self.parameters]) \
             if self.parameters else ca.SX(0, 1)
-        self.relations = tuple(self._crossings_in_nodes(relations))
+        self.relations = tuple(exact_crossings(self._crossings_in_nodes(relations),
+                                               [eq.expr for eq in self.equations], self.table))
         self.d = ca.vertcat(*[r.sym for r in self.relations]) if self.relations else ca.SX(0, 1)
         self._nodes(variables)
         self._functions()
