@@ -62,15 +62,26 @@ class Spring(_Compliant):
         return self._common() + [self.tau == self.c * (self.phi_rel - self.phi_rel0)]
 
 
-class Damper(_Compliant):
-    """Linear rotational damper tau = d der(phi_rel)."""
+class _RelativeStates(_Compliant):
+    """Modelica's PartialCompliantWithRelativeStates: ``phi_rel`` and
+    ``w_rel`` are preferred states, ``phi_rel`` with the nominal
+    ``phi_nominal = 1e-4`` rad (a small relative angle is integrated to
+    its own scale, not as the difference of two large absolute ones)."""
+    phi_rel = Variable(unit="rad", state_select="prefer", nominal=1e-4,
+                       doc="relative angle flange_b - flange_a")
+    w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
+
+
+class Damper(_RelativeStates):
+    """Linear rotational damper (Modelica.Mechanics.Rotational.Components.
+    Damper): ``tau = d w_rel``, ``w_rel = der(phi_rel)``."""
     d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
 
     def equations(self):
-        return self._common() + [self.tau == self.d * der(self.phi_rel)]
+        return self._common() + [self.w_rel == der(self.phi_rel), self.tau == self.d * self.w_rel]
 
 
-class SpringDamper(_Compliant):
+class SpringDamper(_RelativeStates):
     """Linear torsion spring and damper in parallel
     (Modelica.Mechanics.Rotational.Components.SpringDamper):
     ``tau = c (phi_rel - phi_rel0) + d w_rel``, ``w_rel = der(phi_rel)``;
@@ -79,7 +90,6 @@ class SpringDamper(_Compliant):
     c = Parameter(1.0, "N.m/rad", "spring constant", min=0.0)
     d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
     phi_rel0 = Parameter(0.0, "rad", "unstretched relative angle")
-    w_rel = Variable(unit="rad/s", doc="relative angular velocity")
     loss_power = Variable(unit="W", doc="power dissipated by the damper")
 
     def equations(self):

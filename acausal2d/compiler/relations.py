@@ -14,7 +14,7 @@ values themselves; their crossing functions are scanned with the
 equations (a relation in them becomes a relation of its own) and they come
 after the relations found in the equations.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import casadi as ca
 
@@ -28,8 +28,9 @@ class Relation:
     """A discrete relation value ``sym`` with zero-crossing function ``g``
     (relation true where g > 0, or g >= 0 when not ``strict``); ``text``
     shows it as written, ``equation`` is the index of the first equation
-    using it and ``time_only`` says that ``g`` depends on time and
-    parameters alone (a time event)."""
+    using it and ``time_only`` says that ``g`` depends on time, parameters
+    and relation values alone (a time event where it is affine in time and
+    free of relation values; else decided on its exact value)."""
     sym: object
     g: object
     strict: bool
@@ -239,4 +240,9 @@ def exact_crossings(relations, exprs, table):
     dst = ca.vertcat(*[e for _, e in pairs])
     n = len(relations)
     gs = ca.substitute([r.g for r in relations] + [r.start_g for r in relations], [src], [dst])
-    return [r.with_g(g, g0) for r, g, g0 in zip(relations, gs[:n], gs[n:])]
+    out = []
+    for r, g, g0 in zip(relations, gs[:n], gs[n:]):
+        r = r.with_g(g, g0)
+        explicit = not any(table.kind(s) == VAR for s in ca.symvar(g))
+        out.append(replace(r, time_only=True) if explicit and not r.time_only else r)
+    return out

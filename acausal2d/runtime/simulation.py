@@ -417,11 +417,12 @@ class Simulation:
         check_jumps(self.system, self.t, z_left, z, changed)
         self.z, self.d = z, d
         self.out.append((self.t, z.copy()))
-        self.chatter.record(self.t, changed or flipped)
-        if changed:      # else a root IDA found again just past one settled by its rate
+        reinits = it.reinit.texts() if it.reinit is not None else []
+        if changed or reinits:   # else a root IDA found again just past one settled by its rate
             self.stats.events += 1
-            text = "; ".join(self.system.relations[k].text for k in changed)
+            text = "; ".join([self.system.relations[k].text for k in changed] + reinits)
             self.events.append((self.t, text))
+        self.chatter.record(self.t, changed or flipped)
         self.stats.event_time += _time.perf_counter() - wall
         check_assertions(self.system, self.p, self.t, z)
 
