@@ -29,6 +29,7 @@ CHATTER_EVENTS = 50       # this many events ...
 CHATTER_SPAN = 1e-8       # ... within this fraction of the run's time span: chattering
 JUMP_TOL = 1e-4           # relative change of a position with a velocity that is a jump
 NEAR_ZERO = 1e-6          # a crossing function this small may be at its zero
+LATCH_BAND = 1e-9         # a latch's crossing function this close to 0 keeps the value
 STORM_EVENTS = 500        # this many events ...
 STORM_SPAN = 1e-3         # ... within this fraction of the run's time span: an event storm
 ZENO_EVENTS = 12          # this many event intervals, each shrinking ...
@@ -133,11 +134,20 @@ def resolved_values(system, g, gdot, d, t, pinned=()):
     make a far-off value look close) or would not reach zero within 1e-9 of
     the time.  The relations ``pinned`` take the value of g alone, and so
     does a relation of time alone (its g is exact) that stays at its zero
-    (the brake's ``fn <= 0`` when ``1 - ramp`` has reached 0 and stays)."""
+    (the brake's ``fn <= 0`` when ``1 - ramp`` has reached 0 and stays).
+    A latch within :data:`LATCH_BAND` (or its rate times 1e-9 of the time)
+    of its zero keeps its value: its crossing function for the new value
+    starts at zero by design (a friction element's ``-a`` after the
+    breakaway), and only its crossing, which IDA reports (the latch is
+    flipped before the iteration), or a clear sign changes it."""
     tau = 1e-9 * max(1.0, abs(t))
     out = np.array(d, dtype=float)
     near = near_zero(g)
     for k, rel in enumerate(system.relations):
+        if rel.g_start is not None and k not in pinned:      # a latch
+            if abs(g[k]) > max(LATCH_BAND, abs(gdot[k]) * tau):
+                out[k] = rel.value(g[k])
+            continue
         if k in pinned or not near[k] or \
                 abs(g[k]) > abs(gdot[k]) * tau + 1e-13 * max(1.0, abs(g[k])) or \
                 (rel.time_only and abs(gdot[k]) <= 1e-12):
