@@ -29,6 +29,12 @@ RTOL = 1e-8
 LOCKED = 1e-9
 
 
+def is_code(values, code):
+    """A mode output (an integer code solved from the 0/1 latch values)
+    equals ``code`` everywhere, to rounding."""
+    return float(np.max(np.abs(np.asarray(values, dtype=float) - code))) <= 1e-9
+
+
 class Pair(Component):
     """Inertia a (at wa, driven by ``torque(t)`` if given) -- clutch --
     inertia b (at rest)."""
@@ -67,8 +73,8 @@ def test_clutch_locks_exactly_at_the_coulomb_time():
     late = res.time > t_lock + 1e-6
     assert np.max(np.abs(res["clutch.w_rel"][late])) <= LOCKED
     assert np.max(np.abs(res["b.w"][late] - 2.5)) <= 100 * RTOL * 10
-    assert np.all(res["clutch.mode"][slip] == -1.0) and np.all(res["clutch.mode"][late] == 0.0)
-    assert np.all(res["clutch.locked"][late] == 1.0)
+    assert is_code(res["clutch.mode"][slip], -1.0) and is_code(res["clutch.mode"][late], 0.0)
+    assert is_code(res["clutch.locked"][late], 1.0)
 
 
 @pytest.mark.parametrize("peak", (1.0, 1.5))
@@ -90,7 +96,7 @@ def test_clutch_unlocks_at_peak_times_the_sliding_torque(peak):
     late = res.time > t_u
     want = 0.5 * K * t_u ** 2 / (ja + jb) + tau0 / jb * (res.time[late] - t_u)
     assert np.max(np.abs(res["b.w"][late] - want)) <= 100 * RTOL * float(np.max(want))
-    assert res.final("clutch.mode") == -1.0      # w_rel = w_b - w_a < 0: backward
+    assert is_code(res.final("clutch.mode"), -1.0)      # w_rel = w_b - w_a < 0: backward
 
 
 class Braked(Component):
@@ -118,11 +124,11 @@ def test_brake_holds_below_its_capacity_and_slips_above(share):
     if share < 1:
         assert np.max(np.abs(res["inertia.w"])) <= LOCKED
         assert np.max(np.abs(res["brake.tau"] - share * cap)) <= 100 * RTOL * cap
-        assert np.all(res["brake.mode"] == 0.0)
+        assert is_code(res["brake.mode"], 0.0)
     else:
         want = (share * cap - 20.0) * res.time / 2.0
         assert np.max(np.abs(res["inertia.w"] - want)) <= 100 * RTOL * 1.0
-        assert res.final("brake.mode") == 1.0
+        assert is_code(res.final("brake.mode"), 1.0)
 
 
 class Freewheel(Component):
@@ -151,7 +157,7 @@ def test_one_way_clutch_pulled_backward_stays_locked(engage):
                              output_times=np.linspace(0.0, 1.0, 51))
     assert np.max(np.abs(res["owc.w_rel"])) <= LOCKED
     assert np.max(np.abs(res["owc.tau"] + 500.0)) <= 100 * RTOL * 500.0
-    assert np.all(res["owc.locked"] == 1.0)
+    assert is_code(res["owc.locked"], 1.0)
 
 
 def test_one_way_clutch_open_overruns_forward_after_its_small_breakaway():
@@ -161,7 +167,7 @@ def test_one_way_clutch_open_overruns_forward_after_its_small_breakaway():
     res = acausal2d.simulate(Freewheel(1.0, 0.0), stop_time=1.0, rtol=RTOL,
                              output_times=np.linspace(0.0, 1.0, 51))
     assert np.max(np.abs(res["a.w"] - res.time)) <= 100 * RTOL
-    assert res.final("owc.mode") == 2.0
+    assert is_code(res.final("owc.mode"), 2.0)
 
 
 class Stop(Component):
@@ -187,17 +193,18 @@ def test_mass_stays_at_its_hard_stop_and_leaves_when_the_force_reverses():
     t_s = math.sqrt(0.4)
     res = acausal2d.simulate(Stop(), stop_time=1.5, rtol=RTOL,
                              output_times=np.linspace(0.0, 1.5, 151))
-    assert res.events[0][0] == pytest.approx(t_s, abs=10 * RTOL * 1.0 / 3.0)
-    assert "reinit(mass.v)" in res.events[0][1]
+    stops = [(t, txt) for t, txt in res.events if "hard stop smax" in txt]
+    assert stops[0][0] == pytest.approx(t_s, abs=10 * RTOL * 1.0 / 3.0)
+    assert "reinit(mass.v)" in stops[0][1]
     t = res.time
     before, held, after = t < t_s, (t > t_s + 1e-6) & (t < 1.0), t > 1.0
     assert np.max(np.abs(res["mass.s"][before] - 2.5 * t[before] ** 2)) <= 100 * RTOL
     assert np.max(np.abs(res["mass.v"][held])) <= LOCKED
     assert np.max(np.abs(res["mass.s"][held] - 1.0)) <= LOCKED
-    assert np.all(res["mass.stopped"][held] == 1.0)
+    assert is_code(res["mass.stopped"][held], 1.0)
     assert np.max(np.abs(res["mass.s"][after] - (1.0 - 2.5 * (t[after] - 1.0) ** 2))) \
         <= 100 * RTOL * 1.0
-    assert np.all(res["mass.stopped"][after] == 0.0)
+    assert is_code(res["mass.stopped"][after], 0.0)
 
 
 class SharedRamp(Component):
@@ -238,7 +245,7 @@ def test_shared_ramp_makes_no_round_off_events():
     fn_events = [t for t, txt in res.events if ".fn" in txt]
     assert fn_events == [pytest.approx(0.5, abs=1e-12), pytest.approx(0.6, abs=1e-12)]
     assert len(res.events) <= 6
-    assert res.final("brake.mode") == 2.0
+    assert is_code(res.final("brake.mode"), 2.0)
 
 
 class Ball(Component):
