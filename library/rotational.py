@@ -4,7 +4,7 @@ element from the connected part."""
 import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
-                       Variable)
+                       Variable, time)
 from acausal2d.errors import ModelDefinitionError
 from acausal2d.library.friction1d import (_Modes, check_law, interpolate, partial_friction,
                                           table_rows, zone_law)
@@ -151,6 +151,61 @@ class ConstantTorque(Component):
 
     def equations(self):
         return [self.flange.tau == -self.tau]
+
+
+class TorqueStep(Component):
+    """Constant torque with a step (Modelica.Mechanics.Rotational.Sources.
+    TorqueStep, MSL 4.0, without support: the reaction goes to ground)::
+
+        w = der(phi),  phi = flange.phi,  tau = -flange.tau
+        tau = offsetTorque + (if time < startTime then 0 else stepTorque)
+
+    ``tau`` accelerates the flange (a negative one is a load); the step is
+    a time event."""
+    stepTorque = Parameter(1.0, "N.m", "height of the torque step (< 0: a load)")
+    offsetTorque = Parameter(0.0, "N.m", "offset of the torque")
+    startTime = Parameter(0.0, "s", "torque = offsetTorque for time < startTime")
+    phi = Variable(unit="rad", doc="angle of the flange")
+    w = Variable(unit="rad/s", doc="angular velocity of the flange")
+    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+
+    def equations(self):
+        step = ca.if_else(time < self.startTime, 0.0, self.stepTorque)
+        return [self.phi == self.flange.phi, self.w == der(self.phi),
+                self.tau == -self.flange.tau, self.tau == self.offsetTorque + step]
+
+
+class QuadraticSpeedDependentTorque(Component):
+    """Torque quadratic in the speed (Modelica.Mechanics.Rotational.Sources.
+    QuadraticSpeedDependentTorque, MSL 4.0, without support)::
+
+        w = der(phi),  tau = -flange.tau
+        tau = tau_nominal (w / w_nominal)^2                        TorqueDirection
+        tau = tau_nominal (if w >= 0 then 1 else -1) (w / w_nominal)^2   otherwise
+
+    ``tau_nominal < 0`` is a load (a fan); with ``TorqueDirection=False``
+    it opposes the motion in both directions (``w |w|``: continuous with
+    its first derivative, no event)."""
+    tau_nominal = Parameter(1.0, "N.m", "nominal torque (< 0: a load in the positive direction)")
+    w_nominal = Parameter(1.0, "rad/s", "nominal speed", positive=True)
+    phi = Variable(unit="rad", doc="angle of the flange")
+    w = Variable(unit="rad/s", doc="angular velocity of the flange")
+    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
+
+    def __init__(self, TorqueDirection=True, **kw):
+        super().__init__(**kw)
+        self.TorqueDirection = bool(TorqueDirection)
+        self.flange = RotationalFlange()
+
+    def equations(self):
+        x = self.w / self.w_nominal
+        law = x * x if self.TorqueDirection else x * ca.fabs(x)
+        return [self.phi == self.flange.phi, self.w == der(self.phi),
+                self.tau == -self.flange.tau, self.tau == self.tau_nominal * law]
 
 
 class Speed(Component):
@@ -334,5 +389,6 @@ class AsyncMotor(Component):
 
 
 # Modelica.Mechanics.Rotational.Components' gears, where Modelica users look for them
-from acausal2d.library.gears import IdealGear, IdealPlanetary  # noqa: E402,F401
+from acausal2d.library.gears import (IdealGear, IdealGearR2T, IdealPlanetary,  # noqa: E402,F401
+                                     IdealRollingWheel)
 from acausal2d.library.friction1d import BearingFriction, Brake, OneWayClutch  # noqa: E402,F401
