@@ -194,34 +194,52 @@ def explicit_in_time(exprs, table):
     gives it.  A relation of such unknowns is decided on the exact value of
     the function (:func:`exact_crossings`): the Newton solution of them
     (``1 - ramp`` solved as +-1e-32 where it is 0) must not make events."""
-    eq_vars, var_eqs, known = [], {}, {}
+    eq_vars, var_eqs = _incidence(exprs, table)
+    known, syms = {}, {}
+    missing = [len(vs) for vs in eq_vars]
+    queue = [i for i, n in enumerate(missing) if n == 1]
+    while queue:
+        i = queue.pop()
+        solved = _solve_single(exprs[i], eq_vars[i], known, table)
+        if solved is None:
+            continue
+        v, value = solved
+        known[v.element_hash()], syms[v.element_hash()] = value, v
+        for j in var_eqs[v.element_hash()]:
+            missing[j] -= 1
+            if missing[j] == 1:
+                queue.append(j)
+    return [syms[h] for h in known], [known[h] for h in known]
+
+
+def _incidence(exprs, table):
+    """({hash: symbol} of the unknowns of each expression, {hash: indices
+    of the expressions using it})."""
+    eq_vars, var_eqs = [], {}
     for i, e in enumerate(exprs):
         vs = {s.element_hash(): s for s in ca.symvar(e) if table.kind(s) == VAR}
         eq_vars.append(vs)
         for h in vs:
             var_eqs.setdefault(h, []).append(i)
-    missing = [len(vs) for vs in eq_vars]
-    queue = [i for i, n in enumerate(missing) if n == 1]
-    while queue:
-        i = queue.pop()
-        left = [s for h, s in eq_vars[i].items() if h not in known]
-        if len(left) != 1:
-            continue
-        v = left[0]
-        e = ca.substitute(exprs[i], ca.vertcat(*[eq_vars[i][h] for h in eq_vars[i] if h in known]
-                                               or [ca.SX(0, 1)]),
-                          ca.vertcat(*[known[h] for h in eq_vars[i] if h in known]
-                                     or [ca.SX(0, 1)])) if len(eq_vars[i]) > 1 else exprs[i]
-        a = ca.jacobian(e, v)
-        if table.base_and_level(v)[1] != 0 or not a.is_constant() or float(a) == 0.0:
-            continue
-        known[v.element_hash()] = ca.substitute(e, v, ca.SX(0.0)) / -float(a)
-        for j in var_eqs[v.element_hash()]:
-            missing[j] -= 1
-            if missing[j] == 1:
-                queue.append(j)
-    syms = {h: s for vs in eq_vars for h, s in vs.items()}
-    return [syms[h] for h in known], [known[h] for h in known]
+    return eq_vars, var_eqs
+
+
+def _solve_single(expr, unknowns, known, table):
+    """(v, value) if ``expr`` = 0 has one unknown ``v`` left after the
+    ``known`` ones, at derivative level 0 and affine with a constant
+    nonzero coefficient; else None."""
+    left = [s for h, s in unknowns.items() if h not in known]
+    if len(left) != 1 or table.base_and_level(left[0])[1] != 0:
+        return None
+    v = left[0]
+    done = [h for h in unknowns if h in known]
+    if done:
+        expr = ca.substitute(expr, ca.vertcat(*[unknowns[h] for h in done]),
+                             ca.vertcat(*[known[h] for h in done]))
+    a = ca.jacobian(expr, v)
+    if not a.is_constant() or float(a) == 0.0:
+        return None
+    return v, ca.substitute(expr, v, ca.SX(0.0)) / -float(a)
 
 
 def exact_crossings(relations, exprs, table):
