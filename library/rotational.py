@@ -128,6 +128,32 @@ class SpeedSensor(Component):
         return [self.w.u == der(self.flange.phi), self.flange.tau == 0]
 
 
+class MultiSensor(Component):
+    """Power, torque and angular velocity between two flanges
+    (Modelica.Mechanics.Rotational.Sensors.MultiSensor, MSL 4.0)::
+
+        flange_a.phi = flange_b.phi,  w = der(flange_a.phi)
+        tau = flange_a.tau,  0 = flange_a.tau + flange_b.tau
+        power = tau * w
+
+    The signals ``power``, ``w``, ``tau`` are outputs; the sensor is a
+    rigid connection (``tau`` is the torque passed from flange_a to
+    flange_b)."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange_a = RotationalFlange()
+        self.flange_b = RotationalFlange()
+        self.power = RealOutput()
+        self.w = RealOutput()
+        self.tau = RealOutput()
+
+    def equations(self):
+        return [self.flange_a.phi == self.flange_b.phi, self.w.u == der(self.flange_a.phi),
+                self.tau.u == self.flange_a.tau, 0 == self.flange_a.tau + self.flange_b.tau,
+                self.power.u == self.tau.u * self.w.u]
+
+
 class Torque(Component):
     """Torque from the signal tau_in acting on the flange (reaction on the
     fixed support)."""

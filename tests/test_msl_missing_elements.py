@@ -156,3 +156,24 @@ def test_translational_brake_holds_below_capacity_slips_above(share):
         assert np.max(np.abs(res["brake.f"] - F)) <= 100 * RTOL * F
     else:
         assert np.max(np.abs(res["mass.v"] - (F - 5.0) * res.time / 2.0)) <= 100 * RTOL
+
+
+class Measured(Component):
+    """Torque 1 N m -- MultiSensor -- inertia J = 2 from rest."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=1.0)
+        self.sensor = rot.MultiSensor()
+        self.inertia = rot.Inertia(J=2.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.connect(self.src.flange, self.sensor.flange_a)
+        self.connect(self.sensor.flange_b, self.inertia.flange_a)
+
+
+def test_multisensor_measures_torque_speed_and_power():
+    """w = t / 2, the torque passed 1 N m, power = tau w = t / 2 (the
+    kinetic energy J w^2 / 2 = t^2 / 4 grows at that rate)."""
+    res = acausal2d.simulate(Measured(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["sensor.w.u"] - T / 2)) <= 100 * RTOL
+    assert np.max(np.abs(res["sensor.tau.u"] - 1.0)) <= 100 * RTOL
+    assert np.max(np.abs(res["sensor.power.u"] - T / 2)) <= 100 * RTOL
