@@ -4,7 +4,6 @@ Translational Mass.L and Brake) against closed forms.
 
 Tolerances: IDA at RTOL; speeds and positions within 100 RTOL of their
 scale (the global error)."""
-import math
 
 import numpy as np
 import pytest
