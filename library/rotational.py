@@ -155,28 +155,44 @@ class MultiSensor(Component):
 
 
 class Torque(Component):
-    """Torque from the signal tau_in acting on the flange (reaction on the
-    fixed support)."""
+    """Torque from the signal tau_in acting on the flange
+    (Modelica.Mechanics.Rotational.Sources.Torque, MSL 4.0)::
+
+        flange.tau = -tau,  support.tau = -flange.tau
+
+    ``support`` is Modelica's optional support: left unconnected it is fixed
+    to ground (``useSupport = false``); connect it to a housing to take the
+    reaction torque there."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange = RotationalFlange()
+        self.support = RotationalFlange(ground={"phi": 0.0},
+                                        doc="housing (fixed at 0 if unconnected)")
         self.tau_in = RealInput()
 
     def equations(self):
-        return [self.flange.tau == -self.tau_in.u]
+        return [self.flange.tau == -self.tau_in.u, self.support.tau == -self.flange.tau]
 
 
 class ConstantTorque(Component):
-    """Constant torque tau acting on the flange."""
+    """Constant torque tau acting on the flange (Modelica.Mechanics.
+    Rotational.Sources.ConstantTorque, MSL 4.0, whose parameter is
+    ``tau_constant``)::
+
+        flange.tau = -tau,  support.tau = -flange.tau
+
+    ``support`` as :class:`Torque`'s."""
     tau = Parameter(0.0, "N.m", "torque")
 
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange = RotationalFlange()
+        self.support = RotationalFlange(ground={"phi": 0.0},
+                                        doc="housing (fixed at 0 if unconnected)")
 
     def equations(self):
-        return [self.flange.tau == -self.tau]
+        return [self.flange.tau == -self.tau, self.support.tau == -self.flange.tau]
 
 
 class TorqueStep(Component):

@@ -176,3 +176,24 @@ def test_multisensor_measures_torque_speed_and_power():
     assert np.max(np.abs(res["sensor.w.u"] - T / 2)) <= 100 * RTOL
     assert np.max(np.abs(res["sensor.tau.u"] - 1.0)) <= 100 * RTOL
     assert np.max(np.abs(res["sensor.power.u"] - T / 2)) <= 100 * RTOL
+
+
+class Reaction(Component):
+    """Torque 1 N m between a shaft (J1 = 1) and its housing (J2 = 3), the
+    housing free: the source's support connected to it."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=1.0)
+        self.shaft = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.housing = rot.Inertia(J=3.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.connect(self.src.flange, self.shaft.flange_a)
+        self.connect(self.src.support, self.housing.flange_a)
+
+
+def test_torque_support_takes_the_reaction():
+    """The reaction -1 N m turns the housing: w1 = t, w2 = -t / 3, the
+    angular momentum J1 w1 + J2 w2 stays 0."""
+    res = acausal2d.simulate(Reaction(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["shaft.w"] - T)) <= 100 * RTOL
+    assert np.max(np.abs(res["housing.w"] + T / 3)) <= 100 * RTOL
