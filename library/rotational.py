@@ -23,10 +23,18 @@ class Fixed(Component):
 
 
 class Inertia(Component):
-    """Rotational inertia J between two rigidly coupled flanges; w = der(phi)."""
+    """Rotational inertia J between two rigidly coupled flanges
+    (Modelica.Mechanics.Rotational.Components.Inertia, MSL 4.0)::
+
+        phi = flange_a.phi = flange_b.phi,  w = der(phi),  a = der(w)
+        J * a = flange_a.tau + flange_b.tau
+
+    ``a`` may be given a start value (``a=start(0, fixed=True)``: start in
+    equilibrium)."""
     J = Parameter(1.0, "kg.m2", "moment of inertia", min=0.0)
     phi = Variable(unit="rad", doc="absolute angle")
     w = Variable(unit="rad/s", doc="angular velocity")
+    a = Variable(unit="rad/s2", doc="angular acceleration")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -35,8 +43,8 @@ class Inertia(Component):
 
     def equations(self):
         return [self.flange_a.phi == self.phi, self.flange_b.phi == self.phi,
-                self.w == der(self.phi),
-                self.J * der(self.w) == self.flange_a.tau + self.flange_b.tau]
+                self.w == der(self.phi), self.a == der(self.w),
+                self.J * self.a == self.flange_a.tau + self.flange_b.tau]
 
 
 class _Compliant(Component):

@@ -197,3 +197,25 @@ def test_torque_support_takes_the_reaction():
     res = acausal2d.simulate(Reaction(), stop_time=1.0, rtol=RTOL, output_times=T)
     assert np.max(np.abs(res["shaft.w"] - T)) <= 100 * RTOL
     assert np.max(np.abs(res["housing.w"] + T / 3)) <= 100 * RTOL
+
+
+class Equilibrium(Component):
+    """Inertia on a torsion spring (c = 4) under 2 N m, started with
+    a(fixed=True) = 0 and w = 0: the start is the equilibrium phi = 0.5."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=2.0)
+        self.inertia = rot.Inertia(J=1.0, a=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.spring = rot.Spring(c=4.0)
+        self.fix = rot.Fixed()
+        self.connect(self.src.flange, self.inertia.flange_a)
+        self.connect(self.inertia.flange_b, self.spring.flange_b)
+        self.connect(self.spring.flange_a, self.fix.flange)
+
+
+def test_inertia_acceleration_fixed_at_the_start_gives_the_equilibrium():
+    """a = 0 and w = 0 at the start: c phi = 2, phi = 0.5, and it stays."""
+    res = acausal2d.simulate(Equilibrium(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["inertia.phi"] - 0.5)) <= 100 * RTOL
+    assert np.max(np.abs(res["inertia.a"])) <= 100 * RTOL * 2.0
