@@ -78,14 +78,15 @@ def hand_check():
             "driver torque": dF * R1}
 
 
-if __name__ == "__main__":
-    import sys
+def measure(res):
+    """The same quantities at the end of a run of :class:`BeltDrive`."""
+    return {"driven.w_rel": res.final("driven.w_rel"), "tight.F": res.final("tight.F"),
+            "slack.F": res.final("slack.F"),
+            "driver torque": res.final("driver.ctrR2.tau")}
 
+
+if __name__ == "__main__":
     import acausal2d
-    res = acausal2d.simulate(BeltDrive())
-    simulated = {"driven.w_rel": res.final("driven.w_rel"), "tight.F": res.final("tight.F"),
-                 "slack.F": res.final("slack.F"),
-                 "driver torque": res.final("driver.ctrR2.tau")}
+    simulated = measure(acausal2d.simulate(BeltDrive()))
     for name, value in hand_check().items():
         print("%-14s simulated %12.6g   by hand %12.6g" % (name, simulated[name], value))
-    sys.exit(0)

@@ -92,10 +92,7 @@ def measure(res, phi=math.pi / 3):
 
 
 if __name__ == "__main__":
-    import sys
-
     import acausal2d
     simulated = measure(acausal2d.simulate(SliderCrank()))
     for name, value in hand_check().items():
         print("%-12s simulated %12.6g   by hand %12.6g" % (name, simulated[name], value))
-    sys.exit(0)

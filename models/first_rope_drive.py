@@ -84,13 +84,14 @@ def hand_check():
             "lift speed": W_DRUM * R_DRUM * (1 + eps) / 2}
 
 
-if __name__ == "__main__":
-    import sys
+def measure(res):
+    """The same quantities at the end of a run of :class:`RopeDrive`."""
+    return {"fall1.F": res.final("fall1.F"), "fall2.F": res.final("fall2.F"),
+            "drum torque": res.final("drum.ctrR2.tau"), "lift speed": res.final("load.vy")}
 
+
+if __name__ == "__main__":
     import acausal2d
-    res = acausal2d.simulate(RopeDrive())
-    simulated = {"fall1.F": res.final("fall1.F"), "fall2.F": res.final("fall2.F"),
-                 "drum torque": res.final("drum.ctrR2.tau"), "lift speed": res.final("load.vy")}
+    simulated = measure(acausal2d.simulate(RopeDrive()))
     for name, value in hand_check().items():
         print("%-12s simulated %12.6g   by hand %12.6g" % (name, simulated[name], value))
-    sys.exit(0)

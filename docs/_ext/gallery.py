@@ -28,6 +28,9 @@ DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROOT = os.path.dirname(DOCS)
 
 GROUPS = [
+    ("First models (built step by step in the documentation)",
+     ["first_belt_drive", "first_rope_drive", "first_drive_train", "first_hydraulic_circuit",
+      "first_linkage", "first_planar_mechanism"]),
     ("Dissertation ch. 2: joints, degree of freedom, linkages, band and rope mechanisms",
      ["four_link_mechanisms", "dof_bild_2_1", "cam_follower", "rope_drives",
       "band_mechanisms", "band_systematics"]),
