@@ -1,4 +1,4 @@
-"""Slider travel ranges of a run (seed ch. 7.1, Bild 7.4: "the motion
+"""Slider travel ranges of a run (Ebert 2015, ch. 7.1, Bild 7.4: "the motion
 ranges of the sliders are recognised automatically and visualised").
 
 A slider is what a component draws as a ``"slider"`` shape with a

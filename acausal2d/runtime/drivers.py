@@ -1,5 +1,5 @@
 """The native drivers' constant C, compiled once: at install time where a
-C compiler is found there, else on first use into the cache (issue 30).
+C compiler is found there, else on first use into the cache.
 
 Every native library links one of three object files compiled from C that
 does not depend on the model (:data:`OBJECTS`): the IDA driver

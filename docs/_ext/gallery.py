@@ -6,7 +6,7 @@ file, see :func:`acausal2d.io.loader.model_names`, and each mec2
 ``models/mec2/*.json``) is simulated with its own experiment in a pool of
 worker processes (:mod:`gallery_run`), and ``gallery/<file>.md`` shows its
 figures and its animation page.  The pages are grouped by the chapters of
-the dissertation and the talk (:data:`GROUPS`; a file not named there is
+the dissertation and Schnabel and Gössner's talk (:data:`GROUPS`; a file not named there is
 listed under "Other models").  A model that fails is a build warning, so
 ``sphinx-build -W`` fails.
 
@@ -43,7 +43,7 @@ GROUPS = [
     ("Modelica PlanarMechanics references (Dymola results in tests/data/references)",
      ["pendulum", "double_pendulum", "crane_crab", "piston_engine", "piston_engine_dynamic",
       "planar_examples"]),
-    ("The talk: nodes, constraints, constructions and mec2",
+    ("Schnabel and Gössner's talk: nodes, constraints, constructions and mec2",
      ["talk_mechanisms", "talk_mechanisms_vdi", "talk_constructions", "talk_synthesis",
       "mec2"]),
     ("Calibration, optimisation, linearisation and FMU export",
