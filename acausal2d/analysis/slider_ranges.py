@@ -92,7 +92,7 @@ def slider_ranges(result):
 
 def range_lines(ranges, indent="  "):
     """Summary lines of :func:`slider_ranges` (one per slider)."""
-    return ["%sslider %s: travel %.6g .. %.6g m along its guide (stroke %.6g m)"
+    return ["%sslider %s: travel %.6g .. %.6g m along its guide from its start (stroke %.6g m)"
             % (indent, r.name, r.s_min, r.s_max, r.stroke) for r in ranges]
 
 
