@@ -41,7 +41,7 @@ Outputs (Bild 8.5): rope forces of the load rope (``load1.F`` at the drum
 torques.
 
 Values the dissertation does not give, chosen here
-------------------------------------------
+--------------------------------------------------
 - Coordinates: x horizontal, y up; left mast foot (0, 0), right mast foot
   (50, 50 tan 15 deg = 13.397) m; mast tops 10 m higher.
 - Mast pulleys (r = 0.1 m, J = 0.05 kg m^2, massless housings fixed in the

@@ -33,7 +33,8 @@ WORDS = [
     ("spec", re.compile(r"\bthe specs?\b|\bspec(?:'s|s)?(?: section| transcription| table| \d)|"
                         r"\bspec_\w+\.md", re.I)),
     ("line numbers", re.compile(r"\blines? \d+ ?(?:-|–|to|\.\.) ?\d+", re.I)),
-    ("path outside the repository", re.compile(r"\.\./shared\b|/work/|\bshared/(?:specs|seeds)")),
+    ("path outside the repository", re.compile(r"\.\./shared\b|/work/|\bshared/(?:specs|seeds)|"
+                                               + re.escape(ROOT))),
 ]
 
 

@@ -26,7 +26,10 @@ from . import cstore, cunits
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PREBUILT = os.path.join(HERE, "prebuilt")
-"""Where :func:`install` puts the objects (inside the installed package)."""
+"""Where :func:`install` puts the objects (inside the installed package).
+
+:meta hide-value:
+"""
 ENV = "ACAUSAL2D_PREBUILT"
 _SOURCES = {"lu": "native_lu.c", "driver": "native_driver.c", "project": "native_project.c"}
 

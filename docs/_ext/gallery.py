@@ -367,7 +367,16 @@ def write_api(app):
            % "\n".join(stems))
 
 
+def _relative_paths(app, what, name, obj, options, signature, return_annotation):
+    """A default value that is a path in this checkout (``install(dest=PREBUILT)``)
+    shown relative to the repository, not as the build machine's folder."""
+    if signature and ROOT + os.sep in signature:
+        return signature.replace(ROOT + os.sep, ""), return_annotation
+    return None
+
+
 def setup(app):
+    app.connect("autodoc-process-signature", _relative_paths)
     app.connect("builder-inited", write_api)
     app.connect("builder-inited", write_gallery)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

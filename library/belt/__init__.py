@@ -2,7 +2,7 @@
 drums and a driven rope end (Ebert 2015, ch. 4.4, eq. 4.52-4.99).
 
 Elements and ports (names of Ebert 2015)
--------------------------------
+----------------------------------------
 - :class:`Belt` -- elastic belt / rope span (eq. 4.52-4.66): mechanical
   ports ``ctr2D1``, ``ctr2D2`` (end points P1, P2) and band ports ``ctrB1``,
   ``ctrB2``.
@@ -39,7 +39,7 @@ NozzleBelt), :mod:`.pulley`, :mod:`.drum`, :mod:`.rope_drive`,
 values), :mod:`.crane`; :mod:`.base` holds what they share.
 
 Band connection (Ebert 2015, ch. 4.1)
-------------------------------
+-------------------------------------
 A :class:`~acausal2d.language.connectors.BandPort` carries two potentials and is
 connected one-to-one:
 

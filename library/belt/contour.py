@@ -40,7 +40,7 @@ The contour must be star-shaped about the axis (one radius per angle); the
 belt runs only on its convex parts.
 
 Arc length (Ebert 2015, eq. 4.116-4.119)
----------------------------------
+----------------------------------------
 The dissertation integrates the contact point's motion along the contour,
 ``dl_K = int sqrt(r_C'^2 + r_C^2) dkappa`` (4.116, 4.117).  Here the
 integral is evaluated once, when the contour is built, as a closed-form

@@ -12,7 +12,7 @@ spring-band balancing (ch. 6), one element or method per module:
   for CurvedDrum/CurvedPulley.
 
 Concept (Ebert 2015, ch. 4.3 intro, 4.3.1)
------------------------------------
+------------------------------------------
 Synthesis is purely kinematic.  The inversion is split in two phases: an
 element computes, in world coordinates, the path of a material point P3 of
 the band ("Spurpunkt") from the prescribed motions of the cam plane and of
