@@ -1,15 +1,18 @@
 """1D friction elements with stiction (Modelica.Mechanics.Rotational.
 Components.BearingFriction, Brake, OneWayClutch and Modelica.Mechanics.
-Translational.Components.SupportFriction, MSL 4.0), and the friction law
-they share with :class:`acausal2d.library.rotational.Clutch`.
+Translational.Components.SupportFriction, MassWithStopAndFriction, MSL 4.0),
+and the friction laws they share with
+:class:`acausal2d.library.rotational.Clutch`.
 
-Modelica's PartialFriction switches between the modes Forward, Stuck,
-Backward and Free by a state machine: stuck while the torque needed to
-keep the relative speed at 0 stays below ``tau0_max = peak * tau0``, then
-sliding with the characteristic ``tau(w)`` (a table ``[w, tau]`` or
-``[w, mu]``).  acausal2d keeps one DAE for the whole run, so sticking is a
-stick zone ``|w| < w_s`` (Ebert 2015, ch. 8.2's discClutch, see
-docs/guide/friction.md) with the same thresholds::
+By default (``law="modes"``) they compute Modelica's PartialFriction: the
+modes Forward, Stuck, Backward and Free of its state machine are held by
+latches (:func:`mode_latches`, :func:`partial_friction`); stuck, the
+relative acceleration is 0 and any torque up to ``tau0_max = peak * tau0``
+passes; sliding, the characteristic ``tau(w)`` (a table ``[w, tau]`` or
+``[w, mu]``) acts.
+
+``law="zone"`` keeps one DAE without modes: a stick zone ``|w| < w_s``
+(Ebert 2015, ch. 8.2's discClutch) with the same thresholds::
 
     x = w / w_s,  sat = min(max(x, -1), 1),  e = (x - sat) * sat   (= |x| - 1 outside, 0 inside)
     tau = sat * (tau0_max + (tau_slide(|w|) - tau0_max) * (1 - exp(-e^2)))
@@ -18,14 +21,12 @@ Inside the zone the element is a stiff viscous coupling ``tau0_max / w_s``:
 stuck (creep ``|w| <= w_s``) as long as the torque it has to pass stays
 below ``tau0_max``; leaving the zone (an event) the torque falls from the
 breakaway value ``tau0_max`` to the sliding characteristic within a few
-``w_s`` of speed, i.e. at once on the time scale of the motion; entering it
-is locking.  Lock and unlock times match Modelica's to about ``J_eff w_s /
-tau0`` (the lag of the zone).  With ``peak = 1`` and a constant
-characteristic the law is the clutch's Karnopp saturation ``tau0 sat``.
+``w_s`` of speed; entering it is locking.  Lock and unlock times match
+Modelica's to about ``J_eff w_s / tau0`` (the lag of the zone).
 
 ``w_small`` (Modelica: a speed beyond which a velocity jump by ``reinit``
 starts sliding at once) is accepted so that models transcribe one to one;
-speeds in acausal2d never jump, so it changes nothing."""
+it changes nothing."""
 import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RotationalFlange,
