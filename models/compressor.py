@@ -216,7 +216,7 @@ class Compressor(Component):
         # --- motor and clutch
         self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2,
                                            phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11)
+        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11, w_s=0.01, law="zone")
         self.engage = TimeFunction(clutch_signal)
         self.connect(self.engage.y, self.clutch.f_normalized)
         self.connect(self.motor.flange, self.clutch.flange_a)
