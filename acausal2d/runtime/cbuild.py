@@ -203,13 +203,13 @@ def publish_index(key, name, path):
 
 def load(key, make, name, loader):
     """``loader(path)`` of the library of ``key`` (:func:`build_indexed`).
-    A library the loader refuses (``OSError``: the dynamic loader, or
-    ``RuntimeError``: CasADi) is reported on stderr, removed and built
+    A library the loader refuses (``OSError``: the dynamic loader,
+    ``RuntimeError``: CasADi, ``AttributeError``: a symbol ctypes misses) is reported on stderr, removed and built
     again once."""
     path = build_indexed(key, make, name)
     try:
         return loader(path)
-    except (OSError, RuntimeError) as exc:
+    except (OSError, RuntimeError, AttributeError) as exc:    # AttributeError: a symbol missing
         store.notice("the cached library %s could not be loaded (%s); rebuilding it"
                      % (path, str(exc).strip().splitlines()[0] if str(exc).strip() else exc))
         store.discard(path)
