@@ -142,3 +142,199 @@ def test_a_cached_library_writable_by_others_is_not_loaded(tmp_path, monkeypatch
     os.chmod(lib, 0o666)
     assert not cstore.verified(lib)
     assert not os.path.exists(lib)
+
+# ------------------------------------------------------------ the live page
+
+
+@pytest.fixture(scope="module")
+def live():
+    """The explore server of the piston engine on a free port: (base URL,
+    process, token, runs counted by /api/run answers)."""
+    from test_explore import server as _server          # noqa: F401 - the same start
+    proc = subprocess.Popen([sys.executable, "-m", "acausal2d", "explore",
+                             "models/piston_engine.py", "--port", "0"], cwd=ROOT,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    page = proc.stdout.readline().strip()
+    assert page.startswith("http://127.0.0.1:"), (page, proc.stderr.read() if proc.poll() else "")
+    base, _, token = page.partition("?token=")
+    yield base, proc, token
+    proc.send_signal(2)
+    try:
+        proc.wait(timeout=30)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+def _http(base, path, body=b"", method="POST", headers=()):
+    """(status, JSON answer) of one raw HTTP request with exactly ``headers``."""
+    import http.client
+    import json
+    host, port = base.split("//")[1].rstrip("/").split(":")
+    conn = http.client.HTTPConnection(host, int(port), timeout=120)
+    try:
+        conn.putrequest(method, path, skip_host=True, skip_accept_encoding=True)
+        for k, v in headers:
+            conn.putheader(k, v)
+        if method == "POST" and "Content-Length" not in dict(headers):
+            conn.putheader("Content-Length", str(len(body)))
+        conn.endheaders(body if method == "POST" else None)
+        r = conn.getresponse()
+        text = r.read().decode()
+    finally:
+        conn.close()
+    return r.status, (json.loads(text) if r.getheader("content-type", "").startswith(
+        "application/json") else text)
+
+
+def _runs(live):
+    """The server's run counter: the "run" number of a fresh good run."""
+    base, _, token = live
+    host = base.split("//")[1].rstrip("/")
+    status, d = _http(base, "/api/run", b'{"stop_time": 0.05, "intervals": 2}', headers=[
+        ("Host", host), ("Content-Type", "application/json"), ("X-Acausal2d-Token", token)])
+    assert status == 200, d
+    return d["run"]
+
+
+@pytest.mark.parametrize("path", ["/api/run", "/api/csv", "/api/start"])
+@pytest.mark.parametrize("attack,status", [
+    ("evil-origin", 403), ("text-plain", 415), ("foreign-host", 403), ("no-token", 403),
+    ("wrong-token", 403), ("cross-site", 403), ("form", 415)])
+def test_seen_cross_origin_simple_and_foreign_host_requests_start_no_run(live, path, attack,
+                                                                        status):
+    """Seen 2: a page from another origin posting text/plain (no preflight),
+    a DNS-rebinding page (foreign Host), a request without the token: each
+    is refused and starts no run."""
+    base, _, token = live
+    host = base.split("//")[1].rstrip("/")
+    body = b'{"stop_time": 0.05, "intervals": 2}'
+    if path == "/api/start":
+        body = b'{"drag": {"x": "bodyPiston.x", "y": "bodyPiston.y", "to": [0.8, 0]}}'
+    headers = {"Host": host, "Content-Type": "application/json", "X-Acausal2d-Token": token}
+    if attack == "evil-origin":
+        headers["Origin"] = "http://evil.example"
+    elif attack in ("text-plain", "form"):
+        headers["Content-Type"] = "text/plain" if attack == "text-plain" else \
+            "application/x-www-form-urlencoded"
+    elif attack == "foreign-host":
+        headers["Host"] = "rebind.attacker.example:%s" % host.split(":")[1]
+    elif attack == "no-token":
+        del headers["X-Acausal2d-Token"]
+    elif attack == "wrong-token":
+        headers["X-Acausal2d-Token"] = token[:-1] + ("A" if token[-1] != "A" else "B")
+    elif attack == "cross-site":
+        headers["Sec-Fetch-Site"] = "cross-site"
+    before = _runs(live)
+    got, d = _http(base, path, body, headers=list(headers.items()))
+    assert got == status, d
+    assert isinstance(d, dict) and d["error"] and "Traceback" not in d["error"]
+    assert _runs(live) == before + 1            # only the counting run ran
+
+
+def test_seen_foreign_host_cannot_read_the_model(live):
+    base, _, token = live
+    port = base.rstrip("/").split(":")[-1]
+    status, d = _http(base, "/api/params", method="GET", headers=[
+        ("Host", "rebind.attacker.example:" + port), ("X-Acausal2d-Token", token)])
+    assert status == 403 and "piston" not in str(d).lower()
+    status, d = _http(base, "/api/params", method="GET", headers=[("Host", "localhost:" + port)])
+    assert status == 403 and "token" in d["error"]
+    for host in ("localhost", "127.0.0.1"):
+        status, d = _http(base, "/api/params", method="GET", headers=[
+            ("Host", "%s:%s" % (host, port)), ("X-Acausal2d-Token", token)])
+        assert status == 200 and d["model"] == "PistonEngine"
+    status, d = _http(base, "/api/params?token=" + token, method="GET",
+                      headers=[("Host", "127.0.0.1:" + port)])
+    assert status == 200
+
+
+@pytest.mark.parametrize("body,field,words", [
+    (b'{"stop_time": ' + b"[" * 5000 + b"]" * 5000 + b"}", "body", ["nested too deeply"]),
+    (b"[" * 100000 + b"]" * 100000, "body", ["nested too deeply"]),
+    (b'{"set": {"crank.r": [[[[1]]]]}}', "set.crank.r[0][0][0]", ["nested too deeply"]),
+    (b'{"stop_time": 1' + b"0" * 400 + b"}", "stop_time", ["finite"]),
+    (b'{"set": {"bodyPiston.m": 1' + b"0" * 400 + b"}}", "set.bodyPiston.m", ["not finite"]),
+    (b'{"start": {"revoluteDrive.phi": 1' + b"0" * 400 + b"}}", "start.revoluteDrive.phi",
+     ["finite"]),
+    (b'{"intervals": 1e400}', "intervals", ["finite"]),
+])
+def test_seen_deep_and_huge_json_get_400_naming_the_field(live, body, field, words):
+    """Seen 5: 5,000-deep nesting, a 200 kB nested array, a 401-digit
+    integer in stop_time, set and start: 400 naming the field."""
+    base, proc, token = live
+    host = base.split("//")[1].rstrip("/")
+    status, d = _http(base, "/api/run", body, headers=[
+        ("Host", host), ("Content-Type", "application/json"), ("X-Acausal2d-Token", token)])
+    assert status == 400, d
+    assert d["field"] == field, d
+    assert all(w in d["error"] for w in words), d
+
+
+def test_seen_a_huge_body_is_refused_before_it_is_read(live):
+    """Seen 5: a 50 MiB body declared by Content-Length is refused (413)
+    from its headers; one that streams past the limit is cut at it."""
+    import socket
+    base, proc, token = live
+    host = base.split("//")[1].rstrip("/")
+    status, d = _http(base, "/api/run", b"", headers=[
+        ("Host", host), ("Content-Type", "application/json"), ("X-Acausal2d-Token", token),
+        ("Content-Length", str(50 << 20))])
+    assert status == 413 and "at most" in d["error"]
+    h, port = host.split(":")
+    with socket.create_connection((h, int(port)), timeout=30) as s:
+        s.sendall(("POST /api/run HTTP/1.1\r\nHost: %s\r\nContent-Type: application/json\r\n"
+                   "X-Acausal2d-Token: %s\r\nTransfer-Encoding: chunked\r\n\r\n"
+                   % (host, token)).encode())
+        chunk = b" " * (1 << 16)
+        answer = b""
+        try:
+            for _ in range(40):          # 2.5 MiB offered, the limit is 1 MiB
+                s.sendall(b"%x\r\n%s\r\n" % (len(chunk), chunk))
+        except OSError:
+            pass                         # the server answered and closed
+        s.settimeout(30)
+        try:
+            answer = s.recv(4096)
+        except OSError:
+            pass
+    assert answer.startswith(b"HTTP/1.1 413"), answer[:200]
+
+
+def test_seen_z_client_leaving_mid_body_is_one_line(live):
+    import socket
+    import time
+    base, proc, token = live
+    host = base.split("//")[1].rstrip("/")
+    h, port = host.split(":")
+    with socket.create_connection((h, int(port)), timeout=30) as s:
+        s.sendall(("POST /api/run HTTP/1.1\r\nHost: %s\r\nContent-Type: application/json\r\n"
+                   "X-Acausal2d-Token: %s\r\nContent-Length: 1000\r\n\r\n{\"stop"
+                   % (host, token)).encode())
+        time.sleep(0.3)
+    time.sleep(0.5)
+    assert _runs(live) > 0                # still serving
+    proc.send_signal(2)
+    proc.wait(timeout=30)
+    err = proc.stderr.read()
+    assert "Traceback" not in err and "ClientDisconnect" not in err, err
+    assert err.count("went away before its request") == 1, err
+
+
+def test_seen_slow_headers_are_cut_off(live):
+    """Seen 5: a client that never finishes its headers is disconnected
+    after the header deadline (uvicorn alone waits for ever)."""
+    import socket
+    import time
+    from acausal2d.explore.guard import HEADER_SECONDS
+    base, proc, token = live
+    h, port = base.split("//")[1].rstrip("/").split(":")
+    with socket.create_connection((h, int(port)), timeout=HEADER_SECONDS + 20) as s:
+        t0 = time.monotonic()
+        s.sendall(b"GET /api/params HTTP/1.1\r\nHost: ")
+        try:
+            got = s.recv(100)
+        except ConnectionResetError:
+            got = b""
+        assert got == b""                        # closed by the server
+        assert time.monotonic() - t0 < HEADER_SECONDS + 15
