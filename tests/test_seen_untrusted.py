@@ -338,3 +338,217 @@ def test_seen_slow_headers_are_cut_off(live):
             got = b""
         assert got == b""                        # closed by the server
         assert time.monotonic() - t0 < HEADER_SECONDS + 15
+
+# ------------------------------------------------ parameters: structural, cross-checks
+
+CHECKED_MODELS = '''
+from acausal2d import Component, start
+from acausal2d.library import rotational as rot, signals
+
+
+class Blocks(Component):
+    """A step through a Limiter, and a P controller with its output limits."""
+    experiment = {"stop_time": 0.1, "intervals": 4}
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.sp = signals.Step(height=5.0, startTime=0.0)
+        self.lim = signals.Limiter(uMax=1.0, uMin=-1.0)
+        self.pid = signals.LimPID(controllerType="P", k=1.0, yMax=1.0, yMin=-1.0)
+        self.zero = signals.Constant(k=0.0)
+        self.connect(self.sp.y, self.lim.u)
+        self.connect(self.sp.y, self.pid.u_s)
+        self.connect(self.zero.y, self.pid.u_m)
+
+
+class Freewheel(Component):
+    """Inertia a driven by +4 N m through a OneWayClutch to inertia b."""
+    experiment = {"stop_time": 0.2, "intervals": 4}
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.a = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.b = rot.Inertia(J=3.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.owc = rot.OneWayClutch(mu_pos=[[0.0, 0.5]], cgeo=1.0, fn_max=100.0)
+        self.eng = signals.Constant(k=1.0)
+        self.tau = signals.Constant(k=4.0)
+        self.src = rot.Torque()
+        self.connect(self.eng.y, self.owc.f_normalized)
+        self.connect(self.a.flange_b, self.owc.flange_a)
+        self.connect(self.owc.flange_b, self.b.flange_a)
+        self.connect(self.tau.y, self.src.tau_in)
+        self.connect(self.src.flange, self.a.flange_a)
+'''
+
+
+@pytest.fixture(scope="module")
+def checked_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("models") / "checked.py"
+    path.write_text(CHECKED_MODELS)
+    return path
+
+
+def _cli(argv, capfd):
+    from acausal2d.cli import main
+    code = main([str(a) for a in argv])
+    out, err = capfd.readouterr()
+    assert "Traceback" not in out + err
+    return code, out, err
+
+
+@pytest.mark.parametrize("model,setting,words", [
+    ("Blocks", "lim.uMax=-2", ["Limiter", "uMax = -2", "below uMin"]),
+    ("Blocks", "lim.uMin=3", ["Limiter", "uMin = 3"]),
+    ("Blocks", "pid.yMax=-5", ["LimPID", "yMax = -5", "below yMin"]),
+    ("Freewheel", "owc.cgeo=0", ["OneWayClutch", "cgeo = 0"]),
+])
+def test_seen_set_of_a_cross_check_is_refused_like_the_constructor(
+        model, setting, words, checked_file, tmp_path, capfd):
+    """Seen 4: ``--set`` of ``uMax < uMin``, ``yMax < yMin``, ``cgeo = 0``
+    is refused (exit 2, the constructor's message), no result is written."""
+    code, out, err = _cli(["simulate", checked_file, "--model", model, "--set", setting,
+                           "--out", tmp_path / "out"], capfd)
+    assert code == 2, err
+    assert all(w in err for w in words), err
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+    code, _, err = _cli(["simulate", checked_file, "--model", model, "--out",
+                         tmp_path / "good"], capfd)
+    assert code == 0, err
+
+
+def test_seen_params_of_a_cross_check_is_refused_in_the_api(checked_file):
+    import acausal2d
+    from acausal2d.compiled import compile_model
+    from acausal2d.io.loader import load_model
+    cm = compile_model(load_model(str(checked_file), "Blocks"))
+    for params, words in (({"pid.yMax": -5.0}, "yMax = -5"), ({"lim.uMin": 3.0}, "uMin = 3"),
+                          ({"pid.yMin": 2.0}, "yMin = 2")):
+        with pytest.raises(acausal2d.ModelDefinitionError) as err:
+            cm.simulate(params=params)
+        assert words in str(err.value)
+    res = cm.simulate(params={"pid.yMax": 2.0, "lim.uMax": 3.0})
+    assert abs(res["pid.y.u"][-1] - 2.0) <= 1e-9 and abs(res["lim.y.u"][-1] - 3.0) <= 1e-9
+
+
+HANGING = '''
+import math
+from acausal2d import Component, start
+from acausal2d.library import signals
+from acausal2d.library.belt import Belt, Pulley, RopeDrive, connect_band
+from acausal2d.library.planar import Body, Fixed
+
+M_PULLEY = %r
+
+
+class Hanging(Component):
+    """A pulley (r 0.05 m) on a free 4 kg body hangs in a rope anchored at
+    (-r, 0) and held at (+r, 0): both spans vertical; the spans start
+    stretched for the default masses, so another pulley mass moves it."""
+    experiment = {"stop_time": 0.05, "intervals": 10, "rtol": 1e-8}
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.body = Body(m=4.0, I=0.05, x=start(0.0, fixed=True), y=start(-1.0, fixed=True),
+                         phi=start(0.0, fixed=True))
+        self.p = Pulley(r=0.05, w_i=-1, m=M_PULLEY, J=1e-4)
+        self.connect(self.body.frame_a, self.p.ctr2D1)
+        eps0 = (4.0 + 1.0) * 9.81 / 2 / 1e6
+        self.span1 = Belt(c=1e6, d=1e3, eps=start(eps0, fixed=True))
+        self.span2 = Belt(c=1e6, d=1e3, eps=start(eps0, fixed=True))
+        self.anchor = Fixed(r=(-0.05, 0.0))
+        self.pull = RopeDrive(x0=0.05, y0=0.0, angle=math.pi / 2)
+        self.sig = signals.Constant(k=0.0)
+        self.connect(self.sig.y, self.pull.s_in)
+        self.connect(self.anchor.frame, self.span1.ctr2D1)
+        connect_band(self, self.span1, 2, self.p, 1)
+        connect_band(self, self.span2, 1, self.p, 2)
+        self.connect(self.span2.ctr2D2, self.pull.frame)
+'''
+
+
+@pytest.fixture(scope="module")
+def hanging(tmp_path_factory):
+    """(model file with pulley mass 1 kg, the same with 3 kg, the compiled 1 kg one)."""
+    from acausal2d.compiled import compile_model
+    from acausal2d.io.loader import load_model
+    folder = tmp_path_factory.mktemp("hanging")
+    one, three = folder / "one.py", folder / "three.py"
+    one.write_text(HANGING % 1.0)
+    three.write_text(HANGING % 3.0)
+    return one, three, compile_model(load_model(str(one)))
+
+
+def _close(a, b, rtol=1e-8):
+    scale = 1.0 + float(np.max(np.abs(b)))
+    return float(np.max(np.abs(np.asarray(a) - np.asarray(b)))) <= 100 * rtol * scale
+
+
+def test_seen_pulley_mass_is_structural_and_params_recompile(hanging, capfd):
+    """Seen 3: the pulley's m decides whether it has mass (read while
+    compiling): simulate(params=) compiles the model again and says so; its
+    motion is that of the model written with m = 3, not the unchanged one."""
+    one, three, cm = hanging
+    assert {"p.m", "p.J"} <= cm.structural
+    base = cm.simulate()
+    capfd.readouterr()
+    changed = cm.simulate(params={"p.m": 3.0})
+    err = capfd.readouterr().err
+    assert "p.m is read while Hanging is compiled; it is compiled again with p.m = 3" in err
+    from acausal2d.compiled import compile_model
+    from acausal2d.io.loader import load_model
+    want = compile_model(load_model(str(three))).simulate()
+    for name in ("span1.F", "body.y"):
+        assert _close(changed[name], want[name]), name
+    # the unchanged model's answer is far from it: the extra 2 kg pull 9.81 N more
+    assert abs(changed["span1.F"][-1] - base["span1.F"][-1]) > 1.0
+    with pytest.raises(Exception) as err:         # the vector of the compiled model: refused
+        cm.parameter_values({"p.m": 3.0})
+    assert "p.m" in str(err.value) and "compiled" in str(err.value)
+    assert len(cm.parameter_values({"p.m": 1.0})) == len(cm.parameters)   # unchanged: fine
+
+
+def test_seen_pulley_mass_through_set_recompiles(hanging, tmp_path, capfd, monkeypatch):
+    import csv
+    monkeypatch.setattr(cstore, "_said", set())       # the notice is said once per process
+    one, three, cm = hanging
+    code, out, err = _cli(["simulate", one, "--set", "p.m=3", "--out", tmp_path / "a"], capfd)
+    assert code == 0, err
+    assert "compiled again with p.m = 3" in err
+    code, out, err = _cli(["simulate", three, "--out", tmp_path / "b"], capfd)
+    assert code == 0, err
+
+    def col(folder):
+        with open(folder / "result.csv", newline="") as fh:
+            return np.array([float(r["span1.F"]) for r in csv.DictReader(fh)])
+    assert _close(col(tmp_path / "a"), col(tmp_path / "b"))
+
+
+def test_seen_pulley_mass_through_a_sweep_recompiles(hanging):
+    import acausal2d
+    one, three, cm = hanging
+    from acausal2d.io.loader import load_model
+    from acausal2d.compiled import compile_model
+    table = acausal2d.sweep(load_model(str(one)), vary={"p.m": [1.0, 3.0]}, stop_time=0.05,
+                            outputs=["span1.F"])
+    assert not table.failed
+    rows = sorted(table.rows, key=lambda r: r["p.m"])
+    for row, path in zip(rows, (one, three)):        # each point as the model written so
+        want = compile_model(load_model(str(path))).simulate()["span1.F"][-1]
+        assert abs(row["span1.F"] - want) <= 100 * 1e-8 * (1 + abs(want)), (row, want)
+
+
+def test_seen_the_live_page_offers_no_slider_for_a_structural_parameter(hanging):
+    from acausal2d.explore.requests import BadRequest
+    from acausal2d.explore.runner import Explorer
+    one, three, cm = hanging
+    explorer = Explorer(str(one))
+    try:
+        d = explorer.describe()
+        sliders = {p["name"] for p in d["parameters"]}
+        assert "p.m" not in sliders and "p.m" in d["structural"]
+        assert "span1.c" in sliders
+        with pytest.raises(BadRequest) as err:
+            explorer.parse(b'{"set": {"p.m": 3}}')
+        assert err.value.field == "set.p.m" and "compiled" in str(err.value)
+    finally:
+        explorer.close()

@@ -3,7 +3,8 @@
 Routes (the page uses nothing else)::
 
     GET  /             the page
-    GET  /api/params   the model: parameters (unit, rule, value, slider range),
+    GET  /api/params   the model: parameters (unit, rule, value, slider range;
+                       not those read while compiling, listed as "structural"),
                        signals with units, figures, default and largest stop time
     POST /api/run      a run: {"time", "signals", "elapsed_s", "stopped", ...}
     POST /api/csv      the same run as CSV (every column), for the export button
