@@ -552,3 +552,48 @@ def test_seen_the_live_page_offers_no_slider_for_a_structural_parameter(hanging)
         assert err.value.field == "set.p.m" and "compiled" in str(err.value)
     finally:
         explorer.close()
+
+# ------------------------------------------------------------------ .mat names
+
+NAMES_MODEL = '''
+from acausal2d import Component, start
+from acausal2d.library.planar import Body, Fixed, FixedTranslation, Revolute
+
+
+class Gelenk(Component):
+    """The pendulum with its joint and rod named outside Latin-1."""
+    experiment = {"stop_time": 0.3, "intervals": 6}
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.fixed = Fixed()
+        self.φ_gelenk = Revolute(phi=start(0.3, fixed=True), w=start(0.0, fixed=True))
+        self.関節 = FixedTranslation(r=(1.0, 0.0))
+        self.bob = Body(m=1.0, I=0.1)
+        self.connect(self.fixed.frame, self.φ_gelenk.frame_a)
+        self.connect(self.φ_gelenk.frame_b, self.関節.frame_a)
+        self.connect(self.関節.frame_b, self.bob.frame_a)
+'''
+
+
+def test_seen_non_latin1_names_round_trip_through_mat(tmp_path, capfd):
+    """Seen 6: components named φ_gelenk and 関節: the .mat result is
+    written (exit 0) and read back with the same names and the numbers of
+    the CSV result."""
+    import csv
+    from acausal2d.io.dymola_mat import mat_units, read_mat
+    path = tmp_path / "gelenk.py"
+    path.write_text(NAMES_MODEL, encoding="utf-8")
+    code, _, err = _cli(["simulate", path, "--result-format", "mat", "--out", tmp_path / "m"],
+                        capfd)
+    assert code == 0, err
+    code, _, err = _cli(["simulate", path, "--out", tmp_path / "c"], capfd)
+    assert code == 0, err
+    time, cols = read_mat(tmp_path / "m" / "result.mat")
+    with open(tmp_path / "c" / "result.csv", newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    for name in ("φ_gelenk.phi", "関節.frame_b.x", "bob.x"):
+        assert name in cols, sorted(cols)[:20]
+        want = np.array([float(r[name]) for r in rows])
+        assert np.max(np.abs(cols[name] - want)) <= 1e-9 * (1 + np.max(np.abs(want)))
+    assert mat_units(tmp_path / "m" / "result.mat").get("φ_gelenk.phi") == "rad"
