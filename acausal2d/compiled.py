@@ -9,6 +9,8 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 import time as _time
 
+import warnings
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -428,6 +430,7 @@ class CompiledModel:
         p = self.parameter_values(params)
         held = self.start_indices(start)
         self.system.check_fixed_values(p)
+        self._warn_far_angles(held, opts.rtol)
         tol = np.asarray(opts.atol) if isinstance(opts.atol, tuple) else opts.atol
         times = opts.times()
         assert opts.rtol is not None                    # resolved() fills it
@@ -442,6 +445,29 @@ class CompiledModel:
                 setattr(exc, "result", self._result(partial, p))
             raise
         return self._result(log, p)
+
+    ANGLE_RESOLUTION = 0.1
+    """rad: a start angle whose integrator tolerance (rtol |phi|) is coarser
+    than this is warned about (:meth:`_warn_far_angles`)."""
+
+    def _warn_far_angles(self, held: dict[int, float] | None, rtol: float | None) -> None:
+        """A warning for each angle (unit rad) that starts so far from one
+        turn that the run's tolerance on it, rtol |phi|, exceeds
+        :data:`ANGLE_RESOLUTION`: its motion would be lost in rounding (1e17
+        rad: no step changes it).  Its start is best given modulo 2 pi."""
+        s, rtol = self.system, float(rtol or 1e-6)
+        for j in s.level0:
+            info = s.node_info[j]
+            value = (held or {}).get(int(j), info.start)
+            if info.unit != "rad" or isinstance(value, bool) or \
+                    not isinstance(value, (int, float, np.floating)):
+                continue
+            if rtol * abs(float(value)) > self.ANGLE_RESOLUTION:
+                warnings.warn("%s starts at %.6g rad, far outside one turn: with rtol %g the "
+                              "run resolves it only to %.3g rad, and its motion is lost in "
+                              "rounding; give its start modulo 2 pi (math.remainder(phi, "
+                              "2 * math.pi))" % (s.node_names[j], float(value), rtol,
+                                                rtol * abs(float(value))), stacklevel=3)
 
     def _result(self, log: RunLog, p: NDArray[np.float64]) -> Result:
         """The :class:`Result` of a run log."""

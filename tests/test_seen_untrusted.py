@@ -597,3 +597,85 @@ def test_seen_non_latin1_names_round_trip_through_mat(tmp_path, capfd):
         want = np.array([float(r[name]) for r in rows])
         assert np.max(np.abs(cols[name] - want)) <= 1e-9 * (1 + np.max(np.abs(want)))
     assert mat_units(tmp_path / "m" / "result.mat").get("φ_gelenk.phi") == "rad"
+
+# ------------------------------------------------------------------ guards
+
+
+def test_seen_out_empty_is_refused(tmp_path, capfd, monkeypatch):
+    """Seen 7: ``--out ''`` named the current folder (exit 0, files in it)."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _cli(["simulate", PENDULUM, "--out", ""], capfd)
+    assert code == 2 and "--out ''" in err and "names no folder" in err
+    assert os.listdir(tmp_path) == []
+
+
+def test_seen_huge_intervals_are_refused_before_allocating(tmp_path, capfd):
+    code, out, err = _cli(["simulate", PENDULUM, "--intervals", "2000000000", "--out",
+                           tmp_path / "o"], capfd)
+    assert code == 2 and "intervals" in err and "GB of memory" in err
+
+
+def test_seen_unknown_native_mode_is_refused_naming_the_modes(tmp_path, capfd, monkeypatch):
+    """Seen 7: ``ACAUSAL2D_NATIVE=fast`` was taken as auto without a word."""
+    monkeypatch.setenv("ACAUSAL2D_NATIVE", "fast")
+    code, out, err = _cli(["simulate", PENDULUM, "--out", tmp_path / "o"], capfd)
+    assert code == 2 and "'fast'" in err and "auto, now, off" in err
+
+
+def test_seen_far_start_angle_is_warned():
+    """Seen 7: a start angle of 1e17 rad ran silently to a wrong motion."""
+    import warnings
+    from acausal2d.compiled import compile_model
+    from acausal2d.io.loader import load_model
+    cm = compile_model(load_model(PENDULUM))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        cm.simulate(stop_time=0.01, start={"revolute.phi": 1e17})
+    texts = [str(w.message) for w in seen]
+    assert any("revolute.phi starts at 1e+17 rad" in t and "modulo 2 pi" in t for t in texts)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        cm.simulate(stop_time=0.01, start={"revolute.phi": 50.0})     # a few turns: fine
+    assert not [w for w in seen if "far outside one turn" in str(w.message)]
+
+
+@native_only
+def test_seen_native_fallbacks_are_said_in_one_line(tmp_path):
+    """Seen 7: a sticky failure marker, an index naming no library and a
+    cache whose index cannot be written each say so in one line."""
+    cache = tmp_path / "cache"
+    env = {"ACAUSAL2D_CACHE_DIR": str(cache)}
+    first = _simulate(env, tmp_path / "first")
+    assert first.returncode == 0, first.stderr
+    for name in os.listdir(cache):
+        if name.startswith("a2d_model") and name.endswith(".idx"):
+            (cache / name).write_text("elsewhere.so")           # an index naming no library
+    proc = _simulate(env, tmp_path / "second")
+    assert proc.returncode == 0 and proc.stderr.count("names no library of the cache") == 1, \
+        proc.stderr
+    for name in os.listdir(cache):                               # a compile killed before
+        if name.endswith(".idx") or name.endswith(".so"):
+            os.remove(cache / name)
+            if name.endswith(".idx"):
+                (cache / (name[:-4] + ".failed")).write_text("BuildFailed: cc killed (SIGKILL)")
+    proc = subprocess.run([sys.executable, "-m", "acausal2d", "simulate", PENDULUM, "--out",
+                           str(tmp_path / "third")],
+                          env=dict(os.environ, ACAUSAL2D_NATIVE="auto", **env),
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    lines = [ln for ln in proc.stderr.splitlines() if "cc killed" in ln]
+    assert len(lines) == 1 and "Python path" in lines[0] and "cache clear" in lines[0], \
+        proc.stderr
+
+
+def test_seen_full_disk_index_is_said(tmp_path, monkeypatch, capsys):
+    import errno
+    monkeypatch.setenv(cstore.CACHE_ENV, str(tmp_path))
+
+    def full(path, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    monkeypatch.setattr(cstore, "write_atomic", full)
+    monkeypatch.setattr(cstore, "_said", set())
+    cbuild.publish_index("0" * 64, "lib", str(tmp_path / "lib-x.so"))
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No space left on device" in err and "compile it again" in err
