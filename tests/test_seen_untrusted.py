@@ -679,3 +679,158 @@ def test_seen_full_disk_index_is_said(tmp_path, monkeypatch, capsys):
     cbuild.publish_index("0" * 64, "lib", str(tmp_path / "lib-x.so"))
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "No space left on device" in err and "compile it again" in err
+
+# ------------------------------------------------------------------ fuzz
+
+
+def _expected_status(host, path, method, headers, body, hosts, token):
+    """The answer the gate's rules give (written from the rules, not from
+    the gate): None where the request reaches the application."""
+    h = {k.lower(): v for k, v in headers}
+    if h.get("host", "").lower() not in hosts:
+        return 403
+    if path.startswith("/api/") and h.get("x-acausal2d-token") != token and \
+            "token=" + token not in path:
+        return 403
+    if method != "POST":
+        return None
+    if "origin" in h and h["origin"].lower() not in {"http://" + x for x in hosts}:
+        return 403
+    if h.get("sec-fetch-site", "same-origin") not in ("same-origin", "none"):
+        return 403
+    if h.get("content-type", "").split(";")[0].strip().lower() != "application/json":
+        return 415
+    if len(body) > 1 << 20:
+        return 413
+    return None
+
+
+def test_fuzz_the_gate_refuses_exactly_what_its_rules_refuse():
+    """400 random requests (fixed seed: Host, Origin, Sec-Fetch-Site,
+    Content-Type, token, method, path, body size) through the gate in front
+    of an application that counts what reaches it: each answer is the one
+    the rules give, and a refused request never reaches the application."""
+    import asyncio
+    import random
+    from urllib.parse import urlsplit
+    from acausal2d.explore.guard import Guard, allowed_hosts
+    rng = random.Random(43)
+    token = "t0k3n-" + "x" * 26
+    hosts = allowed_hosts("127.0.0.1", 8765)
+    reached = []
+
+    async def app(scope, receive, send):
+        message = await receive()
+        reached.append(message["body"])
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await send({"type": "http.response.body", "body": b"ok"})
+    gate = Guard(app, token, hosts)
+    host_values = ["127.0.0.1:8765", "localhost:8765", "[::1]:8765", "LOCALHOST:8765",
+                   "127.0.0.1:8766", "rebind.attacker.example:8765", "", "127.0.0.1"]
+    origins = [None, "http://127.0.0.1:8765", "http://localhost:8765", "http://evil.example",
+               "null", "https://127.0.0.1:8765"]
+    kinds = [None, "application/json", "application/json; charset=utf-8", "text/plain",
+             "application/x-www-form-urlencoded", "multipart/form-data", "APPLICATION/JSON"]
+    for k in range(400):
+        method = rng.choice(["GET", "POST", "POST"])
+        path = rng.choice(["/", "/api/params", "/api/run", "/api/csv", "/api/start",
+                           "/api/run?token=" + token, "/api/new-route"])
+        body = b"{}" if rng.random() < 0.9 else b" " * ((1 << 20) + rng.randint(1, 5000))
+        headers = [("Host", rng.choice(host_values))]
+        for name, choices in (("Origin", origins), ("Content-Type", kinds),
+                              ("Sec-Fetch-Site", [None, "same-origin", "cross-site",
+                                                  "same-site", "none"]),
+                              ("X-Acausal2d-Token", [None, token, token[:-1], "", token + "x"])):
+            value = rng.choice(choices)
+            if value is not None:
+                headers.append((name, value))
+        want = _expected_status(headers[0][1], path, method, headers, body, hosts, token)
+        split = urlsplit(path)
+        scope = {"type": "http", "method": method, "path": split.path,
+                 "query_string": split.query.encode(), "headers": [
+                     (n.lower().encode(), v.encode()) for n, v in headers]}
+        sent, chunks = [], [body[i:i + 65536] for i in range(0, len(body), 65536)] or [b""]
+
+        async def receive():
+            part = chunks.pop(0)
+            return {"type": "http.request", "body": part, "more_body": bool(chunks)}
+
+        async def send(message):
+            sent.append(message)
+        before = len(reached)
+        asyncio.run(gate(scope, receive, send))
+        status = sent[0]["status"]
+        assert status == (want or 200), (k, method, path, headers, len(body), sent[:2])
+        assert (len(reached) > before) == (want is None)
+
+
+def test_fuzz_request_bodies_nested_and_huge_numbers_name_their_field():
+    """300 random bodies (fixed seed) with deep nesting and numbers too
+    large for a float in every field: each is a run spec or a BadRequest
+    naming a field of the body; nothing else escapes."""
+    import json
+    import random
+    from acausal2d.compiled import compile_model
+    from acausal2d.explore.requests import BadRequest, parse_run
+    from acausal2d.io.loader import load_model
+    cm = compile_model(load_model(os.path.join(ROOT, "models", "piston_engine.py")))
+    defaults = {"stop_time": 10.0, "max_stop_time": 100.0, "intervals": 500, "signals": []}
+    rng = random.Random(431)
+    big = ["1" + "0" * n for n in (300, 309, 400, 401, 5000)] + ["1e400", "-1e999", "2.5"]
+    refused = 0
+    for _ in range(300):
+        field = rng.choice(["stop_time", "intervals", "set", "start", "drag", "session"])
+        number = rng.choice(big)
+        depth = rng.choice([0, 1, 3, 5, 50, 3000])
+        value = "[" * depth + number + "]" * depth
+        if field == "set":
+            value = '{"%s": %s}' % (rng.choice(["crank.r", "bodyPiston.m"]), value)
+        elif field == "start":
+            value = '{"revoluteDrive.phi": %s}' % value
+        elif field == "drag":
+            value = '{"x": "bodyPiston.x", "y": "bodyPiston.y", "to": [%s, 0]}' % value
+        raw = ('{"%s": %s}' % (field, value)).encode()
+        try:
+            spec = parse_run(raw, cm, defaults, drag=field == "drag")
+        except BadRequest as exc:
+            refused += 1
+            assert exc.field == "body" or exc.field.split(".")[0].split("[")[0] == field, \
+                (raw[:80], exc.field)
+            continue
+        assert 0 < spec.stop_time <= 100.0 and 1 <= spec.intervals <= 20000
+        assert all(np.isfinite(np.atleast_1d(v)).all() for v in spec.params.values())
+        json.dumps(spec.start, allow_nan=False)
+    assert 0 < refused < 300
+
+
+def test_fuzz_cache_folders_of_every_mode_and_owner(tmp_path):
+    """Folders with random modes (and owners, as root), links and files in
+    their place: private_dir uses exactly those its rules allow - a real
+    folder of the user (or tightened from read bits) that no one else can
+    write - and refuses the others as unsafe."""
+    import random
+    rng = random.Random(4343)
+    for k in range(60):
+        path = tmp_path / ("f%d" % k)
+        kind = rng.choice(["dir", "dir", "dir", "link", "file", "missing"])
+        mode = rng.choice([0o700, 0o755, 0o750, 0o770, 0o777, 0o1777, 0o711, 0o702, 0o720])
+        owner = os.geteuid()
+        if kind == "dir":
+            path.mkdir()
+            os.chmod(path, mode)
+            if os.geteuid() == 0 and rng.random() < 0.3:
+                owner = OTHER_UID
+                os.chown(path, owner, owner)
+        elif kind == "link":
+            (tmp_path / ("t%d" % k)).mkdir(mode=0o700)
+            path.symlink_to(tmp_path / ("t%d" % k))
+        elif kind == "file":
+            path.write_text("x")
+        why = private_dir.problem(str(path))
+        if kind == "missing" or (kind == "dir" and owner == os.geteuid()
+                                 and not mode & 0o022):
+            assert why is None, (kind, oct(mode), why)
+            assert stat.S_IMODE(os.lstat(path).st_mode) == 0o700
+        else:
+            assert why is not None and str(path) in why.message, (kind, oct(mode))
+            assert why.unsafe == (kind != "file"), (kind, oct(mode), why.message)

@@ -112,12 +112,11 @@ class Guard:
         return None
 
     def _has_token(self, scope, headers):
-        given = headers.get(TOKEN_HEADER)
-        if given is None:
-            query = parse_qs(scope.get("query_string", b"").decode("latin-1"))
-            given = (query.get("token") or [""])[0]
-        return hmac.compare_digest(given.encode("utf-8", "replace"),
-                                   self.token.encode("utf-8"))
+        """True where the header or the query's ``token`` is the server's."""
+        query = parse_qs(scope.get("query_string", b"").decode("latin-1"))
+        given = [headers.get(TOKEN_HEADER, "")] + query.get("token", [])
+        want = self.token.encode("utf-8")
+        return any(hmac.compare_digest(g.encode("utf-8", "replace"), want) for g in given)
 
     async def body(self, scope, receive, send, headers):
         """The request body, read here within the limits, or None where it
