@@ -5,7 +5,7 @@ objects."""
 from __future__ import annotations
 
 import copy as _copy
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 import time as _time
 
@@ -83,16 +83,16 @@ def _uncopyable(model: Component) -> str:
     return "an attribute"
 
 
-def _with_values(model: Component, values: dict[str, ParameterValue]) -> Component:
+def _with_values(model: Component, values: Mapping[str, float | tuple[float, ...]]) -> Component:
     """A copy of ``model`` with the parameters ``values`` ({dotted name:
-    checked value}) given as if by keyword (the model is not changed)."""
+    value checked by :meth:`CompiledModel.parameter_values`}) given as if by
+    keyword (the model is not changed)."""
     copy = own_copy(model)
     by_path = {c.path: c for c in copy.components()}
     for name, value in values.items():
         path, _, pname = name.rpartition(".")
         comp = by_path[path]
-        comp._param_values[pname] = comp.parameter_declaration(pname).validated(
-            value, comp.describe())
+        comp._param_values[pname] = value
         comp._given.add(pname)
     return copy
 
@@ -122,6 +122,7 @@ class CompiledModel:
             self._units: dict[str, str] | None = None
             self.derived = derived_signals(model, self.system.names)
         self.structural = self._read_while_compiling(reads)
+        self._recompiled: dict[tuple[tuple[str, str], ...], CompiledModel] = {}
         self.compile_time = _time.perf_counter() - t0
 
     structural: frozenset[str]
@@ -130,7 +131,7 @@ class CompiledModel:
     decides whether it has mass), so a run refuses a changed value of one
     (:meth:`parameter_values`) and the live page offers no slider for it."""
 
-    def _read_while_compiling(self, reads: list) -> frozenset[str]:
+    def _read_while_compiling(self, reads: list[tuple[Component, str]]) -> frozenset[str]:
         found = set()
         ours = {id(c) for c in self.model.components()}     # not a class's throwaway instance
         for comp, name in reads:
@@ -282,7 +283,7 @@ class CompiledModel:
         if not new:
             return self
         key = tuple(sorted((n, repr(v)) for n, v in new.items()))
-        cache = self.__dict__.setdefault("_recompiled", {})
+        cache = self._recompiled
         if key not in cache:
             from .runtime.cstore import notice
             notice("%s %s read while %s is compiled; it is compiled again with %s" % (

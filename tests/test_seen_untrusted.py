@@ -146,24 +146,35 @@ def test_a_cached_library_writable_by_others_is_not_loaded(tmp_path, monkeypatch
 # ------------------------------------------------------------ the live page
 
 
-@pytest.fixture(scope="module")
-def live():
-    """The explore server of the piston engine on a free port: (base URL,
-    process, token, runs counted by /api/run answers)."""
-    from test_explore import server as _server          # noqa: F401 - the same start
+def _start_server():
+    """(base URL, process, token) of an explore server of the piston
+    engine on a free port, started as a user starts it."""
     proc = subprocess.Popen([sys.executable, "-m", "acausal2d", "explore",
                              "models/piston_engine.py", "--port", "0"], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     page = proc.stdout.readline().strip()
     assert page.startswith("http://127.0.0.1:"), (page, proc.stderr.read() if proc.poll() else "")
     base, _, token = page.partition("?token=")
-    yield base, proc, token
+    return base, proc, token
+
+
+def _stop_server(proc):
+    """Ctrl-C, as a user stops it; its stderr."""
     proc.send_signal(2)
     try:
         proc.wait(timeout=30)
     finally:
         if proc.poll() is None:
             proc.kill()
+    return proc.stderr.read()
+
+
+@pytest.fixture(scope="module")
+def live():
+    """The explore server of the piston engine (:func:`_start_server`)."""
+    base, proc, token = _start_server()
+    yield base, proc, token
+    _stop_server(proc)
 
 
 def _http(base, path, body=b"", method="POST", headers=()):
@@ -301,10 +312,11 @@ def test_seen_a_huge_body_is_refused_before_it_is_read(live):
     assert answer.startswith(b"HTTP/1.1 413"), answer[:200]
 
 
-def test_seen_z_client_leaving_mid_body_is_one_line(live):
+def test_seen_a_client_leaving_mid_body_is_one_line():
     import socket
     import time
-    base, proc, token = live
+    base, proc, token = _start_server()
+    live = (base, proc, token)
     host = base.split("//")[1].rstrip("/")
     h, port = host.split(":")
     with socket.create_connection((h, int(port)), timeout=30) as s:
@@ -314,9 +326,7 @@ def test_seen_z_client_leaving_mid_body_is_one_line(live):
         time.sleep(0.3)
     time.sleep(0.5)
     assert _runs(live) > 0                # still serving
-    proc.send_signal(2)
-    proc.wait(timeout=30)
-    err = proc.stderr.read()
+    err = _stop_server(proc)
     assert "Traceback" not in err and "ClientDisconnect" not in err, err
     assert err.count("went away before its request") == 1, err
 

@@ -35,7 +35,7 @@ and :meth:`~Component.topology` describe drawing and structure.
 import contextlib
 import difflib
 import numbers
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
 
@@ -194,7 +194,7 @@ class Component:
             self.parameter_declaration(name)        # raises with the list
         return self._param_values[name]
 
-    def check_parameters(self, value):
+    def check_parameters(self, value: Callable[[str], float | tuple[float, ...]]) -> None:
         """Rules between parameters of this component (``uMax >= uMin``),
         checked on the values ``value(name)`` gives: by the constructor on
         its own values and again on the final values of a run whatever way

@@ -43,7 +43,7 @@ TMP_PREFIX = ".tmp-"
 _said: set = set()
 
 
-def notice(message):
+def notice(message: str) -> None:
     """One line ``acausal2d: <message>`` on stderr, once per process."""
     if message not in _said:
         _said.add(message)
