@@ -84,9 +84,10 @@ def _uncopyable(model: Component) -> str:
 
 
 def _with_values(model: Component, values: Mapping[str, float | tuple[float, ...]]) -> Component:
-    """A copy of ``model`` with the parameters ``values`` ({dotted name:
-    value checked by :meth:`CompiledModel.parameter_values`}) given as if by
-    keyword (the model is not changed)."""
+    """A copy of ``model`` (as given to the compiler, not its compiled copy)
+    with the parameters ``values`` ({dotted name: value checked by
+    :meth:`CompiledModel.parameter_values`}) given as if by keyword (the
+    model is not changed)."""
     copy = own_copy(model)
     by_path = {c.path: c for c in copy.components()}
     for name, value in values.items():
@@ -112,7 +113,7 @@ class CompiledModel:
 
     def __init__(self, model: Component) -> None:
         t0 = _time.perf_counter()
-        model = own_copy(model)
+        given, model = model, own_copy(model)
         self.model = model
         with compile_reads() as reads:
             with translated("compiling %s" % type(model).__name__, StructuralError):
@@ -123,6 +124,7 @@ class CompiledModel:
             self.derived = derived_signals(model, self.system.names)
         self.structural = self._read_while_compiling(reads)
         self._recompiled: dict[tuple[tuple[str, str], ...], CompiledModel] = {}
+        self._source = given if self.structural else None     # compiled again from it
         self.compile_time = _time.perf_counter() - t0
 
     structural: frozenset[str]
@@ -291,7 +293,8 @@ class CompiledModel:
                 ", ".join("%s = %s" % (n, v) for n, v in new.items())))
             if len(cache) >= 8:
                 cache.pop(next(iter(cache)))
-            cache[key] = CompiledModel(_with_values(self.model, new))
+            assert self._source is not None              # kept where a parameter is structural
+            cache[key] = CompiledModel(_with_values(self._source, new))
         return cache[key]
 
     def _refuse_structural(self, changed: list[str]) -> None:
