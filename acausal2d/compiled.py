@@ -221,8 +221,8 @@ class CompiledModel:
             whole.setdefault(base, (decl, []))[1].append(k)
         return whole
 
-    def parameter_values(self, params: Params | None = None,
-                         structural: bool = False) -> NDArray[np.float64]:
+    def parameter_values(self, params: Params | None = None, structural: bool = False,
+                         rules: bool = True) -> NDArray[np.float64]:
         """Numeric parameter vector with overrides ``{dotted name: value}``
         (vector parameters as a whole, ``"rod.r": (1, 0)``, or by element,
         ``"rod.r[0]"``); every value is checked against its declaration, and
@@ -230,7 +230,8 @@ class CompiledModel:
         (:meth:`~acausal2d.language.dsl.Component.check_parameters`) on the
         final values.  A changed :attr:`structural` parameter is refused,
         naming it (:meth:`simulate` compiles the model again instead),
-        unless ``structural`` (values checked only)."""
+        unless ``structural`` (values checked only); ``rules`` False leaves
+        the rules between parameters to a later call with all the values."""
         vals = np.array([v for _, _, v, _ in self.system.parameters], dtype=float)
         if params is None:
             return vals
@@ -243,7 +244,8 @@ class CompiledModel:
             vals[index] = np.atleast_1d(self._checked(name, value))
         changed = [n for n in params if not np.array_equal(vals[self._indices(n)],
                                                              base[self._indices(n)])]
-        self._check_components(changed, vals)
+        if rules:
+            self._check_components(changed, vals)
         if not structural:
             self._refuse_structural(changed)
         return vals

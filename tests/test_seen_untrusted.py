@@ -844,3 +844,20 @@ def test_fuzz_cache_folders_of_every_mode_and_owner(tmp_path):
         else:
             assert why is not None and str(path) in why.message, (kind, oct(mode))
             assert why.unsafe == (kind != "file"), (kind, oct(mode), why.message)
+
+
+def test_seen_the_live_page_checks_limits_on_all_the_values_it_is_sent(checked_file):
+    """Seen 4 on the live page: limits moved together past the old ones are
+    accepted, a pair breaking uMax >= uMin is refused naming both."""
+    from acausal2d.explore.requests import BadRequest
+    from acausal2d.explore.runner import Explorer
+    explorer = Explorer(str(checked_file), "Blocks")
+    try:
+        spec = explorer.parse(b'{"set": {"pid.yMax": -5, "pid.yMin": -6}}')
+        assert spec.params == {"pid.yMax": -5.0, "pid.yMin": -6.0}
+        with pytest.raises(BadRequest) as err:
+            explorer.parse(b'{"set": {"lim.uMax": -2, "lim.uMin": -1}}')
+        assert err.value.field == "set" and "uMax = -2" in str(err.value) \
+            and "uMin = -1" in str(err.value)
+    finally:
+        explorer.close()

@@ -145,7 +145,9 @@ def intervals_of(body, default):
 
 def params_of(body, compiled):
     """The checked ``set``: {parameter: float or tuple}; each value is
-    checked against its declaration (its rule, its size, finite)."""
+    checked against its declaration (its rule, its size, finite; field
+    ``set.<name>``), then the rules between a component's parameters on
+    all of them (``uMax >= uMin``; field ``set``)."""
     given = body.get("set") or {}
     if not isinstance(given, dict):
         raise BadRequest("set", 'must be an object {"comp.param": value}, got %s'
@@ -155,10 +157,14 @@ def params_of(body, compiled):
         if isinstance(value, list):
             value = tuple(value)
         try:
-            compiled.parameter_values({name: value})
+            compiled.parameter_values({name: value}, rules=False)
         except Acausal2dError as exc:
             raise BadRequest("set.%s" % name, str(exc)) from None
         params[name] = value
+    try:                       # the rules between parameters, on all the values given
+        compiled.parameter_values(params)
+    except Acausal2dError as exc:
+        raise BadRequest("set", str(exc)) from None
     return params
 
 
