@@ -861,3 +861,29 @@ def test_seen_the_live_page_checks_limits_on_all_the_values_it_is_sent(checked_f
             and "uMin = -1" in str(err.value)
     finally:
         explorer.close()
+
+
+@pytest.mark.skipif(cbuild.find_compiler() is None, reason="no C compiler")
+def test_seen_a_library_missing_its_symbol_is_rebuilt(tmp_path, monkeypatch, capsys):
+    """Seen 1: a verified library under the indexed name that lacks the
+    driver's symbol ("undefined symbol: a2d_create") was not rebuilt."""
+    import ctypes
+    monkeypatch.setenv(cstore.CACHE_ENV, str(tmp_path / "cache"))
+    monkeypatch.setattr(cstore, "_said", set())
+    good = {"good.c": "int a2d_create(void) { return 42; }\n"}
+    import shutil
+    built = cbuild.build({"wrong.c": "int other(void) { return 1; }\n"}, name="wrong")
+    wrong = os.path.join(os.path.dirname(built), "lib-" + "cd" * 16 + ".so")
+    shutil.copy(built, wrong + ".new")
+    cstore.publish(wrong + ".new", wrong)             # verified, under a name of "lib"
+    key = "ab" * 32
+    cbuild.publish_index(key, "lib", wrong)           # the index names a library without it
+    made = []
+
+    def make():
+        made.append(1)
+        return cbuild.build(good, name="lib")
+    got = cbuild.load(key, make, "lib", lambda path: ctypes.CDLL(path).a2d_create())
+    assert got == 42 and made == [1]
+    err = capsys.readouterr().err
+    assert "could not be loaded" in err and "rebuilding it" in err
