@@ -188,21 +188,38 @@ def _caused_by_structure(exc):
         or " cannot assemble at the start" in text
 
 
+def _run_failures():
+    from ..errors import InitializationError, SimulationError, StructuralError
+    return (InitializationError, SimulationError, StructuralError)
+
+
+def _any_failure(exc):
+    """Whether ``exc`` is a failure of compiling, initializing or running
+    (not a wrong argument or parameter value)."""
+    return isinstance(exc, _run_failures())
+
+
 @contextmanager
 def loose_connectors_first(model):
     """Context manager around compiling, initializing or simulating
-    ``model``: a failure a loose connector typically causes
-    (:func:`_caused_by_structure`) is raised again, of the same kind, with
-    the loose connectors of :meth:`ConnectorReport.likely_cause` named
-    first; the original is chained."""
+    ``model``: a failure of the run is raised again, of the same kind, with
+    the loose sides of the suspect elements named first
+    (:meth:`ConnectorReport.likely_cause`); a failure a loose connector
+    typically causes (:func:`_caused_by_structure`) in a model without
+    suspects ends with its unconnected connectors
+    (:meth:`ConnectorReport.unconnected_note`).  The original is chained."""
     from ..errors import Acausal2dError
     try:
         yield
     except Acausal2dError as exc:
-        if not _caused_by_structure(exc) or "connect() missing" in str(exc):
+        if "connect() missing" in str(exc):
+            raise
+        structural = _caused_by_structure(exc)
+        if not (structural or _any_failure(exc)):
             raise
         report = connector_report(model)
-        first, last = report.likely_cause(), report.unconnected_note()
+        first = report.likely_cause()      # suspects: named before any failure of the run
+        last = report.unconnected_note() if structural else ""
         if not (first or last):
             raise
         named = copy.copy(exc)

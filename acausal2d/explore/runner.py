@@ -55,10 +55,17 @@ def _column(values):
     return out
 
 
+def _short(x):
+    """``x`` to 12 significant digits: a slider's end computed as 0.1 + 0.2
+    reads 0.3, not 0.30000000000000004."""
+    return float("%.12g" % x)
+
+
 def _slider(decl, value):
     """(low, high) of a slider around ``value`` that obeys the rule of
     ``decl``: from value - 2|value| to value + 2|value| (-1 ... 1 about
-    zero), cut at the declared min and max; positive: above |value|/100."""
+    zero), cut at the declared min and max; positive: above |value|/100;
+    both to 12 significant digits."""
     half = 2.0 * abs(value) if value != 0 else 1.0
     lo, hi = value - half, value + half
     if decl.positive:
@@ -67,7 +74,7 @@ def _slider(decl, value):
         lo = max(lo, decl.min)
     if decl.max is not None:
         hi = min(hi, decl.max)
-    return lo, max(hi, lo)
+    return _short(lo), _short(max(hi, lo))
 
 
 class Explorer:
@@ -113,11 +120,16 @@ class Explorer:
     def parameters(self):
         """Every parameter (vectors as a whole): name, value (a list), unit,
         rule, doc, min, max, positive, nonzero and the slider's range per
-        component (``GET /api/params``)."""
+        component (``GET /api/params``); not the parameters read while
+        compiling (:attr:`~acausal2d.compiled.CompiledModel.structural`:
+        a slider would change nothing, a request changing one is refused
+        naming it)."""
         cm = self.compiled
         vals = cm.parameter_values()
         out = []
         for name, (decl, idx) in cm.parameter_declarations.items():
+            if name in cm.structural:
+                continue
             v = [float(vals[i]) for i in idx]
             out.append({"name": name, "value": v, "unit": decl.unit or "", "rule": decl.rule,
                         "doc": decl.doc or "", "min": decl.min, "max": decl.max,
@@ -133,6 +145,7 @@ class Explorer:
                 "parameters": self.parameters(), "figures": self.figures(),
                 "signals": [{"name": n, "unit": units.get(n, "")} for n in cm.names],
                 "outputs": list(cm.outputs), "stop_time": self.defaults["stop_time"],
+                "structural": sorted(cm.structural),
                 "movable": movable(cm),
                 "max_stop_time": self.defaults["max_stop_time"],
                 "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time}

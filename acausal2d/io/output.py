@@ -10,7 +10,7 @@ Every command that writes a folder (``simulate``, ``sweep``, ``study``,
         tx.info["model"] = "Pendulum"
     # here every file is in args.out, listed in its acausal2d-run.json
 
-The steps, each for a failure a user met (issue 35):
+The steps, each for a failure a user met:
 
 1. *Up front*, before anything is computed: the folder is created if
    missing and a probe file is written into it and into its parent, so a
@@ -246,6 +246,9 @@ class OutputFolder:
         self._signals = None
 
     def __enter__(self):
+        if not self.out.strip():
+            raise OutputFolderError("--out %r names no folder (it would write into the current "
+                                    "folder); give one, e.g. --out out" % self.out)
         if os.path.basename(self.final_folder) == "":
             raise OutputFolderError("--out %s: choose a folder below the root" % self.out)
         self._signals = terminate_as_interrupt()

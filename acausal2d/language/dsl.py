@@ -32,11 +32,12 @@ from the whole model), :meth:`~Component.guesses` (start guesses),
 :meth:`~Component.equations`.  After a simulation, :meth:`~Component.shapes`
 and :meth:`~Component.topology` describe drawing and structure.
 """
+import contextlib
+import difflib
 import numbers
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
-import difflib
 
 from ..errors import ModelDefinitionError
 from .declarations import (STATE_SELECT, Parameter, Variable, VarInfo, start,  # noqa: F401
@@ -111,6 +112,23 @@ def _unknown_attribute(comp, name):
                                           for kind, group in groups if group) + "."
 
 
+_reads: list = []       # the open compile_reads() lists (innermost last)
+
+
+@contextlib.contextmanager
+def compile_reads():
+    """Collect the (component, parameter name) pairs whose numeric value is
+    read (:meth:`Component.parameter_value`) inside the block: the
+    compiler's reads, after which a changed value would change nothing
+    (a pulley's ``m`` decides whether it has mass)."""
+    found: list = []
+    _reads.append(found)
+    try:
+        yield found
+    finally:
+        _reads.remove(found)
+
+
 class Component:
     """Base class of every component and model.
 
@@ -164,7 +182,17 @@ class Component:
     def parameter_value(self, name):
         """Numeric value of the parameter ``name`` (float or tuple): given by
         keyword, else derived for the current flattening
-        (:meth:`derived_parameters`), else the declared default."""
+        (:meth:`derived_parameters`), else the declared default.  A value
+        read while a model is compiled (:func:`compile_reads`) makes the
+        parameter structural: the compiled model depends on it beyond its
+        symbol."""
+        if _reads:
+            _reads[-1].append((self, name))
+        return self._value(name)
+
+    def _value(self, name):
+        """:meth:`parameter_value` not counted as a compiler's read (the
+        value the parameter's symbol starts with)."""
         if name in self._given:
             return self._param_values[name]
         if name in self._derived:
@@ -172,6 +200,14 @@ class Component:
         if name not in self._param_values:
             self.parameter_declaration(name)        # raises with the list
         return self._param_values[name]
+
+    def check_parameters(self, value: Callable[[str], float | tuple[float, ...]]) -> None:
+        """Rules between parameters of this component (``uMax >= uMin``),
+        checked on the values ``value(name)`` gives: by the constructor on
+        its own values and again on the final values of a run whatever way
+        they came (``--set``, ``params=``, a sweep, a fit, the live page).
+        Raises :class:`ModelDefinitionError` naming the component and the
+        parameters; the base class has none."""
 
     def is_given(self, name):
         """True if the model set the parameter or variable ``name`` of this
@@ -333,6 +369,17 @@ class Component:
         none."""
         return []
 
+    def reinits(self):
+        """Hook: Modelica's ``when c then reinit(x, value); end when``, as a
+        list of ``(condition, variable, value)``: ``condition`` names a 0/1
+        variable of this component set by a relation or latch in its
+        equations; at an event where it becomes 1 (it was 0 just before),
+        the state ``variable`` of this component is set to ``value`` (a
+        number, or the name of a variable of this component, taken at the
+        event) and the other unknowns are re-solved.  ``variable`` must be
+        a state (declare it ``state_select="always"``).  Default: none."""
+        return []
+
     def start_checks(self, context):
         """Hook: checks of the consistent initial state, made once at t0
         after initialization (by ``simulate``, ``check``, linearization and
@@ -358,7 +405,7 @@ class Component:
         element that models sticking itself should replace."""
         return None
 
-    def mode(self, value):
+    def describe_mode(self, value):
         """Hook: the element's operating mode in words ("stuck", "sliding
         forward", "free") at a point of the run; ``value(name)`` is the value
         of its variable or parameter ``name`` (relative to the element, e.g.
@@ -386,7 +433,7 @@ class Component:
     Default: none."""
 
     def topology(self):
-        """Planar topology for the degree-of-freedom count (seed eq. 2.1):
+        """Planar topology for the degree-of-freedom count (Ebert 2015, eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames
         of one link), ``("joint", frame_a, frame_b, f)`` (a joint with f
         degrees of freedom), ``("band", link, frame, band_port)`` (a band
@@ -475,7 +522,7 @@ class Component:
             decl = self.parameter_declaration(name)
             sym = table.new_parameter(_join(path, name), decl.size)
             self._param_syms[name] = sym if decl.size > 1 else sym[0]
-            vals = np.atleast_1d(np.asarray(self.parameter_value(name), dtype=float))
+            vals = np.atleast_1d(np.asarray(self._value(name), dtype=float))
             for i in range(decl.size):
                 pname = _join(path, name) + ("[%d]" % i if decl.size > 1 else "")
                 params_out.append((pname, sym[i], float(vals[i]), decl))

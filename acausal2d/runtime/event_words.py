@@ -3,7 +3,7 @@ forward at t = 0.5000033 s``.
 
 At an event the relations that switched belong to components (the owner
 of the equation that holds each).  A component that describes its
-operating mode (:meth:`~acausal2d.language.dsl.Component.mode`) is named
+operating mode (:meth:`~acausal2d.language.dsl.Component.describe_mode`) is named
 with its mode just before and just after the event; the mode is read off
 the motion a short time ``NUDGE`` (relative to the run's time span) before
 and after the event instant, under the relation values of each side, so
@@ -91,7 +91,7 @@ def _mode(comp, system, p, z):
     """The component's mode at node values z, or None (no hook, or it
     cannot tell)."""
     try:
-        return comp.mode(_Values(system, p, z, comp))
+        return comp.describe_mode(_Values(system, p, z, comp))
     except (KeyError, ValueError, IndexError, ZeroDivisionError):
         return None
 
@@ -111,7 +111,7 @@ def describe_event(run, changed, z_left, d_left, z, d):
     parts = []
     for owner, rels in groups.values():
         words = None
-        if owner is not None and type(owner).mode is not _default_mode():
+        if owner is not None and type(owner).describe_mode is not _default_mode():
             before = _mode(owner, system, run.p,
                            z_left - h * node_rates(run.ev, t, z_left, d_left))
             after = _mode(owner, system, run.p, z + h * node_rates(run.ev, t, z, d))
@@ -127,7 +127,7 @@ def describe_event(run, changed, z_left, d_left, z, d):
 
 def _default_mode():
     from ..language.dsl import Component
-    return Component.mode
+    return Component.describe_mode
 
 
 def event_line(t, words):

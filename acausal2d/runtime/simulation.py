@@ -246,6 +246,7 @@ class Simulation:
         form, prob, solver, projector = self._solver()
         self._launch(prob)
         prob.set_relations(self.d)
+        self._bias(prob)
         y0, yp0 = form.y_from(self.z)
         prob.reset_monitors(self.t, y0, yp0, self.watch)
         t_stop, outputs = self._stop_and_outputs()
@@ -267,6 +268,15 @@ class Simulation:
         self._record_passes(outcome.passes)
         self._scan(form, n0, T, rows)
         return outcome
+
+    def _bias(self, prob):
+        """Root functions of the state relations on the side of their
+        values (:meth:`~acausal2d.runtime.ida.Problem.set_biases`)."""
+        rels = self.system.state_relations
+        if rels and prob.n_rel:
+            g = self.ev.crossings(self.t, self.z, self.d)[list(rels)]
+            prob.set_biases(g, self.d[list(rels)], [self.system.relations[k].strict
+                                                   for k in rels])
 
     def _launch(self, prob):
         """Start the background worker of libraries asked for (tiers); on
@@ -410,12 +420,14 @@ class Simulation:
         check_jumps(self.system, self.t, z_left, z, changed)
         d_left, self.z, self.d = self.d, z, d
         self.out.append((self.t, z.copy()))
-        self.chatter.record(self.t, changed or flipped)
-        if changed:      # else a root IDA found again just past one settled by its rate
+        reinits = it.reinit.texts() if it.reinit is not None else []
+        if changed or reinits:   # else a root IDA found again just past one settled by its rate
             self.stats.events += 1
-            text = "; ".join(self.system.relations[k].text for k in changed)
-            self.words[len(self.events)] = describe_event(self, changed, z_left, d_left, z, d)
+            text = "; ".join([self.system.relations[k].text for k in changed] + reinits)
+            words = describe_event(self, changed, z_left, d_left, z, d) if changed else ""
+            self.words[len(self.events)] = "; ".join([w for w in [words] if w] + reinits)
             self.events.append((self.t, text))
+        self.chatter.record(self.t, changed or flipped)
         self.stats.event_time += _time.perf_counter() - wall
         check_assertions(self.system, self.p, self.t, z)
 
