@@ -75,11 +75,14 @@ def test_the_run_folder_is_removed_on_a_signal(tmp_path, signum, code):
                              str(tmp_path / "o")], env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
-    while not _folders(base) and time.monotonic() < deadline and proc.poll() is None:
+
+    def started():       # the run folder and the output transaction's temporary folder
+        return _folders(base) and any(n.startswith(".o.") for n in os.listdir(tmp_path))
+    while not started() and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.05)
     assert _folders(base) == ["%s%d-%s" % (rundir.PREFIX, proc.pid, _folders(base)[0].split(
         "-")[-1])]
-    time.sleep(1.0)                                    # inside the run
+    time.sleep(0.5)                                    # inside the command
     proc.send_signal(signum)
     out, err = proc.communicate(timeout=120)
     assert proc.returncode == code, err
