@@ -41,7 +41,9 @@ PERTURBATIONS = {
     "-1e-12": lambda x: x * (1.0 - 1e-12),
 }
 KNOBS = ("param", "start", "rtol", "grid")
-CASES = [(knob, how) for knob in KNOBS for how in PERTURBATIONS]
+FAST = ("+3ulp", "-1e-12")      # in the fast tier; the other two directions are slow
+CASES = [pytest.param(knob, how, marks=() if how in FAST else pytest.mark.slow)
+         for knob in KNOBS for how in PERTURBATIONS]
 
 
 def nudge(knob, how, params, rtol, times, start_params=(), start_values=None):
