@@ -91,24 +91,23 @@ SLOW_MODULES = {
     "test_animation_sync.py": "headless Chromium",
     "test_node_drag.py": "headless Chromium",
     "test_mode_page.py": "headless Chromium",
-    "test_ci_run.py": "runs .ci/run in a new virtual environment",
     "test_plain_clone.py": "a clone installed into a new virtual environment",
-    "test_floors.py": "the dependency floors' environment",
-    "test_lint.py": "ruff and mypy over the package",
     "test_help_examples.py": "every command's help example as a process",
-    "test_readme_commands.py": "the README's commands as processes",
-    "test_clone_root_import.py": "processes started from the clone",
     "test_bench_floor.py": "benchmark scripts as processes",
     "test_bench_small_modes.py": "benchmark scripts as processes",
     "test_native_tiers.py": "the native engine's tiers (compiler, background worker)",
     "test_native_tiers_build.py": "the native engine's build tiers (compiler)",
     "test_fmu.py": "FMUs built with the C compiler and run by fmpy",
-    "test_docs.py": "the tutorial notebook executed by a kernel",
     "test_models_no_deprecation.py": "every model of models/ (as the gallery)",
 }
 
 
 SLOW_TESTS = {
+    "test_ci_run.py": ["test_seen_2_ci_runs_in_a_fresh_environment"],
+    "test_lint.py": ["test_mypy_passes_on_the_package"],
+    "test_readme_commands.py": ["test_every_readme_command_runs_in_a_plain_clone"],
+    "test_clone_root_import.py": ["test_library_imports_from_the_clone_root_without_the_installed_package"],
+    "test_docs.py": ["test_tutorial_notebook_executes_and_shows_figures"],
     "test_band_models.py": ["test_models_run_from_the_cli"],
     "test_cli.py": ["test_bad_numbers_are_errors_with_exit_code_2",
                     "test_out_on_an_existing_file_is_an_error_before_simulating",
@@ -163,10 +162,22 @@ SLOW_TESTS = {
     "test_talk_synthesis.py": ["test_models_run_from_the_cli_with_figures"],
     "test_threads.py": ["test_import_and_a_run_leave_omp_num_threads_as_the_user_set_it",
                         "test_bench_threads_small_prints_its_table"],
+    # long single runs (above 4 s of CPU time each)
+    "test_compressor_rounding.py": ["test_events_agree_but_for_valve_touches"],
+    "test_band_balancing.py": ["test_seen_1_bounded_fit_does_not_depend_on_the_optimiser_flag"],
+    "test_compile_memory.py": ["test_fifty_compiles_keep_symbol_table_and_memory_flat"],
+    "test_compressor.py": ["test_periodic_steady_state"],
+    "test_belt_curved.py": ["test_noncircular_drive_follows_designed_ratio",
+                            "test_curved_pulley_bearing_friction_torque_balance",
+                            "test_elliptic_contour_contacts_and_tangency",
+                            "test_curved_drum_wound_length_is_contour_arc_length"],
+    "test_dummy_large.py": ["test_chain_sparse_choice_equals_dense_choice"],
+    "test_fit_edges.py": ["test_seen6_cli_exit_codes_of_a_bound_and_of_the_tube"],
+    "test_belt_drawing.py": ["test_cable_crane_drawing"],
 }
 """Single tests of otherwise fast modules that start processes (the command
-line, a benchmark's small mode, a killed run, a dask cluster) or a browser:
-{module: [test function names]}."""
+line, a benchmark's small mode, a killed run, a dask cluster) or a browser,
+or take more than 4 s of CPU time: {module: [test function names]}."""
 
 
 def pytest_collection_modifyitems(config, items):
