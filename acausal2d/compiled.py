@@ -289,11 +289,10 @@ class CompiledModel:
         ``experiment`` and checked against the model (atol, output times)."""
         opts = RunOptions.of(options, "simulate", **keywords).resolved(_experiment(self.model))
         _check_atol(opts.atol, self.system.node_names)
-        times = opts.times()
         if opts.output_times is None:
             assert opts.intervals is not None           # resolved() fills it
-            _check_size(opts.intervals, len(self.names))
-        _check_clock(times)
+            _check_size(opts.intervals, len(self.names))     # before the grid is allocated
+        _check_clock(opts.times())
         return opts
 
     def simulate(self, stop_time: float | None = None, params: Params | None = None,
