@@ -164,6 +164,10 @@ SLOW_TESTS = {
     "test_talk_synthesis.py": ["test_models_run_from_the_cli_with_figures"],
     "test_threads.py": ["test_import_and_a_run_leave_omp_num_threads_as_the_user_set_it",
                         "test_bench_threads_small_prints_its_table"],
+    # sweeps whose every case builds its own native library; the fast tier keeps the
+    # file's other tests of the same functions
+    "test_band_synthesis.py": ["test_constant_ratio_gives_circular_cam",
+                               "test_dbsd_lever_arm_equals_h"],
     # long single runs (above 4 s of CPU time each)
     "test_compressor_rounding.py": ["test_events_agree_but_for_valve_touches"],
     "test_band_balancing.py": ["test_seen_1_bounded_fit_does_not_depend_on_the_optimiser_flag"],
