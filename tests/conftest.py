@@ -158,9 +158,12 @@ SLOW_TESTS = {
                                "test_cli_transfer_needs_x_and_valid_orders",
                                "test_browser_pole_layer_is_drawn_and_hidden_by_its_check_box"],
     "test_result_formats.py": ["test_compare_of_a_mat_reference_passes_where_its_csv_passes",
-                               "test_mat_errors_name_the_file"],
+                               "test_mat_errors_name_the_file",
+                               "test_piston_engine_mat_read_by_dymat_equals_the_csv",
+                               "test_compare_plots_carry_units"],
     "test_sweep.py": ["test_forty_points_on_two_workers_equal_serial_runs",
-                      "test_cli_sweep_on_an_existing_scheduler", "test_cli_sweep_bad_options_exit_2"],
+                      "test_cli_sweep_on_an_existing_scheduler", "test_cli_sweep_bad_options_exit_2",
+                      "test_tied_parameters_share_one_column_and_value"],
     "test_talk_synthesis.py": ["test_models_run_from_the_cli_with_figures"],
     "test_threads.py": ["test_import_and_a_run_leave_omp_num_threads_as_the_user_set_it",
                         "test_bench_threads_small_prints_its_table"],
@@ -180,19 +183,42 @@ SLOW_TESTS = {
     "test_dummy_large.py": ["test_chain_sparse_choice_equals_dense_choice"],
     "test_fit_edges.py": ["test_seen6_cli_exit_codes_of_a_bound_and_of_the_tube"],
     "test_belt_drawing.py": ["test_cable_crane_drawing"],
+    "test_modes.py": ["test_cable_crane_hook_returns_to_its_rest_position_and_swings_at_sqrt_g_over_l",
+                      "test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia"],
+    "test_output_rows.py": ["test_chain_rows_satisfy_every_equation_at_20000_points"],
+    "test_planar_references.py": ["test_cli_reproduces_reference"],
+    "test_talk_mechanisms.py": ["test_position_correction_agrees_with_the_dae_within_its_lentol",
+                                "test_node_model_agrees_with_the_vdi_elements_over_a_crank_turn"],
+    "test_modes_cli.py": ["test_modes_campbell_of_the_four_bar_follows_its_reduced_inertia"],
 }
 """Single tests of otherwise fast modules that start processes (the command
 line, a benchmark's small mode, a killed run, a dask cluster) or a browser,
 or take more than 4 s of CPU time: {module: [test function names]}."""
 
 
+FAST_CASES = {
+    "test_band_systematics.py": {"test_structure_static_and_power_balance": 4,
+                                 "test_two_band_coupler_static_and_power_balance": 2},
+    "test_trust_mec2.py": {"test_seen_9_every_example_loads_checks_and_simulates": 5},
+    "test_talk_mechanisms.py": {"test_counts_and_closed_loops_over_the_run": 4},
+}
+"""Parametrized tests over many models of which the fast tier takes the
+first few cases (the others are slow): {module: {test function: cases}}."""
+
+
 def pytest_collection_modifyitems(config, items):
-    """Mark the tests of :data:`SLOW_MODULES` and :data:`SLOW_TESTS` slow."""
+    """Mark the tests of :data:`SLOW_MODULES` and :data:`SLOW_TESTS` slow,
+    and the cases of :data:`FAST_CASES` beyond the first few."""
     slow = pytest.mark.slow
+    seen = {}
     for item in items:
         module = os.path.basename(str(item.fspath))
         name = getattr(item, "originalname", item.name)
-        if module in SLOW_MODULES or name in SLOW_TESTS.get(module, ()):
+        keep = FAST_CASES.get(module, {}).get(name)
+        if keep is not None:
+            seen[(module, name)] = seen.get((module, name), 0) + 1
+        if module in SLOW_MODULES or name in SLOW_TESTS.get(module, ()) or \
+                (keep is not None and seen[(module, name)] > keep):
             item.add_marker(slow)
 
 

@@ -29,6 +29,12 @@ def test_slow_tests_exist():
     assert missing == []
 
 
+def test_fast_cases_name_parametrized_tests_that_exist():
+    missing = [(m, name) for m, names in conftest.FAST_CASES.items()
+               for name in names if name not in _test_functions(m)]
+    assert missing == []
+
+
 def test_fuzz_sample_is_fixed_and_covers_every_class():
     cases = fuzz_cases.all_cases()
     first = [p.id for p in conftest.fuzz_sample(cases)]
