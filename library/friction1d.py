@@ -8,7 +8,7 @@ Backward and Free by a state machine: stuck while the torque needed to
 keep the relative speed at 0 stays below ``tau0_max = peak * tau0``, then
 sliding with the characteristic ``tau(w)`` (a table ``[w, tau]`` or
 ``[w, mu]``).  acausal2d keeps one DAE for the whole run, so sticking is a
-stick zone ``|w| < w_s`` (seed ch. 8.2's discClutch, see
+stick zone ``|w| < w_s`` (Ebert 2015, ch. 8.2's discClutch, see
 docs/guide/friction.md) with the same thresholds::
 
     x = w / w_s,  sat = min(max(x, -1), 1),  e = (x - sat) * sat   (= |x| - 1 outside, 0 inside)

@@ -4,7 +4,7 @@
 Both are re-exported by :mod:`acausal2d.library.rotational`, where a
 Modelica user looks for them (``rotational.IdealGear``).  The sign
 convention is Modelica's and the library's: ``flange.tau`` is the torque
-acting on the element from the connected part (seed eq. 4.1 at the
+acting on the element from the connected part (Ebert 2015, eq. 4.1 at the
 flanges).  Gears are massless and lossless: the power flowing in equals
 the power flowing out at every instant."""
 from acausal2d import Component, Parameter, RotationalFlange, Variable

@@ -73,7 +73,7 @@ class SpringDamper(_Compliant):
     """Linear torsion spring and damper in parallel
     (Modelica.Mechanics.Rotational.Components.SpringDamper):
     ``tau = c (phi_rel - phi_rel0) + d w_rel``, ``w_rel = der(phi_rel)``;
-    ``tau`` acts on flange_b (``-tau`` on flange_a, seed eq. 4.1 at the
+    ``tau`` acts on flange_b (``-tau`` on flange_a, Ebert (2015), eq. 4.1 at the
     flanges).  ``loss_power = d w_rel^2`` is the power dissipated."""
     c = Parameter(1.0, "N.m/rad", "spring constant", min=0.0)
     d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
@@ -91,7 +91,7 @@ class SpringDamper(_Compliant):
 class AngleSensor(Component):
     """Absolute angle of the flange as the signal ``phi``
     (Modelica.Mechanics.Rotational.Sensors.AngleSensor); takes no torque,
-    so a joint it measures stays free.  Seed eq. 4.1 at the flange."""
+    so a joint it measures stays free.  Ebert (2015), eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -171,7 +171,7 @@ class Position(Component):
 
 class Clutch(Component):
     """Friction clutch (Modelica.Mechanics.Rotational.Components.Clutch;
-    the seed's disc clutch, ch. 8.2 "discClutch1") between ``flange_a`` and
+    the dissertation's disc clutch, ch. 8.2 "discClutch1") between ``flange_a`` and
     ``flange_b``, engaged by the signal input ``f_normalized`` (0 = open,
     1 = fully closed)::
 

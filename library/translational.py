@@ -70,7 +70,7 @@ class SpringDamper(_Compliant):
     """Linear spring and damper in parallel
     (Modelica.Mechanics.Translational.Components.SpringDamper):
     ``f = c (s_rel - s_rel0) + d v_rel``, ``v_rel = der(s_rel)``; the force
-    ``f`` acts on flange_b (``-f`` on flange_a, seed eq. 4.1 at the
+    ``f`` acts on flange_b (``-f`` on flange_a, Ebert (2015), eq. 4.1 at the
     flanges).  ``loss_power = d v_rel^2`` is the power dissipated."""
     c = Parameter(1.0, "N/m", "spring constant", min=0.0)
     d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
@@ -89,7 +89,7 @@ class Force(Component):
     """Force from the signal f_in acting on the flange
     (Modelica.Mechanics.Translational.Sources.Force without support: the
     reaction goes to ground); a positive signal pushes the flange in its
-    positive direction.  Seed eq. 4.1 at the flange."""
+    positive direction.  Ebert (2015), eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -118,7 +118,7 @@ class Position(Component):
 class PositionSensor(Component):
     """Absolute position of the flange as the signal ``s``
     (Modelica.Mechanics.Translational.Sensors.PositionSensor); takes no
-    force.  Seed eq. 4.1 at the flange."""
+    force.  Ebert (2015), eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)

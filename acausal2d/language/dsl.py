@@ -352,7 +352,7 @@ class Component:
         return None
 
     def topology(self):
-        """Planar topology for the degree-of-freedom count (seed eq. 2.1):
+        """Planar topology for the degree-of-freedom count (Ebert 2015, eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames
         of one link), ``("joint", frame_a, frame_b, f)`` (a joint with f
         degrees of freedom), ``("band", link, frame, band_port)`` (a band
