@@ -21,6 +21,10 @@ are marked (:func:`named_in`).
 """
 import re
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..language.dsl import Component
 
 DOMAINS = {"Frame": "frame", "RotationalFlange": "rotational",
            "TranslationalFlange": "translational", "BandPort": "band",
@@ -257,11 +261,19 @@ def _endpoint(conn, scope, boxes):
     return box.path, name
 
 
+HEADLINE = 3
+"""Lines of an error message searched for component names: its headline
+and the first culprits (a structural error goes on to list every equation
+competing for the unknowns, which names every component)."""
+
+
 def named_in(message, model):
-    """The paths of the components of ``model`` that the error ``message``
-    names (as ``'path'``, ``path.member`` or ``path (Class)``)."""
+    """The paths of the components of ``model`` that the headline of the
+    error ``message`` (its first :data:`HEADLINE` lines) names, as
+    ``'path'``, ``path.member`` or ``path (Class)``."""
     if not message:
         return set()
+    message = "\n".join(message.splitlines()[:HEADLINE])
     found = set()
     for comp in model.components():
         path = comp.path
@@ -347,9 +359,30 @@ def diagram_html(model, error=None):
 
 def write_diagram(model, path, error=None):
     """Write the diagram of ``model`` to ``path``: an HTML page (sub-models
-    open in it) if it ends in ``.html``, else SVG.  Returns ``path``."""
+    open in it) if it ends in ``.html``, else SVG; written whole or not at
+    all (a temporary file moved in).  Returns ``path``."""
+    from ..io.files import write_text
     text = diagram_html(model, error) if str(path).lower().endswith((".html", ".htm")) \
         else diagram_svg(model, error)
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    return path
+    return write_text(path, text)
+
+
+class DiagramView:
+    """A model's diagram as a notebook shows it (``_repr_svg_``); ``svg``
+    is its text, ``save(path)`` writes it."""
+
+    def __init__(self, model: "Component", error: object = None) -> None:
+        self.model = model
+        self.error = error
+        self.svg: str = diagram_svg(model, error)
+
+    def _repr_svg_(self) -> str:
+        return self.svg
+
+    def save(self, path):
+        """Write the diagram to ``path`` (SVG, or HTML for ``*.html``)."""
+        return write_diagram(self.model, path, self.error)
+
+    def __repr__(self):
+        return "<diagram of %s: %d boxes>" % (type(self.model).__name__,
+                                              self.svg.count('class="box'))

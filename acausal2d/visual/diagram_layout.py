@@ -66,16 +66,22 @@ def box_size(box):
 
 
 # ------------------------------------------------------------ 1. direction
+_REFERENCES = ("PressureSource",)     # a tank: a reference, not where power comes from
+
+
 def _roots(st, graph, power):
-    """The boxes power enters at, per connected part of the power graph."""
+    """The boxes power enters at, per connected part of the power graph:
+    motors and sources with no input, else sources driven by a signal,
+    else the ground (a fixed point, the world, a tank), else the first."""
     driven = {ln.box_b for ln in st.lines if ln.domain == "signal"}
     boxes = {b.path: b for b in st.boxes}
+    def source(p):
+        return boxes[p].kind == "source" and boxes[p].cls not in _REFERENCES
+    tests = [lambda p: boxes[p].cls == "AsyncMotor" or source(p) and p not in driven, source,
+             lambda p: boxes[p].kind in ("fixed", "world") or boxes[p].cls in _REFERENCES]
     roots = []
     for part in nx.connected_components(power):
-        cand = [p for p in part if boxes[p].cls == "AsyncMotor" or
-                boxes[p].kind == "source" and p not in driven]
-        cand = cand or [p for p in part if boxes[p].kind == "source"]
-        cand = cand or [p for p in part if boxes[p].kind in ("fixed", "world")]
+        cand = next((c for c in ([p for p in part if t(p)] for t in tests) if c), None)
         roots += cand or [min(part, key=list(graph).index)]
     return roots
 
@@ -172,8 +178,9 @@ def _sweep(layers, neighbours, down):
         layers[i] = [v for _, v in sorted(enumerate(layers[i]), key=key)]
 
 
-def _order(layer, chains):
-    """The boxes and dummies of each layer, ordered for few crossings."""
+def _graph(layer, chains):
+    """The layers' nodes (boxes, then dummies), each node's layer, its
+    neighbours, and the edges between adjacent layers (upper first)."""
     nodes = {v for c in chains for v in c} | set(layer)
     of = {v: layer[v] if v in layer else v[2] for v in nodes}
     layers = [[] for _ in range(max(of.values(), default=0) + 1)]
@@ -186,6 +193,12 @@ def _order(layer, chains):
             neighbours[u].append(v)
             neighbours[v].append(u)
             edges.append((u, v) if of[u] < of[v] else (v, u))
+    return layers, neighbours, edges
+
+
+def _order(layer, chains):
+    """The boxes and dummies of each layer, ordered for few crossings."""
+    layers, neighbours, edges = _graph(layer, chains)
     def total(ls):
         return sum(_crossings(ls[i], ls[i + 1], edges) for i in range(len(ls) - 1))
     best, best_n = [list(x) for x in layers], total(layers)
@@ -316,10 +329,26 @@ def _route(chain, ports, line, y, cols, of):
     return pts + [pb]
 
 
+def _neighbour_heights(st, chains, y):
+    """The height each port's line leaves towards (its first point past
+    the port), to order the ports of a side."""
+    ny = {}
+    for ln, c in zip(st.lines, chains):
+        ny[(ln.box_a, ln.port_a)] = y[c[1]] if len(c) > 1 else y[c[0]]
+        ny[(ln.box_b, ln.port_b)] = y[c[-2]] if len(c) > 1 else y[c[-1]]
+    return ny
+
+
+def _extent(boxes, routes):
+    width = max([x + w for x, _, w, _ in boxes.values()] + [300.0]) + MARGIN + 60
+    height = max([yy + h for _, yy, _, h in boxes.values()] +
+                 [yy for r in routes for _, yy in r] + [100.0]) + MARGIN
+    return width, height
+
+
 def layout(st):
     """The :class:`Layout` of a :class:`~acausal2d.visual.diagram.Structure`."""
-    dag = _directed(st)
-    layer = _layers(dag)
+    layer = _layers(_directed(st))
     chains = _chains(st, layer)
     layers, neighbours = _order(layer, chains)
     _set_sides(st, layer)
@@ -331,14 +360,8 @@ def layout(st):
     for p, (w, h) in sizes.items():
         x0, cw = cols[of[p]]
         boxes[p] = (x0 + (cw - w) / 2, y[p] - h / 2, w, h)
-    ny = {}
-    for ln, c in zip(st.lines, chains):
-        ny[(ln.box_a, ln.port_a)] = y[c[1]] if len(c) > 1 else y[c[0]]
-        ny[(ln.box_b, ln.port_b)] = y[c[-2]] if len(c) > 1 else y[c[-1]]
-    ports = _port_positions(st, boxes, ny)
+    ports = _port_positions(st, boxes, _neighbour_heights(st, chains, y))
     routes = [_route(c, ports, ln, y, cols, of) for ln, c in zip(st.lines, chains)]
-    width = max([x + w for x, _, w, _ in boxes.values()] + [300.0]) + MARGIN + 60
-    height = max([yy + h for _, yy, _, h in boxes.values()] +
-                 [yy for r in routes for _, yy in r] + [100.0]) + MARGIN
-    return Layout(boxes, ports, routes, width, height, [[v for v in ls if v in sizes]
-                                                        for ls in layers])
+    width, height = _extent(boxes, routes)
+    return Layout(boxes, ports, routes, width, height,
+                  [[v for v in ls if v in sizes] for ls in layers])

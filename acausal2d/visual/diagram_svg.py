@@ -277,9 +277,18 @@ def _legend(st, y):
     return out
 
 
-def _error_lines(error, width):
+def _error_lines(error, width, most=5):
+    """The headline of the error the model failed to compile with, wrapped
+    to the drawing's width (at most ``most`` lines)."""
     import textwrap
-    lines = textwrap.wrap("does not compile: " + error, max(40, int(width / 6.4)))[:6]
+    from .diagram import HEADLINE
+    lines = []
+    for k, text in enumerate(error.splitlines()[:HEADLINE]):
+        lines += textwrap.wrap(("does not compile: " if k == 0 else "") + text.strip(),
+                               max(40, int((width - 40) / 6.6)))
+    if len(lines) > most or len(error.splitlines()) > HEADLINE:
+        lines = lines[:most]
+        lines[-1] += " ..."
     return ['<text class="fate fate-error" x="20" y="%s" style="font-size:11px">%s</text>' % (
         _f(50 + 14 * k), _e(t)) for k, t in enumerate(lines)], 14 * len(lines) + 10
 
