@@ -247,3 +247,21 @@ def test_simulate_writes_the_diagram_with_its_outputs(tmp_path):
     model = load_model(os.path.join(ROOT, "models", "pendulum.py"))
     names = {g.get("data-path") for g in boxes(root)}
     assert set(model._children) <= names
+
+
+def test_gallery_entry_shows_the_diagram(tmp_path):
+    """The docs' gallery runner writes the model's diagram beside its
+    figures and the entry's page embeds it (one entry, as the build makes
+    each)."""
+    sys.path.insert(0, os.path.join(ROOT, "docs", "_ext"))
+    try:
+        import gallery
+        import gallery_run
+    finally:
+        sys.path.pop(0)
+    path = os.path.join(ROOT, "models", "pendulum.py")
+    entry = gallery_run.run_model(path, "Pendulum", str(tmp_path), str(tmp_path / "anim"))
+    svg = (tmp_path / entry["diagram"]).read_text()
+    check_drawing(load_model(path, "Pendulum"), svg)
+    text = gallery._entry_text(path, "Pendulum", entry)
+    assert "![diagram of Pendulum](%s)" % entry["diagram"] in text
