@@ -242,6 +242,14 @@ def _set_sides(st, layer):
         for port in box.ports.values():
             v = sum(votes.get((box.path, port.name), []))
             port.side = "right" if v > 0 else "left" if v < 0 else _default_side(box, port)
+    for ln in st.lines:                 # a loop on one box: both ends on one side if free to
+        if ln.box_a == ln.box_b:
+            ports = st.box(ln.box_a).ports
+            a, b = ports[ln.port_a], ports[ln.port_b]
+            if not any(votes.get((ln.box_a, ln.port_a), [])):
+                a.side = b.side
+            elif not any(votes.get((ln.box_b, ln.port_b), [])):
+                b.side = a.side
 
 
 # ------------------------------------------------------------ 4. positions
@@ -316,17 +324,49 @@ def _port_positions(st, boxes, neighbour_y):
     return ports
 
 
-def _route(chain, ports, line, y, cols, of):
-    """The points of a line: its two ports and, per layer it passes, the
-    column's left and right edge at its dummy's height."""
-    pa = ports[(line.box_a, line.port_a)][:2]
-    pb = ports[(line.box_b, line.port_b)][:2]
-    pts = [pa]
+def _detour(port, box, toward):
+    """Points that lead a line from ``port`` (x, y, side) of ``box`` round
+    the box when what it goes to (``toward``) lies behind the port's side;
+    none when the way is open."""
+    x, y, side = port
+    s = 1 if side == "right" else -1
+    if (toward[0] - x) * s >= 0:
+        return []
+    bx, by, bw, bh = box
+    edge = by + bh + 12 if toward[1] >= by + bh / 2 else by - 12
+    back = bx - 16 if side == "right" else bx + bw + 16
+    return [(x + 16 * s, y), (x + 16 * s, edge), (back, edge)]
+
+
+def _loop(pa, pb, box):
+    """A line between two ports of one box: out and back beside it, or
+    round it (below) when the ports are on opposite sides."""
+    if pa[2] == pb[2]:
+        s = 1 if pa[2] == "right" else -1
+        x = pa[0] + 18 * s
+        return [pa[:2], (x, pa[1]), (x, pb[1]), pb[:2]]
+    bx, by, bw, bh = box
+    edge = by + bh + 12
+    xa = pa[0] + (16 if pa[2] == "right" else -16)
+    xb = pb[0] + (16 if pb[2] == "right" else -16)
+    return [pa[:2], (xa, pa[1]), (xa, edge), (xb, edge), (xb, pb[1]), pb[:2]]
+
+
+def _route(chain, ports, line, y, cols, of, boxes):
+    """The points of a line: its two ports, a way round a box where a port
+    faces away from the line, and, per layer it passes, the column's left
+    and right edge at its dummy's height."""
+    pa, pb = ports[(line.box_a, line.port_a)], ports[(line.box_b, line.port_b)]
+    if line.box_a == line.box_b:
+        return _loop(pa, pb, boxes[line.box_a])
+    mid = []
     for d in chain[1:-1]:
         x0, w = cols[of[d]]
-        pts += [(x0, y[d]), (x0 + w, y[d])] if of[chain[0]] < of[chain[-1]] else \
+        mid += [(x0, y[d]), (x0 + w, y[d])] if of[chain[0]] < of[chain[-1]] else \
             [(x0 + w, y[d]), (x0, y[d])]
-    return pts + [pb]
+    first = _detour(pa, boxes[line.box_a], (mid or [pb])[0])
+    last = _detour(pb, boxes[line.box_b], (mid or [pa])[-1])[::-1]
+    return [pa[:2]] + first + mid + last + [pb[:2]]
 
 
 def _neighbour_heights(st, chains, y):
@@ -361,7 +401,7 @@ def layout(st):
         x0, cw = cols[of[p]]
         boxes[p] = (x0 + (cw - w) / 2, y[p] - h / 2, w, h)
     ports = _port_positions(st, boxes, _neighbour_heights(st, chains, y))
-    routes = [_route(c, ports, ln, y, cols, of) for ln, c in zip(st.lines, chains)]
+    routes = [_route(c, ports, ln, y, cols, of, boxes) for ln, c in zip(st.lines, chains)]
     width, height = _extent(boxes, routes)
     return Layout(boxes, ports, routes, width, height,
                   [[v for v in ls if v in sizes] for ls in layers])

@@ -233,7 +233,7 @@ def _path_d(points):
     (x0, y0), rest = points[0], points[1:]
     d = ["M%s,%s" % (_f(x0), _f(y0))]
     for x1, y1 in rest:
-        if abs(y1 - y0) < 0.5:
+        if abs(y1 - y0) < 0.5 or abs(x1 - x0) < 0.5:       # straight along an axis
             d.append("L%s,%s" % (_f(x1), _f(y1)))
         else:
             dx = max(abs(x1 - x0) / 2, 30)
