@@ -209,7 +209,8 @@ def test_cli_diagram_and_check_write_it(tmp_path):
     check_drawing(model, out.read_text())
     out2 = tmp_path / "check" / "diagram.svg"
     out2.parent.mkdir()
-    r = run_cli("check", "models/pendulum.py", "--diagram", str(out2))
+    r = run_cli("check", os.path.join(ROOT, "models", "pendulum.py"), "--diagram",
+                cwd=out2.parent)
     assert r.returncode == 0, r.stderr
     assert "structural index" in r.stdout
     check_drawing(load_model(os.path.join(ROOT, "models", "pendulum.py")), out2.read_text())

@@ -120,3 +120,35 @@ def test_diagram_opens_the_clutch_and_shows_its_parameters_and_flows(server, tmp
         assert console_errors(cdp.events) == []
     finally:
         cdp.close()
+
+
+def test_html_diagram_opens_a_submodel_and_leads_back(tmp_path):
+    """``acausal2d diagram --out NAME.html``: a click on the sub-model's box
+    shows its own diagram, the path at the top leads back."""
+    require_chromium()
+    out = tmp_path / "d.html"
+    r = subprocess.run([sys.executable, "-m", "acausal2d", "diagram", "models/clutch_motor.py",
+                        "--model", "ClutchMotorConstantLoad", "--out", str(out)], cwd=ROOT,
+                       capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=ROOT))
+    assert r.returncode == 0, r.stderr
+    cdp = DevTools(tmp_path / "profile", ARTIFACTS / "diagram_html_cdp.log")
+    try:
+        page = Page(cdp)
+        page.resize(1300, 700)
+        page.open(out.as_uri())
+        visible = ("Array.from(document.querySelectorAll('.level')).filter(function(s)"
+                   "{return !s.hidden}).map(function(s){return s.getAttribute('data-level')})")
+        assert page.js(visible) == [""]
+        r = page.js("(function(){var b=document.querySelector('.level:not([hidden]) "
+                    ".box[data-path=\"drive\"]').getBoundingClientRect();"
+                    "return [b.left,b.top,b.width,b.height];})()")
+        page.mouse("mousePressed", r[0] + r[2] / 2, r[1] + r[3] / 2)
+        page.mouse("mouseReleased", r[0] + r[2] / 2, r[1] + r[3] / 2, buttons=0)
+        assert page.js(visible) == ["drive"]
+        assert page.js("document.querySelectorAll('.level:not([hidden]) .box:not(.external)')"
+                       ".length") == 5
+        page.js("document.querySelector('#crumbs a').click()")
+        assert page.js(visible) == [""]
+        assert console_errors(cdp.events) == []
+    finally:
+        cdp.close()

@@ -45,8 +45,9 @@ def add_parsers(sub):
     c = sub.add_parser("check", help="print the structure of a model")
     c.add_argument("model_file")
     c.add_argument("--model")
-    c.add_argument("--diagram", metavar="FILE", help="also write the model's diagram (.svg, "
-                   "or .html with its sub-models), also when it does not compile")
+    c.add_argument("--diagram", metavar="FILE", nargs="?", const="diagram.svg",
+                   help="also write the model's diagram (default diagram.svg; .html: with its "
+                   "sub-models), also when the model does not compile")
     c.set_defaults(func=cmd_check)
     r = sub.add_parser("params", help="list a model's parameters with value, unit, rule and "
                        "description")
