@@ -213,6 +213,9 @@ def test_cli_diagram_and_check_write_it(tmp_path):
                 cwd=out2.parent)
     assert r.returncode == 0, r.stderr
     assert "structural index" in r.stdout
+    r = run_cli("check", "models/pendulum.py", "--diagram", str(tmp_path / "d.py"))
+    assert r.returncode == 2 and ".svg or .html" in r.stderr and not (tmp_path / "d.py").exists()
+    assert "structural index" not in r.stdout           # refused before the model is compiled
     check_drawing(load_model(os.path.join(ROOT, "models", "pendulum.py")), out2.read_text())
 
 

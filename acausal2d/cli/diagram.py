@@ -9,7 +9,8 @@ from ..io.loader import load_model
 def cmd_diagram(args):
     """``acausal2d diagram``: write the model's diagram (SVG, or HTML in
     which each sub-model's box opens its own diagram)."""
-    from ..visual.diagram import structure, write_diagram
+    from ..visual.diagram import check_diagram_path, structure, write_diagram
+    check_diagram_path(args.out)
     model = load_model(args.model_file, args.model)
     write_diagram(model, args.out)
     st = structure(model)

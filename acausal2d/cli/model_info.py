@@ -11,6 +11,9 @@ def cmd_check(args):
     ``--diagram FILE`` also write its diagram, even when the model does not
     compile (then it marks the components the error names)."""
     from ..errors import Acausal2dError
+    from ..visual.diagram import check_diagram_path
+    if args.diagram:
+        check_diagram_path(args.diagram)          # before the model is compiled
     model = load_model(args.model_file, args.model)
     try:
         report = check(model)

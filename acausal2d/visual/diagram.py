@@ -357,11 +357,21 @@ def diagram_html(model, error=None):
     return render_html(type(model).__name__, levels)
 
 
+def check_diagram_path(path):
+    """Raise an error naming ``path`` unless it ends in .svg or .html (a
+    diagram never overwrites a model file or a result)."""
+    from ..errors import Acausal2dError
+    if not str(path).lower().endswith((".svg", ".html", ".htm")):
+        raise Acausal2dError("the diagram is written as .svg or .html, not to %s; name a file "
+                             "ending in .svg or .html" % path)
+
+
 def write_diagram(model, path, error=None):
     """Write the diagram of ``model`` to ``path``: an HTML page (sub-models
     open in it) if it ends in ``.html``, else SVG; written whole or not at
     all (a temporary file moved in).  Returns ``path``."""
     from ..io.files import write_text
+    check_diagram_path(path)
     text = diagram_html(model, error) if str(path).lower().endswith((".html", ".htm")) \
         else diagram_svg(model, error)
     return write_text(path, text)
