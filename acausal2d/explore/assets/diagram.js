@@ -20,8 +20,12 @@
   var css = el("style", {}, "#diagram-pane{border-bottom:1px solid #dde1e6;background:#fbfbfc;flex:none}" +
     "#diagram-bar{display:flex;gap:8px;align-items:center;padding:4px 8px;flex-wrap:wrap}" +
     "#diagram-bar a{color:#1f6fb4;cursor:pointer;text-decoration:underline}" +
-    "#diagram{overflow:auto;max-height:460px}#diagram svg{display:block;max-width:100%;height:auto}" +
-    "#diagram .box{cursor:pointer}#diagram-time{width:220px}" +
+    "#diagram{overflow:auto;max-height:460px}#diagram svg{display:block;height:auto}" +
+    "#diagram .box{cursor:pointer}#diagram-time{width:160px}" +
+    "#diagram-row{display:flex;flex:none;border-bottom:1px solid #dde1e6}" +
+    "#diagram-row>#diagram-pane{flex:1 1 50%;min-width:0;border-bottom:0;border-right:1px solid #dde1e6}" +
+    "#diagram-row>#diagram-pane #diagram{max-height:310px}" +
+    "#diagram-row>#anim{flex:1 1 50%;min-width:0;border-bottom:0}" +
     "#selection{margin:0 0 8px;padding:6px;background:#fff7e6;border:1px solid #f5c26b}" +
     "#selection button{margin:2px 4px 0 0;font-size:11px}");
   document.head.appendChild(css);
@@ -58,6 +62,7 @@
     });
     crumbs();
     select(null);
+    fit();
     showFlows();
   }
 
@@ -112,20 +117,35 @@
     var key = name.split(".").pop();
     return (SYMBOL[key] || key) + " = " + fmt(v) + (unit ? " " + unit : "");
   }
+  function lineText(names, flows) {
+    var v = {}, parts = [];
+    names.forEach(function (n) {
+      if (n && flows[n] && flows[n][index] !== null) v[n.split(".").pop()] = [n, flows[n][index]];
+    });
+    if (v.fx && v.fy) {                // a planar frame: the force's size
+      var f = Math.sqrt(v.fx[1] * v.fx[1] + v.fy[1] * v.fy[1]);
+      return "|f| = " + fmt(f) + " N";
+    }
+    Object.keys(v).forEach(function (k) { parts.push(label(v[k][0], v[k][1])); });
+    return parts.join(", ");
+  }
   function showFlows() {
     var run = explore.current, flows = run && run.data.flows;
     if (!flows) return;
     index = Math.max(0, Math.min(index, run.data.time.length - 1));
     Array.prototype.forEach.call($("diagram").querySelectorAll("path.line"), function (line) {
-      var text = $("diagram").querySelector("#flow-" + line.id.slice(5)), parts = [];
-      (line.getAttribute("data-flows") || "").split(" ").forEach(function (n) {
-        if (n && flows[n] && flows[n][index] !== null) parts.push(label(n, flows[n][index]));
-      });
-      if (text) text.textContent = parts.join(", ");
+      var text = $("diagram").querySelector("#flow-" + line.id.slice(5));
+      if (text) text.textContent = lineText((line.getAttribute("data-flows") || "").split(" "), flows);
     });
     var t = run.data.time[index];
     if ($("diagram-t")) $("diagram-t").textContent = "t = " + fmt(t) + " s";
     if ($("diagram-time")) $("diagram-time").value = Math.round(1000 * index / Math.max(1, run.data.time.length - 1));
+  }
+  function fit() {                     // fit the pane's width, but never below 60 % of full size
+    var svg = $("diagram").querySelector("svg"), pane = $("diagram");
+    if (!svg) return;
+    var w = +svg.getAttribute("width"), pw = pane.clientWidth || w;
+    svg.style.width = Math.max(Math.min(w, pw), 0.6 * w) + "px";
   }
   function tick() {
     var run = explore.current, a = anim(), now = performance.now();
@@ -152,8 +172,16 @@
     (meta.diagrams || []).forEach(function (d) { levels[d.path] = d.svg; });
     if (levels[""] === undefined) return;
     $("diagram-pane").hidden = false;
-    if (!meta.planar) $("anim").hidden = true;
+    if (!meta.planar) {
+      $("anim").hidden = true;
+    } else {                              // side by side: the diagram beside the animation
+      var row = el("div", { id: "diagram-row" });
+      $("anim").parentNode.insertBefore(row, $("anim"));
+      row.appendChild($("diagram-pane"));
+      row.appendChild($("anim"));
+    }
     open("");
+    window.addEventListener("resize", fit);
     requestAnimationFrame(tick);
   }
   start();
