@@ -269,3 +269,39 @@ def test_gallery_entry_shows_the_diagram(tmp_path):
     check_drawing(load_model(path, "Pendulum"), svg)
     text = gallery._entry_text(path, "Pendulum", entry)
     assert "![diagram of Pendulum](%s)" % entry["diagram"] in text
+
+
+class Inner(Component):
+    """A sub-model with a connector of its own (connected inside)."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        from acausal2d import RotationalFlange
+        self.shaft = RotationalFlange()
+        self.disc = rotational.Inertia(J=0.2)
+        self.connect(self.shaft, self.disc.flange_a)
+
+
+class Outer(Component):
+    """A connect at the top that reaches into the sub-model's component."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.inner = Inner()
+        self.spring = rotational.Spring(c=100.0)
+        self.connect(self.spring.flange_b, self.inner.disc.flange_b)
+        self.connect(self.spring.flange_a, self.inner.shaft)
+
+
+def test_a_connect_into_a_submodel_ends_at_its_box():
+    model = Outer()
+    st = structure(model)
+    assert [(ln.box_b, ln.port_b) for ln in st.lines] == [("inner", "disc.flange_b"),
+                                                        ("inner", "shaft")]
+    root = check_drawing(model, diagram_svg(model))
+    inner = [g for g in boxes(root) if g.get("data-path") == "inner"][0]
+    assert "submodel" in classes(inner)
+    level = structure(model, path="inner")
+    # the disc's flange_b is connected from the level above: no mark there
+    assert level.box("disc").ports["flange_b"].fate is None
+    assert level.box("shaft").external and len(level.lines) == 1

@@ -168,8 +168,7 @@ def _write_outputs(res, tx, settings, args, drawer=None):
         res.to_csv(table)
     res.animate(tx.file("animation.html"), traces=settings["traces"], **settings["animation"])
     if res.model is not None:
-        from ..visual.diagram import write_diagram
-        write_diagram(res.model.model, tx.file("diagram.svg"))
+        _write_diagram(res.model.model, tx.file("diagram.svg"))
     if jobs is not None:
         pngs = drawer.collect() if drawer is not None else draw_jobs(jobs)
     if not settings["specs"]:
@@ -177,6 +176,19 @@ def _write_outputs(res, tx, settings, args, drawer=None):
     tx.info.update(model=type(res.model.model).__name__ if res.model else None,
                    stopped=res.stopped, units=_units(res))
     return pngs, _model_files(res, out)
+
+
+def _write_diagram(model, path):
+    """The model's diagram beside the results; a drawing that fails is a
+    warning naming why, never the loss of the run."""
+    from ..visual.diagram import write_diagram
+    try:
+        write_diagram(model, path)
+    except (KeyboardInterrupt, MemoryError, OSError):
+        raise
+    except Exception as exc:          # noqa: BLE001 - the run's results matter more
+        import warnings
+        warnings.warn("diagram.svg is not written: %s: %s" % (type(exc).__name__, exc))
 
 
 def _units(res):
