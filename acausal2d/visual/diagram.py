@@ -46,13 +46,15 @@ class Port:
     ``motor.flange`` for a deeper connector connected at this level),
     ``path`` in the model, ``domain``, ``signal`` (``input``/``output`` or
     None), ``fate`` when unconnected (see the module docstring; None when
-    connected) and ``side`` (``left``/``right``, set by the layout)."""
+    connected), ``side`` (``left``/``right``, set by the layout) and
+    ``mirror`` (its lines leave to both sides: it is drawn on both)."""
     name: str
     path: str
     domain: str
     signal: str | None = None
     fate: str | None = None
     side: str = "right"
+    mirror: bool = False
 
 
 @dataclass

@@ -54,10 +54,10 @@ def box_size(box):
     the sides are set)."""
     if box.external:
         return max(60.0, CHAR * len(box.name) + 34), 30.0
-    n_left = sum(p.side == "left" for p in box.ports.values())
-    n_right = len(box.ports) - n_left
-    label = lambda side: max([SMALL * len(p.name) for p in box.ports.values()  # noqa: E731
-                              if p.side == side] or [0])
+    def on(side):
+        return [p for p in box.ports.values() if p.side == side or p.mirror]
+    n_left, n_right = len(on("left")), len(on("right"))
+    label = lambda side: max([SMALL * len(p.name) for p in on(side)] or [0])  # noqa: E731
     text = max([CHAR * (len(box.name) + 2)] + [CHAR * 0.92 * len(t) for t in box.params])
     width = max(110.0, text + label("left") + label("right") + 24,
                 2 * max(label("left"), label("right")) + 70)
@@ -240,8 +240,10 @@ def _set_sides(st, layer):
         for port in box.ports.values():
             port.side = "right"
         for port in box.ports.values():
-            v = sum(votes.get((box.path, port.name), []))
+            mine = votes.get((box.path, port.name), [])
+            v = sum(mine)
             port.side = "right" if v > 0 else "left" if v < 0 else _default_side(box, port)
+            port.mirror = 1 in mine and -1 in mine
     for ln in st.lines:                 # a loop on one box: both ends on one side if free to
         if ln.box_a == ln.box_b:
             ports = st.box(ln.box_a).ports
@@ -314,12 +316,13 @@ def _port_positions(st, boxes, neighbour_y):
     for box in st.boxes:
         x, y, w, h = boxes[box.path]
         for side in ("left", "right"):
-            mine = [p for p in box.ports.values() if p.side == side]
+            mine = [p for p in box.ports.values() if p.side == side or p.mirror]
             mine.sort(key=lambda p: neighbour_y.get((box.path, p.name), y + h))
             top = y + (HEAD / 2 if len(mine) > 1 else 0)
             step = (h - (top - y)) / (len(mine) + 1)
             for k, p in enumerate(mine):
-                ports[(box.path, p.name)] = (x if side == "left" else x + w,
+                key = (box.path, p.name) if p.side == side else (box.path, p.name, "mirror")
+                ports[key] = (x if side == "left" else x + w,
                                              top + step * (k + 1), side)
     return ports
 
@@ -336,6 +339,25 @@ def _detour(port, box, toward):
     edge = by + bh + 12 if toward[1] >= by + bh / 2 else by - 12
     back = bx - 16 if side == "right" else bx + bw + 16
     return [(x + 16 * s, y), (x + 16 * s, edge), (back, edge)]
+
+
+def _end(ports, box, port, toward):
+    """The place a line to ``toward`` (an x) leaves ``port`` of ``box``: its
+    side, or its mirror on the other side when it lies that way."""
+    main = ports[(box, port)]
+    mirror = ports.get((box, port, "mirror"))
+    if mirror and (toward - main[0]) * (1 if main[2] == "right" else -1) < 0:
+        return mirror
+    return main
+
+
+def end_points(ports, boxes, line):
+    """(x, y, side) of the two ends of ``line``."""
+    if line.box_a == line.box_b:
+        return ports[(line.box_a, line.port_a)], ports[(line.box_b, line.port_b)]
+    ca = boxes[line.box_a][0] + boxes[line.box_a][2] / 2
+    cb = boxes[line.box_b][0] + boxes[line.box_b][2] / 2
+    return _end(ports, line.box_a, line.port_a, cb), _end(ports, line.box_b, line.port_b, ca)
 
 
 def _loop(pa, pb, box):
@@ -356,7 +378,7 @@ def _route(chain, ports, line, y, cols, of, boxes):
     """The points of a line: its two ports, a way round a box where a port
     faces away from the line, and, per layer it passes, the column's left
     and right edge at its dummy's height."""
-    pa, pb = ports[(line.box_a, line.port_a)], ports[(line.box_b, line.port_b)]
+    pa, pb = end_points(ports, boxes, line)
     if line.box_a == line.box_b:
         return _loop(pa, pb, boxes[line.box_a])
     mid = []

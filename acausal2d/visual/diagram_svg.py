@@ -6,7 +6,7 @@ diagram.  The geometry comes from :mod:`acausal2d.visual.diagram_layout`.
 import html
 import json
 
-from .diagram_layout import HEAD, GLYPH, PARAM
+from .diagram_layout import HEAD, GLYPH, PARAM, end_points
 
 COLOURS = {"frame": "#4b5d6b", "rotational": "#1f6fb4", "translational": "#2e8b57",
            "band": "#d35400", "hydraulic": "#0097a7", "signal": "#8e44ad", "other": "#7f8c8d"}
@@ -196,12 +196,15 @@ def _box_svg(box, geom, ports):
         out += _component_svg(box, x, y, w, h)
     for port in box.ports.values():
         px, py, side = ports[(box.path, port.name)]
-        out.append(_port_mark(port, px, py, side, box.external))
-        if not box.external:
-            inset = 7 if side == "left" else -7
-            out.append('<text class="pname" x="%s" y="%s" text-anchor="%s">%s</text>' % (
-                _f(px + inset), _f(py - 4), "start" if side == "left" else "end",
-                _e(port.name)))
+        places = [(px, py, side)] + ([ports[(box.path, port.name, "mirror")]] if port.mirror
+                                     else [])
+        for qx, qy, qside in places:
+            out.append(_port_mark(port, qx, qy, qside, box.external))
+            if not box.external:
+                inset = 7 if qside == "left" else -7
+                out.append('<text class="pname" x="%s" y="%s" text-anchor="%s">%s</text>' % (
+                    _f(qx + inset), _f(qy - 4), "start" if qside == "left" else "end",
+                    _e(port.name)))
         if port.fate:
             out.append(_fate_mark(port, px + (3.5 if side == "right" else -3.5), py, side))
     out.append("</g>")
@@ -244,12 +247,12 @@ def _path_d(points):
     return " ".join(d)
 
 
-def _line_svg(k, line, route, ports):
+def _line_svg(k, line, route, ports, boxes):
     """A connection: its path (an arrow at the input for a signal) and the
     empty label the explore page writes the flow into."""
     colour = COLOURS.get(line.domain, COLOURS["other"])
     pts = list(route)
-    side_a, side_b = ports[(line.box_a, line.port_a)][2], ports[(line.box_b, line.port_b)][2]
+    side_a, side_b = (e[2] for e in end_points(ports, boxes, line))
     # leave and enter each port horizontally, outwards from its box
     pts.insert(1, (pts[0][0] + (14 if side_a == "right" else -14), pts[0][1]))
     pts.insert(-1, (pts[-1][0] + (14 if side_b == "right" else -14), pts[-1][1]))
@@ -312,7 +315,7 @@ def render_svg(st, lay):
     out += errs
     out.append('<g transform="translate(0,%s)">' % _f(shift))
     for k, (line, route) in enumerate(zip(st.lines, lay.routes)):
-        out.append(_line_svg(k, line, route, lay.ports))
+        out.append(_line_svg(k, line, route, lay.ports, lay.boxes))
     for box in st.boxes:
         out += _box_svg(box, lay.boxes[box.path], lay.ports)
     out += _legend(st, lay.height + 14)
