@@ -372,8 +372,12 @@ def write_diagram(model, path, error=None):
     """Write the diagram of ``model`` to ``path``: an HTML page (sub-models
     open in it) if it ends in ``.html``, else SVG; written whole or not at
     all (a temporary file moved in).  Returns ``path``."""
+    import os
     from ..io.files import write_text
     check_diagram_path(path)
+    folder = os.path.dirname(os.fspath(path))
+    if folder:
+        os.makedirs(folder, exist_ok=True)
     text = diagram_html(model, error) if str(path).lower().endswith((".html", ".htm")) \
         else diagram_svg(model, error)
     return write_text(path, text)
