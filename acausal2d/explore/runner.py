@@ -145,9 +145,16 @@ class Explorer:
             from ..visual.diagram import diagram_svg, structure, submodel_paths
             model, names = self.compiled.model, set(self.compiled.names)
             levels = [""] + submodel_paths(model)
-            self._diagrams = [{"path": p, "svg": diagram_svg(model, path=p)} for p in levels]
-            self.flow_names = [f for p in levels for ln in structure(model, path=p).lines
-                               for f in ln.flows if f in names]
+            try:
+                self._diagrams = [{"path": p, "svg": diagram_svg(model, path=p)}
+                                  for p in levels]
+                self.flow_names = [f for p in levels for ln in structure(model, path=p).lines
+                                   for f in ln.flows if f in names]
+            except Exception as exc:     # noqa: BLE001 - the page works without its diagram
+                import warnings
+                warnings.warn("explore: no diagram of the model (%s: %s)"
+                              % (type(exc).__name__, exc))
+                self._diagrams, self.flow_names = [], []
         return self._diagrams
 
     def parse(self, raw, drag=False):
