@@ -305,3 +305,17 @@ def test_a_connect_into_a_submodel_ends_at_its_box():
     # the disc's flange_b is connected from the level above: no mark there
     assert level.box("disc").ports["flange_b"].fate is None
     assert level.box("shaft").external and len(level.lines) == 1
+
+
+def test_drawing_leaves_the_model_as_it_was():
+    """Drawing reads the model; every component's and connector's own
+    attributes are the same afterwards (no world added, no side stored)."""
+    model = load_model(os.path.join(ROOT, "models", "hydraulic_drum_drive.py"))
+    def picture():
+        return [(c.path, sorted(vars(c)), repr(c._param_values), repr(c._given),
+                 repr(c._derived), len(c._connections), sorted(c._children),
+                 [(n, repr(vars(k))) for n, k in c._connectors.items()])
+                for c in model.components()]
+    before = picture()
+    diagram_html(model)
+    assert picture() == before
