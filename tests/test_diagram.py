@@ -304,6 +304,10 @@ def test_a_connect_into_a_submodel_ends_at_its_box():
     level = structure(model, path="inner")
     # the disc's flange_b is connected from the level above: no mark there
     assert level.box("disc").ports["flange_b"].fate is None
+    assert level.box("disc").ports["flange_b"].outside
+    svg = parse(diagram_svg(model, path="inner"))
+    assert [g.get("data-path") for g in svg.iter(SVG + "g") if "outside-port" in classes(g)] \
+        == ["inner.disc.flange_b"]
     assert level.box("shaft").external and len(level.lines) == 1
 
 

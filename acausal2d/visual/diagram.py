@@ -47,7 +47,8 @@ class Port:
     ``path`` in the model, ``domain``, ``signal`` (``input``/``output`` or
     None), ``fate`` when unconnected (see the module docstring; None when
     connected), ``side`` (``left``/``right``, set by the layout) and
-    ``mirror`` (its lines leave to both sides: it is drawn on both)."""
+    ``mirror`` (its lines leave to both sides: it is drawn on both) and
+    ``outside`` (connected by a level above the one drawn)."""
     name: str
     path: str
     domain: str
@@ -55,6 +56,7 @@ class Port:
     fate: str | None = None
     side: str = "right"
     mirror: bool = False
+    outside: bool = False
 
 
 @dataclass
@@ -284,14 +286,39 @@ def named_in(message, model):
     return found
 
 
+def _scope(model, path):
+    """The sub-model at ``path`` ('' for the model itself)."""
+    scope = model
+    for part in [p for p in path.split(".") if p]:
+        scope = scope._children[part] if part in scope._children else _child(scope, part)
+    return scope
+
+
+def _lines(scope, boxes):
+    """A :class:`Line` per connect of ``scope``, a signal's from its source."""
+    lines = []
+    for a, b in scope._connections:
+        (ba, pa), (bb, pb) = _endpoint(a, scope, boxes), _endpoint(b, scope, boxes)
+        if a.signal is not None and _is_sink(a, scope):
+            (a, ba, pa), (b, bb, pb) = (b, bb, pb), (a, ba, pa)
+        lines.append(Line(a.path, b.path, ba, bb, pa, pb, domain(a)))
+    return lines
+
+
+def _mark_outside(boxes, lines):
+    """Ports connected by a level above: no fate and no line here."""
+    ends = {(ln.box_a, ln.port_a) for ln in lines} | {(ln.box_b, ln.port_b) for ln in lines}
+    for b in boxes:
+        for p in b.ports.values():
+            p.outside = p.fate is None and not b.external and (b.path, p.name) not in ends
+
+
 def structure(model, error=None, path=""):
     """The :class:`Structure` of one level of ``model`` (a Component
     instance): of the model itself, or with ``path`` of its sub-model there.
     ``error``: the message the model failed to compile with; the components
     it names are marked, and its loose connectors keep their fate."""
-    scope = model
-    for part in [p for p in path.split(".") if p] if path else []:
-        scope = scope._children[part] if part in scope._children else _child(scope, part)
+    scope = _scope(model, path)
     named = named_in(str(error) if error else "", model)
     connected = connected_paths(model)
     boxes = {}
@@ -300,12 +327,8 @@ def structure(model, error=None, path=""):
         boxes[b.path] = b
     for conn in scope._connectors.values():
         boxes.setdefault(conn._name, _external(conn, scope))
-    lines = []
-    for a, b in scope._connections:
-        (ba, pa), (bb, pb) = _endpoint(a, scope, boxes), _endpoint(b, scope, boxes)
-        if a.signal is not None and _is_sink(a, scope):
-            (a, ba, pa), (b, bb, pb) = (b, bb, pb), (a, ba, pa)
-        lines.append(Line(a.path, b.path, ba, bb, pa, pb, domain(a)))
+    lines = _lines(scope, boxes)
+    _mark_outside(boxes.values(), lines)
     name = type(scope).__name__ if not path else "%s (%s)" % (path, type(scope).__name__)
     return Structure(name, path, list(boxes.values()), lines, str(error) if error else None)
 
@@ -327,9 +350,7 @@ def _is_sink(conn, scope):
 def submodel_paths(model, path=""):
     """The paths of the sub-models below ``path`` (each a diagram of its
     own), depth first."""
-    scope = model
-    for part in [p for p in path.split(".") if p]:
-        scope = scope._children[part]
+    scope = _scope(model, path)
     out = []
     for name, child in scope._children.items():
         if child._children:

@@ -176,6 +176,16 @@ def _fate_mark(port, x, y, side):
                                               mark, label)
 
 
+def _outside_mark(port, x, y, side):
+    """A connector connected by the level above: a dashed stub so marked."""
+    s = 1 if side == "right" else -1
+    return ('<g class="outside-port" data-path="%s"><path d="M%s,%s h%s" stroke="%s" '
+            'stroke-dasharray="3 2" stroke-width="1.6"/><text class="fate" x="%s" y="%s" '
+            'text-anchor="%s">connected above</text></g>') % (
+        _e(port.path), _f(x), _f(y), _f(14 * s), COLOURS.get(port.domain, COLOURS["other"]),
+        _f(x + 17 * s), _f(y + 3), "start" if s > 0 else "end")
+
+
 def _box_svg(box, geom, ports):
     """One component: frame, name, class, symbol, parameters, ports and
     the marks of its unconnected connectors."""
@@ -194,6 +204,15 @@ def _box_svg(box, geom, ports):
             _f(x + w / 2), _f(y + h / 2 + 4), _e(box.name))]
     else:
         out += _component_svg(box, x, y, w, h)
+    out += _ports_svg(box, ports)
+    out.append("</g>")
+    return out
+
+
+def _ports_svg(box, ports):
+    """The marks and names of a box's ports (twice for a mirrored one) and
+    what happens to those left unconnected."""
+    out = []
     for port in box.ports.values():
         px, py, side = ports[(box.path, port.name)]
         places = [(px, py, side)] + ([ports[(box.path, port.name, "mirror")]] if port.mirror
@@ -205,9 +224,11 @@ def _box_svg(box, geom, ports):
                 out.append('<text class="pname" x="%s" y="%s" text-anchor="%s">%s</text>' % (
                     _f(qx + inset), _f(qy - 4), "start" if qside == "left" else "end",
                     _e(port.name)))
+        outward = px + (3.5 if side == "right" else -3.5)
         if port.fate:
-            out.append(_fate_mark(port, px + (3.5 if side == "right" else -3.5), py, side))
-    out.append("</g>")
+            out.append(_fate_mark(port, outward, py, side))
+        elif port.outside:
+            out.append(_outside_mark(port, outward, py, side))
     return out
 
 
