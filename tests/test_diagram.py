@@ -323,3 +323,12 @@ def test_drawing_leaves_the_model_as_it_was():
     before = picture()
     diagram_html(model)
     assert picture() == before
+
+
+def test_an_element_and_an_empty_model_are_drawn():
+    """A notebook shows a single element (its connectors as the border's
+    ports) and an empty model (its name only)."""
+    root = parse(rotational.Inertia(J=1.0)._repr_svg_())
+    assert sorted(g.get("data-path") for g in boxes(root)) == ["flange_a", "flange_b"]
+    root = parse(Component()._repr_svg_())
+    assert boxes(root) == [] and root.get("data-model") == "Component"

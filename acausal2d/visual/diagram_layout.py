@@ -95,10 +95,8 @@ def _distances(st):
         graph.add_edge(ln.box_a, ln.box_b)
         if ln.domain != "signal":
             power.add_edge(ln.box_a, ln.box_b)
-    dist = {}
-    for node, d in nx.multi_source_dijkstra_path_length(power, _roots(st, graph, power)).items():
-        dist[node] = d
-    return dist
+    roots = _roots(st, graph, power)
+    return dict(nx.multi_source_dijkstra_path_length(power, roots)) if roots else {}
 
 
 def _directed(st):
