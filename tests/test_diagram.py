@@ -332,3 +332,24 @@ def test_an_element_and_an_empty_model_are_drawn():
     assert sorted(g.get("data-path") for g in boxes(root)) == ["flange_a", "flange_b"]
     root = parse(Component()._repr_svg_())
     assert boxes(root) == [] and root.get("data-model") == "Component"
+
+
+class Stray(Component):
+    """Connects a flange of a component that is not part of it."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.disc = rotational.Inertia(J=1.0)
+        other = rotational.Inertia(J=2.0)
+        self.connect(self.disc.flange_a, other.flange_a)
+
+
+def test_a_connect_to_a_stray_component_is_drawn_as_its_error():
+    model = Stray()
+    with pytest.raises(Acausal2dError) as info:
+        compile_model(model)
+    root = parse(diagram_svg(model, info.value))
+    assert [g.get("data-path") for g in boxes(root)] == ["disc"]
+    assert not [p for p in root.iter(SVG + "path") if "line" in classes(p)]
+    text = " ".join(t.text or "" for t in root.iter(SVG + "text"))
+    assert "not part of it" in text

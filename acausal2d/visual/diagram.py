@@ -294,10 +294,20 @@ def _scope(model, path):
     return scope
 
 
+def _inside(conn, scope):
+    """True if ``conn`` belongs to ``scope`` or to a component inside it."""
+    node = conn.owner
+    while node is not None and node is not scope:
+        node = node._parent
+    return node is scope
+
+
 def _lines(scope, boxes):
     """A :class:`Line` per connect of ``scope``, a signal's from its source."""
     lines = []
     for a, b in scope._connections:
+        if not (_inside(a, scope) and _inside(b, scope)):
+            continue                    # connects what is not part of it: the error says so
         (ba, pa), (bb, pb) = _endpoint(a, scope, boxes), _endpoint(b, scope, boxes)
         if a.signal is not None and _is_sink(a, scope):
             (a, ba, pa), (b, bb, pb) = (b, bb, pb), (a, ba, pa)
