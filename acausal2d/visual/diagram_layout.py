@@ -59,8 +59,8 @@ def box_size(box):
     n_left, n_right = len(on("left")), len(on("right"))
     label = lambda side: max([SMALL * len(p.name) for p in on(side)] or [0])  # noqa: E731
     text = max([CHAR * (len(box.name) + 2)] + [CHAR * 0.92 * len(t) for t in box.params])
-    width = max(110.0, text + label("left") + label("right") + 24,
-                2 * max(label("left"), label("right")) + 70)
+    side = max(label("left"), label("right"))      # the texts are centred between the names
+    width = max(110.0, text + 2 * side + 24, 2 * side + 70)
     body = HEAD + GLYPH + PARAM * len(box.params) + 10
     return width, float(max(body, PORT_STEP * (max(n_left, n_right) + 1) + HEAD / 2))
 
