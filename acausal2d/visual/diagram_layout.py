@@ -20,6 +20,8 @@ Everything here is pure Python on networkx; the result is a
 """
 from dataclasses import dataclass, field
 
+import bisect
+
 import networkx as nx
 
 CHAR = 6.4            # width of a character of the box texts (11 px sans-serif), px
@@ -155,12 +157,21 @@ def _chains(st, layer):
 
 # ------------------------------------------------------------ 3. order
 def _crossings(upper, lower, edges):
-    """Crossings between two adjacent layers (``edges`` between them)."""
+    """Crossings between two adjacent layers (``edges`` between them, upper
+    end first): pairs of edges whose ends are in opposite orders, counted
+    by bisection over the lower ends of the edges from earlier upper
+    nodes."""
     pos_u = {v: i for i, v in enumerate(upper)}
     pos_l = {v: i for i, v in enumerate(lower)}
-    pairs = sorted((pos_u[a], pos_l[b]) for a, b in edges if a in pos_u and b in pos_l)
-    return sum(1 for i in range(len(pairs)) for j in range(i + 1, len(pairs))
-               if pairs[i][0] < pairs[j][0] and pairs[i][1] > pairs[j][1])
+    pairs = sorted((pos_u[a], pos_l[b]) for a, b in edges)
+    seen, count, k = [], 0, 0
+    while k < len(pairs):
+        group = [lo for u, lo in pairs[k:] if u == pairs[k][0]]
+        count += sum(len(seen) - bisect.bisect_right(seen, lo) for lo in group)
+        for lo in group:
+            bisect.insort(seen, lo)
+        k += len(group)
+    return count
 
 
 def _sweep(layers, neighbours, down):
@@ -176,21 +187,44 @@ def _sweep(layers, neighbours, down):
         layers[i] = [v for _, v in sorted(enumerate(layers[i]), key=key)]
 
 
+def _transpose(layers, edges, rounds=4):
+    """Swap neighbours within a layer while that lowers the crossings with
+    the layers on both sides (the transposition step of Gansner et al.
+    1993)."""
+    def local(i):
+        return sum(_crossings(layers[j], layers[j + 1], edges[j])
+                   for j in (i - 1, i) if 0 <= j < len(layers) - 1)
+    for _ in range(rounds):
+        improved = False
+        for i, ls in enumerate(layers):
+            for k in range(len(ls) - 1):
+                before = local(i)
+                ls[k], ls[k + 1] = ls[k + 1], ls[k]
+                if local(i) < before:
+                    improved = True
+                else:
+                    ls[k], ls[k + 1] = ls[k + 1], ls[k]
+        if not improved:
+            return
+
+
 def _graph(layer, chains):
     """The layers' nodes (boxes, then dummies), each node's layer, its
-    neighbours, and the edges between adjacent layers (upper first)."""
+    neighbours, and the edges between each layer and the next (upper end
+    first), by the upper layer's index."""
     nodes = {v for c in chains for v in c} | set(layer)
     of = {v: layer[v] if v in layer else v[2] for v in nodes}
     layers = [[] for _ in range(max(of.values(), default=0) + 1)]
     for v in list(layer) + [v for c in chains for v in c[1:-1]]:
         layers[of[v]].append(v)
     neighbours = {v: [] for v in nodes}
-    edges = []
+    edges = [[] for _ in layers]
     for c in chains:
         for u, v in zip(c, c[1:]):
             neighbours[u].append(v)
             neighbours[v].append(u)
-            edges.append((u, v) if of[u] < of[v] else (v, u))
+            if of[u] != of[v]:
+                edges[min(of[u], of[v])].append((u, v) if of[u] < of[v] else (v, u))
     return layers, neighbours, edges
 
 
@@ -198,13 +232,15 @@ def _order(layer, chains):
     """The boxes and dummies of each layer, ordered for few crossings."""
     layers, neighbours, edges = _graph(layer, chains)
     def total(ls):
-        return sum(_crossings(ls[i], ls[i + 1], edges) for i in range(len(ls) - 1))
+        return sum(_crossings(ls[i], ls[i + 1], edges[i]) for i in range(len(ls) - 1))
     best, best_n = [list(x) for x in layers], total(layers)
     for s in range(SWEEPS):
         _sweep(layers, neighbours, down=s % 2 == 0)
         n = total(layers)
         if n < best_n:
             best, best_n = [list(x) for x in layers], n
+    if best_n:
+        _transpose(best, edges)
     return best, neighbours
 
 
