@@ -30,7 +30,7 @@ from ..usercode import TRACEBACK_ENV, has_user_cause, print_traceback, wants_tra
 
 
 COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",
-                   "export_fmu", "explore", "cache")
+                   "export_fmu", "explore", "cache", "diagram")
 """The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
 
 
