@@ -3,6 +3,7 @@ component, a line per ``connect``, every unconnected connector marked with
 what happens to it (see :mod:`acausal2d.visual.diagram`)."""
 import sys
 
+from .args import MODEL_FILE_HELP
 from ..io.loader import load_model
 
 
@@ -36,7 +37,7 @@ def add_parsers(sub):
     """``acausal2d diagram``."""
     d = sub.add_parser("diagram", help="draw a model: its components, connections and "
                        "unconnected connectors (SVG, or HTML with its sub-models)")
-    d.add_argument("model_file")
+    d.add_argument("model_file", help=MODEL_FILE_HELP)
     d.add_argument("--model", help="model class in the file (if it defines several)")
     d.add_argument("--out", default="diagram.svg", help="the file to write: .svg (default "
                    "diagram.svg) or .html (each sub-model's box opens its own diagram)")
