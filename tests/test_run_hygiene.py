@@ -62,6 +62,7 @@ def test_a_stale_run_folder_of_a_gone_process_is_swept(tmp_path):
     assert _folders(tmp_path) == ["%s%d-def" % (rundir.PREFIX, os.getppid())]
 
 
+@pytest.mark.slow           # a command-line process interrupted in its run
 @pytest.mark.parametrize("signum,code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_the_run_folder_is_removed_on_a_signal(tmp_path, signum, code):
     """The command's SUNDIALS log lives in <tmp>/acausal2d-run-<pid>-*; the
@@ -111,6 +112,7 @@ def test_a_planar_model_still_gets_its_animation(tmp_path):
     assert os.path.getsize(page) > 1000
 
 
+@pytest.mark.slow           # a command-line process compiling native code
 def test_a_first_run_says_one_notice_and_no_contradicting_notes(tmp_path):
     """A first run with an empty native cache: at most one notice on
     stderr, and the tier notes ("native: compile first ...") only with
