@@ -76,7 +76,13 @@ class _Assembly:
     """Numeric-symbolic pre-assembly of all linkage elements of one model:
     node potentials (x, y, phi or s) as CasADi expressions of parameters."""
 
-    def __init__(self, context):
+    def __init__(self, context, seeds=(), fallback=True):
+        """``seeds``: further known poses [(connector, {potential:
+        value})] (the start poses of planar frames, see
+        :class:`~acausal2d.library.belt.placement.StartPoses`);
+        ``fallback``: assemble elements whose inputs stay unknown as if
+        those inputs sat at the origin (start guesses only; off where only
+        poses that follow from the parameters are wanted)."""
         root = context.model
         self.root, self.context = root, context
         comps = list(root.components())
@@ -97,6 +103,8 @@ class _Assembly:
                     self.put(conn, vals)
             else:
                 self._seed_library(comp)
+        for conn, vals in seeds:
+            self.put(conn, vals)
         elems = [c for c in comps if isinstance(c, _Linkage)]
         pending = list(elems)
         while pending:
@@ -107,7 +115,7 @@ class _Assembly:
                     progress = True
             if not progress:
                 break
-        for e in pending:
+        for e in pending if fallback else ():
             e._assemble_alone(self)
         self.unresolved = pending
         self._run_checks(comps)
