@@ -66,3 +66,17 @@ def test_simulate_prints_the_ranges(tmp_path, capsys):
     assert code == 0
     line = [s for s in capsys.readouterr().out.splitlines() if "slider dyad" in s]
     assert line and "stroke 0.2 m" in line[0], line
+
+
+def test_dsd_slider_has_its_range():
+    """The slider of a DSD (the swinging crank-slider DDSD of
+    models/four_link_mechanisms.py: guide pivot B0 = (-0.25, 0), crank pin
+    at radius 0.1 from the origin, offset v = 0.02) travels from P1 by
+    xG = sqrt(|P2 - B0|^2 - v^2), |P2 - B0| between 0.15 and 0.35 m (pin at
+    phi = pi and 0, both output points): the range follows this closed
+    form; before, the DSD drew no guide and had no range."""
+    res = acausal2d.simulate(flm.DDSD(), stop_time=1.0, intervals=200, rtol=1e-8)
+    (rng,) = [r for r in slider_ranges(res) if r.name == "dyad"]
+    v = 0.02
+    assert abs(rng.s_min - np.sqrt(0.15 ** 2 - v ** 2)) < TOL
+    assert abs(rng.s_max - np.sqrt(0.35 ** 2 - v ** 2)) < TOL

@@ -32,7 +32,6 @@ from acausal2d.errors import Acausal2dError, ModelDefinitionError
 from acausal2d.language.context import ModelContext
 from acausal2d.language.unionfind import connector_sets
 from acausal2d.library import planar
-from acausal2d.library.linkage.base import _Assembly, _Linkage
 
 FRAME_REFS = ("relative", "global")
 HALF_PLANES = ("upper", "lower", "left", "right")
@@ -190,7 +189,8 @@ class StartPoses:
         comps = list(model.components())
         for comp in comps:
             self._seed(comp)
-        linkage = [c for c in comps if isinstance(c, _Linkage)]
+        from acausal2d.library.linkage.base import _Linkage   # the linkage imports planar,
+        linkage = [c for c in comps if isinstance(c, _Linkage)]  # which imports the belts
         for _ in range(len(comps) + 1):
             while any([self._propagate(c) for c in comps]):
                 pass
@@ -204,6 +204,7 @@ class StartPoses:
         numbers), seeded with the frames known so far; True if a frame
         became known.  Elements whose inputs stay unknown are left out
         (no guessed origin)."""
+        from acausal2d.library.linkage.base import _Assembly
         frames = [c for comp in comps for c in comp._connectors.values() if isinstance(c, Frame)]
         seeds = [(c, dict(zip(("x", "y", "phi"), self.pose(c)))) for c in frames
                  if self.pose(c) is not None]
