@@ -30,8 +30,8 @@ flanges), so every load is a true external or internal force.
 The band as the frame (code with a trailing ``~``, ``"BDDD~"``; see
 :meth:`BandStructure._build_band_frame`) is a taut straight band along y =
 0 on which discs roll.  Two-band structures are not built by this class;
-see models/band_systematics.py for which structures the rules define and
-which ones are modelled.
+:mod:`acausal2d.library.belt.structures` derives the structures the rules
+define; models/band_systematics.py makes a model of each.
 """
 import math
 

@@ -231,6 +231,12 @@ class _Linkage(Component):
     def _g(self):
         return self.world.g
 
+    def _start(self, variable, parameter):
+        """The start value given for ``variable`` (``phiL=start(...)``), else
+        the start parameter ``parameter`` (``phiL0``): where the element's
+        pre-assembly puts it at t0."""
+        return self.start_value(variable) if self.is_given(variable) else parameter
+
     def _conn(self, n):
         return getattr(self, "ctr2D%d" % n)
 

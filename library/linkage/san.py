@@ -50,7 +50,7 @@ class SAN(_Linkage):
     def _assemble_at(self, asm, p1):
         x1, y1, a = p1
         t = asm.get(self.ctrT2)
-        xG = t["s"] if t and "s" in t else self.xS0
+        xG = t["s"] if t and "s" in t else self._start("xG", self.xS0)
         c, s = ca.cos(a), ca.sin(a)
         xPS, yPS = x1 + xG * c, y1 + xG * s
         dx, dy = _rot(a, self.xSrel, self.ySrel)
