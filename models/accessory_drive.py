@@ -55,7 +55,6 @@ import casadi as ca
 from acausal2d import Component, start
 from acausal2d.library import rotational
 from acausal2d.library.belt import Belt, Pulley, connect_band, tangent
-from acausal2d.library.belt.crane import cycloid
 from acausal2d.library.linkage import DAN
 from acausal2d.library.planar import PlanarWorld
 from acausal2d.library.signals import TimeFunction

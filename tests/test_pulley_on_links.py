@@ -207,3 +207,16 @@ def test_wheel_inertia_powers_against_the_closed_form():
         assert abs(res["pulley.P_T"][i] - m * a.dot(v)) < 1e-6 * scale, (i, "P_T")
         assert abs(res["pulley.P_R"][i] - J * z * w) < 1e-6 * scale, (i, "P_R")
     assert np.ptp(res["pulley.P_T"]) > 0.1 * np.max(np.abs(res["pulley.P_T"]))   # not constant
+
+
+def test_phidot_is_the_speed_in_the_world_frame():
+    """phidot_0 of Tabelle 4.15 is given in GKS: ``phidot=start(5,
+    fixed=True)`` on the pulley of the DAN crank (turning at 1 rad/s) starts
+    it at 5 rad/s in the world, 4 rad/s against its housing; phidot - w_rel
+    is the housing's speed over the whole run (rows' tolerance)."""
+    res = acausal2d.simulate(OnCarrier("dan", "relative",
+                                       mass=dict(J=1e-3, phidot=start(5.0, fixed=True))),
+                             stop_time=TIMES[-1], rtol=RTOL, output_times=TIMES)
+    assert abs(res["pulley.phidot"][0] - 5.0) < 1e3 * RTOL
+    assert abs(res["pulley.w_rel"][0] - (5.0 - CRANK["om"])) < 1e3 * RTOL
+    assert np.max(np.abs(res["pulley.phidot"] - res["pulley.w_rel"] - CRANK["om"])) < 1e3 * RTOL

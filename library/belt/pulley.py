@@ -43,7 +43,11 @@ class _Wheel(_BandElement):
 
     phi = Variable(unit="rad", state_select="prefer", doc="pulley angle (world), unwrapped")
     phi_rel = Variable(unit="rad", doc="pulley angle relative to the housing")
-    w_rel = Variable(unit="rad/s", state_select="prefer", doc="der(phi_rel)")
+    w_rel = Variable(unit="rad/s", state_select="prefer",
+                     doc="der(phi_rel): angular velocity relative to the housing")
+    phidot = Variable(unit="rad/s", doc="der(phi): angular velocity in the world frame GKS "
+                      "(the start value phidot_0 of Tabelle 4.15 is given for it; it equals "
+                      "w_rel only on a housing at rest)")
     T_f = Variable(unit="N.m", doc="bearing friction torque acting on the pulley")
     F_bear = Variable(unit="N", doc="magnitude of the bearing force")
     P_T = Variable(unit="W", doc="power of the inertia force of the wheel, rate of its "
@@ -130,8 +134,9 @@ class _Wheel(_BandElement):
                 "frame whose start pose does not follow from parameters and start values "
                 "(Fixed, Body with start x, y, phi, FixedTranslation, FixedRotation, BodyShape, "
                 "Revolute with a start phi, Prismatic with a start s, the ports of the linkage "
-                "elements DAN, SAN, DDD, ... once their inputs are known).  Give the body that carries it start values (e.g. "
-                "Body(x=start(...), y=start(...), phi=start(...))), or, for frameRef='global', "
+                "elements DAN, SAN, DDD, ... once their inputs are known).  Give the body that "
+                "carries it start values (e.g. Body(x=start(...), y=start(...), phi=start(...))), "
+                "or, for frameRef='global', "
                 "the axis' start pose x10, y10 together with those start values"
                 % self.describe())
 
@@ -187,6 +192,7 @@ class _Wheel(_BandElement):
         arm = (self.xP1 - C.x) * C.fy - (self.yP1 - C.y) * C.fx if moved else 0
         eqs = [self.xP1 == x, self.yP1 == y,
                self.phi_rel == self.phi - phi_h, self.w_rel == der(self.phi_rel),
+               self.phidot == der(self.phi),
                R.phi == self.phi_rel, self.ctrR1.phi == phi_h, self.ctrR2.phi == self.phi,
                C.t == tau - self.ctrR2.tau - self.ctrR1.tau + arm]
         if is_connected(R):

@@ -93,19 +93,31 @@ class _Assembly:
         self.checks = []
         self.guesses = {}       # id(element) -> {variable: expression}
         for comp in comps:
-            for conn in comp._connectors.values():
-                if conn.ground is not None and id(conn) not in connected:
-                    g = conn.ground(comp) if callable(conn.ground) else conn.ground
-                    self.put(conn, dict(g))
-            seed = getattr(comp, "_linkage_seed", None)
-            if seed is not None:
-                for conn, vals in seed():
-                    self.put(conn, vals)
-            else:
-                self._seed_library(comp)
+            self._seed(comp)
         for conn, vals in seeds:
             self.put(conn, vals)
-        elems = [c for c in comps if isinstance(c, _Linkage)]
+        pending = self._assemble_all([c for c in comps if isinstance(c, _Linkage)])
+        for e in pending if fallback else ():
+            e._assemble_alone(self)
+        self.unresolved = pending
+        self._run_checks(comps)
+
+    def _seed(self, comp):
+        """Known poses of ``comp``: its unconnected ground ports, its
+        ``_linkage_seed()`` or, for library parts, :meth:`_seed_library`."""
+        for conn in comp._connectors.values():
+            if conn.ground is not None and id(conn) not in self.connected:
+                g = conn.ground(comp) if callable(conn.ground) else conn.ground
+                self.put(conn, dict(g))
+        seed = getattr(comp, "_linkage_seed", None)
+        if seed is not None:
+            for conn, vals in seed():
+                self.put(conn, vals)
+        else:
+            self._seed_library(comp)
+
+    def _assemble_all(self, elems):
+        """Assemble the elements in turn until none can; the ones left."""
         pending = list(elems)
         while pending:
             progress = False
@@ -115,10 +127,7 @@ class _Assembly:
                     progress = True
             if not progress:
                 break
-        for e in pending if fallback else ():
-            e._assemble_alone(self)
-        self.unresolved = pending
-        self._run_checks(comps)
+        return pending
 
     def check(self, elem, value, condition, hint):
         """Register an assembly condition ``value >= 0`` of ``elem``."""
