@@ -388,15 +388,20 @@ class _Linkage(Component):
             return [{"type": "link", "points": [c, list(point)]}]
         return []
 
-    def _slider_shape(self, PS, phi, guide_port=None):
+    def _slider_shape(self, PS, phi, guide_port=None, travel=None):
         """Slider block at the foot point ``PS`` with angle ``phi``; its
         guide is drawn from the placed point of ``guide_port`` when that
-        point is a result signal (see :meth:`_port_point`)."""
+        point is a result signal (see :meth:`_port_point`); otherwise the
+        slider's own ``travel`` variable (measured from that point) gives
+        its travel range (``"s"``, see
+        :mod:`acausal2d.analysis.slider_ranges`)."""
         shape = {"type": "slider", "x": PS[0], "y": PS[1], "phi": phi}
         if guide_port is not None:
             start, exact = self._port_point(guide_port)
             if exact:
                 shape["guide"] = [start, PS]
+            elif travel is not None:
+                shape["s"] = travel
         return shape
 
     def _body_shape(self, key):
@@ -615,9 +620,9 @@ class _TwoSliders(_Linkage):
         """Both sliders and the links from their foot points to P; guide 2
         is drawn from its placed point (SDS) or from P (SSD)."""
         P1, _ = self._port_point(1)
-        slider2 = self._slider_shape(PS2, "phiS2", guide2_port)
+        slider2 = self._slider_shape(PS2, "phiS2", guide2_port, "xG2")
         if guide2_port is None:
             slider2["guide"] = [P, PS2]
         return (self._housing_shapes(1, P1, "phiS1")
-                + [self._slider_shape(PS1, "phiS1", 1), slider2,
+                + [self._slider_shape(PS1, "phiS1", 1, "xG1"), slider2,
                    {"type": "link", "points": [PS1, P]}])

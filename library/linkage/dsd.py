@@ -126,7 +126,7 @@ class DSD(_Linkage):
         :meth:`_port_point`), so that its travel xG is a slider range."""
         if self._output_offset(3) is None:
             return dict(self._slider_shape(PS, "phiU"), guide=[P1, PS])
-        return self._slider_shape(PS, "phiU", 1)
+        return self._slider_shape(PS, "phiU", 1, "xG")
 
     def topology(self):
         # links: guide = ctr2D3, slider = ctr2D4; revolutes at P1 and P2,

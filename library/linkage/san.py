@@ -90,7 +90,7 @@ class SAN(_Linkage):
         P1, _ = self._port_point(1)
         PS, P = ["xPS", "yPS"], ["ctr2D2.x", "ctr2D2.y"]
         return (self._housing_shapes(1, P1, "phiS")
-                + [self._slider_shape(PS, "phiS", 1),
+                + [self._slider_shape(PS, "phiS", 1, "xG"),
                    {"type": "link", "points": [PS, P]},
                    {"type": "joint", "x": P[0], "y": P[1]}])
 
