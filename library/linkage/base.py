@@ -241,10 +241,13 @@ class _Linkage(Component):
         return self.world.g
 
     def _start(self, variable, parameter):
-        """The start value given for ``variable`` (``phiL=start(...)``), else
-        the start parameter ``parameter`` (``phiL0``): where the element's
+        """The start value given for ``variable`` (``phiL=start(0.3)`` or a
+        number), else the start parameter ``parameter`` (``phiL0``; also
+        for ``start(fixed=True)`` without a value): where the element's
         pre-assembly puts it at t0."""
-        return self.start_value(variable) if self.is_given(variable) else parameter
+        ov = self._overrides.get(variable)
+        given = ov is not None and getattr(ov, "value", ov) is not None
+        return self.start_value(variable) if given else parameter
 
     def _conn(self, n):
         return getattr(self, "ctr2D%d" % n)
