@@ -8,7 +8,7 @@
   leakage + the ropes' damping d l_u eps'^2 + the strain energy of the
   rope material running onto and off the wheels (material leaves a span at
   its strain eps and enters the next at that span's: (c eps^2/2 + d eps
-  eps') l_u' per span; the spans of the seed's model, eq. 4.53-4.62, count
+  eps') l_u' per span; the spans of Ebert (2015), eq. 4.53-4.62, count
   the material on a wheel unstretched);
 * the drums following their motion laws and the ropes staying taut;
 * the study's table and plot.

@@ -1,5 +1,5 @@
-"""A pulley placed with the seed's interface (x10, y10, phi10, frameRef;
-Ebert (2015), Anhang A.1, eq. A.1-A.9) on a moving carrier: the crank of a
+"""A pulley placed with the interface of Ebert (2015) (x10, y10, phi10,
+frameRef; Anhang A.1, eq. A.1-A.9) on a moving carrier: the crank of a
 DAN, the coupler of a four-bar DAN + DDD, the slider of a SAN, and a planar
 Body.  The start pose of the carrier's frame follows from the linkage's
 closed-form start solution (ch. 4.2.1) or the planar joints; the axis P1
