@@ -1,6 +1,5 @@
 """A large straight-line body cut into parts that gcc compiles quickly
-(issue 30: the background compile of the chain of 81 links at -O1 in
-<= 5 s).
+(the background compile of the chain of 81 links at -O1 in <= 5 s).
 
 gcc's -O1 time grows faster than the size of a function: register
 allocation and the CSE after it walk the values live at once, and a body of

@@ -1,5 +1,5 @@
 """CasADi-generated function bodies made straight-line C, so that the C
-compiler spends less time on them (issue 30: a cheaper compile).
+compiler spends less time on them (a cheaper compile).
 
 CasADi's code generator guards every read of an input and every write of an
 output: ``a0=arg[1]? arg[1][12] : 0;`` and ``if (res[0]!=0) res[0][7]=a0;``.

@@ -1,4 +1,4 @@
-"""Tiered execution (issue 30): the first run of a model structure does not
+"""Tiered execution: the first run of a model structure does not
 wait for the C compiler.
 
 ``ACAUSAL2D_NATIVE`` (and ``acausal2d simulate --native``) chooses:
@@ -13,7 +13,7 @@ wait for the C compiler.
   compiled first (a small model's Python path costs more).  A run
   long enough that waiting for the compile pays waits for it (the choice
   and its reason are in the run's ``native`` notes);
-- ``now`` (or ``1``): compile first, in this process (before issue 30);
+- ``now`` (or ``1``): compile first, in this process;
 - ``off`` (or ``0``): the Python path only.
 
 A recipe (:class:`~acausal2d.runtime.codegen.Recipe`) says what C a library is generated from - the
