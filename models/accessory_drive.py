@@ -16,8 +16,9 @@ it turns clockwise.  T's axis is the end of a lever: a
 :class:`~acausal2d.library.linkage.DAN` pivoted in the frame (its crank is
 the lever, not driven), the pulley placed on the lever's plane ``ctr2D2``
 with ``x10 = y10 = 0`` (Anhang A.1, frameRef 'relative'); a torsion
-spring-damper between the DAN's housing flange ``ctrR1`` and lever flange
-``ctrR2`` presses T into the belt.
+spring between the DAN's housing flange ``ctrR1`` and lever flange
+``ctrR2`` presses T into the belt, a viscous damper on the lever's flange
+damps it.
 
 Values ASSUMED (metres, x right, y up):
 
@@ -52,7 +53,7 @@ import sys
 
 import casadi as ca
 
-from acausal2d import Component, start
+from acausal2d import Component, der, Parameter, RotationalFlange, start, Variable
 from acausal2d.library import rotational
 from acausal2d.library.belt import Belt, Pulley, connect_band, tangent
 from acausal2d.library.linkage import DAN
@@ -119,6 +120,24 @@ def spring_zero_angle():
     return lever_start()[1] - lever_moment() / C_SPRING
 
 
+class ViscousLoad(Component):
+    """A torque against the speed of ``flange`` (reaction in the ground):
+    ``flange.tau = d w``, ``w = der(flange.phi)``; ``loss_power = d w^2``.
+    (The absolute angle keeps its own scale; a Damper to a fixed flange
+    would make it a relative state of nominal 1e-4 rad.)"""
+    d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
+    w = Variable(unit="rad/s", doc="speed of the flange")
+    loss_power = Variable(unit="W", doc="power taken, d w^2")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+
+    def equations(self):
+        return [self.w == der(self.flange.phi), self.flange.tau == self.d * self.w,
+                self.loss_power == self.d * self.w ** 2]
+
+
 class AccessoryDrive(Component):
     """Accessory belt drive with a back-side tensioner on a lever (module
     docstring)."""
@@ -135,17 +154,17 @@ class AccessoryDrive(Component):
         length, phi0 = lever_start()
         self.lever = DAN(x10=PIVOT[0], y10=PIVOT[1], lL=length, mL=0.0, JL=J_LEVER,
                          phiL=start(phi0, fixed=True), omL=start(0.0, fixed=True))
-        self.tensioner = rotational.SpringDamper(c=C_SPRING, d=D_SPRING,
-                                                 phi_rel0=spring_zero_angle())
+        self.tensioner = rotational.Spring(c=C_SPRING, phi_rel0=spring_zero_angle())
+        self.lever_damper = ViscousLoad(d=D_SPRING)      # the housing stands: absolute = relative
         self.connect(self.lever.ctrR1, self.tensioner.flange_a)
         self.connect(self.lever.ctrR2, self.tensioner.flange_b)
+        self.connect(self.lever.ctrR2, self.lever_damper.flange)
         for name, (P, r, J, w_i, load) in PULLEYS.items():
             place = dict(x10=0.0, y10=0.0) if name == "T" else dict(x10=P[0], y10=P[1])
             setattr(self, name, Pulley(r=r, J=J, w_i=w_i, **place))
             if load is not None:
-                setattr(self, "load" + name, rotational.SpringDamper(c=0.0, d=load))
-                self.connect(getattr(self, name).ctrR1, getattr(self, "load" + name).flange_a)
-                self.connect(getattr(self, name).ctrR2, getattr(self, "load" + name).flange_b)
+                setattr(self, "load" + name, ViscousLoad(d=load))
+                self.connect(getattr(self, name).ctrR2, getattr(self, "load" + name).flange)
         self.connect(self.lever.ctr2D2, self.T.ctr2D1)
         self.law = TimeFunction(crank_angle)
         self.drive = rotational.Position()

@@ -52,11 +52,11 @@ class MeteredDrive(Drive):
         kin = sum(0.5 * getattr(self, n).J * der(getattr(self, n).phi) ** 2 for n in ad.PULLEYS)
         kin = kin + 0.5 * self.lever.JL * der(self.lever.phiL) ** 2
         t = self.tensioner
-        elastic = 0.5 * t.c * (t.phi_rel - t.phi_rel0) ** 2 + sum(
+        elastic = 0.5 * t.c * (t.tau / t.c) ** 2 + sum(
             getattr(self, n).c * getattr(self, n).l_u * getattr(self, n).eps ** 2 / 2
             for n in SPANS)
         return [der(self.E_in) == self.C.ctrR2.tau * der(self.C.phi),
-                der(self.E_loss) == loads + t.loss_power + belt,
+                der(self.E_loss) == loads + self.lever_damper.loss_power + belt,
                 self.E_store == kin + elastic]
 
 
