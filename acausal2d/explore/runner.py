@@ -101,6 +101,7 @@ class Explorer:
         self._latest = collections.OrderedDict()
         self._lock = threading.Lock()
         self.runs = 0
+        self._diagrams, self.flow_names = None, []
 
     # ---------------------------------------------------------------- model
     def figures(self):
@@ -119,11 +120,16 @@ class Explorer:
     def parameters(self):
         """Every parameter (vectors as a whole): name, value (a list), unit,
         rule, doc, min, max, positive, nonzero and the slider's range per
-        component (``GET /api/params``)."""
+        component (``GET /api/params``); not the parameters read while
+        compiling (:attr:`~acausal2d.compiled.CompiledModel.structural`:
+        a slider would change nothing, a request changing one is refused
+        naming it)."""
         cm = self.compiled
         vals = cm.parameter_values()
         out = []
         for name, (decl, idx) in cm.parameter_declarations.items():
+            if name in cm.structural:
+                continue
             v = [float(vals[i]) for i in idx]
             out.append({"name": name, "value": v, "unit": decl.unit or "", "rule": decl.rule,
                         "doc": decl.doc or "", "min": decl.min, "max": decl.max,
@@ -139,9 +145,30 @@ class Explorer:
                 "parameters": self.parameters(), "figures": self.figures(),
                 "signals": [{"name": n, "unit": units.get(n, "")} for n in cm.names],
                 "outputs": list(cm.outputs), "stop_time": self.defaults["stop_time"],
+                "structural": sorted(cm.structural),
                 "movable": movable(cm),
                 "max_stop_time": self.defaults["max_stop_time"],
-                "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time}
+                "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time,
+                "diagrams": self.diagrams(), "planar": has_geometry(cm.model)}
+
+    def diagrams(self):
+        """The model's diagram and each sub-model's (``[{"path", "svg"}]``,
+        the model first; see :mod:`acausal2d.visual.diagram`), made once."""
+        if self._diagrams is None:
+            from ..visual.diagram import diagram_svg, structure, submodel_paths
+            model, names = self.compiled.model, set(self.compiled.names)
+            levels = [""] + submodel_paths(model)
+            try:
+                self._diagrams = [{"path": p, "svg": diagram_svg(model, path=p)}
+                                  for p in levels]
+                self.flow_names = [f for p in levels for ln in structure(model, path=p).lines
+                                   for f in ln.flows if f in names]
+            except Exception as exc:     # noqa: BLE001 - the page works without its diagram
+                import warnings
+                warnings.warn("explore: no diagram of the model (%s: %s)"
+                              % (type(exc).__name__, exc))
+                self._diagrams, self.flow_names = [], []
+        return self._diagrams
 
     def parse(self, raw, drag=False):
         """A checked :class:`~acausal2d.explore.requests.RunSpec` from a
@@ -221,6 +248,8 @@ class Explorer:
                        for k, v in spec.params.items()}, "start": spec.start}
         if spec.scene:
             out["scene"] = scene_page(res)
+            self.diagrams()
+            out["flows"] = {n: _column(res[n]) for n in self.flow_names}
         return out
 
     @staticmethod
@@ -233,6 +262,19 @@ class Explorer:
     def close(self):
         """Stop the worker (waits for the run in progress)."""
         self._worker.shutdown(wait=True, cancel_futures=True)
+
+
+def has_geometry(model):
+    """True if a component of ``model`` draws itself in the animation (a
+    planar mechanism); the page shows a drive train or a hydraulic circuit
+    by its diagram only."""
+    for comp in model.components():
+        try:
+            if comp.shapes():
+                return True
+        except Exception:        # noqa: BLE001 - a drawing hook that fails: no geometry
+            continue
+    return False
 
 
 def scene_page(res):

@@ -27,6 +27,7 @@ import threading
 import time
 
 from . import cbuild, cstore
+from ..errors import Acausal2dError
 from .background import (compile_seconds, failure_path, launch, pending, queue,  # noqa: F401
                          wait)  # the worker side
 
@@ -63,13 +64,22 @@ def choose(value):
 
 def mode():
     """``auto``, ``now`` or ``off``: the mode chosen (:func:`choose`), else
-    ``$ACAUSAL2D_NATIVE`` (see the module docstring; unset: auto)."""
+    ``$ACAUSAL2D_NATIVE`` (see the module docstring; unset: auto);
+    :class:`NativeModeError` naming the modes for another value."""
     value = (_chosen[0] or os.environ.get(ENV, "auto")).strip().lower()
     if value in ("0", "off", "no", "false"):
         return "off"
     if value in ("now", "1", "on", "yes", "true"):
         return "now"
-    return "auto"
+    if value in ("auto", ""):
+        return "auto"
+    raise NativeModeError("$%s=%r is not a native mode; give one of %s (or 1/on for now, "
+                          "0/off for off), or unset it for auto" % (ENV, os.environ.get(ENV),
+                                                                   ", ".join(MODES)))
+
+
+class NativeModeError(Acausal2dError):
+    """``$ACAUSAL2D_NATIVE`` names no mode (:data:`MODES`)."""
 
 
 def _failed_before(key, name):
@@ -110,12 +120,27 @@ def obtain(key, recipe, loader):
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)
     except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError) as exc:
-        if first:          # as a failed background compile: said once by later runs
-            cstore.write_atomic(failure_path(key, recipe.name),
-                                ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
+        _failed_now(key, recipe, exc, first)
         return None
     finally:
         _spent[0] += waited + (time.perf_counter() - t0 if path is None else 0.0)
+
+
+def _failed_now(key, recipe, exc, first):
+    """Say in one line that the native code of ``recipe`` is not used and
+    why (a compiler missing or killed, a full disk, a library the loader
+    refused twice); a compile made first leaves its failure marker, as a
+    failed background compile does (a marker that cannot be written, on a
+    full disk, is only said)."""
+    why = str(exc).strip().splitlines()[0][:200] if str(exc).strip() else type(exc).__name__
+    cstore.notice("the native code %s for %s could not be built or loaded (%s); this run "
+                  "uses the Python path" % (recipe.name, _label[0], why))
+    if first:
+        try:
+            cstore.write_atomic(failure_path(key, recipe.name),
+                                ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
+        except OSError:
+            pass
 
 
 _ahead: dict = {}       # key -> the thread compiling its library ahead (:func:`ahead`)

@@ -164,7 +164,7 @@ def _cached(cache, key, folder, anim_folder):
     try:
         with open(os.path.join(cache, key + ".json"), encoding="utf-8") as fh:
             entry = json.load(fh)
-        for png in entry["figures"]:
+        for png in entry["figures"] + [entry["diagram"]]:
             shutil.copy2(os.path.join(cache, png), os.path.join(folder, png))
         os.makedirs(anim_folder, exist_ok=True)
         shutil.copy2(os.path.join(cache, entry["animation"]),
@@ -178,7 +178,7 @@ def _store(cache, key, entry, folder, anim_folder):
     import json
     import shutil
     os.makedirs(cache, exist_ok=True)
-    for png in entry["figures"]:
+    for png in entry["figures"] + [entry["diagram"]]:
         shutil.copy2(os.path.join(folder, png), os.path.join(cache, png))
     shutil.copy2(os.path.join(anim_folder, entry["animation"]),
                  os.path.join(cache, entry["animation"]))
@@ -220,7 +220,8 @@ def _entry_text(path, name, entry):
     rel = os.path.relpath(path, ROOT)
     title = name or os.path.basename(path)
     command = "acausal2d simulate %s%s" % (rel, " --model " + name if name else "")
-    lines = ["## %s" % title, "", entry["doc"] or "", "", "```", command, "```", ""]
+    lines = ["## %s" % title, "", entry["doc"] or "", "", "```", command, "```", "",
+             "![diagram of %s](%s)" % (title, entry["diagram"]), ""]
     for png in entry["figures"]:
         lines += ["![%s](%s)" % (title, png), ""]
     lines += ["```{raw} html",
