@@ -120,6 +120,7 @@ def test_drums_follow_their_motion_laws_and_the_ropes_stay_taut(cycle):
         assert np.min(res[name + ".F"]) > 0.0, name
 
 
+@pytest.mark.slow          # six runs of the lift (a study)
 def test_study_writes_the_pressure_table_and_plot(tmp_path):
     """The declared study writes its table and plot; the largest load
     pressure falls with the ratio and never lies below the quasi-static
