@@ -2,6 +2,7 @@
 the animation page and the run's manifest."""
 import os
 import sys
+import warnings
 
 from ..errors import Acausal2dError
 from .args import _check_names, _parse_set
@@ -187,7 +188,6 @@ def _write_diagram(model, path):
     except (KeyboardInterrupt, MemoryError, OSError):
         raise
     except Exception as exc:          # noqa: BLE001 - the run's results matter more
-        import warnings
         warnings.warn("diagram.svg is not written: %s: %s" % (type(exc).__name__, exc))
 
 
