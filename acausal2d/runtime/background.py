@@ -9,7 +9,6 @@ build` (a lock per library: a second worker of the same structure waits,
 then finds the library published) and ends; a job that fails leaves its
 marker (:func:`failure_path`) with the message.
 """
-import fcntl
 import os
 import pickle
 import subprocess
@@ -117,7 +116,8 @@ def launch(label=None, held=False):
             pickle.dump([(key, recipe) for key, recipe, _ in jobs], fh)
         _holds[path + HOLD] = os.open(path + HOLD, os.O_CREAT | os.O_RDWR, 0o600)
         if held:
-            fcntl.flock(_holds[path + HOLD], fcntl.LOCK_EX)
+            from . import posix
+            posix.lock(_holds[path + HOLD])
         log = open(path + ".log", "ab")
     except OSError:
         return False
@@ -160,11 +160,11 @@ def hold():
     that decision): the two share the machine's caches and memory.  The
     hold is a lock (``fcntl.flock``), so it ends with :func:`release` at
     the run's end, or with this process.  Returns whether a worker is held."""
+    from . import posix
     held = False
     for fd in list(_holds.values()):          # a copy: runs in other threads may launch
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX)
-            held = True
+            held = posix.lock(fd)
         except OSError:
             pass
     return held
@@ -187,8 +187,9 @@ def _held(path):
         fd = os.open(path + HOLD, os.O_RDONLY)
     except OSError:
         return
+    from . import posix
     try:
-        fcntl.flock(fd, fcntl.LOCK_SH)
+        posix.lock(fd, exclusive=False)
     except OSError:
         pass
     finally:
