@@ -22,6 +22,8 @@ import tempfile
 import shutil
 import time
 
+from . import posix
+
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
     from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
 except ImportError:     # start-up of importing hashlib (2.8 ms of a process's first run)
@@ -209,7 +211,6 @@ def locked(target, wait=True):
     except OSError:
         yield True
         return
-    from . import posix          # here: nothing on the way to a run needs fcntl
     with fh:
         if not posix.lock(fh, wait=wait):
             yield False

@@ -1,8 +1,8 @@
 """The POSIX-only parts of the runtime in one place: file locks
 (``fcntl.flock``) of the native cache and of the background compile.
 
-This module is imported where a lock is taken, never on the way to a
-simulation, and ``fcntl`` only inside it: where ``fcntl`` is missing
+``fcntl`` is imported inside these functions only, where a lock is taken
+(never on the way to a simulation on the Python path): where it is missing
 (Windows), a lock locks nothing (:func:`lock` returns True, as for a lock
 file that cannot be made), and the Python path runs as everywhere.
 """
