@@ -1,12 +1,10 @@
 """How the background worker and the foreground build native code (issue
-30, a cheaper compile): a large library is published at -O0 first and
-replaced by its -O1 build; the drivers' constant C is compiled once per
+30, a cheaper compile): the drivers' constant C is compiled once per
 machine into cached, verified object files that every structure's library
 links; the row maps are not compiled where the C projector serves; and the
 worker compiles two libraries at once, their C generated in its main
 thread."""
 import os
-import pickle
 import sys
 import threading
 import types
@@ -14,8 +12,8 @@ import types
 import pytest
 
 import acausal2d
-from acausal2d.runtime import (background, cbuild, codegen, cstore, native, projection,
-                               simulation, tiers)
+from acausal2d.runtime import (background, cbuild, cstore, projection,
+                               tiers)
 from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
 from tiers_support import agree as _agree
 
@@ -40,53 +38,6 @@ def cache(tmp_path, monkeypatch):
 def _run(model, stop_time=0.5, rtol=1e-8, intervals=200):
     cm = acausal2d.compile_model(model)
     return cm.simulate(stop_time=stop_time, rtol=rtol, intervals=intervals)
-
-
-def test_a_large_library_is_published_at_O0_first_then_replaced_at_O1(cache, monkeypatch):
-    launch = background.launch
-    monkeypatch.setattr(background, "launch", lambda label=None: False)
-    monkeypatch.setattr(simulation, "launch", lambda label=None: False)
-    _run(Pendulum())
-    jobs = [(key, recipe) for key, recipe, _ in background._queue]
-    del background._queue[:]                               # this test is the worker
-    assert "a2d_model" in [recipe.name for _, recipe in jobs]
-    path = str(cache / ".tmp-job-test")
-    with open(path, "wb") as fh:
-        pickle.dump(jobs, fh)
-    builds, published = [], []
-    real_build, real_publish = cbuild.build, cbuild.publish_index
-
-    def build(sources, flags=(), **kw):
-        out = real_build(sources, flags=flags, **kw)
-        builds.append((kw.get("name"), list(flags), out))
-        return out
-
-    def publish(key, name, lib):
-        published.append((name, lib))
-        real_publish(key, name, lib)
-    monkeypatch.setattr(cbuild, "build", build)
-    monkeypatch.setattr(cbuild, "publish_index", publish)
-    monkeypatch.setattr(codegen, "QUICK_FROM", 0)         # every library is large
-    monkeypatch.setattr(codegen, "QUICK_BODY", 0)         # and long
-    monkeypatch.setattr(os, "nice", lambda inc: 0)         # the worker's, not this process's
-    background._work(path)
-    model = [(flags, out) for name, flags, out in builds if name == "a2d_model"]
-    assert [("-O0" in f, "-O1" in f) for f, _ in model] == [(True, False), (False, True)]
-    quick, full = model[0][1], model[1][1]
-    assert [lib for name, lib in published if name == "a2d_model"] == [quick, full]
-    key = next(key for key, recipe in jobs if recipe.name == "a2d_model")
-    assert cbuild.lookup(key, "a2d_model") == full
-    assert not os.path.exists(quick)                       # the -O0 file went
-    assert not os.path.exists(path)                        # the job file too
-    monkeypatch.setattr(background, "_seen", set())
-    monkeypatch.setattr(background, "launch", launch)     # workers again for the rest
-    monkeypatch.setattr(simulation, "launch", launch)
-    cm = acausal2d.compile_model(Pendulum())               # finds the -O1 library
-    with_full = cm.simulate(stop_time=0.5, rtol=1e-8, intervals=200)
-    assert native.library(next(iter(cm.system._formulations.values()))) is not None
-    monkeypatch.setenv(tiers.ENV, "off")
-    ref = _run(Pendulum())
-    _agree(with_full, ref, ("revolute.phi", "revolute.w"), 1e-8)
 
 
 def _objects(folder):
@@ -156,10 +107,7 @@ class _Slow:
             self._code = "/* %s */" % self.name
         return self._code
 
-    def builds_twice(self):
-        return False
-
-    def make(self, quick=False):
+    def make(self):
         self.code()
         with self.running["lock"]:
             self.running["now"] += 1

@@ -99,30 +99,16 @@ def wait(timeout):
     return True
 
 
-def _build(key, recipe, quick):
-    """Build and publish one job's library (at -O0 where ``quick``);
-    False, with the failure marker left, where that fails."""
+def _build(key, recipe):
+    """Build and publish one job's library; False, with the failure marker
+    left, where that fails."""
     try:
-        cbuild.publish_index(key, recipe.name, recipe.make(quick))
+        cbuild.publish_index(key, recipe.name, recipe.make())
         return True
     except Exception as exc:       # noqa: BLE001 - recorded for the next run
         cstore.write_atomic(failure_path(key, recipe.name),
                             ("%s: %s" % (type(exc).__name__, exc)).encode("utf-8"))
         return False
-
-
-def _optimize(key, recipe):
-    """The second build of a library published at -O0: the -O1 library
-    replaces it in the index, and the -O0 file goes (a process that loaded
-    it keeps its copy).  A failure keeps the -O0 library."""
-    before = cbuild.lookup(key, recipe.name)
-    try:
-        path = recipe.make()
-    except Exception:              # noqa: BLE001 - the -O0 library stays in use
-        return
-    cbuild.publish_index(key, recipe.name, path)
-    if before is not None and before != path:
-        cstore.discard(before)
 
 
 BUILDS_AT_ONCE = 2
@@ -141,38 +127,27 @@ class _Builds:
     one thread at a time."""
 
     def __init__(self):
-        self.running, self.twice = [], []
+        self.running = []
 
     def start(self, key, recipe, generated):
         """Build ``recipe`` (published under ``key``) beside the others;
         where its C could not be ``generated``, the build meets the error
         again, in this thread, and records it."""
         if not generated:
-            _build(key, recipe, False)
+            _build(key, recipe)
             return
-        for build in [b for b in self.running if not b[0].is_alive()]:
-            self.running.remove(build)
-            self._finish(build)
+        self.running = [t for t in self.running if t.is_alive()]
         while len(self.running) >= BUILDS_AT_ONCE:
-            self._finish(self.running.pop(0))
-        quick = recipe.builds_twice()
-        box = []
-        thread = threading.Thread(target=lambda: box.append(_build(key, recipe, quick)),
-                                  daemon=True, name="acausal2d-build-%s" % recipe.name)
+            self.running.pop(0).join()
+        thread = threading.Thread(target=_build, args=(key, recipe), daemon=True,
+                                  name="acausal2d-build-%s" % recipe.name)
         thread.start()
-        self.running.append((thread, key, recipe, quick, box))
-
-    def _finish(self, build):
-        thread, key, recipe, quick, box = build
-        thread.join()
-        if quick and box == [True]:
-            self.twice.append((key, recipe))
+        self.running.append(thread)
 
     def finish(self):
-        """Wait for every build; the libraries published at -O0 first."""
+        """Wait for every build."""
         while self.running:
-            self._finish(self.running.pop(0))
-        return self.twice
+            self.running.pop(0).join()
 
 
 def _generate(recipe):
@@ -186,10 +161,8 @@ def _generate(recipe):
 
 
 def _work(path):
-    """The worker: build each job of the job file - large ones at -O0
-    first, all of them published before any is optimized
-    (:meth:`~acausal2d.runtime.codegen.Recipe.builds_twice`), up to
-    :data:`BUILDS_AT_ONCE` at once - and leave a marker where one fails."""
+    """The worker: build each job of the job file, up to
+    :data:`BUILDS_AT_ONCE` at once, and leave a marker where one fails."""
     try:
         os.nice(NICE)
     except OSError:
@@ -202,8 +175,7 @@ def _work(path):
             if cbuild.lookup(key, recipe.name) is not None:     # another worker built it
                 continue
             builds.start(key, recipe, _generate(recipe))
-        for key, recipe in builds.finish():
-            _optimize(key, recipe)
+        builds.finish()
     finally:
         for p in (path, path + ".log"):
             try:

@@ -43,9 +43,8 @@ import numpy as np
 from . import blt_layout, cbuild, cstore, drivers, ordering, tiers
 from ..options import STEPS_PER_OUTPUT
 from ..threads import libraries_loaded
-from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
-                      optimization, too_large)
-from . import codegen, cparts, cstraight
+from .codegen import NATIVE_BELOW, Recipe, eliminated, optimization, too_large  # noqa: F401
+from . import codegen
 
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
              "core")
@@ -157,8 +156,7 @@ def _generator():
     so a library generated differently is never found again."""
     if __file__ not in _module_texts:
         _module_texts[__file__] = _text(__file__) + _text(codegen.__file__) + \
-            _text(cstraight.__file__) + _text(cparts.__file__) + _text(drivers.__file__) + \
-            "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
+            _text(drivers.__file__) + "\n%d" % NATIVE_BELOW
     return _module_texts[__file__]
 
 
