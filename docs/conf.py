@@ -20,7 +20,7 @@ author = "The acausal2d authors"
 copyright = "2026, The acausal2d authors"
 release = version = acausal2d.__version__
 
-extensions = ["myst_nb", "sphinx.ext.autodoc", "gallery"]
+extensions = ["myst_nb", "sphinx.ext.autodoc", "gallery", "site_links"]
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb"}
 exclude_patterns = ["_build", "jupyter_execute", "**.ipynb_checkpoints"]
 root_doc = "index"

@@ -18,17 +18,17 @@
   InverseBlockConstraints, and Modelica.Blocks' Step, Pulse, Gain, Add, Add3,
   Feedback, Limiter, Integrator, Derivative (:mod:`~acausal2d.library.blocks`),
   PID and LimPID (:mod:`~acausal2d.library.controllers`).
-- :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (seed Anhang B).
+- :mod:`acausal2d.library.linkage`: VDI 2729 linkage elements (Ebert 2015, Anhang B).
 - :mod:`acausal2d.library.linkage.drives`: motion presets, sources and
   measuring modules for the linkage elements.
-- :mod:`acausal2d.library.belt`: belt and rope drives (seed ch. 4.4): elastic
+- :mod:`acausal2d.library.belt`: belt and rope drives (Ebert 2015, ch. 4.4): elastic
   belt spans, belt with tension spring, belt with draw-off nozzle, circular
   pulleys and drums with optional bearing friction.
 - :mod:`acausal2d.library.belt.curved`: pulley and drum with curved contour
-  (seed eq. 4.100-4.122); contours from a function, a table, a Fourier
+  (Ebert 2015, eq. 4.100-4.122); contours from a function, a table, a Fourier
   series or a support function.
 - :mod:`acausal2d.library.synthesis`: band synthesis elements DB_BD,
-  DB_SD, Bandkurve (seed ch. 4.3); :mod:`~acausal2d.library.synthesis.functional`
+  DB_SD, Bandkurve (Ebert 2015, ch. 4.3); :mod:`~acausal2d.library.synthesis.functional`
   the same synthesis as a function (``synthesize``);
   :mod:`~acausal2d.library.synthesis.assessment` the criteria of ch. 5;
   :mod:`~acausal2d.library.synthesis.balancing` spring-band balancing of ch. 6;

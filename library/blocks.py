@@ -141,6 +141,21 @@ class Add3(Component):
         return [self.y.u == self.k1 * self.u1.u + self.k2 * self.u2.u + self.k3 * self.u3.u]
 
 
+class Product(Component):
+    """Product of two inputs (Modelica.Blocks.Math.Product, MSL 4.0)::
+
+        y = u1 * u2"""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.u1 = RealInput()
+        self.u2 = RealInput()
+        self.y = RealOutput()
+
+    def equations(self):
+        return [self.y.u == self.u1.u * self.u2.u]
+
+
 class Feedback(Component):
     """Difference of the commanded and the feedback signal
     (Modelica.Blocks.Math.Feedback): ``y = u1 - u2`` (``u2`` is the

@@ -1,15 +1,18 @@
 """1D friction elements with stiction (Modelica.Mechanics.Rotational.
 Components.BearingFriction, Brake, OneWayClutch and Modelica.Mechanics.
-Translational.Components.SupportFriction, MSL 4.0), and the friction law
-they share with :class:`acausal2d.library.rotational.Clutch`.
+Translational.Components.SupportFriction, MassWithStopAndFriction, MSL 4.0),
+and the friction laws they share with
+:class:`acausal2d.library.rotational.Clutch`.
 
-Modelica's PartialFriction switches between the modes Forward, Stuck,
-Backward and Free by a state machine: stuck while the torque needed to
-keep the relative speed at 0 stays below ``tau0_max = peak * tau0``, then
-sliding with the characteristic ``tau(w)`` (a table ``[w, tau]`` or
-``[w, mu]``).  acausal2d keeps one DAE for the whole run, so sticking is a
-stick zone ``|w| < w_s`` (seed ch. 8.2's discClutch, see
-docs/guide/friction.md) with the same thresholds::
+By default (``law="modes"``) they compute Modelica's PartialFriction: the
+modes Forward, Stuck, Backward and Free of its state machine are held by
+latches (:func:`mode_latches`, :func:`partial_friction`); stuck, the
+relative acceleration is 0 and any torque up to ``tau0_max = peak * tau0``
+passes; sliding, the characteristic ``tau(w)`` (a table ``[w, tau]`` or
+``[w, mu]``) acts.
+
+``law="zone"`` keeps one DAE without modes: a stick zone ``|w| < w_s``
+(Ebert 2015, ch. 8.2's discClutch) with the same thresholds::
 
     x = w / w_s,  sat = min(max(x, -1), 1),  e = (x - sat) * sat   (= |x| - 1 outside, 0 inside)
     tau = sat * (tau0_max + (tau_slide(|w|) - tau0_max) * (1 - exp(-e^2)))
@@ -18,18 +21,17 @@ Inside the zone the element is a stiff viscous coupling ``tau0_max / w_s``:
 stuck (creep ``|w| <= w_s``) as long as the torque it has to pass stays
 below ``tau0_max``; leaving the zone (an event) the torque falls from the
 breakaway value ``tau0_max`` to the sliding characteristic within a few
-``w_s`` of speed, i.e. at once on the time scale of the motion; entering it
-is locking.  Lock and unlock times match Modelica's to about ``J_eff w_s /
-tau0`` (the lag of the zone).  With ``peak = 1`` and a constant
-characteristic the law is the clutch's Karnopp saturation ``tau0 sat``.
+``w_s`` of speed; entering it is locking.  Lock and unlock times match
+Modelica's to about ``J_eff w_s / tau0`` (the lag of the zone).
 
 ``w_small`` (Modelica: a speed beyond which a velocity jump by ``reinit``
 starts sliding at once) is accepted so that models transcribe one to one;
-speeds in acausal2d never jump, so it changes nothing."""
+it changes nothing."""
 import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RotationalFlange,
                        TranslationalFlange, Variable)
+from acausal2d.language.symbols import define_latch, latch
 from acausal2d.errors import ModelDefinitionError
 
 
@@ -78,39 +80,187 @@ def interpolate(rows, v):
     return out
 
 
-def friction_law(w, w_s, tau0_max, tau_slide):
-    """Friction torque for the relative speed ``w``: the stick zone of
-    width ``w_s`` up to ``tau0_max``, outside it ``sign(w) tau_slide(|w|)``
-    (``tau_slide``: a function of the speed magnitude), joined continuously
-    (module docstring).  ``exp(-e^2)`` stays bounded where a held relation
-    value makes ``e`` negative (between a crossing and its event), which
-    ``exp(-e)`` would overflow."""
+def zone_torque(w, w_s, tau0_max, tau_slide):
+    """(torque, sat) of the stick-zone law for the relative speed ``w``:
+    the stick zone of width ``w_s`` up to ``tau0_max``, outside it
+    ``sign(w) tau_slide(|w|)`` (``tau_slide``: a function of the speed
+    magnitude), joined continuously (module docstring); ``sat`` is
+    ``w / w_s`` clipped to [-1, 1].  ``exp(-e^2)`` stays bounded where a
+    held relation value makes ``e`` negative (between a crossing and its
+    event), which ``exp(-e)`` would overflow."""
     x = w / w_s
     sat = ca.fmin(ca.fmax(x, -1.0), 1.0)
     e = (x - sat) * sat
-    return sat * (tau0_max + (tau_slide(w * sat) - tau0_max) * (1 - ca.exp(-e * e)))
+    return sat * (tau0_max + (tau_slide(w * sat) - tau0_max) * (1 - ca.exp(-e * e))), sat
 
 
-class _Friction(Component):
-    """Parameters every friction element has: peak, w_s, w_small."""
+def friction_law(w, w_s, tau0_max, tau_slide):
+    """The friction torque of :func:`zone_torque`."""
+    return zone_torque(w, w_s, tau0_max, tau_slide)[0]
+
+
+LAWS = ("modes", "zone")
+
+
+def check_law(comp, law):
+    """``law`` if it is one of :data:`LAWS`, else an error naming the component."""
+    if law not in LAWS:
+        raise ModelDefinitionError("%s: law must be 'modes' (Modelica's PartialFriction) or "
+                                   "'zone' (a stick zone of width w_s), not %r"
+                                   % (type(comp).__name__, law))
+    return law
+
+
+def _named(comp, name):
+    return "%s.%s" % (comp.path, name) if comp.path else name
+
+
+def mode_latches(comp, w, sa, free, tau0, tau0_max, block=(None, None)):
+    """The latches of Modelica's PartialFriction state machine for the
+    relative speed ``w`` and the path parameter ``sa``: ``(fw, wp, bw, wn)``
+    = sliding forward (startForward or Forward), forward with ``w`` > 0
+    reached (Forward), and the same backward.  ``free``: the relation (0/1)
+    of an inactive element; ``block``: relations (0/1) that forbid sliding
+    forward/backward (the hard stops of MassWithStopAndFriction), or None.
+
+    Crossing functions (a latch is 1 where its function is > 0; the
+    function depends on the latch values, which gives the hysteresis of
+    Modelica's ``pre(mode)``)::
+
+        fw = 1:  free: w;  Forward (wp): w;  startForward: sa - tau0
+        fw = 0:  free: w;  backward: -1;     stuck: sa - tau0_max
+        wp:      fw: w;    else -1
+        (bw, wn mirrored: -w, -sa - tau0, -sa - tau0_max)
+
+    A blocked direction has -1.  At the start (Modelica's ``initial() and
+    w > 0``) fw and wp are ``w > 0``, bw and wn ``w < 0``.  While stuck no
+    crossing function is near zero by rounding: the speed, held constant
+    there, is watched by none of them."""
+    fw, wp, bw, wn = (latch(_named(comp, n)) for n in
+                      ("sliding_forward", "forward", "sliding_backward", "backward"))
+
+    def side(mine, reached, other, sgn):
+        g_on = ca.if_else(free, sgn * w, ca.if_else(reached, sgn * w, sgn * sa - tau0))
+        g_off = ca.if_else(free, sgn * w, ca.if_else(other, -1.0, sgn * sa - tau0_max))
+        return ca.if_else(mine, g_on, g_off)
+    gs = [side(fw, wp, bw, 1.0), ca.if_else(fw, w, -1.0),
+          side(bw, wn, fw, -1.0), ca.if_else(bw, -w, -1.0)]
+    for k, stop in ((0, block[0]), (2, block[1])):
+        if stop is not None:
+            gs[k] = ca.if_else(stop, -1.0, gs[k])
+    texts = ("sliding forward (%s)" % _named(comp, "startForward/Forward"),
+             "forward speed reached (%s)" % _named(comp, "mode = Forward"),
+             "sliding backward (%s)" % _named(comp, "startBackward/Backward"),
+             "backward speed reached (%s)" % _named(comp, "mode = Backward"))
+    for sym, g, sgn, text in zip((fw, wp, bw, wn), gs, (1, 1, -1, -1), texts):
+        define_latch(sym, g, text, g_start=sgn * w)
+    return fw, wp, bw, wn
+
+
+def partial_friction(comp, w, a, sa, free, tau0, tau0_max, slide, block=(None, None)):
+    """Modelica's PartialFriction (MSL 4.0, Modelica.Mechanics.Rotational.
+    Interfaces.PartialFriction) for the relative speed ``w``, its
+    acceleration ``a`` and the path parameter ``sa`` (an unknown of the
+    element); returns ``(tau, equations, latches)``: the friction torque
+    (force) as an expression, the latches of :func:`mode_latches` and the
+    equations of ``a`` and of the mode outputs
+    ``mode``, ``locked``, ``startForward``, ``startBackward`` (variables
+    of ``comp``)::
+
+        locked = not free and not (Forward or startForward or Backward or startBackward)
+        a = if locked then 0 else if free then sa else if forward then sa - tau0_max
+            else sa + tau0_max
+        tau = if locked then sa else if free then 0 else if forward then slide(w)
+              else -slide(-w)
+        mode = 2 free, 1 Forward, -1 Backward, 0 stuck (locked or starting)
+
+    ``slide(v)``: the sliding torque for the forward speed ``v >= 0``.
+    While locked ``a`` is 0: ``w`` keeps the value of the locking event
+    (0 up to its location), any torque up to ``tau0_max`` passes; it slides
+    when ``sa`` leaves [-tau0_max, tau0_max].  Latches: :func:`mode_latches`."""
+    fw, wp, bw, wn = mode_latches(comp, w, sa, free, tau0, tau0_max, block)
+    moving = ca.if_else(fw, 1.0, bw)
+    locked = (1 - free) * (1 - moving)
+    tau = ca.if_else(locked, sa, ca.if_else(free, 0.0, ca.if_else(fw, slide(w), -slide(-w))))
+    acc = ca.if_else(locked, 0.0, ca.if_else(free, sa, ca.if_else(fw, sa - tau0_max,
+                                                                   sa + tau0_max)))
+    mode = ca.if_else(free, 2.0, fw * wp - bw * wn)
+    return tau, [a == acc, comp.mode == mode, comp.locked == locked,
+                 comp.startForward == (1 - free) * fw * (1 - wp),
+                 comp.startBackward == (1 - free) * bw * (1 - wn)], (fw, wp, bw, wn)
+
+
+class _Modes(Component):
+    """The mode outputs of Modelica's PartialFriction (MSL's names and codes)."""
+    sa = Variable(unit="1", doc="path parameter: torque (force) while locked, else "
+                                "acceleration + tau0_max")
+    mode = Variable(unit="1", doc="-1 Backward, 0 Stuck (locked or starting), 1 Forward, 2 Free")
+    locked = Variable(unit="1", doc="1 if the speed is 0 and not sliding")
+    startForward = Variable(unit="1", doc="1 while starting to slide forward from rest")
+    startBackward = Variable(unit="1", doc="1 while starting to slide backward from rest")
+
+
+def zone_law(comp, tau, w, w_s, tau0_max, tau_slide):
+    """The equations of the stick-zone law (:func:`zone_torque`) for the
+    torque variable ``tau`` and the mode outputs it gives: ``mode`` 0
+    inside the zone ``|w| < w_s`` (``locked`` 1), the sign of ``w``
+    outside (from the zone's own relations: no event of their own);
+    ``sa`` the friction torque; never starting."""
+    torque, sat = zone_torque(w, w_s, tau0_max, tau_slide)
+    mode = ca.eq(sat, 1.0) - ca.eq(sat, -1.0)
+    return [tau == torque, comp.mode == mode, comp.locked == 1 - mode * mode,
+            comp.startForward == 0, comp.startBackward == 0, comp.sa == tau]
+
+
+class _Friction(_Modes):
+    """Parameters every friction element has: peak, w_small, the law and
+    its stick zone w_s (law='zone' only)."""
     peak = Parameter(1.0, "1", "peak of the friction at w = 0: tau0_max = peak * tau0", min=1.0)
-    w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect, see module)",
-                        positive=True)
 
     ZONE = "w_s"
 
+    def __init__(self, law="modes", **kw):
+        super().__init__(**kw)
+        self.law = check_law(self, law)
+        if law == "modes" and self.is_given(self.ZONE):
+            raise ModelDefinitionError(
+                "%s: %s is the width of the stick zone of law='zone'; with Modelica's modes "
+                "(the default) it has no meaning: drop %s or give law='zone'"
+                % (self.describe(), self.ZONE, self.ZONE))
+
     def sliding_mode_advice(self):
-        """Sticking is modelled by the stick zone (w_s, or v_s for the
-        translational elements)."""
+        """What to change when the element's relations chatter."""
+        if self.law == "modes":
+            return ("%s switches its modes without progress; make the inputs that drive it "
+                    "continuous, or look for a relation elsewhere that moves it back and forth."
+                    % self.describe())
         return ("%s models sticking itself with its stick zone of width %s: a zone this narrow "
-                "cannot be resolved at the speeds of the run. Give it a larger %s, or make "
-                "its inputs continuous." % (self.describe(), self.ZONE, self.ZONE))
+                "cannot be resolved at the speeds of the run. Give it a larger %s, or leave "
+                "law='zone' for Modelica's modes." % (self.describe(), self.ZONE, self.ZONE))
+
+    def law_equations(self, w, a, free, tau0, slide):
+        """The friction torque ``self.tau``'s equation and the mode
+        outputs' for the relative speed ``w`` (acceleration ``a``), the
+        relation ``free``, the sliding torque ``tau0`` at rest and
+        ``slide(v)`` for ``v >= 0``, by the element's law."""
+        tau0_max = self.peak * tau0
+        if self.law == "zone":
+            return zone_law(self, self.tau_name(), w, getattr(self, self.ZONE), tau0_max, slide)
+        tau, eqs, _ = partial_friction(self, w, a, self.sa, free, tau0, tau0_max, slide)
+        return eqs + [self.tau_name() == tau]
+
+    def tau_name(self):
+        """The friction torque (force) variable."""
+        return self.tau
 
 
 class _SupportFriction(_Friction):
     """Two rigidly coupled flanges and the support (Modelica's
     PartialElementaryTwoFlangesAndSupport2): the friction acts between the
     shaft and the support (grounded at 0 if unconnected)."""
+    w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect, see module)",
+                        positive=True)
+    w_s = Parameter(1e-4, "rad/s", "width of the stick zone of law='zone'", positive=True)
     phi = Variable(unit="rad", doc="angle of the flanges relative to the support")
     w = Variable(unit="rad/s", doc="angular velocity relative to the support")
     a = Variable(unit="rad/s2", doc="angular acceleration relative to the support")
@@ -122,30 +272,31 @@ class _SupportFriction(_Friction):
         self.flange_b = RotationalFlange()
         self.support = RotationalFlange(ground={"phi": 0.0}, doc="housing (fixed if unconnected)")
 
-    def _kinematics(self, tau):
+    def _kinematics(self):
         return [self.phi == self.flange_a.phi - self.support.phi,
                 self.flange_b.phi == self.flange_a.phi,
                 self.w == der(self.phi), self.a == der(self.w),
                 0 == self.flange_a.tau + self.flange_b.tau - self.tau,
-                self.support.tau == -self.flange_a.tau - self.flange_b.tau,
-                self.tau == tau]
+                self.support.tau == -self.flange_a.tau - self.flange_b.tau]
 
 
 class BearingFriction(_SupportFriction):
     """Coulomb friction in a bearing (Modelica.Mechanics.Rotational.
-    Components.BearingFriction)::
+    Components.BearingFriction, MSL 4.0)::
 
         phi = flange_a.phi - support.phi,  flange_b.phi = flange_a.phi
         w = der(phi),  a = der(w)
         0 = flange_a.tau + flange_b.tau - tau
-        tau0 = tau_pos(w = 0),  tau0_max = peak * tau0
-        tau = tau_pos(w) forward, -tau_pos(-w) backward, stuck below tau0_max
+        tau0 = tau_pos(w = 0),  tau0_max = peak * tau0,  free = false
+        tau = if locked then sa else if forward then tau_pos(w) else -tau_pos(-w)
 
-    ``tau_pos``: rows ``[w, tau]`` of the positive sliding characteristic
-    (default ``[[0, 1]]``, a constant torque of 1 N m).  Sticking by the
-    stick zone ``w_s`` (module docstring).  ``tau`` is the torque the
-    flanges pass into the friction (it has the sign of ``w``)."""
-    w_s = Parameter(1e-4, "rad/s", "width of the stick zone (creep speed)", positive=True)
+    with the modes of Modelica's PartialFriction
+    (:func:`partial_friction`: stuck with ``a = 0`` while ``|sa| <=
+    tau0_max``).  ``tau_pos``: rows ``[w, tau]`` of the positive sliding
+    characteristic (default ``[[0, 1]]``, a constant torque of 1 N m).
+    ``tau`` is the torque the flanges pass into the friction (it has the
+    sign of ``w``).  ``law="zone"``: the stick zone ``w_s`` instead (module
+    docstring)."""
 
     def __init__(self, tau_pos=None, **kw):
         super().__init__(**kw)
@@ -153,29 +304,31 @@ class BearingFriction(_SupportFriction):
 
     def equations(self):
         tau0 = interpolate(self.tau_pos, 0.0)
-        return self._kinematics(friction_law(self.w, self.w_s, self.peak * tau0,
-                                             lambda v: interpolate(self.tau_pos, v)))
+        return self._kinematics() + self.law_equations(
+            self.w, self.a, 0.0, tau0, lambda v: interpolate(self.tau_pos, v))
 
 
 class Brake(_SupportFriction):
     """Brake based on Coulomb friction (Modelica.Mechanics.Rotational.
-    Components.Brake)::
+    Components.Brake, MSL 4.0)::
 
         phi = flange_a.phi - support.phi,  flange_b.phi = flange_a.phi
         w = der(phi),  a = der(w)
         0 = flange_a.tau + flange_b.tau - tau
         fn = fn_max * f_normalized,  free = fn <= 0
-        tau0 = mu0 * cgeo * fn,  mu0 = mu_pos(w = 0),  tau0_max = peak * tau0
-        tau = cgeo * fn * mu_pos(w) forward (-mu_pos(-w) backward), stuck below tau0_max
+        mu0 = mu_pos(w = 0),  tau0 = mu0 * cgeo * fn,  tau0_max = peak * tau0
+        tau = if locked then sa else if free then 0 else
+              cgeo * fn * (if forward then mu_pos(w) else -mu_pos(-w))
 
+    with the modes of Modelica's PartialFriction (:func:`partial_friction`).
     ``mu_pos``: rows ``[w, mu]`` (default ``[[0, 0.5]]``).  The brake holds
-    the shaft (creep ``|w| <= w_s``) while the torque on it stays below
-    ``peak * mu0 * cgeo * fn``; a normal force ``fn <= 0`` leaves it free."""
+    the shaft (``w`` stays 0) while the torque on it stays within
+    ``tau0_max = peak * mu0 * cgeo * fn``; a normal force ``fn <= 0``
+    leaves it free.  ``tau0_max`` is output (0 when free)."""
     cgeo = Parameter(1.0, "m", "geometry constant (effective radius x friction faces)", min=0.0)
     fn_max = Parameter(1.0, "N", "maximum normal force", min=0.0)
-    w_s = Parameter(1e-4, "rad/s", "width of the stick zone (creep speed)", positive=True)
     fn = Variable(unit="N", doc="normal force fn_max f_normalized")
-    tau0_max = Variable(unit="N.m", doc="breakaway torque peak mu0 cgeo max(fn, 0)")
+    tau0_max = Variable(unit="N.m", doc="breakaway torque peak mu0 cgeo fn (0 when free)")
 
     def __init__(self, mu_pos=None, **kw):
         super().__init__(**kw)
@@ -183,45 +336,68 @@ class Brake(_SupportFriction):
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
     def equations(self):
-        fn_pos = ca.fmax(self.fn, 0.0)
+        free = self.fn <= 0
+        fn_pos = ca.if_else(free, 0.0, self.fn)
         mu0 = interpolate(self.mu_pos, 0.0)
         slide = lambda v: self.cgeo * fn_pos * interpolate(self.mu_pos, v)  # noqa: E731
-        return self._kinematics(friction_law(self.w, self.w_s, self.tau0_max, slide)) + [
+        return self._kinematics() + self.law_equations(
+            self.w, self.a, free, mu0 * self.cgeo * fn_pos, slide) + [
             self.fn == self.fn_max * self.f_normalized.u,
             self.tau0_max == self.peak * mu0 * self.cgeo * fn_pos]
 
 
-class OneWayClutch(_Friction):
+class OneWayClutch(_Modes):
     """Parallel connection of a freewheel and a clutch (Modelica.Mechanics.
-    Rotational.Components.OneWayClutch)::
+    Rotational.Components.OneWayClutch, MSL 4.0)::
 
         phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
         flange_b.tau = tau,  flange_a.tau = -tau
-        fn = if f_normalized <= 0 then 0 else fn_max * f_normalized
-        tau0 = mu0 * cgeo * fn,  tau0_max = peak * tau0
+        free = f_normalized <= 0,  fn = if free then 0 else fn_max * f_normalized
+        tau0 = mu0 * cgeo * fn
+        tau0_max = if free then eps0 * mu0 * cgeo * fn_max else peak2 * tau0
+        peak2 = max(peak, 1 + eps0),  eps0 = 1e-4
+        startForward = pre(stuck) and (sa > tau0_max or pre(startForward) and sa > tau0)
+                       or initial() and w_rel > 0
+        locked = pre(stuck) and not startForward
+        a_rel = if locked then 0 else sa - tau0
+        tau = if locked then sa else if free then 0 else cgeo * fn * mu_pos(w_rel)
         stuck = locked or w_rel <= 0
-        tau = cgeo * fn * mu_pos(w_rel) while w_rel > 0 (sliding forward)
 
     The freewheel locks the backward direction: ``w_rel = flange_b.w -
-    flange_a.w`` never becomes negative (Modelica: start with ``w_rel >=
-    0``); forward, flange_b overruns flange_a against the clutch's friction
-    (none when open), and from rest it starts sliding forward once the
-    torque exceeds ``tau0_max``.  Regularised (module docstring): forward
-    the stick zone ``w_s`` of the clutch; backward a stiff viscous lock
-    ``tau = tau_lock w_rel / w_s`` with ``tau_lock = peak mu0 cgeo fn_max``,
-    whatever the normal force (so ``fn_max * cgeo * mu0`` must be > 0): the
-    backward creep ``-w_rel`` stays below ``w_s |tau| / tau_lock``."""
+    flange_a.w`` never becomes negative (start with ``w_rel >= 0``); it
+    stays locked (``a_rel = 0``) under any backward torque, and from rest
+    starts sliding forward once the torque exceeds ``tau0_max`` (open: the
+    small ``eps0 mu0 cgeo fn_max``).  Latches ``locked`` (1 while locked;
+    off: ``w_rel`` reaching 0 once it was positive, else ``sa`` falling
+    below ``tau0``; on: ``sa`` above ``tau0_max``) and ``forward``
+    (``w_rel`` > 0 reached).  Outputs ``locked``, ``stuck``,
+    ``startForward``, ``mode`` (0 stuck, 1 forward, 2 free and sliding).
+    ``law="zone"``: the former regularisation (a stick zone ``w_s``
+    forward, a stiff viscous lock ``tau = peak mu0 cgeo fn_max w_rel / w_s``
+    backward, which creeps at ``w_s |tau| / (peak mu0 cgeo fn_max)``; its
+    mode outputs are 0)."""
+    peak = Parameter(1.0, "1", "peak of the friction at w = 0: tau0_max = peak * tau0", min=1.0)
+    w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect here)",
+                        positive=True)
     cgeo = Parameter(1.0, "m", "geometry constant (effective radius x friction faces)", min=0.0)
     fn_max = Parameter(1.0, "N", "maximum normal force", positive=True)
-    w_s = Parameter(1e-4, "rad/s", "width of the stick zones (creep speed)", positive=True)
-    phi_rel = Variable(unit="rad", state_select="prefer", doc="relative angle flange_b - flange_a")
+    w_s = Parameter(1e-4, "rad/s", "width of the stick zones of law='zone'", positive=True)
+    phi_rel = Variable(unit="rad", state_select="prefer", nominal=1e-4,
+                       doc="relative angle flange_b - flange_a")
     w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
     a_rel = Variable(unit="rad/s2", doc="relative angular acceleration")
     tau = Variable(unit="N.m", doc="torque acting on flange_b")
     fn = Variable(unit="N", doc="normal force (0 if f_normalized <= 0)")
+    stuck = Variable(unit="1", doc="1 if w_rel = 0 (locked or starting forward)")
+    EPS0 = 1e-4
+    ZONE = "w_s"
 
-    def __init__(self, mu_pos=None, **kw):
+    def __init__(self, mu_pos=None, law="modes", **kw):
         super().__init__(**kw)
+        self.law = check_law(self, law)
+        if law == "modes" and self.is_given("w_s"):
+            raise ModelDefinitionError("%s: w_s is the width of the stick zones of law='zone'; "
+                                       "drop it or give law='zone'" % self.describe())
         self.mu_pos = table_rows(self, "mu_pos", mu_pos, [(0.0, 0.5)])
         if not interpolate(self.mu_pos, 0.0) * self.parameter_value("cgeo") > 0:
             raise ModelDefinitionError(
@@ -233,41 +409,67 @@ class OneWayClutch(_Friction):
         self.flange_b = RotationalFlange()
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
+    sliding_mode_advice = _Friction.sliding_mode_advice
+
     def equations(self):
+        free = self.f_normalized.u <= 0
         mu0 = interpolate(self.mu_pos, 0.0)
+        common = [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
+                  self.w_rel == der(self.phi_rel), self.a_rel == der(self.w_rel),
+                  self.fn == ca.if_else(free, 0.0, self.fn_max * self.f_normalized.u),
+                  self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
         slide = lambda v: self.cgeo * self.fn * interpolate(self.mu_pos, v)  # noqa: E731
-        forward = friction_law(ca.fmax(self.w_rel, 0.0), self.w_s,
-                               self.peak * mu0 * self.cgeo * self.fn, slide)
-        lock = self.peak * mu0 * self.cgeo * self.fn_max / self.w_s * ca.fmin(self.w_rel, 0.0)
-        return [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
-                self.w_rel == der(self.phi_rel), self.a_rel == der(self.w_rel),
-                self.fn == self.fn_max * ca.fmax(self.f_normalized.u, 0.0),
-                self.tau == forward + lock,
-                self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
+        if self.law == "zone":
+            forward = friction_law(ca.fmax(self.w_rel, 0.0), self.w_s,
+                                   self.peak * mu0 * self.cgeo * self.fn, slide)
+            lock = self.peak * mu0 * self.cgeo * self.fn_max / self.w_s * \
+                ca.fmin(self.w_rel, 0.0)
+            return common + [self.mode == 0, self.locked == 0, self.stuck == 0,
+                             self.startForward == 0, self.startBackward == 0,
+                             self.sa == self.tau, self.tau == forward + lock]
+        return common + self._modes(free, mu0, slide)
+
+    def _modes(self, free, mu0, slide):
+        """Modelica's OneWayClutch state machine (class docstring) by the
+        latches ``locked`` and ``forward``."""
+        tau0 = mu0 * self.cgeo * self.fn
+        tau0_max = ca.if_else(free, self.EPS0 * mu0 * self.cgeo * self.fn_max,
+                              ca.fmax(self.peak, 1 + self.EPS0) * tau0)
+        lk, fw = latch(_named(self, "locked")), latch(_named(self, "forward"))
+        w, sa = self.w_rel, self.sa
+        define_latch(lk, ca.if_else(lk, tau0_max - sa, ca.if_else(fw, -w, tau0 - sa)),
+                     "freewheel locked (%s)" % _named(self, "locked"), g_start=-w)
+        define_latch(fw, ca.if_else(lk, -1.0, w), "forward speed reached (%s)"
+                     % _named(self, "mode = Forward"), g_start=w)
+        return [self.a_rel == ca.if_else(lk, 0.0, sa - tau0),
+                self.tau == ca.if_else(lk, sa, ca.if_else(free, 0.0, slide(w))),
+                self.locked == lk, self.startForward == (1 - lk) * (1 - fw),
+                self.stuck == lk + (1 - lk) * (1 - fw), self.startBackward == 0,
+                self.mode == ca.if_else(lk, 0.0, ca.if_else(free, 2.0, fw))]
 
 
-class SupportFriction(Component):
+class SupportFriction(_Friction):
     """Coulomb friction between a flange and its support (Modelica.Mechanics.
-    Translational.Components.SupportFriction)::
+    Translational.Components.SupportFriction, MSL 4.0)::
 
         s = flange_a.s - support.s,  flange_b.s = flange_a.s
         v = der(s),  a = der(v)
         0 = flange_a.f + flange_b.f - f
-        f0 = f_pos(v = 0),  f0_max = peak * f0
-        f = f_pos(v) forward, -f_pos(-v) backward, stuck below f0_max
+        f0 = f_pos(v = 0),  f0_max = peak * f0,  free = false
+        f = if locked then sa else if forward then f_pos(v) else -f_pos(-v)
 
-    ``f_pos``: rows ``[v, f]`` (default ``[[0, 1]]``).  Sticking by the
-    stick zone ``|v| < v_s`` (module docstring); ``v_small`` is accepted
-    and has no effect (no velocity jumps)."""
+    with the modes of Modelica's PartialFriction (:func:`partial_friction`).
+    ``f_pos``: rows ``[v, f]`` (default ``[[0, 1]]``).  ``law="zone"``: the
+    stick zone ``|v| < v_s`` instead; ``v_small`` is accepted and has no
+    effect (no velocity jumps)."""
     peak = Parameter(1.0, "1", "peak of the friction at v = 0: f0_max = peak * f0", min=1.0)
-    v_s = Parameter(1e-4, "m/s", "width of the stick zone (creep speed)", positive=True)
+    v_s = Parameter(1e-4, "m/s", "width of the stick zone of law='zone'", positive=True)
     v_small = Parameter(1e-3, "m/s", "Modelica's reinit threshold (no effect)", positive=True)
     s = Variable(unit="m", doc="position of the flanges relative to the support")
     v = Variable(unit="m/s", doc="velocity relative to the support")
     a = Variable(unit="m/s2", doc="acceleration relative to the support")
     f = Variable(unit="N", doc="friction force (flange_a.f + flange_b.f)")
     ZONE = "v_s"
-    sliding_mode_advice = _Friction.sliding_mode_advice
 
     def __init__(self, f_pos=None, **kw):
         super().__init__(**kw)
@@ -276,31 +478,43 @@ class SupportFriction(Component):
         self.flange_b = TranslationalFlange()
         self.support = TranslationalFlange(ground={"s": 0.0}, doc="support (fixed if unconnected)")
 
+    def tau_name(self):
+        """The friction force."""
+        return self.f
+
     def equations(self):
         f0 = interpolate(self.f_pos, 0.0)
-        f = friction_law(self.v, self.v_s, self.peak * f0, lambda v: interpolate(self.f_pos, v))
         return [self.s == self.flange_a.s - self.support.s, self.flange_b.s == self.flange_a.s,
                 self.v == der(self.s), self.a == der(self.v),
                 0 == self.flange_a.f + self.flange_b.f - self.f,
-                self.support.f == -self.flange_a.f - self.flange_b.f, self.f == f]
+                self.support.f == -self.flange_a.f - self.flange_b.f] + self.law_equations(
+            self.v, self.a, 0.0, f0, lambda v: interpolate(self.f_pos, v))
 
 
-class MassWithStopAndFriction(Component):
-    """Sliding mass with Stribeck friction (Modelica.Mechanics.Translational.
-    Components.MassWithStopAndFriction, MSL 4.0), friction part::
+class MassWithStopAndFriction(_Friction):
+    """Sliding mass with hard stops and Stribeck friction (Modelica.Mechanics.
+    Translational.Components.MassWithStopAndFriction, MSL 4.0)::
 
         flange_a.s = s - L/2,  flange_b.s = s + L/2,  v = der(s),  a = der(v)
         0 = flange_a.f + flange_b.f - f - m * der(v)
         f0 = F_Coulomb + F_Stribeck,  f0_max = 1.001 * f0
-        f = F_prop * v + sign(v) * (F_Coulomb + F_Stribeck * exp(-fexp * |v|))  sliding,
-            stuck (f from the balance) while |f| <= f0_max
+        free = f0 <= 0 and F_prop <= 0 and smin + L/2 < s < smax - L/2
+        f = if locked then sa else if free then 0 else
+            F_prop * v + sign(v) * (F_Coulomb + F_Stribeck * exp(-fexp * |v|))
+        stopped = if s <= smin + L/2 then -1 else if s >= smax - L/2 then +1 else 0
+        when stopped <> 0 then reinit(s, stop position); reinit(v, 0); end when
 
-    Sticking by the stick zone ``|v| < v_s`` (module docstring).  The hard
-    stops at ``smin`` and ``smax`` (Modelica: ``s`` and ``v`` re-initialised
-    at the stop, an impact) are not modelled: a run in which the mass's end
-    reaches a stop (``s - L/2 <= smin`` or ``s + L/2 >= smax``) ends there
-    with an error naming the element; the motion up to it is Modelica's.
-    Start with ``s=start(..., fixed=True)``, ``v=start(..., fixed=True)``."""
+    with the modes of Modelica's PartialFrictionWithStop
+    (:func:`partial_friction`): starting or sliding towards a stop the mass
+    is at is forbidden.  At a stop ``s`` and ``v`` are re-initialised (the
+    impact, an event), the mass is locked there (``v = 0``, any force
+    into the stop passes) and leaves it when the force pulls it away by
+    more than ``f0_max``.  ``stopped`` comes from a latch per stop: on when
+    the end reaches the stop, off when the mass starts sliding away from it.  Start with
+    ``s=start(..., fixed=True)``, ``v=start(..., fixed=True)`` within the
+    stops.  ``law="zone"``: the stick zone ``|v| < v_s`` and no stops (a
+    run reaching a stop ends with an error)."""
+    peak = Parameter(1.001, "1", "f0_max / f0 (Modelica's fixed 1.001)", min=1.0)
     m = Parameter(1.0, "kg", "mass", min=0.0)
     L = Parameter(0.0, "m", "length of the mass (distance of the flanges)", min=0.0)
     F_prop = Parameter(1.0, "N.s/m", "velocity dependent friction", min=0.0)
@@ -309,15 +523,16 @@ class MassWithStopAndFriction(Component):
     fexp = Parameter(2.0, "s/m", "exponential decay", min=0.0)
     smax = Parameter(25.0, "m", "right stop for (the right end of) the mass")
     smin = Parameter(-25.0, "m", "left stop for (the left end of) the mass")
-    v_s = Parameter(1e-4, "m/s", "width of the stick zone (creep speed)", positive=True)
+    v_s = Parameter(1e-4, "m/s", "width of the stick zone of law='zone'", positive=True)
     v_small = Parameter(1e-3, "m/s", "Modelica's reinit threshold (no effect)", positive=True)
     s = Variable(unit="m", state_select="always", doc="position of the centre")
     v = Variable(unit="m/s", state_select="always", doc="velocity")
     a = Variable(unit="m/s2", doc="acceleration")
     f = Variable(unit="N", doc="friction force (against v)")
-    stopped = Variable(unit="1", doc="1 when an end of the mass is at a stop")
+    stopped = Variable(unit="1", doc="-1 at the stop smin, +1 at smax, 0 between")
+    at_stop = Variable(unit="1", doc="1 while at a stop (|stopped|)")
+    s_stop = Variable(unit="m", doc="the position at the stop reached")
     ZONE = "v_s"
-    sliding_mode_advice = _Friction.sliding_mode_advice
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -330,20 +545,57 @@ class MassWithStopAndFriction(Component):
         self.flange_a = TranslationalFlange()
         self.flange_b = TranslationalFlange()
 
+    def tau_name(self):
+        """The friction force."""
+        return self.f
+
     def assertions(self):
-        """Reaching a hard stop ends the run (the impact is not modelled)."""
-        return [("stopped", "reached a hard stop (s - L/2 <= smin or s + L/2 >= smax): the stops' "
-                            "impact (Modelica's reinit of s and v) is not modelled; give smin/smax "
-                            "outside the travel, or limit the travel by a spring or a force")]
+        """law='zone' has no stops: reaching one ends the run."""
+        if self.law == "modes":
+            return []
+        return [("at_stop", "reached a hard stop (s - L/2 <= smin or s + L/2 >= smax); "
+                            "law='zone' does not model the stops: leave law='zone' (Modelica's "
+                            "modes, which stop the mass there)")]
+
+    def reinits(self):
+        """At a stop: ``s`` to the stop, ``v`` to 0 (Modelica's reinit)."""
+        return [("at_stop", "s", "s_stop"), ("at_stop", "v", 0.0)] if self.law == "modes" \
+            else []
+
+    def start_checks(self, context):
+        """The mass starts within its stops."""
+        def check(value):
+            s, L = value(self, "s"), self.parameter_value("L")
+            if s - L / 2 < self.parameter_value("smin") or \
+                    s + L / 2 > self.parameter_value("smax"):
+                return ("starts at s = %g with its ends outside the stops smin = %g, smax = %g "
+                        "(L = %g); give a start value of s between smin + L/2 and smax - L/2"
+                        % (s, self.parameter_value("smin"), self.parameter_value("smax"), L))
+            return None
+        return [check]
 
     def equations(self):
         f0 = self.F_Coulomb + self.F_Stribeck
         slide = lambda v: self.F_prop * v + self.F_Coulomb \
             + self.F_Stribeck * ca.exp(-self.fexp * v)  # noqa: E731
-        at_stop = ca.if_else(self.s - self.L / 2 <= self.smin, 1.0,
-                             ca.if_else(self.s + self.L / 2 >= self.smax, 1.0, 0.0))
-        return [self.flange_a.s == self.s - self.L / 2, self.flange_b.s == self.s + self.L / 2,
-                self.v == der(self.s), self.a == der(self.v),
-                0 == self.flange_a.f + self.flange_b.f - self.f - self.m * self.a,
-                self.f == friction_law(self.v, self.v_s, 1.001 * f0, slide),
-                self.stopped == at_stop]
+        right, left = self.smax - self.L / 2, self.smin + self.L / 2
+        common = [self.flange_a.s == self.s - self.L / 2, self.flange_b.s == self.s + self.L / 2,
+                  self.v == der(self.s), self.a == der(self.v),
+                  0 == self.flange_a.f + self.flange_b.f - self.f - self.m * self.a]
+        if self.law == "zone":
+            at = ca.if_else(self.s <= left, -1.0, ca.if_else(self.s >= right, 1.0, 0.0))
+            return common + zone_law(self, self.f, self.v, self.v_s, self.peak * f0, slide) + [
+                self.stopped == at, self.at_stop == at * at, self.s_stop == self.s]
+        hi, lo = latch(_named(self, "at_smax")), latch(_named(self, "at_smin"))
+        free = (f0 <= 0) * (self.F_prop <= 0) * (1 - hi) * (1 - lo)
+        f, eqs, (fw, _, bw, _) = partial_friction(self, self.v, self.a, self.sa, free, f0,
+                                                  self.peak * f0, slide, block=(hi, lo))
+        define_latch(hi, ca.if_else(hi, 0.5 - bw, self.s - right),
+                     "hard stop smax reached (%s)" % _named(self, "stopped = 1"),
+                     g_start=self.s - right)
+        define_latch(lo, ca.if_else(lo, 0.5 - fw, left - self.s),
+                     "hard stop smin reached (%s)" % _named(self, "stopped = -1"),
+                     g_start=left - self.s)
+        return common + eqs + [self.f == f, self.stopped == hi - lo,
+                               self.at_stop == hi + lo,
+                               self.s_stop == ca.if_else(hi, right, left)]

@@ -4,10 +4,10 @@
 Both are re-exported by :mod:`acausal2d.library.rotational`, where a
 Modelica user looks for them (``rotational.IdealGear``).  The sign
 convention is Modelica's and the library's: ``flange.tau`` is the torque
-acting on the element from the connected part (seed eq. 4.1 at the
+acting on the element from the connected part (Ebert 2015, eq. 4.1 at the
 flanges).  Gears are massless and lossless: the power flowing in equals
 the power flowing out at every instant."""
-from acausal2d import Component, Parameter, RotationalFlange, Variable
+from acausal2d import Component, Parameter, RotationalFlange, TranslationalFlange, Variable
 
 
 class IdealGear(Component):
@@ -75,3 +75,44 @@ class IdealPlanetary(Component):
         return [(1 + r) * self.carrier.phi == self.sun.phi + r * self.ring.phi,
                 self.ring.tau == r * self.sun.tau,
                 self.carrier.tau == -(1 + r) * self.sun.tau]
+
+
+class IdealGearR2T(Component):
+    """Gearbox transforming rotational into translational motion
+    (Modelica.Mechanics.Rotational.Components.IdealGearR2T, MSL 4.0, with
+    both supports fixed)::
+
+        flangeR.phi = ratio * flangeT.s
+        0 = ratio * flangeR.tau + flangeT.f
+
+    ``ratio`` in rad/m (flangeR.phi / flangeT.s); no losses, no inertia."""
+    ratio = Parameter(1.0, "rad/m", "transmission ratio flangeR.phi / flangeT.s")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flangeR = RotationalFlange()
+        self.flangeT = TranslationalFlange()
+
+    def equations(self):
+        return [self.flangeR.phi == self.ratio * self.flangeT.s,
+                0 == self.ratio * self.flangeR.tau + self.flangeT.f]
+
+
+class IdealRollingWheel(Component):
+    """Ideal rolling wheel (Modelica.Mechanics.Rotational.Components.
+    IdealRollingWheel, MSL 4.0, with both supports fixed)::
+
+        flangeR.phi * radius = flangeT.s
+        0 = radius * flangeT.f + flangeR.tau
+
+    Rolls without slip; no inertia (add an Inertia and a Mass)."""
+    radius = Parameter(0.3, "m", "radius of the wheel", positive=True)
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flangeR = RotationalFlange()
+        self.flangeT = TranslationalFlange()
+
+    def equations(self):
+        return [self.flangeR.phi * self.radius == self.flangeT.s,
+                0 == self.radius * self.flangeT.f + self.flangeR.tau]

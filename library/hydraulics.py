@@ -1,6 +1,6 @@
-"""Hydrostatics (lumped fluid power) for the hydraulic drum drive of seed
+"""Hydrostatics (lumped fluid power) for the hydraulic drum drive of Ebert (2015),
 ch. 8.1 (Bild 8.6: diesel, pump, two controlled hydraulic motors,
-planetary stage, drums).  The seed names the elements only; the equations
+planetary stage, drums).  The dissertation names the elements only; the equations
 are the textbook relations of positive-displacement machines, valves and
 compliant lines (Murrenhoff, Grundlagen der Fluidtechnik, Teil 1:
 Hydraulik, ch. "Verdraengereinheiten" and "Kompressibilitaet"; Will/Gebhardt,

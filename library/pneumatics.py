@@ -1,7 +1,7 @@
 """Pneumatics: a cylinder chamber with ideal-gas compression (for the
-compressor of seed ch. 8.2, "Pneumatics" subsystem of Bild 8.8).
+compressor of Ebert (2015), ch. 8.2, "Pneumatics" subsystem of Bild 8.8).
 
-The seed only names the subsystem ("Pneumatikeinrichtung zur
+The dissertation only names the subsystem ("Pneumatikeinrichtung zur
 Druckluftbereitstellung"); its equations are not given there.  This module
 uses the textbook filling-and-emptying model of a piston chamber (lumped
 gas, ideal gas law, no heat transfer unless a polytropic exponent is given).

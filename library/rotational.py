@@ -4,9 +4,10 @@ element from the connected part."""
 import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
-                       Variable)
+                       Variable, time)
 from acausal2d.errors import ModelDefinitionError
-from acausal2d.library.friction1d import friction_law, interpolate, table_rows
+from acausal2d.library.friction1d import (_Modes, check_law, interpolate, partial_friction,
+                                          table_rows, zone_law)
 
 
 class Fixed(Component):
@@ -22,10 +23,18 @@ class Fixed(Component):
 
 
 class Inertia(Component):
-    """Rotational inertia J between two rigidly coupled flanges; w = der(phi)."""
+    """Rotational inertia J between two rigidly coupled flanges
+    (Modelica.Mechanics.Rotational.Components.Inertia, MSL 4.0)::
+
+        phi = flange_a.phi = flange_b.phi,  w = der(phi),  a = der(w)
+        J * a = flange_a.tau + flange_b.tau
+
+    ``a`` may be given a start value (``a=start(0, fixed=True)``: start in
+    equilibrium)."""
     J = Parameter(1.0, "kg.m2", "moment of inertia", min=0.0)
     phi = Variable(unit="rad", doc="absolute angle")
     w = Variable(unit="rad/s", doc="angular velocity")
+    a = Variable(unit="rad/s2", doc="angular acceleration")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -34,8 +43,8 @@ class Inertia(Component):
 
     def equations(self):
         return [self.flange_a.phi == self.phi, self.flange_b.phi == self.phi,
-                self.w == der(self.phi),
-                self.J * der(self.w) == self.flange_a.tau + self.flange_b.tau]
+                self.w == der(self.phi), self.a == der(self.w),
+                self.J * self.a == self.flange_a.tau + self.flange_b.tau]
 
 
 class _Compliant(Component):
@@ -61,24 +70,34 @@ class Spring(_Compliant):
         return self._common() + [self.tau == self.c * (self.phi_rel - self.phi_rel0)]
 
 
-class Damper(_Compliant):
-    """Linear rotational damper tau = d der(phi_rel)."""
+class _RelativeStates(_Compliant):
+    """Modelica's PartialCompliantWithRelativeStates: ``phi_rel`` and
+    ``w_rel`` are preferred states, ``phi_rel`` with the nominal
+    ``phi_nominal = 1e-4`` rad (a small relative angle is integrated to
+    its own scale, not as the difference of two large absolute ones)."""
+    phi_rel = Variable(unit="rad", state_select="prefer", nominal=1e-4,
+                       doc="relative angle flange_b - flange_a")
+    w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
+
+
+class Damper(_RelativeStates):
+    """Linear rotational damper (Modelica.Mechanics.Rotational.Components.
+    Damper): ``tau = d w_rel``, ``w_rel = der(phi_rel)``."""
     d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
 
     def equations(self):
-        return self._common() + [self.tau == self.d * der(self.phi_rel)]
+        return self._common() + [self.w_rel == der(self.phi_rel), self.tau == self.d * self.w_rel]
 
 
-class SpringDamper(_Compliant):
+class SpringDamper(_RelativeStates):
     """Linear torsion spring and damper in parallel
     (Modelica.Mechanics.Rotational.Components.SpringDamper):
     ``tau = c (phi_rel - phi_rel0) + d w_rel``, ``w_rel = der(phi_rel)``;
-    ``tau`` acts on flange_b (``-tau`` on flange_a, seed eq. 4.1 at the
+    ``tau`` acts on flange_b (``-tau`` on flange_a, Ebert (2015), eq. 4.1 at the
     flanges).  ``loss_power = d w_rel^2`` is the power dissipated."""
     c = Parameter(1.0, "N.m/rad", "spring constant", min=0.0)
     d = Parameter(1.0, "N.m.s/rad", "damping constant", min=0.0)
     phi_rel0 = Parameter(0.0, "rad", "unstretched relative angle")
-    w_rel = Variable(unit="rad/s", doc="relative angular velocity")
     loss_power = Variable(unit="W", doc="power dissipated by the damper")
 
     def equations(self):
@@ -91,7 +110,7 @@ class SpringDamper(_Compliant):
 class AngleSensor(Component):
     """Absolute angle of the flange as the signal ``phi``
     (Modelica.Mechanics.Rotational.Sensors.AngleSensor); takes no torque,
-    so a joint it measures stays free.  Seed eq. 4.1 at the flange."""
+    so a joint it measures stays free.  Ebert (2015), eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -117,29 +136,126 @@ class SpeedSensor(Component):
         return [self.w.u == der(self.flange.phi), self.flange.tau == 0]
 
 
+class MultiSensor(Component):
+    """Power, torque and angular velocity between two flanges
+    (Modelica.Mechanics.Rotational.Sensors.MultiSensor, MSL 4.0)::
+
+        flange_a.phi = flange_b.phi,  w = der(flange_a.phi)
+        tau = flange_a.tau,  0 = flange_a.tau + flange_b.tau
+        power = tau * w
+
+    The signals ``power``, ``w``, ``tau`` are outputs; the sensor is a
+    rigid connection (``tau`` is the torque passed from flange_a to
+    flange_b)."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange_a = RotationalFlange()
+        self.flange_b = RotationalFlange()
+        self.power = RealOutput()
+        self.w = RealOutput()
+        self.tau = RealOutput()
+
+    def equations(self):
+        return [self.flange_a.phi == self.flange_b.phi, self.w.u == der(self.flange_a.phi),
+                self.tau.u == self.flange_a.tau, 0 == self.flange_a.tau + self.flange_b.tau,
+                self.power.u == self.tau.u * self.w.u]
+
+
 class Torque(Component):
-    """Torque from the signal tau_in acting on the flange (reaction on the
-    fixed support)."""
+    """Torque from the signal tau_in acting on the flange
+    (Modelica.Mechanics.Rotational.Sources.Torque, MSL 4.0)::
+
+        flange.tau = -tau,  support.tau = -flange.tau
+
+    ``support`` is Modelica's optional support: left unconnected it is fixed
+    to ground (``useSupport = false``); connect it to a housing to take the
+    reaction torque there."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange = RotationalFlange()
+        self.support = RotationalFlange(ground={"phi": 0.0},
+                                        doc="housing (fixed at 0 if unconnected)")
         self.tau_in = RealInput()
 
     def equations(self):
-        return [self.flange.tau == -self.tau_in.u]
+        return [self.flange.tau == -self.tau_in.u, self.support.tau == -self.flange.tau]
 
 
 class ConstantTorque(Component):
-    """Constant torque tau acting on the flange."""
+    """Constant torque tau acting on the flange (Modelica.Mechanics.
+    Rotational.Sources.ConstantTorque, MSL 4.0, whose parameter is
+    ``tau_constant``)::
+
+        flange.tau = -tau,  support.tau = -flange.tau
+
+    ``support`` as :class:`Torque`'s."""
     tau = Parameter(0.0, "N.m", "torque")
 
     def __init__(self, **kw):
         super().__init__(**kw)
         self.flange = RotationalFlange()
+        self.support = RotationalFlange(ground={"phi": 0.0},
+                                        doc="housing (fixed at 0 if unconnected)")
 
     def equations(self):
-        return [self.flange.tau == -self.tau]
+        return [self.flange.tau == -self.tau, self.support.tau == -self.flange.tau]
+
+
+class TorqueStep(Component):
+    """Constant torque with a step (Modelica.Mechanics.Rotational.Sources.
+    TorqueStep, MSL 4.0, without support: the reaction goes to ground)::
+
+        w = der(phi),  phi = flange.phi,  tau = -flange.tau
+        tau = offsetTorque + (if time < startTime then 0 else stepTorque)
+
+    ``tau`` accelerates the flange (a negative one is a load); the step is
+    a time event."""
+    stepTorque = Parameter(1.0, "N.m", "height of the torque step (< 0: a load)")
+    offsetTorque = Parameter(0.0, "N.m", "offset of the torque")
+    startTime = Parameter(0.0, "s", "torque = offsetTorque for time < startTime")
+    phi = Variable(unit="rad", doc="angle of the flange")
+    w = Variable(unit="rad/s", doc="angular velocity of the flange")
+    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.flange = RotationalFlange()
+
+    def equations(self):
+        step = ca.if_else(time < self.startTime, 0.0, self.stepTorque)
+        return [self.phi == self.flange.phi, self.w == der(self.phi),
+                self.tau == -self.flange.tau, self.tau == self.offsetTorque + step]
+
+
+class QuadraticSpeedDependentTorque(Component):
+    """Torque quadratic in the speed (Modelica.Mechanics.Rotational.Sources.
+    QuadraticSpeedDependentTorque, MSL 4.0, without support)::
+
+        w = der(phi),  tau = -flange.tau
+        tau = tau_nominal (w / w_nominal)^2                        TorqueDirection
+        tau = tau_nominal (if w >= 0 then 1 else -1) (w / w_nominal)^2   otherwise
+
+    ``tau_nominal < 0`` is a load (a fan); with ``TorqueDirection=False``
+    it opposes the motion in both directions (``w |w|``: continuous with
+    its first derivative, no event)."""
+    tau_nominal = Parameter(1.0, "N.m", "nominal torque (< 0: a load in the positive direction)")
+    w_nominal = Parameter(1.0, "rad/s", "nominal speed", positive=True)
+    phi = Variable(unit="rad", doc="angle of the flange")
+    w = Variable(unit="rad/s", doc="angular velocity of the flange")
+    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
+
+    def __init__(self, TorqueDirection=True, **kw):
+        super().__init__(**kw)
+        self.TorqueDirection = bool(TorqueDirection)
+        self.flange = RotationalFlange()
+
+    def equations(self):
+        x = self.w / self.w_nominal
+        law = x * x if self.TorqueDirection else x * ca.fabs(x)
+        return [self.phi == self.flange.phi, self.w == der(self.phi),
+                self.tau == -self.flange.tau, self.tau == self.tau_nominal * law]
 
 
 class Speed(Component):
@@ -169,50 +285,47 @@ class Position(Component):
         return [self.flange.phi == self.phi_in.u]
 
 
-class Clutch(Component):
-    """Friction clutch (Modelica.Mechanics.Rotational.Components.Clutch;
-    the seed's disc clutch, ch. 8.2 "discClutch1") between ``flange_a`` and
-    ``flange_b``, engaged by the signal input ``f_normalized`` (0 = open,
-    1 = fully closed)::
+class Clutch(_Modes):
+    """Friction clutch (Modelica.Mechanics.Rotational.Components.Clutch,
+    MSL 4.0; the dissertation's disc clutch, ch. 8.2 "discClutch1") between
+    ``flange_a`` and ``flange_b``, engaged by the signal input
+    ``f_normalized`` (0 = open, 1 = fully closed)::
 
         phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
         flange_b.tau = tau,  flange_a.tau = -tau
         fn = fn_max * f_normalized,  free = fn <= 0
         tau0 = mu0 * cgeo * fn,  tau0_max = peak * tau0
-        tau = cgeo * fn * mu(w_rel) sliding forward, -cgeo * fn * mu(-w_rel) backward,
-              stuck (tau from the balance) while |tau| <= tau0_max
+        tau = if locked then sa else if free then 0 else
+              cgeo * fn * (if forward then mu_pos(w_rel) else -mu_pos(-w_rel))
+        a_rel = if locked then 0 else if free then sa else
+                if forward then sa - tau0_max else sa + tau0_max
+
+    with the modes of Modelica's PartialFriction
+    (:func:`~acausal2d.library.friction1d.partial_friction`): stuck
+    (``locked``: ``a_rel = 0``, so ``w_rel`` stays at its value of the
+    locking event, 0 to the event's location, while any torque up to
+    ``tau0_max`` passes), sliding forward/backward, free; it breaks away
+    when the torque needed to stay locked leaves ``[-tau0_max,
+    tau0_max]``.  Outputs ``mode`` (-1 backward, 0 stuck, 1 forward, 2
+    free), ``locked``, ``startForward``, ``startBackward``, ``sa``.
 
     The sliding friction coefficient is the constant ``mu`` or, as in
     Modelica, the table ``mu_pos`` (rows ``[w_rel, mu]``, linear, extrapolated
     by the last two points; give one of the two); ``mu0`` is its value at
     ``w_rel = 0``.  The defaults are Modelica's (``mu_pos = [0, 0.5]``,
-    ``cgeo = 1``, ``fn_max``'s start value 1).  ``cgeo`` is the effective friction radius times the
-    number of friction faces.  The torque capacity used is ``T_max = mu0 *
-    cgeo * max(fn, 0)``: as in Modelica (``free = fn <= 0``) a negative
-    ``f_normalized`` (a control signal overshooting below "open") transmits
-    no torque and never drives the slip apart; ``fn`` crossing 0 is an
-    event.  As in Modelica's ``PartialCompliantWithRelativeStates`` the
-    relative angle and speed are preferred states: the creep ``w_rel`` (down
-    to 1e-9 rad/s) is then integrated itself instead of being the
-    difference of two flange speeds, whose rounding would be all of it.
+    ``cgeo = 1``, ``fn_max``'s start value 1).  ``T_max = mu0 cgeo fn``
+    (0 when free) is the sliding torque at ``w_rel = 0``.  As in
+    Modelica's ``PartialCompliantWithRelativeStates`` the relative angle and
+    speed are preferred states with ``phi_rel``'s nominal ``phi_nominal =
+    1e-4``.
 
-    Sticking is a stick zone ``|w_rel| < w_s`` (the law of
-    :func:`acausal2d.library.friction1d.friction_law`): a stiff viscous
-    coupling ``peak T_max / w_s`` inside, the sliding characteristic outside,
-    joined continuously; entering and leaving the zone are events.  With
-    ``peak = 1`` and a constant ``mu`` this is the Karnopp saturation
-    ``tau = T_max sat(w_rel / w_s)``: Coulomb while slipping, "stuck"
-    (both flanges at one speed up to the creep ``w_s tau / T_max``) until
-    the torque to transmit exceeds ``peak T_max`` (an event).  The time from
-    engagement to sticking matches the Coulomb closed form ``J_eff w_rel0 /
-    T_max`` up to about ``J_eff w_s / T_max`` (``J_eff = J_a J_b/(J_a +
-    J_b)``); a small ``w_s`` makes the model stiff but not slower for IDA.
-    ``w_small`` is Modelica's reinit threshold, accepted for transcription
-    (speeds never jump here, so it has no effect).  A clutch with
-    ``f_normalized = 0`` transmits nothing.
-
-    Outputs: ``phi_rel``, ``w_rel``, ``a_rel``, ``tau``, ``fn``, ``T_max``; the
-    friction power dissipated in the clutch is ``tau * w_rel`` (>= 0).
+    ``law="zone"`` keeps the former stick zone ``|w_rel| < w_s``
+    (:func:`~acausal2d.library.friction1d.friction_law`, one DAE without
+    modes: ``tau = T_max sat(w_rel / w_s)`` for ``peak = 1`` and a constant
+    ``mu``; it creeps at up to ``w_s`` while "stuck"); its mode outputs are
+    then 0 inside the zone and the sign of ``w_rel`` outside.  ``w_small``
+    is Modelica's reinit threshold, accepted for transcription (speeds
+    never jump here, so it has no effect).
     """
     mu = Parameter(0.5, "1", "friction coefficient (constant; or give the table mu_pos)",
                    min=0.0)
@@ -220,50 +333,65 @@ class Clutch(Component):
                      min=1.0)
     fn_max = Parameter(1.0, "N", "normal force at f_normalized = 1", min=0.0)
     cgeo = Parameter(1.0, "m", "effective friction radius x number of friction faces", positive=True)
-    w_s = Parameter(1e-3, "rad/s", "width of the regularisation zone (creep speed)", positive=True)
+    w_s = Parameter(1e-3, "rad/s", "width of the stick zone of law='zone'", positive=True)
     w_small = Parameter(1e10, "rad/s", "Modelica's reinit threshold (no effect here)",
                         positive=True)
-    phi_rel = Variable(unit="rad", state_select="prefer",
+    phi_rel = Variable(unit="rad", state_select="prefer", nominal=1e-4,
                        doc="relative angle flange_b - flange_a")
     w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
     a_rel = Variable(unit="rad/s2", doc="relative angular acceleration der(w_rel)")
     tau = Variable(unit="N.m", doc="friction torque acting on flange_b")
     fn = Variable(unit="N", doc="normal force fn_max f_normalized (free for fn <= 0)")
-    T_max = Variable(unit="N.m", doc="sliding torque at w_rel = 0: mu0 cgeo max(fn, 0)")
+    T_max = Variable(unit="N.m", doc="sliding torque at w_rel = 0: mu0 cgeo fn, 0 when free")
 
-    def __init__(self, mu_pos=None, **kw):
+    def __init__(self, mu_pos=None, law="modes", **kw):
         super().__init__(**kw)
         if mu_pos is not None and "mu" in kw:
             raise ModelDefinitionError("%s: give mu (a constant) or mu_pos (a table), not both"
                                        % self.describe())
+        self.law = check_law(self, law)
         self.mu_pos = None if mu_pos is None else table_rows(self, "mu_pos", mu_pos, None)
         self.flange_a = RotationalFlange()
         self.flange_b = RotationalFlange()
         self.f_normalized = RealInput()
 
     def sliding_mode_advice(self):
-        """The clutch models sticking itself: a sliding mode or chattering
-        of its zone relations means the zone is too narrow to resolve."""
+        """What to change when the clutch's relations chatter."""
+        if self.law == "modes":
+            return ("%s switches its modes without progress; make its f_normalized input "
+                    "continuous, or look for a relation elsewhere that moves it back and forth."
+                    % self.describe())
         return ("%s models sticking itself with its stick zone |w_rel| < w_s: a zone this "
                 "narrow cannot be resolved at the speeds of the run. Give it a larger w_s "
-                "(the lock time changes by about J_eff w_s / T_max only), or make its "
-                "f_normalized input continuous." % self.describe())
+                "(the lock time changes by about J_eff w_s / T_max only), leave law='zone' "
+                "(Modelica's modes), or make its f_normalized input continuous."
+                % self.describe())
 
-    def _slide(self, v):
-        """Sliding torque at the speed magnitude v: T_max for a constant mu,
-        cgeo max(fn, 0) mu_pos(v) for a table."""
-        if self.mu_pos is None:
-            return self.T_max
-        return interpolate(self.mu_pos, v) * self.cgeo * ca.fmax(self.fn, 0.0)
+    def _mu(self, v):
+        return self.mu if self.mu_pos is None else interpolate(self.mu_pos, v)
 
     def equations(self):
-        mu0 = self.mu if self.mu_pos is None else interpolate(self.mu_pos, 0.0)
-        return [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
-                self.w_rel == der(self.phi_rel), self.a_rel == der(self.w_rel),
-                self.fn == self.fn_max * self.f_normalized.u,
-                self.T_max == mu0 * self.cgeo * ca.fmax(self.fn, 0.0),
-                self.tau == friction_law(self.w_rel, self.w_s, self.peak * self.T_max, self._slide),
-                self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
+        free = self.fn <= 0
+        mu0 = self._mu(0.0)
+        common = [self.phi_rel == self.flange_b.phi - self.flange_a.phi,
+                  self.w_rel == der(self.phi_rel), self.a_rel == der(self.w_rel),
+                  self.fn == self.fn_max * self.f_normalized.u,
+                  self.T_max == ca.if_else(free, 0.0, mu0 * self.cgeo * self.fn),
+                  self.flange_b.tau == self.tau, self.flange_a.tau == -self.tau]
+        if self.law == "zone":
+            fn_pos = ca.fmax(self.fn, 0.0)
+            common[4] = self.T_max == mu0 * self.cgeo * fn_pos
+
+            def slide(v):
+                return self.T_max if self.mu_pos is None else \
+                    interpolate(self.mu_pos, v) * self.cgeo * fn_pos
+            return common + zone_law(self, self.tau, self.w_rel, self.w_s,
+                                     self.peak * self.T_max, slide)
+        tau0 = mu0 * self.cgeo * self.fn
+        tau, eqs, _ = partial_friction(self, self.w_rel, self.a_rel, self.sa, free, tau0,
+                                    self.peak * tau0,
+                                    lambda v: self.cgeo * self.fn * self._mu(v))
+        return common + eqs + [self.tau == tau]
 
 
 class AsyncMotor(Component):
@@ -311,5 +439,6 @@ class AsyncMotor(Component):
 
 
 # Modelica.Mechanics.Rotational.Components' gears, where Modelica users look for them
-from acausal2d.library.gears import IdealGear, IdealPlanetary  # noqa: E402,F401
+from acausal2d.library.gears import (IdealGear, IdealGearR2T, IdealPlanetary,  # noqa: E402,F401
+                                     IdealRollingWheel)
 from acausal2d.library.friction1d import BearingFriction, Brake, OneWayClutch  # noqa: E402,F401

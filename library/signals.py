@@ -3,8 +3,8 @@
 :class:`InverseBlockConstraints`, which lets a prescribed output drive a
 model backwards (an inverse model).
 
-Signals carry no physics of the seed; they feed its drives and sources
-(seed ch. 4.2 motion presets, ch. 8 showcase drives)."""
+Signals carry no physics of the dissertation; they feed its drives and sources
+(Ebert 2015, ch. 4.2 motion presets, ch. 8 showcase drives)."""
 import casadi as ca
 
 from acausal2d import Component, der, Parameter, RealInput, RealOutput, time, Variable

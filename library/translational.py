@@ -1,6 +1,8 @@
 """1D translational mechanics (Modelica.Mechanics.Translational conventions):
 flange.s is the absolute position, flange.f the force acting on the element
 from the connected part."""
+import casadi as ca
+
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, TranslationalFlange,
                        Variable)
 
@@ -18,9 +20,17 @@ class Fixed(Component):
 
 
 class Mass(Component):
-    """Sliding mass m between two rigidly coupled flanges; v = der(s)."""
+    """Sliding mass with inertia (Modelica.Mechanics.Translational.
+    Components.Mass, MSL 4.0)::
+
+        flange_a.s = s - L/2,  flange_b.s = s + L/2,  v = der(s)
+        m der(v) = flange_a.f + flange_b.f
+
+    ``s`` is the position of the centre, ``L`` the length (distance of the
+    flanges, default 0)."""
     m = Parameter(1.0, "kg", "mass", min=0.0)
-    s = Variable(unit="m", doc="position")
+    L = Parameter(0.0, "m", "length of the mass (distance of the flanges)", min=0.0)
+    s = Variable(unit="m", doc="position of the centre")
     v = Variable(unit="m/s", doc="velocity")
 
     def __init__(self, **kw):
@@ -29,7 +39,7 @@ class Mass(Component):
         self.flange_b = TranslationalFlange()
 
     def equations(self):
-        return [self.flange_a.s == self.s, self.flange_b.s == self.s,
+        return [self.flange_a.s == self.s - self.L / 2, self.flange_b.s == self.s + self.L / 2,
                 self.v == der(self.s),
                 self.m * der(self.v) == self.flange_a.f + self.flange_b.f]
 
@@ -70,7 +80,7 @@ class SpringDamper(_Compliant):
     """Linear spring and damper in parallel
     (Modelica.Mechanics.Translational.Components.SpringDamper):
     ``f = c (s_rel - s_rel0) + d v_rel``, ``v_rel = der(s_rel)``; the force
-    ``f`` acts on flange_b (``-f`` on flange_a, seed eq. 4.1 at the
+    ``f`` acts on flange_b (``-f`` on flange_a, Ebert (2015), eq. 4.1 at the
     flanges).  ``loss_power = d v_rel^2`` is the power dissipated."""
     c = Parameter(1.0, "N/m", "spring constant", min=0.0)
     d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
@@ -89,7 +99,7 @@ class Force(Component):
     """Force from the signal f_in acting on the flange
     (Modelica.Mechanics.Translational.Sources.Force without support: the
     reaction goes to ground); a positive signal pushes the flange in its
-    positive direction.  Seed eq. 4.1 at the flange."""
+    positive direction.  Ebert (2015), eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -118,7 +128,7 @@ class Position(Component):
 class PositionSensor(Component):
     """Absolute position of the flange as the signal ``s``
     (Modelica.Mechanics.Translational.Sensors.PositionSensor); takes no
-    force.  Seed eq. 4.1 at the flange."""
+    force.  Ebert (2015), eq. 4.1 at the flange."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -130,4 +140,42 @@ class PositionSensor(Component):
 
 
 # Modelica.Mechanics.Translational.Components' friction, where Modelica users look for it
-from acausal2d.library.friction1d import MassWithStopAndFriction, SupportFriction  # noqa: E402,F401
+from acausal2d.library.friction1d import (MassWithStopAndFriction, SupportFriction,  # noqa: E402,F401
+                                          interpolate, table_rows)
+
+
+class Brake(SupportFriction):
+    """Brake based on Coulomb friction (Modelica.Mechanics.Translational.
+    Components.Brake, MSL 4.0)::
+
+        s = flange_a.s - support.s,  flange_b.s = flange_a.s
+        v = der(s),  a = der(v),  0 = flange_a.f + flange_b.f - f
+        fn = fn_max * f_normalized,  free = fn <= 0
+        mu0 = mu_pos(v = 0),  f0 = mu0 * cgeo * fn,  f0_max = peak * f0
+        f = if locked then sa else if free then 0 else
+            cgeo * fn * (if forward then mu_pos(v) else -mu_pos(-v))
+
+    with the modes of Modelica's PartialFriction
+    (:func:`~acausal2d.library.friction1d.partial_friction`): it holds the
+    flanges (``v`` stays 0) while the force on them stays within
+    ``f0_max``.  ``mu_pos``: rows ``[v, mu]`` (default ``[[0, 0.5]]``)."""
+    cgeo = Parameter(1.0, "1", "geometry constant (friction distribution)", min=0.0)
+    fn_max = Parameter(1.0, "N", "maximum normal force", min=0.0)
+    fn = Variable(unit="N", doc="normal force fn_max f_normalized")
+
+    def __init__(self, mu_pos=None, **kw):
+        super().__init__(**kw)
+        self.mu_pos = table_rows(self, "mu_pos", mu_pos, [(0.0, 0.5)])
+        self.f_normalized = RealInput(doc="normalized normal force (0..1)")
+
+    def equations(self):
+        free = self.fn <= 0
+        fn_pos = ca.if_else(free, 0.0, self.fn)
+        mu0 = interpolate(self.mu_pos, 0.0)
+        slide = lambda v: self.cgeo * fn_pos * interpolate(self.mu_pos, v)  # noqa: E731
+        return [self.s == self.flange_a.s - self.support.s, self.flange_b.s == self.flange_a.s,
+                self.v == der(self.s), self.a == der(self.v),
+                0 == self.flange_a.f + self.flange_b.f - self.f,
+                self.support.f == -self.flange_a.f - self.flange_b.f,
+                self.fn == self.fn_max * self.f_normalized.u] + self.law_equations(
+            self.v, self.a, free, mu0 * self.cgeo * fn_pos, slide)

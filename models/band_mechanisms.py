@@ -1,4 +1,4 @@
-"""Band mechanisms of seed ch. 2.5.2 (Bild 2.6-2.9): a band cam disc (a
+"""Band mechanisms of Ebert (2015), ch. 2.5.2 (Bild 2.6-2.9): a band cam disc (a
 curved drum pivoted in the ground, turned by a drive) and a band that
 pulls the output.  The cam is an eccentric circle (support function p(psi)
 = RC + E cos psi in the drum frame), so the lever arm of the band about the
@@ -198,7 +198,7 @@ class NozzleSlottedCrank(Component):
     """Bild 3.1 f: "the band is led from a band pulley through a draw-off
     nozzle and attached to a crank-slotted mechanism (Kurbelschleife)".
 
-    The seed gives only this sentence; assumed here (spec section 5): the
+    The dissertation gives only this sentence; assumed here: the
     slotted crank is a crank of R_CRANK = 0.04 m about A0 = (0, 0), driven
     at one revolution per second, whose pin slides in a guide (rocker,
     :class:`~acausal2d.library.linkage.DSD`) pivoted at B0 = (0, -0.12);
@@ -206,7 +206,7 @@ class NozzleSlottedCrank(Component):
     runs through the ground nozzle N = (0.25, 0.08) (an elastic band, eq.
     4.67-4.77, c = 2000 N per unit strain) to a drum of radius 0.04 m at D =
     (0.45, 0) that a take-up torque of 0.4 N m keeps winding (the thread
-    tensioner of a sewing machine's take-up lever, seed ch. 3.1): the band
+    tensioner of a sewing machine's take-up lever, Ebert (2015), ch. 3.1): the band
     pulls with 10 N while the rocker swings it out and back.  Massless links.
 
     Closed forms: the rocker angle psi = atan2(R sin phi + 0.12, R cos phi)

@@ -1,10 +1,10 @@
-"""Systematics of four-link band mechanisms (seed ch. 2.5.2, Bild 2.6-2.8):
+"""Systematics of four-link band mechanisms (Ebert 2015, ch. 2.5.2, Bild 2.6-2.8):
 every structure that the text's construction rules derive, as a runnable
 model (one class per structure, built by
 :class:`acausal2d.library.belt.systematics.BandStructure` from its code).
 
 How the structures are enumerated (the figures are lost; the rules are
-those of the text, spec section 4): a band replaces a rigid link of a
+those of the text): a band replaces a rigid link of a
 four-link chain whose two joints are revolute (R1, R3: "a combination of
 rolling joint and prismatic joint is not possible", so the band's joints
 are never S); each band end is a pin D or a band joint B on a disc of the
@@ -36,7 +36,7 @@ cross-slider, band B-B    SB~BS, SSB~B, (band frame) BSSB
 
 ((a): each rigid link carries a pivot and a disc; (b): one rigid link
 carries two discs, the other two pivots), i.e. 18 four-bar structures from
-6 chains and 19 slider structures from 5 chains, against the seed's 16
+6 chains and 19 slider structures from 5 chains, against the dissertation's 16
 from 5 starting combinations (Bild 2.6) and 27 from 7 (Bild 2.7, 2.8). The
 stated rules do not reproduce those counts: dropping one of the two-
 structure four-bar chains gives 16, and the slider counts presumably
@@ -125,7 +125,7 @@ class SDD_B(BandStructure):
 
 class DB_DS(BandStructure):
     """DB~DS (slider-crank, band D-B): disc on a crank, band to a slider guided in the frame
-    (seed ch. 7.2.2, 'mit Schieber im Gestell')."""
+    (Ebert 2015, ch. 7.2.2, 'mit Schieber im Gestell')."""
     code = "DB~DS"
 
 

@@ -1,5 +1,5 @@
 """Belt-span test rig: one span of the compressor's V-belt (models/compressor.py,
-seed ch. 8.2) clamped at one end and stretched periodically at the other, for
+Ebert (2015), ch. 8.2) clamped at one end and stretched periodically at the other, for
 identifying the span's stiffness c and damping d from its force curve.
 
 The compressor's span forces (Bild 8.9) oscillate about the pretension with

@@ -1,11 +1,11 @@
-"""Spring-band balancing of a kitchen wall-cabinet door (seed ch. 7.2.1,
+"""Spring-band balancing of a kitchen wall-cabinet door (Ebert 2015, ch. 7.2.1,
 Bild 7.7-7.14), in three parts:
 
 1. :class:`DoorMechanism` -- the door as the coupler of a four-bar linkage
    (one hinge fitting with half the door mass), driven quasi-statically:
    its drive torque is the required balancing torque T(phi) (replaces the
-   seed's measurement, Bild 7.8), fitted by a regression polynomial;
-2. :class:`BalancingSynthesis` -- the seed's synthesis model (Bild 7.10):
+   dissertation's measurement, Bild 7.8), fitted by a regression polynomial;
+2. :class:`BalancingSynthesis` -- the dissertation's synthesis model (Bild 7.10):
    presets "Drehpunkt A0" (the cam, turning at 1 rad/s) and "Drehpunkt B0"
    (the spring pivot), ``DB_SD`` (K = -1) fed with the lever arm h(phi) from
    the ch. 6 optimisation, ``Bandkurve`` with the ch. 5 criteria;
@@ -20,7 +20,7 @@ parts.  Each writes its plots; the synthesis also writes the cam contour
 (CSV, SVG, DXF) and the assessment report.  The design (parts 1 -> 2, ch. 6)
 is computed once per process by :func:`door_design`.
 
-Values from the seed: A0 = (0, 0), B0 = (-296, 0) mm, cam at 1 rad/s, K = -1
+Values from the dissertation: A0 = (0, 0), B0 = (-296, 0) mm, cam at 1 rad/s, K = -1
 (contact right of the line A0 -> B0), spring rate c_S = 0.938 N/mm, lever
 arm h < 80 mm, two optimisation runs (free c_S with h < 80 mm, then c_S
 fixed), one hinge fitting with half the door-leaf mass; the experiment
@@ -28,7 +28,7 @@ fixed), one hinge fitting with half the door-leaf mass; the experiment
 of gravity "to reproduce the real door mass" and the door then stays in
 any position, so the design mass on the coupler is 2 kg.
 
-What the seed lacks: the dimensions of the four-bar and of the door leaf
+What the dissertation lacks: the dimensions of the four-bar and of the door leaf
 (Bild 7.7, 7.12 lost), the measured torque (Bild 7.8), the spring's
 extension (pretension) and the coefficients of Bild 7.9.  Run 1 has a
 closed form here: the lever arm is largest with the door open, where the
@@ -38,7 +38,7 @@ unstated pretension: with the required torque of this door (T(open) =
 2.67 N m) an open extension of 30 mm gives 1114 N/m, 36 mm 928 N/m (and
 the earlier 1 kg coupler with 30 mm 562.5 N/m).
 
-Values chosen here (the seed's drawings are lost) [guess]:
+Values chosen here (the dissertation's drawings are lost) [guess]:
 
 - four-bar: door-side rocker A0 -> A of 100 mm (the cam sits on its axis),
   second rocker D0 = (-40, -60) mm -> D of 120 mm, coupler A -> D of 100 mm
@@ -51,24 +51,24 @@ Values chosen here (the seed's drawings are lost) [guess]:
   the band out (K = -1, h > 0), so the spring is stretched most with the
   door closed.  Eq. 6.5 (T = c_S x_S x_S', x_S the spring extension,
   h = x_S') is solved in the closing angle psi = 1.745 rad - phi, in which
-  the spring is stretched as psi grows (the seed's sign convention);
+  the spring is stretched as psi grows (the dissertation's sign convention);
 - spring: extension X_OPEN = 36 mm with the door open (pretension 33.8 N),
-  unloaded length l0 = 100 mm.  **X_OPEN is chosen to match the seed's
-  number**: run 1 then gives c_S = 928 N/m, and the seed's catalogue
+  unloaded length l0 = 100 mm.  **X_OPEN is chosen to match the dissertation's
+  number**: run 1 then gives c_S = 928 N/m, and the dissertation's catalogue
   spring, 0.938 N/mm, is the one next to it (1.1 % stiffer, so h stays
   below 80 mm in run 2); the spring eye (the band fixing point, the material
   point P3 of DB~SD) lies between B0 and the cam at l0 + x_S from B0, so
   DB~SD's x0 = -(l0 + x_S(closed));
-- regression of the required torque: polynomial of degree 5 (the seed used
+- regression of the required torque: polynomial of degree 5 (the dissertation used
   degree 3 on measured data, R^2 = 99.7 %; here degree 3 departs from the
   computed torque by up to 0.99 % of its largest value, degree 5 by 0.29 %,
   R^2 = 0.99999);
-- ch. 6 ansatz: polynomial of degree 5 (the seed used 3, "1 to 5 give good
+- ch. 6 ansatz: polynomial of degree 5 (the dissertation used 3, "1 to 5 give good
   results"): degree 3 leaves a torque residual of 2.5 % of the largest
   required torque, degree 5 0.88 %, and the balanced door keeps 0.74 % (the
   test asks for < 1 %).  Run 1 (c_S free, h <= 80 mm): the softest spring
-  928 N/m; run 2 fits with the seed's c_S = 938 N/m, h = 52.7 .. 77.2 mm;
-- space for the cam: radius up to A_MAX = 90 mm (the seed bounds the lever
+  928 N/m; run 2 fits with the dissertation's c_S = 938 N/m, h = 52.7 .. 77.2 mm;
+- space for the cam: radius up to A_MAX = 90 mm (the dissertation bounds the lever
   arm only; with h up to 77 mm the cam reaches 81.5 mm);
 - quasi-static runs: rocker speed 0.01 rad/s (inertia torques below 1e-5 N m).
 """
@@ -120,7 +120,7 @@ def _add_door(model):
 
 
 class DoorMechanism(Component):
-    """Part 1: the door mechanism without balancing (seed Bild 7.7), driven
+    """Part 1: the door mechanism without balancing (Ebert 2015, Bild 7.7), driven
     quasi-statically from closed to open; ``drive.tau`` is the required
     balancing torque on the door-side rocker.  (Its ``experiment`` is set
     per instance, so that the file's default model is :class:`BalancedDoor`,
@@ -186,7 +186,7 @@ def door_design():
 
 
 class BalancingSynthesis(Component):
-    """Part 2: DB~SD + Bandkurve synthesis of the balancing cam (seed Bild
+    """Part 2: DB~SD + Bandkurve synthesis of the balancing cam (Ebert 2015, Bild
     7.10, 7.11): the cam turns about A0 at 1 rad/s (cam angle = time), the
     band passes B0, the lever arm h(phi) of the ch. 6 run 2 drives
     ``dbsd.in1``.  (Its ``experiment`` is set per instance, so that the file's
@@ -229,7 +229,7 @@ class BalancingSynthesis(Component):
 
 class BalancedDoor(DoorMechanism):
     """Part 3: the door with the synthesised cam on the door-side rocker and
-    the band with the 938 N/m spring to B0 (seed Bild 7.12), driven
+    the band with the 938 N/m spring to B0 (Ebert 2015, Bild 7.12), driven
     quasi-statically from closed to open: ``drive.tau`` is the torque left
     over (0 for a perfect balance); ``spring.F`` the spring force."""
     experiment = QUASI_STATIC
@@ -264,7 +264,7 @@ class BalancedDoor(DoorMechanism):
 def _design_text(des):
     f1, f2 = des.run1, des.fit
     return "\n".join([
-        "Cabinet door balancing (seed ch. 7.2.1)",
+        "Cabinet door balancing (Ebert 2015, ch. 7.2.1)",
         "  required torque %.3f .. %.3f N m, regression degree %d, R^2 = %.6f"
         % (des.T.min(), des.T.max(), DEGREE, des.r2),
         "  run 1 (c_S free, h <= %.0f mm, x_S(open) = %.0f mm): c_S = %.1f N/m, rms %.2e N m"

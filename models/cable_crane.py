@@ -1,6 +1,6 @@
-"""Three-rope tilting-mast cable crane (seed ch. 8.1, Bild 8.2-8.5).
+"""Three-rope tilting-mast cable crane (Ebert 2015, ch. 8.1, Bild 8.2-8.5).
 
-Layout of the seed (Bild 8.2, 8.3): horizontal span 50 m from mast to
+Layout of the dissertation (Bild 8.2, 8.3): horizontal span 50 m from mast to
 mast, masts 10 m high, slope 15 degrees, mast pulleys 200 mm diameter,
 rope drums 1000 mm diameter; 9 pulleys, 2 drums and 12 rope sections; the
 drums stand in the valley at the left mast.
@@ -8,15 +8,15 @@ drums stand in the valley at the left mast.
 - Skyline (Tragseil), 4 sections: anchored in the ground left of the left
   mast (G), over the upper pulley S of the left mast, under the two running
   wheels W1, W2 of the carriage, fastened at the top of the right mast (T).
-  Its length is constant (no tensioning drum, as in the seed).
+  Its length is constant (no tensioning drum, as in the dissertation).
 - Load rope (Lastseil), 6 sections: drum D1 - pulley ML on the left mast -
   pulley MR on the right mast - three carriage pulleys A, B, C - hook.
 - Haul-back rope (Hilfsseil), 2 sections: drum D2 - pulley MH on the left
   mast - fastened on the carriage frame (Hc).
 
 Pulleys: S, ML, MH, MR (masts) and W1, W2, A, B, C (carriage) = 9.  Every
-section is an elastic :class:`~acausal2d.library.belt.Belt` span (seed
-eq. 4.52-4.66, a spring-damper as in the seed's model), every pulley a
+section is an elastic :class:`~acausal2d.library.belt.Belt` span (Ebert 2015,
+eq. 4.52-4.66, a spring-damper as in the dissertation's model), every pulley a
 :class:`~acausal2d.library.belt.Pulley` (4.87-4.99), the drums
 :class:`~acausal2d.library.belt.Drum`; the carriage and the hook are
 :class:`~acausal2d.library.belt.crane.Carriage` and
@@ -24,7 +24,7 @@ eq. 4.52-4.66, a spring-damper as in the seed's model), every pulley a
 through its running wheels, so the skyline sags under it (a polygon of
 straight massless spans; see library/crane.py).
 
-Transfer cycle (seed: "Baumstamm anheben, transportieren und absenken"),
+Transfer cycle (Ebert 2015: "Baumstamm anheben, transportieren und absenken"),
 both drums angle-driven (rotational.Position) by C2 cycloidal motion laws:
 
     0 .. 1 s    at rest (static equilibrium)
@@ -40,8 +40,8 @@ Outputs (Bild 8.5): rope forces of the load rope (``load1.F`` at the drum
 ``haul2.F``); also the skyline force, carriage and hook positions, drum
 torques.
 
-Values the seed does not give, chosen here
-------------------------------------------
+Values the dissertation does not give, chosen here
+--------------------------------------------------
 - Coordinates: x horizontal, y up; left mast foot (0, 0), right mast foot
   (50, 50 tan 15 deg = 13.397) m; mast tops 10 m higher.
 - Mast pulleys (r = 0.1 m, J = 0.05 kg m^2, massless housings fixed in the
@@ -57,7 +57,7 @@ Values the seed does not give, chosen here
   r = 0.1 m, J = 0.05 kg m^2; haul-back fastening Hc at (-0.55, -0.20).
   The load rope runs over A, around the left side and bottom of B, over
   the right side of C and drops from C to the hook.  All pulleys and drums
-  are frictionless (no bearing friction; the seed gives none) and their
+  are frictionless (no bearing friction; the dissertation gives none) and their
   housings massless; the carriage mass includes its pulleys.
 - Hook with log: 1000 kg point mass.
 - Ropes (steel wire ropes; c = E A of the metallic cross-section, damping
@@ -328,7 +328,7 @@ def drum_angles(strokes):
 
 
 class CableCrane(Component):
-    """Three-rope cable crane of seed ch. 8.1 (see the module docstring)."""
+    """Three-rope cable crane of Ebert (2015), ch. 8.1 (see the module docstring)."""
     experiment = {"stop_time": T_STOP, "intervals": 600, "rtol": 1e-7}
     outputs = ["load1.F", "load3.F", "load6.F", "haul1.F", "haul2.F", "sky2.F",
                "carriage.x", "carriage.y", "hook.x", "hook.y", "D1.ctrR2.tau", "D2.ctrR2.tau"]

@@ -1,4 +1,4 @@
-"""Cam joints K of seed Tab. 2.1: a cam turning at constant speed about the
+"""Cam joints K of Ebert (2015), Tab. 2.1: a cam turning at constant speed about the
 origin lifts a translating follower on a vertical guide above it, held on
 the cam by a preloaded spring and gravity.  The follower's lift follows the
 cam's design law exactly:

@@ -35,7 +35,7 @@ class ClutchMotor(Component):
         super().__init__(**kw)
         self.load = RealInput()
         self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2)
-        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11, w_s=0.01)
+        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11, w_s=0.01, law="zone")
         self.engage = TimeFunction(clutch_signal)
         self.load_inertia = rotational.Inertia(J=0.05, phi=start(0.0, fixed=True),
                                                w=start(0.0, fixed=True))

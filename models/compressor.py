@@ -1,7 +1,7 @@
 """Compressor with belt drive, tensioner, clutch, crank drive and pneumatics
-(seed ch. 8.2, Bild 8.7-8.9).
+(Ebert 2015, ch. 8.2, Bild 8.7-8.9).
 
-Structure (seed Bild 8.8): an asynchronous motor drives, through the disc
+Structure (Ebert 2015, Bild 8.8): an asynchronous motor drives, through the disc
 clutch "discClutch1", the drive pulley "FixPulley1".  A closed elastic belt
 runs from the drive pulley over the tight span "BeltSpring1" to the driven
 pulley "FixPulley2", back over "BeltSpring3" to the tensioner pulley and
@@ -25,11 +25,11 @@ counter-clockwise: drive -> span2 -> tensioner -> span3 -> driven -> span1
     0.08 m pointing down at t0, the spring-damper from its end B to the
     anchor C = B - (0.15, 0).
 
-Span names as in the seed: ``span1`` = BeltSpring1 (tight span, driven ->
+Span names as in the dissertation: ``span1`` = BeltSpring1 (tight span, driven ->
 drive, on top), ``span2`` = BeltSpring2 (drive -> tensioner),
 ``span3`` = BeltSpring3 (tensioner -> driven).
 
-Values the seed does not give (chosen here):
+Values the dissertation does not give (chosen here):
 
 - motor: 4-pole, 50 Hz asynchronous motor (w_sync = 157.08 rad/s), Kloss
   breakdown torque T_k = 40 N m at s_k = 0.2 (about a 2.2 kW motor), rotor
@@ -75,7 +75,7 @@ clearance), the bearing 9.1 J, the belt/tensioner/clutch 0.09 J.  After the
 clutch opens the compressor stops within a few revolutions and rocks on the
 trapped air until the bearing friction has taken that energy (~15 s).
 
-Settling against the seed: the seed states the structure (Bild 8.8), the
+Settling against the dissertation: the dissertation states the structure (Bild 8.8), the
 clutch closing at 2 s and opening at 10 s, the force peaks at closing, the
 steady state "at about 8 s" and the run-out to standstill (text of Bild
 8.9); it gives no parameter at all (motor, clutch, inertias, belt,
@@ -87,8 +87,8 @@ shaft J = 0.041 kg m^2 (flywheel J2/9 included), so the speed settles with
 J/k_m = 16 ms, and the tensioner (2e4 N/m, 300 N s/m) is damped within
 a few tenths of a second.  Settling after 6 s would need a time constant
 of about 1.5 s: with this motor a hundred times the inertia, or a slow
-process the seed does not describe (e.g. a receiver filling up, which here
-is the constant 8 bar reservoir).  No parameter is tuned to the seed's 8 s.
+process the dissertation does not describe (e.g. a receiver filling up, which here
+is the constant 8 bar reservoir).  No parameter is tuned to the dissertation's 8 s.
 
 Checks (tests/test_compressor.py): the states at bottom dead centre and
 the span forces over the crank angle of consecutive revolutions agree
@@ -181,7 +181,7 @@ def tensioner_preload(F=F0):
 
 
 class Compressor(Component):
-    """Compressor drive of seed ch. 8.2 (see the module docstring).
+    """Compressor drive of Ebert (2015), ch. 8.2 (see the module docstring).
 
     Outputs: span forces ``span1.F`` (tight span), ``span2.F``,
     ``span3.F``; motor speed ``motor.w``; crank angle/speed
@@ -216,7 +216,7 @@ class Compressor(Component):
         # --- motor and clutch
         self.motor = rotational.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2,
                                            phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11, w_s=0.01)
+        self.clutch = rotational.Clutch(mu=0.3, fn_max=1500.0, cgeo=0.11, w_s=0.01, law="zone")
         self.engage = TimeFunction(clutch_signal)
         self.connect(self.engage.y, self.clutch.f_normalized)
         self.connect(self.motor.flange, self.clutch.flange_a)
@@ -239,7 +239,7 @@ class Compressor(Component):
 
     def _tensioner(self, C):
         """Bell-crank lever with the "Belt Tensor" spring-damper (a
-        :class:`LineSpringDamper`, seed Bild 8.8) anchored at C."""
+        :class:`LineSpringDamper`, Ebert (2015), Bild 8.8) anchored at C."""
         l0_spring, _ = tensioner_preload()
         self.pivot = Fixed(r=PIVOT)
         self.lever = Revolute(phi=start(LEVER0, fixed=True), w=start(0.0, fixed=True))
@@ -288,13 +288,13 @@ class Compressor(Component):
         self.connect(self.cyl.flange_b, self.head.flange)
 
     def topology(self):
-        """The shaft coupling for seed eq. 2.1.  The driven pulley and the
+        """The shaft coupling for Ebert (2015), eq. 2.1.  The driven pulley and the
         crank are one shaft at P2: the pulley's flange drives the crank
         joint's flange (``driven.ctrR2`` = ``crank.flange_a``), so the two
         revolute joints there (pulley bearing, crank joint) are coupled.
         Eq. 2.1 sees only the joints (pulley and crank as two links), so
         the coupling is declared as one more restriction, like the "+ 1"
-        for the coupled band joints of seed Bild 2.1 b/c: a joint with
+        for the coupled band joints of Ebert (2015), Bild 2.1 b/c: a joint with
         f = 2 (3 - f = 1) between the pulley and the crank.  Count: links
         ground, drive, driven, tensioner pulley, lever, crank, rod, piston
         (n = 8); revolute joints of the three pulleys, lever, crank, pin,

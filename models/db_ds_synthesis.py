@@ -1,19 +1,19 @@
-"""Band synthesis of a DB~DS mechanism with the slider in the ground (seed
+"""Band synthesis of a DB~DS mechanism with the slider in the ground (Ebert 2015,
 ch. 7.2.2, Bild 7.15-7.20): a band from a cam to a slider on a horizontal
 slide line through the cam pivot P1 (centric); the slider moves from a
 section of small constant speed to a section of larger constant speed, the
 transition of the speed a polynomial of degree 5 (shock- and jerk-free).
 
-The model is the seed's Bild 7.16: the slider is the linkage element SAN,
+The model is the dissertation's Bild 7.16: the slider is the linkage element SAN,
 driven along its guide by the transfer function, and its slider point is
 connected directly to ``Bandkurve`` (no special synthesis element: the band
 is fastened to the slider's pivot).  ``Bandkurve(criteria=True)`` computes
 involute, evolute (the cam contour, Bild 7.17) and the criteria of ch. 5
 (Bild 7.19).  ``acausal2d simulate models/db_ds_synthesis.py`` writes, besides
 the result, the contour plot, the assessment plot and report and the cam
-contour as CSV, SVG and DXF (the seed laser-cut this cam, Bild 7.20).
+contour as CSV, SVG and DXF (the dissertation laser-cut this cam, Bild 7.20).
 
-Values from the seed: centric horizontal slide line, slider start xS0 = 100
+Values from the dissertation: centric horizontal slide line, slider start xS0 = 100
 mm from P1, the band wound up by a counter-clockwise cam turn, speed
 transition by a degree-5 polynomial; assessment results: |r_k| (free band
 length) between 100 and 350 mm, no sign change of its change, largest cam
@@ -80,7 +80,7 @@ def design(n=401):
 
 
 class DBDSSynthesis(Component):
-    """DB~DS synthesis model (seed Bild 7.16): cam pivot P1 at the origin,
+    """DB~DS synthesis model (Ebert 2015, Bild 7.16): cam pivot P1 at the origin,
     turned clockwise at 1 rad/s; SAN slider on the x axis driven by
     :func:`travel`; Bandkurve on the slider point."""
     experiment = {"stop_time": PSI_END, "intervals": 400, "rtol": 1e-10}
@@ -134,7 +134,7 @@ def plot_cam(syn, path):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x [m] (cam frame)")
     ax.set_ylabel("y [m]")
-    ax.set_title("DB~DS cam (seed ch. 7.2.2) with free bands every 0.5 rad")
+    ax.set_title("DB~DS cam (Ebert 2015, ch. 7.2.2) with free bands every 0.5 rad")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()

@@ -1,4 +1,4 @@
-"""The three mechanisms of seed Bild 2.1 (ch. 2.2, eq. 2.1): momentarily the
+"""The three mechanisms of Ebert (2015), Bild 2.1 (ch. 2.2, eq. 2.1): momentarily the
 same transfer from rocker 2 (pivot A0) to rocker 6 (pivot B0).
 
 ==========  ==============================================  ===================

@@ -1,4 +1,4 @@
-"""8-link mechanism after VDI 2729 example 2 (seed ch. 7.1, Bild 7.3/7.4,
+"""8-link mechanism after VDI 2729 example 2 (Ebert 2015, ch. 7.1, Bild 7.3/7.4,
 Anhang C, Tabelle C.1), kinematically driven at 1.5 rad/s, and the same
 mechanism force-driven (torque + flywheel on the crank).
 
@@ -37,13 +37,13 @@ empty:
 * dSD1: P1 connected to the crank pin A (ctr2D1 <- dAN1.ctr2D2) with x10 = 0;
   P2 unconnected (ground pivot B0).
 * The mass data of the guide U of dSD1 (the slotted coupler, link 3): the
-  seed's printout (Anhang C, dSD1) leaves mU empty and gives JU = 0.1 kg m²
+  dissertation's printout (Anhang C, dSD1) leaves mU empty and gives JU = 0.1 kg m²
   with xSURel = ySURel = 0 [m] -- the element's default values (Tabelle
   B.11: m = 1 kg, J = 0.1 kg m²), in SI units where every other mass datum
   of the table is in g, kg mm² and mm: these cells were not filled from
   the Creo reference model.  Taken literally, JU = 0.1 kg m² is 1300 times
   the bell crank's inertia and 94 % (rms) of the drive power is the power
-  of this one inertia torque (A.31), against which the seed's comparison
+  of this one inertia torque (A.31), against which the dissertation's comparison
   with the reference model (Bild 7.6, lost) could not have agreed unless
   the reference had the same default.  Assumed here instead: the guide is
   a 20 g bar of 80 mm (longer than the largest distance A - B0 of 66 mm)

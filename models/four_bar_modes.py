@@ -1,5 +1,5 @@
 """A crank-rocker four-bar on an elastic drive shaft, for its natural
-frequency at a crank angle (``acausal2d modes``, issue 21).
+frequency at a crank angle (``acausal2d modes``).
 
 Links as BodyShapes (mass at the middle, I = m l^2 / 12 about it): crank
 a = 0.10 m (0.5 kg), coupler b = 0.35 m (1.2 kg), rocker c = 0.25 m

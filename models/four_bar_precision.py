@@ -1,5 +1,5 @@
 """Four-bar precision-point synthesis: link lengths chosen so that the
-coupler curve passes through given points (seed ch. 2, the DDDD four-bar
+coupler curve passes through given points (Ebert 2015, ch. 2, the DDDD four-bar
 of models/four_link_mechanisms.py with a coupler point).
 
 The crank (A0 at the origin) turns once per second (crank angle 2 pi t);

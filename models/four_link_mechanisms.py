@@ -1,10 +1,10 @@
-"""The nine four-link mechanisms of seed Bild 2.2 (ch. 2.4), each built from
+"""The nine four-link mechanisms of Ebert (2015), Bild 2.2 (ch. 2.4), each built from
 the VDI 2729 linkage elements (library/linkage.py) and driven at constant
 speed by a motion preset: a crank turning once per second, or a slider
 moving through its full stroke in one second.
 
 ==========  ===================================  ===========================
-mechanism   name (seed ch. 2.4)                  elements
+mechanism   name (Ebert 2015, ch. 2.4)                  elements
 ==========  ===================================  ===========================
 DDDD(a)     four-bar (crank-rocker)              DAN + DDD
 DDDS(a)     slider-crank (Schubkurbel)           DAN + DDS (guide on ground)

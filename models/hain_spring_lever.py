@@ -1,4 +1,4 @@
-"""Hain's spring-lever balance (seed ch. 3.4, eq. 3.10-3.12, Bild 3.11 a).
+"""Hain's spring-lever balance (Ebert 2015, ch. 3.4, eq. 3.10-3.12, Bild 3.11 a).
 
 A lever of length r turns about the ground pivot O and carries a mass m at
 the distance k; a tension spring (rate c_S, free length a) runs from the
@@ -21,7 +21,7 @@ flange, a second ``Revolute`` at the lever end.  At constant speed the lever
 has no angular acceleration, so the drive torque ``drive.tau`` is the
 static torque left over: zero for the balance 3.12.
 
-Values [guess] (the mec2 example loads_3.json of the talk's web tool has
+Values [guess] (the mec2 example loads_3.json of Schnabel and Gössner's web tool has
 this configuration): r = b = 0.5 m, the two 1 kg masses of that example at
 0.5 m and 1.5 m replaced by m = 2 kg at their centre k = 1 m, lever inertia
 0.5 kg m^2, g = 9.81 m/s^2, so c_S = 78.48 N/m (mec2 uses g = 10: 80 N/m);
@@ -53,7 +53,7 @@ OMEGA = 0.5
 
 
 def spring_torque(phi, c_S, a=0.0, r=R_LEVER, b=B_HEIGHT):
-    """Spring torque about the pivot, seed eq. 3.10 (phi from the vertical)."""
+    """Spring torque about the pivot, Ebert (2015), eq. 3.10 (phi from the vertical)."""
     return r * b * c_S * np.sin(phi) * (1.0 - a / np.sqrt(r * r + b * b - 2 * r * b * np.cos(phi)))
 
 

@@ -1,15 +1,15 @@
-"""Hydraulic drum drive of the tilting-mast cable crane (seed ch. 8.1,
-Bild 8.6, lines 2428-2440).
+"""Hydraulic drum drive of the tilting-mast cable crane (Ebert 2015, ch. 8.1,
+Bild 8.6).
 
-What the seed shows: the "rigid" drum drives of Bild 8.3 (drums following
+What the dissertation shows: the "rigid" drum drives of Bild 8.3 (drums following
 motion functions) replaced by a drive unit: a speed-controlled diesel
 engine drives a hydraulic pump that feeds the two controlled hydraulic
 motors of the load-rope drum and the auxiliary-rope drum, each through a
 planetary stage.  The model answered questions on the energy consumption
 and on design values, e.g. "the relation between the targeted maximum
 pressure at the hydraulic motor and the ratio of the planetary stage".
-Bild 8.6 shows one such string only as a picture; the seed gives no
-numbers for the drive (spec section 6 [open]).
+Bild 8.6 shows one such string only as a picture; the dissertation gives no
+numbers for the drive.
 
 What is given elsewhere in ch. 8.1 and used here: drum diameter 1000 mm
 (r = 0.5 m), payload up to 4 t ([MMF11]).
@@ -21,7 +21,7 @@ motors; values chosen so that every controller works inside its limits):
 * diesel: set speed 1800 rpm (188.5 rad/s), inertia of engine, flywheel and
   splitter box 2.5 kg m2, torque 0..1200 N m (about 226 kW at set speed),
   speed controller LimPID (PI, k = 50 N m s/rad, Ti = 0.5 s) -- the
-  "speed-controlled diesel" of the seed as a controlled torque source;
+  "speed-controlled diesel" of the dissertation as a controlled torque source;
 * splitter (pump drive) gear IdealGear ratio 1/1.2: pump at 2160 rpm;
 * pump: variable displacement, Vg = 250 cm3/rev, eta_v 0.95, eta_hm 0.9,
   pressure controller LimPID on p / p_set (PI, k = 5, Ti = 0.1 s, alpha
@@ -59,7 +59,7 @@ xi_start); the diesel's work equals the hoisting and
 haul work plus the kinetic and oil energy plus the losses in pump, motors
 and valve; at 25 MPa the load drum needs alpha = 0.75 of its motor (about
 3.5e-3 m3/s), i.e. the pressure level and the planetary ratio fix the
-motor size, as the seed says.
+motor size, as the dissertation says.
 """
 import math
 

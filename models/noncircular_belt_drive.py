@@ -1,18 +1,18 @@
-"""Toothed belt drive with non-circular pulleys (seed ch. 7.3.2, Bild 7.25-7.27).
+"""Toothed belt drive with non-circular pulleys (Ebert 2015, ch. 7.3.2, Bild 7.25-7.27).
 
 Two non-circular toothed pulleys, rotating in the ground at a centre distance
-of 800 mm, coupled by an open toothed belt (two elastic spans, seed eq.
+of 800 mm, coupled by an open toothed belt (two elastic spans, Ebert (2015), eq.
 4.52-4.66, on two pulleys with curved contour, eq. 4.100-4.122).  The small
 pulley is driven at 360 deg/s for 0..720 deg (2 s); the large pulley runs
 without load torque ("lastmomentfreier Abtrieb"), so the span forces vary
 only with the accelerating torque of the large pulley (Bild 7.27).
 
-Values from the seed (Bild 7.25): centre distance 800 mm, drive speed
+Values from the dissertation (Bild 7.25): centre distance 800 mm, drive speed
 360 deg/s, drive angle 0..720 deg, belt stiffness c = 100 000 N per unit
 strain, damping d = 50 N s per unit strain, mean ratio i = 2:1, ratio swing
 i_max/i_min = 1.5, drive on the smaller pulley.
 
-Design of the pulley pair (the seed's pulley geometry, synthesised with
+Design of the pulley pair (the dissertation's pulley geometry, synthesised with
 Wyrwa's method in Mathcad, is not given; we synthesise our own)
 ----------------------------------------------------------------------
 Prescribed transmission function (omega2/omega1 = 1/i):

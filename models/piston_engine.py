@@ -9,6 +9,15 @@ is frame_a of a Prismatic r={1,0} whose frame_b is connected to a second
 Fixed at the origin (so the piston's x equals -s).  At t=0 the mechanism is
 at its dead centre with s=-1.1.  Gravity does no work; the energy
 E = 0.5*0.1*w^2 + 0.5*3*xdot^2 = 0.3125 J is conserved.
+
+The piston's travel in three frames: in the world it moves along x from
+0.5 to 1.1 m (rod minus crank to rod plus crank); the prismatic joint's
+coordinate ``prismatic.s`` is the position of its frame_a (the piston)
+seen from frame_b (the origin) against the direction r = {1, 0}, so it
+runs from -1.1 to -0.5 m (s = -x); the cylinder is drawn from x = 0.4 to
+1.2 m (``guide``, given in s), and the summary of ``acausal2d simulate``
+counts the travel along the guide from that drawn start, 0.1 to 0.7 m.
+The stroke is 0.6 m in each.
 """
 from acausal2d import Component, start
 from acausal2d.library.planar import Body, Fixed, FixedTranslation, Prismatic, Revolute
@@ -33,8 +42,8 @@ class PistonEngine(Component):
         self.rod = FixedTranslation(r=(0.8, 0.0))
         self.revolutePiston = Revolute(state_select=state_select)
         self.bodyPiston = Body(m=3.0, I=0.1)
-        # guide: the cylinder drawn over the piston's travel, x = 0.4 ... 1.2 m
-        # (frame_a = frame_b - s r, s = -1.1 ... -0.5)
+        # guide: the cylinder drawn 0.1 m beyond the piston's travel, x = 0.4 ... 1.2 m
+        # (given in s: frame_a = frame_b - s r, the piston's s = -1.1 ... -0.5)
         self.prismatic = Prismatic(r=(1.0, 0.0), state_select=state_select,
                                    s=start(-1.1), guide=(-0.4, -1.2))
         self.fixed1 = Fixed()

@@ -1,4 +1,4 @@
-"""Pulley block with bearing friction (seed ch. 7.3.1, Bild 7.21-7.24).
+"""Pulley block with bearing friction (Ebert 2015, ch. 7.3.1, Bild 7.21-7.24).
 
 An upper block with two pulleys fixed in the ground (U1 large, U3 small), a
 lower block with two pulleys (L2 large, L4 small) carried by one free body
@@ -11,7 +11,7 @@ m g / 4 and the rope travel is four times the load travel.  The rope end of
 section 1 is pulled downwards by a smooth drive function (cosine velocity
 ramps, constant speed in between); section 5 is fastened to the upper block.
 
-Values the seed does not give (Bild 7.22 is lost) and that were chosen here:
+Values the dissertation does not give (Bild 7.22 is lost) and that were chosen here:
 
 - pulley radii: U1, L2 60 mm and 50 mm ("large"), U3, L4 40 mm and 30 mm
   ("small"); the pulleys of one block sit side by side (a planar stand-in
@@ -19,7 +19,7 @@ Values the seed does not give (Bild 7.22 is lost) and that were chosen here:
   0.11 m (L2), 0.27 m (L4), y = -1.5 m, so that every section hangs
   vertically and every pulley is wrapped by exactly 180 degrees;
 - pulleys massless with J = 1e-5 kg m^2; bearing pins 8 mm diameter
-  (r_pin = 4 mm), mu = 0.25 (seed values), friction sign regularised with
+  (r_pin = 4 mm), mu = 0.25 (values of Ebert 2015), friction sign regularised with
   omega_s = 1e-3 rad/s (library/belt.py);
 - rope: stiffness c = 2e6 N per unit strain (steel wire rope, about 6 mm),
   damping d = 2e4 N s per unit strain (the load mode is about critically
@@ -79,7 +79,7 @@ def drive_profile(t, V=0.2, Ta=1.0, Tc=4.0):
 
 
 class PulleyBlock(Component):
-    """Pulley block of seed ch. 7.3.1 (see the module docstring).
+    """Pulley block of Ebert (2015), ch. 7.3.1 (see the module docstring).
 
     ``friction`` adds the bearing friction torque to all four pulleys
     (``mu`` is then a parameter of each pulley, e.g. ``"U1.mu"``).

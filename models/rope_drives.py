@@ -1,4 +1,4 @@
-"""Rope drives of seed ch. 2.5.1 (Bild 2.4, 2.5): the factor block
+"""Rope drives of Ebert (2015), ch. 2.5.1 (Bild 2.4, 2.5): the factor block
 (Faktorenflaschenzug), the potential block (Potenzialflaschenzug) and the
 differential block (Differenzialflaschenzug), with inextensible ropes
 (:class:`~acausal2d.library.belt.Band`) and frictionless pulleys.
@@ -16,7 +16,7 @@ PotentialBlock      ((W/2 + m g)/2 + m g) / 2    2^3 (three loose pulleys)
 DifferentialBlock   W (R - r) / (2 R)            2 R / (R - r)
 ==================  ===========================  ============================
 
-Values the seed does not give (Bild 2.4/2.5 are pictures): load 50 kg,
+Values the dissertation does not give (Bild 2.4/2.5 are pictures): load 50 kg,
 pulley radii 40-60 mm, pull speed 0.1 m/s, 2 s.  ``acausal2d simulate
 models/rope_drives.py --model DifferentialBlock`` plots the pull force and
 the load height.

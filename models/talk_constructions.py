@@ -1,7 +1,6 @@
-"""The four-node geometric constructions of the talk's constraint library
+"""The four-node geometric constructions of Schnabel and Gössner's constraint library
 (talk ch. 2.3 and the cstr.js manual, whose example places A (0,0),
-B (80,20), C (20,30), D (100,40); ../shared/specs/spec_talk_nodes.md
-example 14), all in one node model (C moved to (-40,50) and one end node
+B (80,20), C (20,30), D (100,40)), all in one node model (C moved to (-40,50) and one end node
 per construction, so that the five do not overlap) so that they move together: the segment AB turns about A at
 1 turn/s (its angle driven, its length held) and the segment AC at -1/3
 turn/s, and every construction follows.

@@ -1,17 +1,16 @@
-"""The mechanisms of the talk "Lightweight prototypal mechanism simulation on
-the web" (Schnabel, Goessner; seed 000) as node/constraint models, with the
-talk's coordinates (transcribed in ../shared/specs/spec_talk_nodes.md from
-the talk's example files, github.com/Pasquale19/Beispiele_GT2022).
+"""The mechanisms of Schnabel and Gössner's talk "Lightweight prototypal mechanism simulation on
+the web" as node/constraint models, with their coordinates transcribed from
+Schnabel and Gössner's example files (github.com/Pasquale19/Beispiele_GT2022).
 
 Coordinates are the files' drawing units, read as millimetres
-(``length_unit = 1e-3``); y points up.  The talk moves its mechanisms by
+(``length_unit = 1e-3``); y points up.  Schnabel and Gössner's talk moves its mechanisms by
 dragging a node or by adding pi/180 to the crank angle every tick; here the
 crank turns at 1 turn/s (``speed(2 pi)``) unless a class says otherwise,
 so ``stop_time = 1`` is one crank revolution.  Choose a model with
 ``--model``, e.g. ``acausal2d check models/talk_mechanisms.py --model
 DeepDrawingPress``.
 
-Counts of the talk's eq. 1/2 (``acausal2d check``): the talk states them for
+Counts of Schnabel and Gössner's eq. 1/2 (``acausal2d check``): Schnabel and Gössner's talk states them for
 its two introductory examples (4 nodes, 1 base, C1 = 3, C2 = 1: the
 slider-crank; 4 nodes, 2 base, C1 = 3: the crank-rocker; F = 1, m = 1), the
 needle-bar drive (N = 10, N_base = 4, C1 = 11, C2 = 0, F = 1, m = 5), the
@@ -29,7 +28,7 @@ _RUN = {"stop_time": 1.0, "intervals": 360, "rtol": 1e-8}
 
 
 class _Talk(NodeModel):
-    """Common settings: coordinates in mm, no impressed forces (the talk's
+    """Common settings: coordinates in mm, no impressed forces (Schnabel and Gössner's
     Q = 0), 360 output intervals per crank turn."""
     length_unit = 1e-3
     experiment = dict(_RUN)
@@ -52,7 +51,7 @@ class _Talk(NodeModel):
 class IntroCrankRocker(_Talk):
     """Introductory crank-rocker (talk "Kurbelschwinge", slide 4): A0 (0,0)
     and B0 (200,10) fixed, A (0,50) with m = 2, B (180,110); the three
-    bars of cstr().n2(...).  The talk drags A; here the crank A0A turns.
+    bars of cstr().n2(...).  Schnabel and Gössner's talk drags A; here the crank A0A turns.
     Talk eq. 1/2: 4 nodes, 2 base, C1 = 3: F = 1, m = 1."""
     outputs = ["B.x", "B.y", "B0B.w"]
 
@@ -82,10 +81,10 @@ class EccentricSliderCrank(_Talk):
     """Eccentric slider-crank "Schubkurbel" (schubkurbel-exzentrisch.html,
     e = 60): A0 (0,0) fixed, the helper node AB0 (0,-e) carrying the guide,
     A (0,e) with m = 10, B (3e,-e).  Crank A0A, rod AB, guide AB0->B
-    (angle held: B slides on the line y = -e).  The talk's count example
+    (angle held: B slides on the line y = -e).  Schnabel and Gössner's count example
     (4 nodes, 1 base, C1 = 3, C2 = 1: F = 1, m = 1) holds AB0 by length and
     angle from A0 (a C2); the example file holds only its length, which
-    leaves the helper free to swing (F = 2 by eq. 1), so the talk's
+    leaves the helper free to swing (F = 2 by eq. 1), so Schnabel and Gössner's
     version is used."""
     outputs = ["B.x", "AB0B.r"]
 
@@ -104,7 +103,7 @@ class ScotchYoke(_Talk):
     line through A0 (-1.5e, 1.5e) towards A02 (1.5e, -1.5e), B on the line
     through B0 (1.5e, 1.5e) towards B02 (-1.5e, -1.5e); A (-e, e) with
     m = 10, B (0, 0), bar AB.  A02 and B02 only draw the guides (no
-    constraint uses them, so they are no nodes here).  The talk drags A;
+    constraint uses them, so they are no nodes here).  Schnabel and Gössner's talk drags A;
     here the bar AB turns at constant speed (its angle driven), the two
     sliders oscillating on their perpendicular guides (an elliptic
     trammel).  Eq. 1/2: 4 nodes, 2 base, C1 = 3: F = 1, m = 1."""
@@ -156,7 +155,7 @@ class StephensonII(_Talk):
     A0A, AC, AD, CD, CB, DE, BE, B0B, B0E.  It contains a class-3 Assur
     group (the ternary link CD-A... closes through B-E), so there is no
     closed-form position solution; the DAE and the position correction
-    solve it as any other.  The talk drags A; here the crank A0A swings
+    solve it as any other.  Schnabel and Gössner's talk drags A; here the crank A0A swings
     by +-60 deg about its start (a full turn locks).
     Eq. 1/2: N = 7, N_base = 2, C1 = 9: F = 1, m = 4."""
     outputs = ["E.x", "E.y", "B.x", "B.y"]
@@ -301,7 +300,7 @@ class NeedleBarDrive(_Talk):
     (AB, B0B, AC, BC), the rocker D0-D-E driven by DC (DC, D0D, D0E, DE),
     the connecting rod EF and the needle bar F sliding on the vertical
     line through F0 (F0F angle held); the needle point G is rigid with F
-    (FG length and angle held) and not counted, as in the talk.  Output:
+    (FG length and angle held) and not counted, as in Schnabel and Gössner's talk.  Output:
     the needle-bar travel F0F.r over one crank turn."""
     outputs = ["F0F.r", "G.y"]
 
@@ -333,7 +332,7 @@ PRESS_BARS = ("A-B", "B0-B", "B0-C", "B-C", "C-D", "D0-D", "D0-E", "D-E", "D0-I"
 class DeepDrawingPress(_Talk):
     """14-link deep-drawing crank press (Charts/Erfurt-Getriebe_chart.html;
     talk "Tiefziehkurbelpresse": N = 16, N_base = 5, C1 = 21, C2 = 0,
-    F = 1, m = 10; the talk reports itr(max/cur) = 494/328 and 848/582
+    F = 1, m = 10; Schnabel and Gössner's talk reports itr(max/cur) = 494/328 and 848/582
     with cstr.js).  Crank A0A (length held, angle driven, the file adds
     pi/360 per tick), 18 bars, and the two rams H and K sliding on
     vertical lines through H0 and K0 (H0H, K0K angle held).  Outputs: the

@@ -1,12 +1,12 @@
-"""The talk's needle-bar drive and deep-drawing press built from the VDI
-2729 elements of the seed (DAN, DDD, FGP, DDS; library/linkage.py), with
+"""Schnabel and Gössner's needle-bar drive and deep-drawing press built from the VDI
+2729 elements of the dissertation (DAN, DDD, FGP, DDS; library/linkage.py), with
 the same coordinates as the node models in talk_mechanisms.py, so that both
 descriptions of one mechanism can be compared (they agree on every point
 to solver accuracy over a crank turn; tests/test_talk_mechanisms.py).
 
 Decompositions (sequential VDI order):
 
-* Needle-bar drive (spec_talk_nodes.md, example 9): DAN (crank A0A) +
+* Needle-bar drive (Schnabel and Gössner's example 9): DAN (crank A0A) +
   DDD (A, B0 -> B) + FGP (C on the coupler AB) + DDD (C, D0 -> D) + FGP
   (E on the rocker D0D) + DDS (E -> F on the vertical guide through F0) +
   FGP (the needle point G on the needle bar).
@@ -21,7 +21,7 @@ Each FGP sits on the plane of the link it belongs to, at that link's pivot
 (x10 = y10 = 0) turned by the angle between the link and the point
 (phi10); each dyad's assembly parameter K is the side the coordinates put
 its joint on.  The crank turns at 1 turn/s from the angle of the given
-crank pin; no gravity (the talk's Q = 0)."""
+crank pin; no gravity (Schnabel and Gössner's Q = 0)."""
 import math
 
 from acausal2d import Component
@@ -109,7 +109,7 @@ class _VDI(Component):
 
 
 class NeedleBarDriveVDI(_VDI):
-    """The needle-bar drive of the talk (NeedleBarDrive in
+    """The needle-bar drive of Schnabel and Gössner's talk (NeedleBarDrive in
     talk_mechanisms.py) from VDI 2729 elements (module doc).  Points:
     A = crank.ctr2D2, B = ab.xP/yP, C = c.ctr2D2, D = cd.xP/yP, E =
     e.ctr2D2, F = ef.xP/yP, G = g.ctr2D2."""
@@ -130,7 +130,7 @@ class NeedleBarDriveVDI(_VDI):
 
 
 class DeepDrawingPressVDI(_VDI):
-    """The 14-link deep-drawing press of the talk (DeepDrawingPress in
+    """The 14-link deep-drawing press of Schnabel and Gössner's talk (DeepDrawingPress in
     talk_mechanisms.py) from VDI 2729 elements (module doc).  Rams:
     H = gh.xP/yP, K = jk.xP/yP."""
     outputs = ["gh.yP", "jk.yP"]

@@ -1,7 +1,7 @@
-"""The two outlook examples of the talk ("Ausblick": Synthese_Poldreieck.html
-and Drehzahlplan.html; ../shared/specs/spec_talk_nodes.md examples 12, 13)
+"""The two outlook examples of Schnabel and Gössner's talk ("Ausblick": Synthese_Poldreieck.html
+and Drehzahlplan.html)
 as node models built from the four-node constructions
-(:mod:`acausal2d.library.nodes.constructions`).  The talk gives no
+(:mod:`acausal2d.library.nodes.constructions`).  Schnabel and Gössner's talk gives no
 dimensions for either; the ones below are chosen and listed in the class
 docstrings.  Coordinates in mm.
 

@@ -50,7 +50,7 @@ class Model(Component):
 
 _GOOD = dict(speed=50.0, pid="k=0.5, Ti=0.2, Td=0.01, yMax=5.0",
              gear="ratio=4.0", planet="ratio=2.5",
-             brake="mu_pos=[[0.0, 0.4]], cgeo=0.2, fn_max=50.0, peak=1.2, w_s=1e-4",
+             brake="mu_pos=[[0.0, 0.4]], cgeo=0.2, fn_max=50.0, peak=1.2",
              brake_at=0.3)
 
 # (what to change, the words the error must hold)

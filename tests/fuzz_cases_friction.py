@@ -21,7 +21,7 @@ class Model(Component):
         super().__init__(**kw)
         self.a = rotational.Inertia(J=%(ja)r, phi=start(0.0, fixed=True), w=start(%(wa)r, fixed=True))
         self.b = rotational.Inertia(J=%(jb)r, phi=start(0.0, fixed=True), w=start(%(wb)r, fixed=True))
-        self.clutch = rotational.Clutch(mu=%(mu)r, fn_max=%(fn_max)r, cgeo=%(cgeo)r, w_s=%(w_s)r)
+        self.clutch = rotational.Clutch(mu=%(mu)r, fn_max=%(fn_max)r, cgeo=%(cgeo)r, w_s=%(w_s)r, law="zone")
         self.eng = signals.%(engage)s
         self.connect(self.eng.y, self.clutch.f_normalized)
         self.connect(self.a.flange_b, self.clutch.flange_a)

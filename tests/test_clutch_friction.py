@@ -40,7 +40,7 @@ class TwoInertias(Component):
         super().__init__(**kw)
         self.a = rot.Inertia(J=JA, phi=start(0.0, fixed=True), w=start(w0, fixed=True))
         self.b = rot.Inertia(J=jb, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.clutch = rot.Clutch(mu=1.0, fn_max=CAP, cgeo=1.0, w_s=w_s)
+        self.clutch = rot.Clutch(mu=1.0, fn_max=CAP, cgeo=1.0, w_s=w_s, law="zone")
         self.eng = signals.Constant(k=engage) if not callable(engage) else \
             signals.TimeFunction(engage)
         self.connect(self.eng.y, self.clutch.f_normalized)

@@ -29,7 +29,7 @@ class TwoInertias(Component):
         super().__init__(**kw)
         self.a = rot.Inertia(J=JA, phi=start(0.0, fixed=True), w=start(w0, fixed=True))
         self.b = rot.Inertia(J=JB, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.clutch = rot.Clutch(mu=0.3, fn_max=1000.0, cgeo=0.1, w_s=W_S,
+        self.clutch = rot.Clutch(mu=0.3, fn_max=1000.0, cgeo=0.1, w_s=W_S, law="zone",
                                  w_rel=start(-w0))
         if engage is None:
             self.eng = signals.Constant(k=1.0)

@@ -68,7 +68,7 @@ def test_clutch_breaks_away_at_peak_times_the_sliding_torque():
     K, ja, jb, tau0, peak = 100.0, 1.0, 3.0, 10.0, 1.5
     j_eff = ja * jb / (ja + jb)
     t_u = peak * tau0 * (ja + jb) / (jb * K) + j_eff * W_S / (peak * tau0)
-    clutch = rot.Clutch(mu=0.5, cgeo=1.0, fn_max=20.0, peak=peak, w_s=W_S)
+    clutch = rot.Clutch(mu=0.5, cgeo=1.0, fn_max=20.0, peak=peak, w_s=W_S, law="zone")
     res = acausal2d.simulate(Pair(clutch, torque=lambda t: K * t), stop_time=0.4, rtol=RTOL,
                              output_times=np.linspace(0.0, 0.4, 201))
     assert len(res.events) == 1
@@ -88,7 +88,7 @@ def test_clutch_with_a_mu_table_locks_at_the_closed_form():
     j_eff = ja * jb / (ja + jb)
     c = fn / j_eff
     t_lock = math.log(5.0 / 3.0) / (0.02 * c)
-    clutch = rot.Clutch(mu_pos=[[0.0, 0.5], [10.0, 0.3]], cgeo=1.0, fn_max=fn, w_s=W_S)
+    clutch = rot.Clutch(mu_pos=[[0.0, 0.5], [10.0, 0.3]], cgeo=1.0, fn_max=fn, w_s=W_S, law="zone")
     res = acausal2d.simulate(Pair(clutch, wa=10.0), stop_time=1.0, rtol=RTOL,
                              output_times=np.linspace(0.0, 1.0, 201))
     slip = res.time < t_lock - 1e-3
@@ -109,7 +109,7 @@ class Bearing(Component):
         self.sig = signals.TimeFunction(lambda t: K * t)
         self.src = rot.Torque()
         self.inertia = rot.Inertia(J=J, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.bearing = rot.BearingFriction(tau_pos=tau_pos, peak=peak, w_s=W_S)
+        self.bearing = rot.BearingFriction(tau_pos=tau_pos, peak=peak, w_s=W_S, law="zone")
         self.connect(self.sig.y, self.src.tau_in)
         self.connect(self.src.flange, self.inertia.flange_a)
         self.connect(self.inertia.flange_b, self.bearing.flange_a)
@@ -144,7 +144,7 @@ class Braked(Component):
         super().__init__(**kw)
         self.src = rot.ConstantTorque(tau=T)
         self.inertia = rot.Inertia(J=J, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.brake = rot.Brake(mu_pos=[[0.0, 0.4]], cgeo=0.5, fn_max=100.0, peak=1.25, w_s=W_S)
+        self.brake = rot.Brake(mu_pos=[[0.0, 0.4]], cgeo=0.5, fn_max=100.0, peak=1.25, w_s=W_S, law="zone")
         self.one = signals.Constant(k=1.0)
         self.connect(self.one.y, self.brake.f_normalized)
         self.connect(self.src.flange, self.inertia.flange_a)
@@ -171,7 +171,7 @@ def test_brake_holds_below_its_capacity_and_slips_above(share):
 
 
 def _one_way(engage):
-    clutch = rot.OneWayClutch(mu_pos=[[0.0, 0.5]], cgeo=1.0, fn_max=100.0, w_s=W_S)
+    clutch = rot.OneWayClutch(mu_pos=[[0.0, 0.5]], cgeo=1.0, fn_max=100.0, w_s=W_S, law="zone")
     return Pair(clutch, torque=lambda t: 4.0 * acausal2d.if_else(t < 0.5, 1.0, -1.0),
                 engage=engage)
 
@@ -210,7 +210,7 @@ class Sliding(Component):
         self.sig = signals.TimeFunction(lambda t: K * t)
         self.src = tr.Force()
         self.mass = tr.Mass(m=m, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
-        self.friction = tr.SupportFriction(f_pos=[[0.0, 2.0]], peak=peak, v_s=W_S)
+        self.friction = tr.SupportFriction(f_pos=[[0.0, 2.0]], peak=peak, v_s=W_S, law="zone")
         self.connect(self.sig.y, self.src.f_in)
         self.connect(self.src.flange, self.mass.flange_a)
         self.connect(self.mass.flange_b, self.friction.flange_a)

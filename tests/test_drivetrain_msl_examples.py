@@ -95,9 +95,11 @@ class OneWayClutchExample(Component):
 def test_one_way_clutch_example_never_runs_backwards():
     """Modelica's OneWayClutch example (2 s): the momentum sum follows the
     drive's impulse -0.5 + 10 (1 - cos(6 pi t)) / (6 pi); the relative speed
-    w_rel = inertiaOut.w - inertiaIn.w never falls below the freewheel's
-    creep (w_s |tau| / tau_lock, tau_lock = peak mu0 cgeo fn_max = 37.5 N m);
-    the clutch dissipates."""
+    w_rel = inertiaOut.w - inertiaIn.w never falls below 0 by more than
+    the freewheel's lock leaves: it locks (a_rel = 0) at the event where
+    w_rel reaches 0, located to ~1e-13 s, with |a_rel| <= 20 rad/s2 here,
+    so 1e-9 has ample room; the clutch dissipates where it is not locked
+    (locked, Modelica's loss power is 0)."""
     res = acausal2d.simulate(OneWayClutchExample(), stop_time=2.0, rtol=RTOL,
                              output_times=np.linspace(0.0, 2.0, 401))
     t = res.time
@@ -105,8 +107,9 @@ def test_one_way_clutch_example_never_runs_backwards():
     impulse = -0.5 + 10.0 * (1.0 - np.cos(6 * math.pi * t)) / (6 * math.pi)
     assert np.max(np.abs(momentum - impulse)) <= 100 * RTOL * 2.0
     tau = res["oneWayClutch.tau"]
-    assert np.min(res["oneWayClutch.w_rel"]) >= -1e-4 * np.max(np.abs(tau)) / 37.5 - 10 * RTOL
-    assert np.min(tau * res["oneWayClutch.w_rel"]) >= 0.0 - 1e-12
+    assert np.min(res["oneWayClutch.w_rel"]) >= -1e-9
+    sliding = res["oneWayClutch.locked"] < 0.5
+    assert np.min((tau * res["oneWayClutch.w_rel"])[sliding]) >= 0.0 - 1e-12
     # the engagement makes the output follow: both speeds meet while engaged
     engaged = (t > 0.35) & (t < 0.95)
     assert np.min(np.abs(res["oneWayClutch.w_rel"][engaged])) <= 1e-4

@@ -40,7 +40,7 @@ class Slider(Component):
         super().__init__(**kw)
         coeff = dict(F_prop=F_PROP, F_Coulomb=F_C, F_Stribeck=F_S) if stribeck else \
             dict(F_prop=0.0, F_Coulomb=0.0, F_Stribeck=0.0)
-        self.mass = tr.MassWithStopAndFriction(m=M, fexp=FEXP, L=0.2, smax=smax, v_s=V_S,
+        self.mass = tr.MassWithStopAndFriction(m=M, fexp=FEXP, L=0.2, smax=smax, v_s=V_S, law="zone",
                                                s=start(s0, fixed=True), v=start(v0, fixed=True),
                                                **coeff)
         if force is not None:

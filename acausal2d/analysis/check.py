@@ -1,5 +1,5 @@
 """Structure report of a model: sizes, states, structural index, closed
-loops and the degree of freedom by the seed's eq. 2.1 next to the
+loops and the degree of freedom by the dissertation's eq. 2.1 next to the
 structural one."""
 import textwrap
 from typing import Any
@@ -54,7 +54,7 @@ class CheckReport:
 
 
 def grounded_lines(grounded, head="  grounded ports:    "):
-    """The ports fixed to ground because nothing is connected to them (seed
+    """The ports fixed to ground because nothing is connected to them (Ebert 2015,
     Tabelle 4.1), by name with the potentials fixed, as printed lines
     (none when there are none); ``grounded`` as
     :func:`~acausal2d.compiler.flatten.grounded_ports` returns it."""
@@ -86,7 +86,7 @@ def _terms(t):
 
 
 def _node_lines(c):
-    """The talk's eq. 1/2 counts of the node models (see
+    """Schnabel and Gössner's eq. 1/2 counts of the node models (see
     :meth:`acausal2d.library.nodes.NodeModel.node_counts`)."""
     lines = ["  nodes (talk):      N = %d, N_base = %d, C1 = %d, C2 = %d: F = %d (eq. 1), "
              "m = %d loops (eq. 2)" % (c["N"], c["N_base"], c["C1"], c["C2"], c["F"], c["m"])]
@@ -120,7 +120,7 @@ def _loops(topo, nodes):
 
 
 class _Topology:
-    """Collects the topology() items of all components for seed eq. 2.1:
+    """Collects the topology() items of all components for Ebert (2015), eq. 2.1:
     links (union of frames), joints (f each), band joints (a span end on a
     wheel contact, f from the contact), coupling constraints of band joints
     wrapped on one contour, identical freedoms f_id and passive constraints s."""
@@ -174,7 +174,7 @@ class _Topology:
 
 
 def _planar_topology(model):
-    """Links, joints, F and loops by seed eq. 2.1 from the components'
+    """Links, joints, F and loops by Ebert (2015), eq. 2.1 from the components'
     topology() declarations (None when nothing is declared)."""
     topo = _Topology(model)
     if not topo.any_item:

@@ -29,7 +29,7 @@ A peak constraint ``max(E) <= V`` (and ``min(E) >= V``) stays one
 constraint for SLSQP: its value is the largest ``E(t_i) - V`` over the
 output points and its gradient that of the point where the peak lies (the
 gradient of the maximum wherever the peak stays at one point).  One row
-per output time instead (as before issue 29) makes SLSQP's linearised
+per output time instead makes SLSQP's linearised
 subproblem inconsistent from a start that violates the constraint: points
 before and after the peak ask for opposite steps (the mass-spring-damper
 of tests/test_optimize_edges.py stopped after 3 runs from d = 10 and 25;

@@ -24,7 +24,7 @@ infinity (a prismatic pair).  The velocity field of link i is
 links i and j is where both fields agree,
 ``(w_i - w_j) k x P = c_j - c_i``.  :func:`kennedy_poles` builds the poles
 not at joints from those at joints by the theorem of Aronhold and Kennedy
-(three poles of three links lie on one line), as the seed's figures do.
+(three poles of three links lie on one line), as the dissertation's figures do.
 """
 import itertools
 
@@ -130,7 +130,7 @@ def _field_offset(res, spec):
 
 
 def angular_velocity(res, link, ref=GROUND):
-    """phi_dot of ``link`` relative to ``ref`` (seed: phi_dot_ij = w_i - w_j)."""
+    """phi_dot of ``link`` relative to ``ref`` (Ebert 2015: phi_dot_ij = w_i - w_j)."""
     return link_motion(res, link)[2] - link_motion(res, ref)[2]
 
 
@@ -210,7 +210,7 @@ def _construct(labels, poles, i, j):
 def poles(res, links, joints=None):
     """Instantaneous poles P_ij of the links ``links`` ({label: link spec},
     see the module doc; include the ground, e.g. ``{"1": "ground", "2":
-    "A0A", ...}`` as the seed numbers them) at every output time.
+    "A0A", ...}`` as the dissertation numbers them) at every output time.
 
     Returns {(i, j): points (n, 2)} for every pair i < j, NaN where the
     pole is at infinity.  Without ``joints`` every pole comes from the two

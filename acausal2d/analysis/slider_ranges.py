@@ -1,4 +1,4 @@
-"""Slider travel ranges of a run (seed ch. 7.1, Bild 7.4: "the motion
+"""Slider travel ranges of a run (Ebert 2015, ch. 7.1, Bild 7.4: "the motion
 ranges of the sliders are recognised automatically and visualised").
 
 A slider is what a component draws as a ``"slider"`` shape with a
@@ -92,7 +92,7 @@ def slider_ranges(result):
 
 def range_lines(ranges, indent="  "):
     """Summary lines of :func:`slider_ranges` (one per slider)."""
-    return ["%sslider %s: travel %.6g .. %.6g m along its guide (stroke %.6g m)"
+    return ["%sslider %s: travel %.6g .. %.6g m along its guide from its start (stroke %.6g m)"
             % (indent, r.name, r.s_min, r.s_max, r.stroke) for r in ranges]
 
 

@@ -245,10 +245,13 @@ def eliminate_all_aliases(equations, variables, table):
 
 
 def _merge_attrs(rep, member, sign, off):
-    """member = sign*rep + off: let rep inherit member's start attributes."""
+    """member = sign*rep + off: let rep inherit member's start attributes.
+    The nominal is the smallest of the set: the tolerance of the node must
+    resolve its smallest member (a relative speed of 1e-6 rad/s with its
+    nominal 1e-4 that is an alias of a housing's speed)."""
     if STATE_SELECT.index(member.state_select) > STATE_SELECT.index(rep.state_select):
         rep.state_select = member.state_select
-    rep.nominal = max(rep.nominal, member.nominal)
+    rep.nominal = min(rep.nominal, member.nominal)
     if member.fixed and not rep.fixed:
         rep.fixed = True
         rep.start = (member.start - off) * sign

@@ -1,7 +1,7 @@
 """Flattening: from a component tree to one list of scalar equations.
 
 Creates the symbols of every component, collects their equations, builds
-the connection sets (potentials equal, flows sum to zero, seed eq. 4.1) and
+the connection sets (potentials equal, flows sum to zero, Ebert (2015), eq. 4.1) and
 closes unconnected connectors (flows zero, or fixed to ground for connectors
 declared with ``ground=``).
 """
@@ -200,7 +200,7 @@ def _check_set(elems, names):
 
 
 def _set_equations(elems):
-    """Potentials equal, flows summing to zero (seed eq. 4.1) for one set."""
+    """Potentials equal, flows summing to zero (Ebert 2015, eq. 4.1) for one set."""
     conns = [c for c, _ in elems]
     names = ", ".join(c.path for c in conns)
     _check_set(elems, names)
@@ -222,7 +222,7 @@ def _set_equations(elems):
 
 GROUNDED = " (unconnected, fixed to ground)"
 """Origin suffix of the equations that fix an unconnected ``ground=``
-connector (seed Tabelle 4.1: a triangle port left open is fixed to ground)."""
+connector (Ebert 2015, Tabelle 4.1: a triangle port left open is fixed to ground)."""
 
 
 def grounded_ports(equations):

@@ -91,10 +91,12 @@ class Formulation:
             if watched else None
         # event values: crossings, |det| a + b of the monitored blocks, the highest
         # det itself (passages), |det| a + b of the highest block (near singular);
-        # a = 1/reference, b = -threshold while watched, a = 0, b = 1 otherwise
-        ab = ca.SX.sym("ab", 2 * (self.n_mon + self.n_pass))
+        # a = 1/reference, b = -threshold while watched, a = 0, b = 1 otherwise;
+        # then each crossing's bias (see runtime.ida.Problem.set_biases)
         k = self.n_mon + self.n_pass
+        ab = ca.SX.sym("ab", 2 * k + self.n_rel)
         scaled = [ca.fabs(w) * ab[i] + ab[k + i] for i, w in enumerate(watched)]
+        g = [g[0] + ab[2 * k:]] if g else []
         events = g + scaled[:self.n_mon] + watched[self.n_mon:] + scaled[self.n_mon:]
         self.event_fn = ca.Function("events", args + [ab], [ca.vertcat(*events)]) \
             if events else None

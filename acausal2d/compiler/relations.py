@@ -7,8 +7,14 @@ symbol ``d`` that holds 0 or 1 between events, and a zero-crossing function
 of ``g`` (or, for relations of time alone, schedules them), flips ``d`` and
 re-initializes consistently (Modelica event semantics).  Relations among
 parameters only stay as they are.  ``fabs`` is kept continuous.
+
+Latches (:func:`~acausal2d.language.symbols.latch`) are relations whose
+crossing function a component gives and which may depend on the latch
+values themselves; their crossing functions are scanned with the
+equations (a relation in them becomes a relation of its own) and they come
+after the relations found in the equations.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import casadi as ca
 
@@ -22,22 +28,31 @@ class Relation:
     """A discrete relation value ``sym`` with zero-crossing function ``g``
     (relation true where g > 0, or g >= 0 when not ``strict``); ``text``
     shows it as written, ``equation`` is the index of the first equation
-    using it and ``time_only`` says that ``g`` depends on time and
-    parameters alone (a time event)."""
+    using it and ``time_only`` says that ``g`` depends on time, parameters
+    and relation values alone (a time event where it is affine in time and
+    free of relation values; else decided on its exact value)."""
     sym: object
     g: object
     strict: bool
     text: str
     equation: int = -1
     time_only: bool = False
+    g_start: object = None
+
+    @property
+    def start_g(self):
+        """The crossing function that decides the value at the start."""
+        return self.g if self.g_start is None else self.g_start
 
     def value(self, g_value):
         """Relation value (0.0 or 1.0) for a crossing-function value."""
         return 1.0 if (g_value > 0 if self.strict else g_value >= 0) else 0.0
 
-    def with_g(self, g):
-        """The same relation with crossing function ``g``."""
-        return Relation(self.sym, g, self.strict, self.text, self.equation, self.time_only)
+    def with_g(self, g, g_start=None):
+        """The same relation with crossing function ``g`` (and ``g_start``
+        for a latch)."""
+        return Relation(self.sym, g, self.strict, self.text, self.equation, self.time_only,
+                        g_start if self.g_start is not None else None)
 
 
 def _short(e):
@@ -80,8 +95,27 @@ class _Scan:
 
 def extract_relations(exprs, table):
     """Replace relations in the list of scalar SX ``exprs``; returns
-    (new_exprs, relations).  ``table``: the compilation's symbol table.
-    Only the equations that contain a relation are rebuilt, and of their
+    (new_exprs, relations), the latches of ``table`` last.  ``table``: the
+    compilation's symbol table."""
+    latches = table.latch_list()
+    n, m = len(exprs), len(latches)
+    extra = [g for _, g, _, _ in latches] + [g0 for _, _, g0, _ in latches]
+    out, found = _replace(list(exprs) + extra, table)
+    rels = _with_equations(found, out[:n])
+    for k, (sym, _, _, text) in enumerate(latches):
+        rels.append(Relation(sym, out[n + k], True, text, _first_use(out[:n], sym), False,
+                             out[n + m + k]))
+    return out[:n], rels
+
+
+def _first_use(exprs, sym):
+    """Index of the first expression that uses ``sym`` (-1: none)."""
+    return next((i for i, e in enumerate(exprs) if ca.depends_on(e, sym)), -1)
+
+
+def _replace(exprs, table):
+    """(new_exprs, found) with the relations of ``exprs`` replaced.  Only
+    the expressions that contain a relation are rebuilt, and of their
     expression graphs only the instructions they need (:func:`_needed`);
     the others are returned as they are."""
     if not exprs:
@@ -106,7 +140,7 @@ def extract_relations(exprs, table):
             work[outs[0]] = ca.SX(f.instruction_constant(k))
         else:
             work[outs[0]] = scan.op(op, [work[i] for i in ins])
-    return out, _with_equations(scan.found, out)
+    return out, scan.found
 
 
 def _needed(ops, args):
@@ -149,3 +183,84 @@ def _with_equations(found, exprs):
         first[c] = min(first.get(c, r), r)
     return [Relation(d, g, strict, text, first.get(k, -1), time_only)
             for k, (d, g, strict, text, time_only) in enumerate(found)]
+
+
+def explicit_in_time(exprs, table):
+    """The unknowns that the residuals ``exprs`` give explicitly as
+    functions of time, parameters and relation values alone (a source
+    block's output, a gain or a feedback of such outputs, an input), as
+    (symbols, expressions): an equation whose unknowns but one are such
+    functions, affine in that one with a constant nonzero coefficient,
+    gives it.  A relation of such unknowns is decided on the exact value of
+    the function (:func:`exact_crossings`): the Newton solution of them
+    (``1 - ramp`` solved as +-1e-32 where it is 0) must not make events."""
+    eq_vars, var_eqs = _incidence(exprs, table)
+    known, syms = {}, {}
+    missing = [len(vs) for vs in eq_vars]
+    queue = [i for i, n in enumerate(missing) if n == 1]
+    while queue:
+        i = queue.pop()
+        solved = _solve_single(exprs[i], eq_vars[i], known, table)
+        if solved is None:
+            continue
+        v, value = solved
+        known[v.element_hash()], syms[v.element_hash()] = value, v
+        for j in var_eqs[v.element_hash()]:
+            missing[j] -= 1
+            if missing[j] == 1:
+                queue.append(j)
+    return [syms[h] for h in known], [known[h] for h in known]
+
+
+def _incidence(exprs, table):
+    """({hash: symbol} of the unknowns of each expression, {hash: indices
+    of the expressions using it})."""
+    eq_vars, var_eqs = [], {}
+    for i, e in enumerate(exprs):
+        vs = {s.element_hash(): s for s in ca.symvar(e) if table.kind(s) == VAR}
+        eq_vars.append(vs)
+        for h in vs:
+            var_eqs.setdefault(h, []).append(i)
+    return eq_vars, var_eqs
+
+
+def _solve_single(expr, unknowns, known, table):
+    """(v, value) if ``expr`` = 0 has one unknown ``v`` left after the
+    ``known`` ones, at derivative level 0 and affine with a constant
+    nonzero coefficient; else None."""
+    left = [s for h, s in unknowns.items() if h not in known]
+    if len(left) != 1 or table.base_and_level(left[0])[1] != 0:
+        return None
+    v = left[0]
+    done = [h for h in unknowns if h in known]
+    if done:
+        expr = ca.substitute(expr, ca.vertcat(*[unknowns[h] for h in done]),
+                             ca.vertcat(*[known[h] for h in done]))
+    a = ca.jacobian(expr, v)
+    if not a.is_constant() or float(a) == 0.0:
+        return None
+    return v, ca.substitute(expr, v, ca.SX(0.0)) / -float(a)
+
+
+def exact_crossings(relations, exprs, table):
+    """``relations`` with the unknowns their crossing functions use that
+    are explicit in time (:func:`explicit_in_time` of the residuals
+    ``exprs``) replaced by their functions of time, parameters and
+    relation values."""
+    if not relations:
+        return list(relations)
+    used = {s.element_hash() for r in relations for s in ca.symvar(r.g)}
+    src, dst = explicit_in_time(exprs, table)
+    pairs = [(s, e) for s, e in zip(src, dst) if s.element_hash() in used]
+    if not pairs:
+        return list(relations)
+    src = ca.vertcat(*[s for s, _ in pairs])
+    dst = ca.vertcat(*[e for _, e in pairs])
+    n = len(relations)
+    gs = ca.substitute([r.g for r in relations] + [r.start_g for r in relations], [src], [dst])
+    out = []
+    for r, g, g0 in zip(relations, gs[:n], gs[n:]):
+        r = r.with_g(g, g0)
+        explicit = not any(table.kind(s) == VAR for s in ca.symvar(g))
+        out.append(replace(r, time_only=True) if explicit and not r.time_only else r)
+    return out

@@ -22,6 +22,7 @@ from ..errors import InitializationError, ModelDefinitionError
 from ..language.dsl import STATE_SELECT
 from ..language.symbols import as_sx, time
 from .aliases import Alias, substitution
+from .relations import exact_crossings
 from .gc_pause import cyclic_gc_paused
 from .index1 import Formulation
 from .structure import Structure, column
@@ -76,7 +77,8 @@ class System:
         self.param_index = {name: k for k, (name, *_) in enumerate(self.parameters)}
         self.p = ca.vertcat(*[sym for _, sym, _, _ in self.parameters]) \
             if self.parameters else ca.SX(0, 1)
-        self.relations = tuple(self._crossings_in_nodes(relations))
+        self.relations = tuple(exact_crossings(self._crossings_in_nodes(relations),
+                                               [eq.expr for eq in self.equations], self.table))
         self.d = ca.vertcat(*[r.sym for r in self.relations]) if self.relations else ca.SX(0, 1)
         self._nodes(variables)
         self._functions()
@@ -84,6 +86,7 @@ class System:
         self.outputs = declared_outputs(model)
         self.assertions = self._assertions(model)
         self.start_checks = self._start_checks(model)
+        self.reinits = self._reinits(model)
         self._formulations = {}
 
     # ------------------------------------------------------------ setup
@@ -92,8 +95,10 @@ class System:
         if not relations or not self.aliases:
             return relations
         src, dst = substitution(self.aliases, self.table)
-        gs = ca.substitute([r.g for r in relations], src, [as_sx(x) for x in dst])
-        return [r.with_g(g) for r, g in zip(relations, gs)]
+        n = len(relations)
+        gs = ca.substitute([r.g for r in relations] + [r.start_g for r in relations], src,
+                           [as_sx(x) for x in dst])
+        return [r.with_g(g, g0) for r, g, g0 in zip(relations, gs[:n], gs[n:])]
 
     def _nodes(self, variables):
         s = self.structure
@@ -139,6 +144,10 @@ class System:
         self.crossings = ca.vertcat(*[r.g for r in self.relations]) if self.relations else None
         self.crossing_fn = ca.Function("g", args, [self.crossings]) \
             if self.crossings is not None else None
+        self.start_crossing_fn = self.crossing_fn
+        if any(r.g_start is not None for r in self.relations):
+            self.start_crossing_fn = ca.Function(
+                "g_start", args, [ca.vertcat(*[r.start_g for r in self.relations])])
         self.relation_needs_rates = self._relations_on_highest(z)
         self._split_relations()
 
@@ -221,6 +230,25 @@ class System:
                     raise ModelDefinitionError("%s: assertions() names '%s', which is not a "
                                                "variable of it" % (comp.describe(), name))
                 out.append((comp, full, message))
+        return tuple(out)
+
+    def _reinits(self, model):
+        """(component, condition, variable, value) of the components'
+        ``reinits()`` (see :meth:`~acausal2d.language.dsl.Component.reinits`),
+        with the names made full; ``value`` a number or a full name."""
+        out = []
+        for comp in model.components():
+            if type(comp).reinits is Component.reinits:
+                continue
+            full = (lambda n: "%s.%s" % (comp.path, n) if comp.path else n)  # noqa: E731
+            for cond, var, value in comp.reinits():
+                names = [cond, var] + ([value] if isinstance(value, str) else [])
+                for name in names:
+                    if full(name) not in self.node_names and full(name) not in self.alias_names:
+                        raise ModelDefinitionError("%s: reinits() names '%s', which is not a "
+                                                   "variable of it" % (comp.describe(), name))
+                out.append((comp, full(cond), full(var),
+                            full(value) if isinstance(value, str) else float(value)))
         return tuple(out)
 
     def _start_checks(self, model):

@@ -6,7 +6,7 @@ unknowns in m or rad that are fixed or have a start value (a free body's
 position, a drive angle, the assembly guess of a joint).  The point's
 position at the consistent initial point is a function of them; Gauss-Newton
 steps with a finite-difference Jacobian and the least-norm solution (the
-position correction of the talk's eq. 3-16, here on the assembled DAE
+position correction of Schnabel and Gössner's eq. 3-16, here on the assembled DAE
 instead of node constraints) move them until the point is at the target or
 no step brings it closer.  Every trial is a full initialization, so the
 answer is always an assembled mechanism.

@@ -54,10 +54,17 @@ def _column(values):
     return out
 
 
+def _short(x):
+    """``x`` to 12 significant digits: a slider's end computed as 0.1 + 0.2
+    reads 0.3, not 0.30000000000000004."""
+    return float("%.12g" % x)
+
+
 def _slider(decl, value):
     """(low, high) of a slider around ``value`` that obeys the rule of
     ``decl``: from value - 2|value| to value + 2|value| (-1 ... 1 about
-    zero), cut at the declared min and max; positive: above |value|/100."""
+    zero), cut at the declared min and max; positive: above |value|/100;
+    both to 12 significant digits."""
     half = 2.0 * abs(value) if value != 0 else 1.0
     lo, hi = value - half, value + half
     if decl.positive:
@@ -66,7 +73,7 @@ def _slider(decl, value):
         lo = max(lo, decl.min)
     if decl.max is not None:
         hi = min(hi, decl.max)
-    return lo, max(hi, lo)
+    return _short(lo), _short(max(hi, lo))
 
 
 class Explorer:

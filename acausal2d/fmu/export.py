@@ -27,7 +27,7 @@ from .description import model_description
 from .generate import casadi_sources, model_data_header
 from ..library.inputs import bind_inputs
 from ..runtime.evaluator import Evaluator
-from ..runtime.events import values_from
+from ..runtime.events import relation_owner, values_from
 from ..runtime.initialize import _guess_selection, choose_initial_conditions
 from .. import __version__
 from ..compiled import compile_model, _experiment
@@ -99,6 +99,20 @@ def _static_states(compiled, name, fixed_states=False):
     return s.structure.state_nodes(point.selection)
 
 
+def _check_discrete_memory(system):
+    """The FMU's event handling decides each relation by the sign of its
+    crossing function: a model with latches (the friction elements'
+    Modelica modes) or reinits (hard stops) is refused, naming them."""
+    owners = [relation_owner(system, k) for k, r in enumerate(system.relations)
+              if r.g_start is not None] + [comp for comp, *_ in system.reinits]
+    names = sorted({o.describe() for o in owners if o is not None})
+    if names:
+        raise ModelDefinitionError(
+            "%s switch modes by latches or re-initialize states at events (Modelica's friction "
+            "modes, hard stops), which the FMU's event handling does not support yet; give "
+            "them law='zone' (the stick zone) to export the model" % ", ".join(names))
+
+
 def _may_turn_singular(system, level):
     """Can the chosen dummy block of a level with a choice become singular
     during a run?  Not if its Jacobian does not depend on the unknowns (a
@@ -119,6 +133,7 @@ def export_data(model, inputs=None, fixed_states=False, options=None):
     name = type(model).__name__
     model, input_params = bind_inputs(model, inputs)
     compiled = compile_model(model)
+    _check_discrete_memory(compiled.system)
     p = compiled.parameter_values()
     with translated("preparing %s for export" % name):
         states = _static_states(compiled, name, fixed_states)

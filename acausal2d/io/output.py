@@ -10,7 +10,7 @@ Every command that writes a folder (``simulate``, ``sweep``, ``study``,
         tx.info["model"] = "Pendulum"
     # here every file is in args.out, listed in its acausal2d-run.json
 
-The steps, each for a failure a user met (issue 35):
+The steps, each for a failure a user met:
 
 1. *Up front*, before anything is computed: the folder is created if
    missing and a probe file is written into it and into its parent, so a

@@ -1,7 +1,7 @@
 """Connector kinds.
 
 A connector groups potential variables (equal across a connection) and flow
-variables (summing to zero at a connection, seed eq. 4.1).  Flows are the
+variables (summing to zero at a connection, Ebert (2015), eq. 4.1).  Flows are the
 forces/torques acting *on* the component from outside.
 
 - :class:`Frame`: planar frame, potentials x, y, phi; flows fx, fy, t, all
@@ -9,12 +9,12 @@ forces/torques acting *on* the component from outside.
 - :class:`RotationalFlange`: phi; tau.
 - :class:`TranslationalFlange`: s; f.
 - :class:`BandPort`: wound length and belt angle; connects to exactly one
-  other band port (seed ch. 4.1).
+  other band port (Ebert 2015, ch. 4.1).
 - :class:`HydraulicPort`: pressure p; volume flow q into the component.
 - :class:`RealInput`, :class:`RealOutput`: a signal ``u``.
 
 A connector created with ``ground=...`` is fixed to ground while it is left
-unconnected (the triangle-symbol ports of seed Tabelle 4.1); ``ground`` maps
+unconnected (the triangle-symbol ports of Ebert (2015), Tabelle 4.1); ``ground`` maps
 potential names to values or parameter expressions (a callable receiving the
 owning component is evaluated when the model is flattened).  A connector
 with ``required=True`` must be connected.
@@ -119,7 +119,7 @@ class TranslationalFlange(Connector):
 
 class BandPort(Connector):
     """Band connector: wound length L [m] and belt angle gamma [rad]
-    (seed ch. 4.1).  It may be connected to exactly one other band port."""
+    (Ebert 2015, ch. 4.1).  It may be connected to exactly one other band port."""
     kind = "BandPort"
     potentials = ("L", "gamma")
     flows = ()

@@ -326,6 +326,17 @@ class Component:
         none."""
         return []
 
+    def reinits(self):
+        """Hook: Modelica's ``when c then reinit(x, value); end when``, as a
+        list of ``(condition, variable, value)``: ``condition`` names a 0/1
+        variable of this component set by a relation or latch in its
+        equations; at an event where it becomes 1 (it was 0 just before),
+        the state ``variable`` of this component is set to ``value`` (a
+        number, or the name of a variable of this component, taken at the
+        event) and the other unknowns are re-solved.  ``variable`` must be
+        a state (declare it ``state_select="always"``).  Default: none."""
+        return []
+
     def start_checks(self, context):
         """Hook: checks of the consistent initial state, made once at t0
         after initialization (by ``simulate``, ``check``, linearization and
@@ -352,7 +363,7 @@ class Component:
         return None
 
     def topology(self):
-        """Planar topology for the degree-of-freedom count (seed eq. 2.1):
+        """Planar topology for the degree-of-freedom count (Ebert 2015, eq. 2.1):
         a list of ``("ground", [frames])``, ``("rigid", [frames])`` (frames
         of one link), ``("joint", frame_a, frame_b, f)`` (a joint with f
         degrees of freedom), ``("band", link, frame, band_port)`` (a band

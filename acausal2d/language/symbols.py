@@ -47,6 +47,7 @@ class SymbolTable:
         self._sym = {}      # element hash -> SX (keeps it alive: hashes stay unique)
         self._base = {}     # element hash -> (base symbol, derivative level), variables
         self._der = {}      # element hash -> derivative symbol
+        self.latches = {}   # element hash -> [symbol, g, g_start, text] of a latch
         self._register(time, TIME)
 
     def __len__(self):
@@ -83,6 +84,33 @@ class SymbolTable:
     def new_discrete(self, name):
         """Create and register the value (0 or 1) of a relation between events."""
         return self._register(ca.SX.sym(name), DISCRETE)
+
+    def new_latch(self, name):
+        """Create and register a latch: a discrete value (0 or 1) whose
+        crossing function :meth:`define_latch` gives (see :func:`latch`)."""
+        s = self.new_discrete(name)
+        self.latches[key(s)] = [s, None, None, name]
+        return s
+
+    def define_latch(self, sym, g, g_start, text):
+        """Give the latch ``sym`` its crossing function ``g`` (which may use
+        the latch values, its own among them), the crossing function
+        ``g_start`` that decides its value at the start, and its text."""
+        entry = self.latches.get(key(sym))
+        if entry is None:
+            raise ModelDefinitionError("define_latch: %r is no latch of this model" % sym)
+        entry[1:] = [as_sx(g), as_sx(g if g_start is None else g_start), text]
+
+    def latch_list(self):
+        """(symbol, g, g_start, text) of every latch, in creation order;
+        a latch without crossing function is an error."""
+        out = []
+        for sym, g, g_start, text in self.latches.values():
+            if g is None:
+                raise ModelDefinitionError("the latch %s has no crossing function: give it one "
+                                           "with define_latch" % text)
+            out.append((sym, g, g_start, text))
+        return out
 
     def kind(self, s):
         """Kind of a registered scalar symbol, or None."""
@@ -147,6 +175,28 @@ def active_table():
         raise ModelDefinitionError(
             "der() and time_derivative() can only be used inside a component's equations()")
     return _active[-1]
+
+
+def latch(name: str) -> Any:
+    """A latch of the flattening in progress: a discrete value (0 or 1)
+    that holds between events, like a relation, but whose crossing function
+    (:func:`define_latch`) may depend on the latch values themselves - its
+    own among them.  Its value is 1 where its crossing function is > 0;
+    since that function can change with the value, a latch keeps its value
+    until the function *for that value* crosses zero: hysteresis, the
+    memory of a Modelica ``pre()`` state machine (PartialFriction's modes
+    Forward/Stuck/Backward).  The event iteration settles all latches and
+    relations together (:mod:`acausal2d.runtime.events`)."""
+    return active_table().new_latch(name)
+
+
+def define_latch(sym: Any, g: Any, text: str, g_start: Any = None) -> None:
+    """Give the latch ``sym`` (from :func:`latch`) the crossing function
+    ``g`` (an expression of unknowns, parameters, time, relations and
+    latches), the text that names it in messages, and ``g_start``: the
+    crossing function that decides its value at the start (default ``g``
+    with every latch and relation 0)."""
+    active_table().define_latch(sym, g, g_start, text)
 
 
 def der(expr: Any) -> Any:

@@ -1,4 +1,4 @@
-"""The native cache on disk, verified (issue 35): every compiled library
+"""The native cache on disk, verified: every compiled library
 has its SHA-256 beside it (``<library>.sha256``), written when it is
 published and checked before it is loaded, so a truncated file (SIGBUS at
 ``dlopen``), a flipped byte in its code (SIGILL) or in its constants (wrong

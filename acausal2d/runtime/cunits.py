@@ -1,4 +1,4 @@
-"""How a library's C is compiled (issue 30: a cheaper compile).
+"""How a library's C is compiled (a cheaper compile).
 
 :func:`compile_library` writes the sources into a build folder in the
 cache, compiles every ``.c`` file as its own translation unit - in parallel,

@@ -1,5 +1,5 @@
 """The native drivers' constant C, compiled once: at install time where a
-C compiler is found there, else on first use into the cache (issue 30).
+C compiler is found there, else on first use into the cache.
 
 Every native library links one of three object files compiled from C that
 does not depend on the model (:data:`OBJECTS`): the IDA driver
@@ -26,7 +26,10 @@ from . import cstore, cunits
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PREBUILT = os.path.join(HERE, "prebuilt")
-"""Where :func:`install` puts the objects (inside the installed package)."""
+"""Where :func:`install` puts the objects (inside the installed package).
+
+:meta hide-value:
+"""
 ENV = "ACAUSAL2D_PREBUILT"
 _SOURCES = {"lu": "native_lu.c", "driver": "native_driver.c", "project": "native_project.c"}
 

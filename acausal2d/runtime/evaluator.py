@@ -29,6 +29,9 @@ class Evaluator:
         self.E = Buffered(system.residual_fn, args)
         self.J = Buffered(system.jacobian_fn, args)
         self.G = Buffered(system.crossing_fn, args) if system.crossing_fn is not None else None
+        self.G0 = self.G if system.start_crossing_fn is system.crossing_fn else \
+            Buffered(system.start_crossing_fn, args)
+        self.p = np.asarray(p, float)
         self.rows, self.cols = system.jacobian_pattern
         self.sparse = s.n_var >= SPARSE_FROM
 
@@ -66,3 +69,10 @@ class Evaluator:
         if self.G is None:
             return np.zeros(0)
         return self._call(self.G, t, z, d).copy()
+
+    def start_crossings(self, t, z, d):
+        """Values of the crossing functions that decide the relations and
+        latches at the start (a new array)."""
+        if self.G0 is None:
+            return np.zeros(0)
+        return self._call(self.G0, t, z, d).copy()

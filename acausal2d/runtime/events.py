@@ -29,6 +29,12 @@ CHATTER_EVENTS = 50       # this many events ...
 CHATTER_SPAN = 1e-8       # ... within this fraction of the run's time span: chattering
 JUMP_TOL = 1e-4           # relative change of a position with a velocity that is a jump
 NEAR_ZERO = 1e-6          # a crossing function this small may be at its zero
+LATCH_BAND = 1e-9         # a latch's crossing function this close to 0 keeps the value
+STORM_EVENTS = 500        # this many events ...
+STORM_SPAN = 1e-3         # ... within this fraction of the run's time span: an event storm
+ZENO_EVENTS = 12          # this many event intervals, each shrinking ...
+ZENO_RATIO = 0.9          # ... to at most this fraction of the one before,
+ZENO_SPAN = 1e-6          # the last below this fraction of the span: Zeno
 
 
 class EventError(SimulationError):
@@ -126,13 +132,25 @@ def resolved_values(system, g, gdot, d, t, pinned=()):
     crossing value is clearly nonzero when it is not :func:`near_zero` (a
     stiff relation's large rate, a clutch's 2e10/s at w_s = 1e-9, must not
     make a far-off value look close) or would not reach zero within 1e-9 of
-    the time.  The relations ``pinned`` take the value of g alone."""
+    the time.  The relations ``pinned`` take the value of g alone, and so
+    does a relation of time alone (its g is exact) that stays at its zero
+    (the brake's ``fn <= 0`` when ``1 - ramp`` has reached 0 and stays).
+    A latch within :data:`LATCH_BAND` (or its rate times 1e-9 of the time)
+    of its zero keeps its value: its crossing function for the new value
+    starts at zero by design (a friction element's ``-a`` after the
+    breakaway), and only its crossing, which IDA reports (the latch is
+    flipped before the iteration), or a clear sign changes it."""
     tau = 1e-9 * max(1.0, abs(t))
     out = np.array(d, dtype=float)
     near = near_zero(g)
     for k, rel in enumerate(system.relations):
+        if rel.g_start is not None and k not in pinned:      # a latch
+            if abs(g[k]) > max(LATCH_BAND, abs(gdot[k]) * tau):
+                out[k] = rel.value(g[k])
+            continue
         if k in pinned or not near[k] or \
-                abs(g[k]) > abs(gdot[k]) * tau + 1e-13 * max(1.0, abs(g[k])):
+                abs(g[k]) > abs(gdot[k]) * tau + 1e-13 * max(1.0, abs(g[k])) or \
+                (rel.time_only and abs(gdot[k]) <= 1e-12):
             out[k] = rel.value(g[k])
         elif abs(gdot[k]) > 1e-12:
             out[k] = 1.0 if gdot[k] > 0 else 0.0
@@ -146,17 +164,23 @@ class EventIteration:
     def __init__(self, system, ev, describe_failure):
         self.system, self.ev = system, ev
         self.describe_failure = describe_failure
+        self.reinit = None       # the Reinits of the last settle
 
     def settle(self, t, z, d, held):
         """(z, d) consistent with each other at time t, starting from the
         relation values ``d``.  When the values go round in a cycle, the
         relations of the cycle that leave the motion unchanged (:meth:`idle`)
         take the value of their crossing function; if there are none, the
-        motion is in a sliding mode (an error)."""
+        motion is in a sliding mode (an error).  The components' reinits
+        (:class:`Reinits`) whose condition comes on set their states."""
         seen = [np.array(d, dtype=float)]
         pinned = set()
+        reinit = self.reinit = Reinits(self.system, self.ev.p, z)
         for _ in range(MAX_ITERATIONS):
             z = self.consistent(t, z, d, held)
+            z_new = reinit.apply(t, z, held)
+            if z_new is not None:
+                z = self.consistent(t, z_new, d, held)
             if not len(d):
                 return z, d
             g, gdot = crossing_rates(self.ev, t, z, d)
@@ -209,30 +233,98 @@ class EventIteration:
             % (t, names, sliding_mode_advice(self.system, flipping)), time=t)
 
 
+class Reinits:
+    """The components' ``reinits()`` at one event (Modelica's ``when c then
+    reinit(x, v)``): each whose condition was off at the entry point and
+    is on at a consistent point of the event iteration sets its state once."""
+
+    def __init__(self, system, p, z_entry):
+        self.system, self.p = system, p
+        self.before = [system.value(cond, z_entry, p) > 0.5 for _, cond, _, _ in system.reinits]
+        self.done = set()
+
+    def texts(self):
+        """``reinit(variable)`` of each reinit done."""
+        return ["reinit(%s)" % self.system.reinits[k][2] for k in sorted(self.done)]
+
+    def apply(self, t, z, held):
+        """New node values with the due reinits applied, or None if none is due."""
+        out = None
+        for k, (comp, cond, var, value) in enumerate(self.system.reinits):
+            if k in self.done or self.before[k] or self.system.value(cond, z, self.p) <= 0.5:
+                continue
+            self.done.add(k)
+            out = np.array(z if out is None else out, dtype=float)
+            v = value if isinstance(value, float) else self.system.value(value, out, self.p)
+            j, sign, offset = self._node(var)
+            if j not in set(held):
+                raise EventError("At t=%.6g %s re-initializes %s, which is no state here; "
+                                 "connect it so that %s stays a state (e.g. through a spring, "
+                                 "not rigidly to another mass)" % (t, comp.describe(), var, var),
+                                 time=t, variable=var)
+            out[j] = (v - offset) / sign
+        return out
+
+    def _node(self, name):
+        """(node, sign, offset) with ``name = sign * z[node] + offset``."""
+        s = self.system
+        if name in s.node_names:
+            return s.node_names.index(name), 1.0, 0.0
+        k = s.alias_names.index(name)
+        offset = float(s.alias_offset_fn(self.p).full().ravel()[k])
+        return int(s.alias_node[k]), float(s.alias_sign[k]), offset
+
+
 class ChatterWatch:
-    """Stops a run whose events pile up in a vanishing time interval."""
+    """Stops a run whose events make no progress: many events in a
+    vanishing time interval (chattering), an event storm (:data:`STORM_EVENTS`
+    within :data:`STORM_SPAN` of the run's time span: round-off or a
+    switching that undoes itself), or a Zeno sequence (:data:`ZENO_EVENTS`
+    intervals, each at most :data:`ZENO_RATIO` of the one before, the last
+    below :data:`ZENO_SPAN` of the span: events that accumulate at a point,
+    like a bouncing ball's, which the run can neither resolve nor pass)."""
 
     def __init__(self, system, span):
         self.system, self.span = system, span
         self.recent = []
 
     def record(self, t, relations):
+        """Note an event at t of ``relations``; raise if the events make no progress."""
         self.recent.append((t, tuple(relations)))
-        if len(self.recent) > CHATTER_EVENTS:
+        if len(self.recent) > STORM_EVENTS:
             self.recent.pop(0)
-        if len(self.recent) == CHATTER_EVENTS and \
-                self.recent[-1][0] - self.recent[0][0] <= CHATTER_SPAN * self.span:
-            counts = {}
-            for _, rels in self.recent:
-                for k in rels:
-                    counts[k] = counts.get(k, 0) + 1
-            worst = sorted(counts, key=lambda k: -counts[k])[:3]
-            raise EventError(
-                "Chattering at t=%.6g: %d events within %.3g s, from the relation %s. The "
-                "motion stays at the switching point of the relation (a sliding mode). %s"
-                % (t, CHATTER_EVENTS, self.recent[-1][0] - self.recent[0][0],
-                   ", ".join(relation_text(self.system, k) for k in worst),
-                   sliding_mode_advice(self.system, worst)), time=t)
+        kind = self._kind()
+        if kind is not None:
+            self._stop(t, *kind)
+
+    def _kind(self):
+        """(what, number of events) of the pattern found, or None."""
+        times = [t for t, _ in self.recent]
+        n = len(times)
+        if n >= CHATTER_EVENTS and times[-1] - times[-CHATTER_EVENTS] <= CHATTER_SPAN * self.span:
+            return "Chattering", CHATTER_EVENTS
+        if n >= STORM_EVENTS and times[-1] - times[0] <= STORM_SPAN * self.span:
+            return "An event storm", STORM_EVENTS
+        if n > ZENO_EVENTS:
+            gaps = np.diff(times[-ZENO_EVENTS - 1:])
+            if gaps[-1] <= ZENO_SPAN * self.span and \
+                    np.all(gaps[1:] <= ZENO_RATIO * gaps[:-1]):
+                return "Zeno behaviour", ZENO_EVENTS + 1
+        return None
+
+    def _stop(self, t, what, n):
+        window = self.recent[-n:]
+        counts = {}
+        for _, rels in window:
+            for k in rels:
+                counts[k] = counts.get(k, 0) + 1
+        worst = sorted(counts, key=lambda k: -counts[k])[:3]
+        raise EventError(
+            "%s at t=%.6g: %d events within %.3g s, from the relation %s. The motion makes "
+            "no progress at the switching point of the relation. %s"
+            % (what, t, n, window[-1][0] - window[0][0],
+               ", ".join(relation_text(self.system, k) for k in worst),
+               sliding_mode_advice(self.system, worst)), time=t)
 
 
 def check_assertions(system, p, t, z):

@@ -127,7 +127,8 @@ class Problem:
         self.n_rel, self.n_mon, self.n_pass = form.n_rel, form.n_mon, form.n_pass
         self.n_events = self.n_rel + self.n_mon + 2 * self.n_pass
         k = self.n_mon + self.n_pass
-        self.ev = Buffered(form.event_fn, args + [np.zeros(2 * k)]) if self.n_events else None
+        self.ev = Buffered(form.event_fn, args + [np.zeros(2 * k + self.n_rel)]) \
+            if self.n_events else None
         self.watched = Buffered(form.watched_fn, args) if k else None
         self.ab = self.ev.args[5] if self.ev is not None else np.zeros(0)
         self.near_ref = np.zeros(self.n_pass)
@@ -223,8 +224,32 @@ class Problem:
         refs = np.concatenate([np.maximum(size[:m], 1e-300), np.maximum(self.near_ref, 1e-300)])
         on = np.concatenate([np.full(m, watch), size[m:] > NEAR_SINGULAR * self.near_ref])
         self.ab[:k] = np.where(on, 1.0 / refs, 0.0)
-        self.ab[k:] = np.where(on, np.r_[np.full(m, -MONITOR_THRESHOLD),
+        self.ab[k:2 * k] = np.where(on, np.r_[np.full(m, -MONITOR_THRESHOLD),
                                          np.full(self.n_pass, -NEAR_SINGULAR)], 1.0)
+
+    def set_biases(self, g, d, strict):
+        """Bias each relation's root function ``g + b`` for the segment
+        that starts with the crossing values ``g`` and the relation values
+        ``d``: 0 where ``g`` is on the side of its value; where the value
+        was decided at the event by the motion or kept (``g`` at or within
+        rounding of zero on the other side), ``b`` puts ``g + b`` just on
+        the value's side, so that IDA neither stops at once nor takes an
+        exact zero for a root it never reports (IDA leaves a root function
+        that is zero at the start out until it moves): the relation switches
+        back when ``g`` moves past the value it has now."""
+        if not self.n_rel:
+            return
+        k = self.n_mon + self.n_pass
+        for i, (gi, di, st) in enumerate(zip(g, d, strict)):
+            true = gi > 0 if st else gi >= 0
+            side = 1.0 if di > 0.5 else -1.0
+            if (true == (di > 0.5)) and gi != 0.0:
+                self.ab[2 * k + i] = 0.0
+                continue
+            m = max(abs(gi) * 1e-12, 1e-300)
+            while (gi + (side * m - gi)) * side <= 0.0:
+                m *= 2.0
+            self.ab[2 * k + i] = side * m - gi
 
     def note_size(self, size):
         """Let the typical size of the highest block's |det| grow to ``size``."""

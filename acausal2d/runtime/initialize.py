@@ -151,7 +151,7 @@ def initial_point(system: System, ev: Evaluator, t0: float, p: NDArray[np.float6
     if start:
         z[list(start)] = list(start.values())
         has_start = tuple(h or j in start for j, h in enumerate(has_start))
-    d = values_from(system, ev.crossings(t0, z, np.zeros(len(system.relations))))
+    d = values_from(system, ev.start_crossings(t0, z, np.zeros(len(system.relations))))
     sel = None
     if len(system.fixed_nodes) < s.n_var - s.n_eq:
         sel = _guess_selection(system, ev, t0, z, d)
@@ -159,7 +159,7 @@ def initial_point(system: System, ev: Evaluator, t0: float, p: NDArray[np.float6
     held = choose_initial_conditions(s, system.fixed_nodes, system.priority_names,
                                      has_start, states)
     z = _first_consistent(system, ev, t0, z, d, held, p)
-    d = values_from(system, ev.crossings(t0, z, d))
+    d = values_from(system, ev.start_crossings(t0, z, d))
     z, d = EventIteration(system, ev,
                           lambda t, exc: initialization_error(system, held, exc, p, ev)) \
         .settle(t0, z, d, held)

@@ -227,6 +227,7 @@ class Simulation:
     def _segment(self):
         form, prob, solver, projector = self._solver()
         prob.set_relations(self.d)
+        self._bias(prob)
         y0, yp0 = form.y_from(self.z)
         prob.reset_monitors(self.t, y0, yp0, self.watch)
         t_stop, outputs = self._stop_and_outputs()
@@ -247,6 +248,15 @@ class Simulation:
         self._record_passes(outcome.passes)
         self._scan(form, n0, T, rows)
         return outcome
+
+    def _bias(self, prob):
+        """Root functions of the state relations on the side of their
+        values (:meth:`~acausal2d.runtime.ida.Problem.set_biases`)."""
+        rels = self.system.state_relations
+        if rels and prob.n_rel:
+            g = self.ev.crossings(self.t, self.z, self.d)[list(rels)]
+            prob.set_biases(g, self.d[list(rels)], [self.system.relations[k].strict
+                                                   for k in rels])
 
     def _stop_and_outputs(self):
         """(stop time, output times) of the next IDA call: up to the next
@@ -362,11 +372,12 @@ class Simulation:
         check_jumps(self.system, self.t, z_left, z, changed)
         self.z, self.d = z, d
         self.out.append((self.t, z.copy()))
-        self.chatter.record(self.t, changed or flipped)
-        if changed:      # else a root IDA found again just past one settled by its rate
+        reinits = it.reinit.texts() if it.reinit is not None else []
+        if changed or reinits:   # else a root IDA found again just past one settled by its rate
             self.stats.events += 1
-            text = "; ".join(self.system.relations[k].text for k in changed)
+            text = "; ".join([self.system.relations[k].text for k in changed] + reinits)
             self.events.append((self.t, text))
+        self.chatter.record(self.t, changed or flipped)
         self.stats.event_time += _time.perf_counter() - wall
         check_assertions(self.system, self.p, self.t, z)
 

@@ -14,7 +14,7 @@ fallback of :func:`~acausal2d.runtime.ida.start_solver`), weights them out
 of IDA's local error test as suppressalg does, but IDA's Newton convergence
 test uses the same weights (suppressalg leaves them in it): the iteration
 then stops before the algebraic unknowns converge, and the error test of
-the following steps pays for it.  Measured (issue 34, Python path, rtol
+the following steps pays for it.  Measured (Python path, rtol
 1e-8, Dymola's output grid; steps / residual evaluations, largest deviation
 from Dymola's reference):
 

@@ -112,7 +112,7 @@ x, y, m, base; ``constraints`` with their length/angle values; ``lentol``,
 constraint lengths/angles).  The page then offers a "drag" check box
 (``id="drag"``): while it is on, playback pauses, the nodes start where the
 current frame has them, and grabbing a moving node with the mouse moves
-it; after every move the page corrects the positions by the talk's eq.
+it; after every move the page corrects the positions by Schnabel and Gössner's eq.
 3-16 (the position correction of cstr.js, written out in the page's own
 script, ``visual/assets/animation_drag.js``), driven values being left to
 the hand.  Shapes follow the dragged nodes.  ``window.acausal2d.drag``

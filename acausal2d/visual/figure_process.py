@@ -75,8 +75,7 @@ def _child(jobs_fd, answers_fd, mask):
     """The child: import matplotlib, then draw each batch of jobs it is
     sent and answer ("ok", paths) or ("error", text); ends at end of file
     or at SIGINT/SIGTERM (one KeyboardInterrupt here, also where the parent
-    ignores SIGINT; ``mask``: the signal mask to restore), silently (issue
-    35, Seen 6: nothing on stderr)."""
+    ignores SIGINT; ``mask``: the signal mask to restore), silently (nothing on stderr)."""
     sys.unraisablehook = _silent
     try:
         signal.signal(signal.SIGINT, _interrupt_once)

@@ -186,7 +186,7 @@ def declared_figures(model):
 def write_figures(result, out_dir, specs, fmt="png"):
     """Write one figure file (``fmt``: png, svg or pdf) per figure spec
     (dicts as from :func:`declared_figures`) into ``out_dir``; the file is
-    named by the spec's ``name`` or by its signals.  Returns the paths."""
+    named by the figure's ``name`` or by its signals.  Returns the paths."""
     return draw_jobs(figure_jobs(result, out_dir, specs, fmt))
 
 
@@ -255,7 +255,7 @@ def sweep_figure(study, x, outputs):
 
 def transfer_figure(result, q, p, orders=(0, 1, 2)):
     """Figure of the transfer functions of ``q`` over the drive coordinate
-    ``p`` (seed eq. 2.2-2.4): one axes per order, q, q' = dq/dp and
+    ``p`` (Ebert 2015, eq. 2.2-2.4): one axes per order, q, q' = dq/dp and
     q'' = d2q/dp2 from the run's derivatives (see
     :func:`acausal2d.analysis.poles.transfer`), over p (degrees for angles)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg

@@ -6,7 +6,7 @@ file, see :func:`acausal2d.io.loader.model_names`, and each mec2
 ``models/mec2/*.json``) is simulated with its own experiment in a pool of
 worker processes (:mod:`gallery_run`), and ``gallery/<file>.md`` shows its
 figures and its animation page.  The pages are grouped by the chapters of
-the dissertation and the talk (:data:`GROUPS`; a file not named there is
+the dissertation and Schnabel and Gössner's talk (:data:`GROUPS`; a file not named there is
 listed under "Other models").  A model that fails is a build warning, so
 ``sphinx-build -W`` fails.
 
@@ -28,6 +28,9 @@ DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROOT = os.path.dirname(DOCS)
 
 GROUPS = [
+    ("First models (built step by step in the documentation)",
+     ["first_belt_drive", "first_rope_drive", "first_drive_train", "first_hydraulic_circuit",
+      "first_linkage", "first_planar_mechanism"]),
     ("Dissertation ch. 2: joints, degree of freedom, linkages, band and rope mechanisms",
      ["four_link_mechanisms", "dof_bild_2_1", "cam_follower", "rope_drives",
       "band_mechanisms", "band_systematics"]),
@@ -40,7 +43,7 @@ GROUPS = [
     ("Modelica PlanarMechanics references (Dymola results in tests/data/references)",
      ["pendulum", "double_pendulum", "crane_crab", "piston_engine", "piston_engine_dynamic",
       "planar_examples"]),
-    ("The talk: nodes, constraints, constructions and mec2",
+    ("Schnabel and Gössner's talk: nodes, constraints, constructions and mec2",
      ["talk_mechanisms", "talk_mechanisms_vdi", "talk_constructions", "talk_synthesis",
       "mec2"]),
     ("Calibration, optimisation, linearisation and FMU export",
@@ -48,21 +51,65 @@ GROUPS = [
 ]
 """(chapter, [model file stems]) in the order of the gallery."""
 
-API_PARTS = [
-    ("Top level", ["acausal2d", "acausal2d.compiled", "acausal2d.result", "acausal2d.derived",
-                   "acausal2d.errors", "acausal2d.arguments", "acausal2d.options",
-                   "acausal2d.progress", "acausal2d.threads", "acausal2d.protocols"]),
-    ("Modelling language", ["acausal2d.language"]),
-    ("Library", ["acausal2d.library"]),
-    ("Analysis", ["acausal2d.analysis"]),
-    ("Plots, animation, notebooks", ["acausal2d.visual"]),
-    ("Files: models, tables, result files", ["acausal2d.io"]),
-    ("FMU export", ["acausal2d.fmu"]),
-    ("Command line", ["acausal2d.cli"]),
-    ("Compiler", ["acausal2d.compiler"]),
-    ("Runtime", ["acausal2d.runtime"]),
+_FUNCS = "\n".join(".. autofunction:: acausal2d.%s" % f for f in (
+    "load_model", "compile_model", "simulate", "check"))
+_STUDIES = "\n".join(".. autofunction:: acausal2d.%s" % f for f in (
+    "sweep", "study", "fit", "optimize", "export_fmu"))
+
+API_PAGES = [
+    ("run", "Load, compile and simulate",
+     "A model file or class in, a compiled model out; run it as often as you like.",
+     [_FUNCS], ["acausal2d!", "acausal2d.compiled"]),
+    ("result", "Result: signals, plots, files", "What a run returns.", [], ["acausal2d.result"]),
+    ("run-options", "RunOptions: stop time, tolerances, limits",
+     "One value for the settings of every run.", [], ["acausal2d.options"]),
+    ("compare", "Compare with a reference", "A result against a reference curve in a tube.",
+     [".. autofunction:: acausal2d.compare"], ["acausal2d.analysis.compare"]),
+    ("studies", "Sweeps, studies, fit, optimize, FMU export",
+     "Many runs of one compiled model.", [_STUDIES], []),
+    ("modelling", "Writing models: components, connectors, parameters",
+     "The modelling language: what a model class is made of.", [], ["acausal2d.language"]),
+    ("errors", "Errors", "What a failed call raises.", [], ["acausal2d.errors"]),
+    ("library", "Library overview", "The component library, by domain on the pages that follow.",
+     [], ["acausal2d.library!"]),
+    ("library-planar", "Library: planar bodies, joints, forces and cams",
+     "Modelica PlanarMechanics in Python.", [], ["acausal2d.library.planar"]),
+    ("library-linkage", "Library: VDI 2729 linkage elements",
+     "DAN, SAN, FGP and the dyads (Ebert 2015, ch. 4.2, Anhang B).", [],
+     ["acausal2d.library.linkage"]),
+    ("library-belt", "Library: belts, pulleys, drums and ropes",
+     "Belt and rope drives (Ebert 2015, ch. 4.4).", [], ["acausal2d.library.belt"]),
+    ("library-synthesis", "Library: band synthesis and balancing",
+     "Cam contours for a prescribed motion (Ebert 2015, ch. 4.3, 5, 6).", [],
+     ["acausal2d.library.synthesis"]),
+    ("library-drive-train", "Library: drive trains, signals and controllers",
+     "1D rotational and translational elements, sources and controllers (Modelica's names).",
+     [], ["acausal2d.library.rotational", "acausal2d.library.translational",
+          "acausal2d.library.gears", "acausal2d.library.friction1d", "acausal2d.library.signals",
+          "acausal2d.library.blocks", "acausal2d.library.controllers",
+          "acausal2d.library.inputs"]),
+    ("library-fluid", "Library: hydraulics and pneumatics", "Fluid power.", [],
+     ["acausal2d.library.hydraulics", "acausal2d.library.pneumatics"]),
+    ("library-nodes", "Library: nodes, constraints and mec2",
+     "Mechanisms as nodes and constraints (Schnabel and Gössner).", [],
+     ["acausal2d.library.nodes"]),
+    ("analysis", "Analysis", "Checks, studies, fits, linearisation and kinematics.", [],
+     ["acausal2d.analysis"]),
+    ("visual", "Plots, animation, notebooks", "", [], ["acausal2d.visual"]),
+    ("files", "Files: models, tables, result files", "", [], ["acausal2d.io"]),
+    ("fmu", "FMU export", "", [], ["acausal2d.fmu"]),
+    ("explore", "The explore page", "", [], ["acausal2d.explore"]),
+    ("command-line", "Command line", "", [], ["acausal2d.cli"]),
+    ("compiler", "Compiler", "", [], ["acausal2d.compiler"]),
+    ("runtime", "Runtime", "", [], ["acausal2d.runtime"]),
+    ("internals", "Helpers: arguments, derived values, progress, threads, protocols", "", [],
+     ["acausal2d.arguments", "acausal2d.derived", "acausal2d.progress", "acausal2d.threads",
+      "acausal2d.protocols"]),
 ]
-"""(title, [module prefixes]) of the API reference's pages."""
+"""(file stem, title, one line, [reStructuredText blocks], [modules]) of the API
+reference's pages, in the order a user reaches for them.  A module name matches
+itself and its submodules; with a trailing ``!`` only itself.  A public module no
+page names is documented on the page "Other modules"."""
 
 
 def _write(path, text):
@@ -148,17 +195,22 @@ def _run_all(files, folder, anim_folder):
     keys = {job: _cache_key(*job) for job in jobs}
     out = {job: _cached(cache, keys[job], folder, anim_folder) for job in jobs}
     todo = [job for job in jobs if out[job] is None]
+    LOG.info("gallery: %d models, %d from the cache, %d to run on 2 workers"
+             % (len(jobs), len(jobs) - len(todo), len(todo)))
     ctx = multiprocessing.get_context("spawn")
     with concurrent.futures.ProcessPoolExecutor(max_workers=2, mp_context=ctx) as pool:
         futures = {pool.submit(run_model, path, name, folder, anim_folder): (path, name)
                    for path, name in todo}
-        for fut in concurrent.futures.as_completed(futures):
+        for k, fut in enumerate(concurrent.futures.as_completed(futures)):
             job = futures[fut]
             try:
                 out[job] = fut.result()
                 _store(cache, keys[job], out[job], folder, anim_folder)
             except Exception as exc:       # reported as a warning: -W fails the build
                 out[job] = exc
+            LOG.info("gallery: [%d/%d] %s %s%s" % (k + 1, len(todo), os.path.relpath(job[0], ROOT),
+                                                   job[1] or "", " failed" if
+                                                   isinstance(out[job], Exception) else ""))
     return out
 
 
@@ -184,15 +236,31 @@ def _entry_text(path, name, entry):
     return "\n".join(lines)
 
 
+def _file_doc(stem, models):
+    """The first paragraph of a model file's docstring, on one line."""
+    if stem == "mec2":
+        return "Mechanisms in mec2's JSON format (Schnabel and Gössner), imported as node models."
+    import ast
+    with open(models[0][0], encoding="utf-8") as fh:
+        doc = ast.get_docstring(ast.parse(fh.read())) or ""
+    return " ".join(doc.strip().split("\n\n")[0].split())
+
+
+def _first_sentence(text):
+    """The first sentence of ``text`` (a full stop before a capital ends it; "eq. 4.1",
+    "ch. 2" and "e.g. a" do not)."""
+    import re
+    first = re.split(r"(?<=[a-z0-9)\]])\.\s+(?=[A-Z])", text, maxsplit=1)[0]
+    if len(first) > 140 and first.find(": ") > 30:          # a long one: up to its colon
+        first = first[:first.find(": ")]
+    if len(first) > 160 and first.find(" (") > 30:          # still long: up to its first aside
+        first = first[:first.find(" (")]
+    return first.rstrip(":. ") + "."
+
+
 def _file_page(stem, models, results):
     """The page of one model file (or of the mec2 models)."""
-    import acausal2d.io.loader  # noqa: F401
-    doc = ""
-    if stem != "mec2":
-        import ast
-        with open(models[0][0], encoding="utf-8") as fh:
-            doc = ast.get_docstring(ast.parse(fh.read())) or ""
-        doc = " ".join(doc.strip().split("\n\n")[0].split())
+    doc = _file_doc(stem, models)
     title = "mec2 models" if stem == "mec2" else "%s.py" % stem
     parts = ["# %s" % title, "", doc, ""]
     for path, name in models:
@@ -207,7 +275,18 @@ def _file_page(stem, models, results):
     return "\n".join(parts)
 
 
-def _index_page(files):
+def _thumbnail(models, results):
+    """The first figure drawn for a file's models (None if none ran)."""
+    for job in models:
+        entry = results.get(job)
+        if isinstance(entry, dict) and entry.get("figures"):
+            return entry["figures"][0]
+    return None
+
+
+def _index_page(files, results):
+    """The gallery's index: per chapter, each file with a still of its first
+    figure and the first sentence of its docstring, linked to its page."""
     known = {s for _, stems in GROUPS for s in stems}
     groups = [(title, [s for s in stems if s in files]) for title, stems in GROUPS]
     groups.append(("Other models", sorted(set(files) - known)))
@@ -216,9 +295,17 @@ def _index_page(files):
              "built: its figures (the model's declared figures, else its outputs, else its "
              "states) and its animation.  The command under each title runs it.", ""]
     for title, stems in groups:
-        if stems:
-            parts += ["```{toctree}", ":maxdepth: 1", ":caption: " + title, ""] + stems + \
-                ["```", ""]
+        if not stems:
+            continue
+        parts += ["## " + title, "", "```{toctree}", ":hidden:", ""] + stems + ["```", ""]
+        for stem in stems:
+            name = "mec2 models" if stem == "mec2" else stem + ".py"
+            thumb = _thumbnail(files[stem], results)
+            if thumb:
+                parts += ["```{image} %s" % thumb, ":width: 260px", ":alt: %s" % name,
+                          ":target: %s.html" % stem, "```", ""]
+            parts += ["**[%s](%s.md)**: %s" % (name, stem, _first_sentence(
+                _file_doc(stem, files[stem]))), ""]
     return "\n".join(parts)
 
 
@@ -233,7 +320,7 @@ def write_gallery(app):
     results = _run_all(files, folder, anim_folder)
     for stem, models in files.items():
         _write(os.path.join(folder, stem + ".md"), _file_page(stem, models, results))
-    _write(os.path.join(folder, "index.md"), _index_page(files))
+    _write(os.path.join(folder, "index.md"), _index_page(files, results))
     LOG.info("gallery: %d models of %d files in %.1f s"
              % (len(results), len(files), time.perf_counter() - start))
 
@@ -248,29 +335,48 @@ def _public_modules():
     return sorted(names)
 
 
+def _matches(module, names):
+    return any(module == n.rstrip("!") or (not n.endswith("!") and module.startswith(n + "."))
+               for n in names)
+
+
 def write_api(app):
-    """api/index.md and one page per part of :data:`API_PARTS`."""
+    """api/index.md and the pages of :data:`API_PAGES` (plus "Other modules")."""
     modules = _public_modules()
-    pages, used = [], set()
-    for k, (title, prefixes) in enumerate(API_PARTS):
-        mods = [m for m in modules if m not in used and any(
-            m == p or (m.startswith(p + ".") and p != "acausal2d") for p in prefixes)]
+    stems, used = [], set()
+    for stem, title, line, blocks, names in API_PAGES:
+        mods = [m for m in modules if m not in used and _matches(m, names)]
         used.update(mods)
-        blocks = ["```{eval-rst}\n.. automodule:: %s\n```\n" % m for m in mods]
-        stem = "part%02d" % (k + 1)
-        pages.append(stem)
-        _write(os.path.join(DOCS, "api", stem + ".md"), "# %s\n\n%s" % (title, "\n".join(blocks)))
+        rst = list(blocks) + [".. automodule:: %s" % m for m in mods if m != "acausal2d"]
+        body = "".join("```{eval-rst}\n%s\n```\n\n" % b for b in rst)
+        _write(os.path.join(DOCS, "api", stem + ".md"), "# %s\n\n%s\n\n%s" % (title, line, body))
+        stems.append(stem)
     rest = [m for m in modules if m not in used]
     if rest:
-        pages.append("other")
+        stems.append("other")
         _write(os.path.join(DOCS, "api", "other.md"), "# Other modules\n\n" + "\n".join(
             "```{eval-rst}\n.. automodule:: %s\n```\n" % m for m in rest))
+    for old in glob.glob(os.path.join(DOCS, "api", "*.md")):     # pages of an earlier layout
+        if os.path.basename(old)[:-3] not in stems + ["index"]:
+            os.remove(old)
     _write(os.path.join(DOCS, "api", "index.md"),
-           "# API reference\n\nGenerated from the docstrings of every public module.\n\n"
-           "```{toctree}\n:maxdepth: 1\n\n%s\n```\n" % "\n".join(pages))
+           "# API reference\n\nGenerated from the docstrings of every public module, in the "
+           "order you reach for them: load, compile and simulate a model, its result and run "
+           "options, comparing, studies; then the modelling language, the library by domain "
+           "and the package's parts.\n\n```{toctree}\n:maxdepth: 1\n\n%s\n```\n"
+           % "\n".join(stems))
+
+
+def _relative_paths(app, what, name, obj, options, signature, return_annotation):
+    """A default value that is a path in this checkout (``install(dest=PREBUILT)``)
+    shown relative to the repository, not as the build machine's folder."""
+    if signature and ROOT + os.sep in signature:
+        return signature.replace(ROOT + os.sep, ""), return_annotation
+    return None
 
 
 def setup(app):
+    app.connect("autodoc-process-signature", _relative_paths)
     app.connect("builder-inited", write_api)
     app.connect("builder-inited", write_gallery)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -16,6 +16,7 @@ from acausal2d.visual.animation import render_html  # noqa: E402
 from acausal2d.visual.plotting import declared_figures, plot  # noqa: E402
 from acausal2d.visual.scene import build_scene  # noqa: E402
 
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MAX_FIGURES = 3
 ANIMATION_FRAMES = 200
 
@@ -44,7 +45,8 @@ def run_model(path, name, folder, anim_folder):
     stem = safe_filename("_".join([os.path.splitext(os.path.basename(path))[0]] +
                                   ([name] if name else [])))
     model = acausal2d.load_model(path, name)
-    entry = {"name": name, "doc": _doc(type(model)), "figures": [], "animation": None}
+    doc = _doc(type(model)).replace(os.path.abspath(path), os.path.relpath(path, ROOT))
+    entry = {"name": name, "doc": doc, "figures": [], "animation": None}
     model, inputs = bind_inputs(model)      # inputs of an FMU model: held at 0 here
     if inputs:
         entry["note"] = "Its inputs %s are held at 0 by constant sources here (as `linearize` " \

@@ -1,8 +1,8 @@
 """Belt and rope drives: elastic belt spans, circular pulleys ("Bandrolle"),
-drums and a driven rope end (seed ch. 4.4, eq. 4.52-4.99).
+drums and a driven rope end (Ebert 2015, ch. 4.4, eq. 4.52-4.99).
 
-Elements and ports (seed names)
--------------------------------
+Elements and ports (names of Ebert 2015)
+----------------------------------------
 - :class:`Belt` -- elastic belt / rope span (eq. 4.52-4.66): mechanical
   ports ``ctr2D1``, ``ctr2D2`` (end points P1, P2) and band ports ``ctrB1``,
   ``ctrB2``.
@@ -11,17 +11,17 @@ Elements and ports (seed names)
 - :class:`NozzleBelt` -- elastic belt through a frictionless draw-off nozzle
   at ``ctr2D3`` (eq. 4.67-4.77).
 - :class:`Band` -- inextensible band or rope section (the rigid limit of
-  Belt); a link of seed eq. 2.1 with pins or band joints at its ends.
+  Belt); a link of Ebert (2015), eq. 2.1 with pins or band joints at its ends.
 - :class:`GuideContour` -- circular contour over which a band slides
-  without friction (seed Bild 2.1 b/c; band joints with f = 2).
-- :class:`Pulley` -- circular pulley "Bandrolle" (eq. 4.87-4.99, the seed's
+  without friction (Ebert 2015, Bild 2.1 b/c; band joints with f = 2).
+- :class:`Pulley` -- circular pulley "Bandrolle" (eq. 4.87-4.99, the dissertation's
   interface): housing connection ``ctr2D1`` with the axis P1 placed by
   ``x10, y10, phi10, frameRef`` (Anhang A.1, :mod:`.placement`), contact
   frames ``ctrK1``, ``ctrK2``, band ports ``ctrB1``, ``ctrB2``, flanges
   ``ctrR1`` (housing) and ``ctrR2`` (pulley), winding direction ``w_i`` and
   half-planes ``enumHE1``, ``enumHE2`` (Tabelle 4.15, 4.16).
 - :class:`Drum` -- circular drum with one contact point and the rope end
-  fixed on the contour (seed end of ch. 4.4.4).
+  fixed on the contour (Ebert 2015, end of ch. 4.4.4).
 - :class:`RopeDrive` -- a rope end (point) moved along a straight line by the
   signal ``s_in`` (for pulling a rope with a drive function).
 - :class:`CurvedPulley`, :class:`CurvedDrum` -- pulley and drum with curved
@@ -29,7 +29,7 @@ Elements and ports (seed names)
   they have the same ports and connect to the spans in the same way.  The
   start values of spans ending on them come from :func:`tangent_any`.
 - :class:`Carriage`, :class:`Hook` -- the cable crane's carriage and hook
-  (seed ch. 8.1).
+  (Ebert 2015, ch. 8.1).
 
 One element (or concern) per module: :mod:`.spans` (Belt, SpringBelt,
 NozzleBelt), :mod:`.pulley`, :mod:`.drum`, :mod:`.rope_drive`,
@@ -38,21 +38,21 @@ NozzleBelt), :mod:`.pulley`, :mod:`.drum`, :mod:`.rope_drive`,
 (CurvedPulley, CurvedDrum), :mod:`.layout` (connect_band, tangents, start
 values), :mod:`.crane`; :mod:`.base` holds what they share.
 
-Band connection (seed ch. 4.1)
-------------------------------
+Band connection (Ebert 2015, ch. 4.1)
+-------------------------------------
 A :class:`~acausal2d.language.connectors.BandPort` carries two potentials and is
 connected one-to-one:
 
 - ``gamma``: the direction (unwrapped angle, world frame) in which the span
   *leaves* the pulley/drum at this contact, i.e. points from the contact into
   the span.  The span computes it: ``ctrB1.gamma = gamma_B`` (direction
-  P1 -> P2) and ``ctrB2.gamma = gamma_B + pi``.  The seed hands the same
+  P1 -> P2) and ``ctrB2.gamma = gamma_B + pi``.  The dissertation hands the same
   gamma_B to both ends and lets the pulley add the mounting-variant angle
   gamma_z (Tabelle 4.16); handing the leaving direction makes the pulley
   independent of the span's orientation, so the mounting variant reduces
   to the winding direction ``w`` (see :class:`Pulley`).
 - ``L``: the belt material the pulley has paid out into the span at this
-  contact (seed: gewickelte Bandlaenge l_r).  It is an absolute quantity
+  contact (Ebert 2015: gewickelte Bandlaenge l_r).  It is an absolute quantity
   (r times an unwrapped angle); only its changes matter, because every span
   integrates its own unstretched length from its initial strain (see
   :class:`Belt`).  A span end that is not connected to a band port (a rope
@@ -75,13 +75,13 @@ span's gamma and length and the full-turn offset of each pulley's wrap
 angle.  Per-instance start values given by the user (``gamma=start(...)``)
 are kept.  These numbers are evaluated once at compile time: changing
 geometry parameters later with ``simulate(params=...)`` keeps the branch and
-winding sense chosen at compile time (the seed also evaluates its
+winding sense chosen at compile time (the dissertation also evaluates its
 additional angles once at the start of the simulation).
 
 Bearing friction
 ----------------
 :class:`Pulley` and :class:`Drum` take ``friction=True`` to add a Coulomb
-bearing friction torque ``mu * r_pin * |F_bearing|`` (seed ch. 7.3.1)
+bearing friction torque ``mu * r_pin * |F_bearing|`` (Ebert 2015, ch. 7.3.1)
 opposing the rotation relative to the housing.  Sticking is not modelled by
 events; the sign function is regularised as
 ``w_rel / sqrt(w_rel**2 + omega_s**2)`` with a small ``omega_s`` (default

@@ -1,11 +1,11 @@
 """Contours of the pulley and drum with curved contour ("Bandrolle mit
-Kurvenkontur", seed ch. 4.4.5, eq. 4.100-4.122; the elements are in
+Kurvenkontur", Ebert (2015), ch. 4.4.5, eq. 4.100-4.122; the elements are in
 :mod:`acausal2d.library.belt.curved`).
 
 Contours (:class:`Contour`)
 ---------------------------
 The contour is given in polar coordinates of the pulley frame, ``r_C(kappa)``
-(seed: "Kennlinie r_C(kappa)"), as
+(Ebert 2015: "Kennlinie r_C(kappa)"), as
 
 - :meth:`Contour.circle` -- a circle (exact: ``r_C = r``, ``s = r kappa``);
 - :meth:`Contour.from_function` -- a Python function of a CasADi symbol
@@ -39,9 +39,9 @@ The contour is given in polar coordinates of the pulley frame, ``r_C(kappa)``
 The contour must be star-shaped about the axis (one radius per angle); the
 belt runs only on its convex parts.
 
-Arc length (seed eq. 4.116-4.119)
----------------------------------
-The seed integrates the contact point's motion along the contour,
+Arc length (Ebert 2015, eq. 4.116-4.119)
+----------------------------------------
+The dissertation integrates the contact point's motion along the contour,
 ``dl_K = int sqrt(r_C'^2 + r_C^2) dkappa`` (4.116, 4.117).  Here the
 integral is evaluated once, when the contour is built, as a closed-form
 arc-length function of the contour angle (position-level, no quadrature

@@ -1,4 +1,4 @@
-"""Checks of a contour before it is used (issue 29): a polar contour
+"""Checks of a contour before it is used: a polar contour
 ``r_C(kappa)`` closes after one turn (and repeats after each of its
 ``symmetry`` sectors), its table angles increase monotonically over less
 than one turn, and its arc-length series converges within a bounded number

@@ -1,4 +1,4 @@
-"""Cable-crane elements (seed ch. 8.1, Bild 8.3 and 8.4): the carriage
+"""Cable-crane elements (Ebert 2015, ch. 8.1, Bild 8.3 and 8.4): the carriage
 ("Laufkatze") as a rigid body carrying pulleys and rope fastenings, the
 crane hook with its load, smooth drum drive functions, and the static
 equilibrium of a rope-supported carriage.
@@ -7,7 +7,7 @@ The carriage runs on the skyline through two running wheels, which are
 ordinary :class:`~acausal2d.library.belt.Pulley` elements carried by the
 carriage (their housings ``ctr2D1`` connected to carriage mounts) and
 wrapped by the skyline from below.  The skyline is therefore an elastic,
-massless rope of straight spans (seed eq. 4.52-4.66) that sags under the
+massless rope of straight spans (Ebert 2015, eq. 4.52-4.66) that sags under the
 carriage: the carriage position on it is not prescribed but follows from
 the rope lengths, the rope forces and the carriage's equations of motion.
 A weightless rope loaded by point forces is exactly polygonal, so the
@@ -18,7 +18,7 @@ Elements
 --------
 - :class:`Carriage` -- rigid body (mass ``m``, inertia ``J`` about the
   centre of gravity ``cog``) with one frame per mount, placed at fixed
-  offsets in the carriage frame (seed Anhang A.3 rigid body with several
+  offsets in the carriage frame (Ebert 2015, Anhang A.3 rigid body with several
   frames; mass data in 4.97-4.99 style).
 - :class:`Hook` -- point mass (hook and load) hanging from the rope end.
 

@@ -1,4 +1,4 @@
-"""Pulley and drum with curved contour ("Bandrolle mit Kurvenkontur", seed
+"""Pulley and drum with curved contour ("Bandrolle mit Kurvenkontur", Ebert (2015),
 ch. 4.4.5, eq. 4.100-4.122): the circular pulley's ports and balances with
 the contact point, tangency and wound length on a :class:`Contour` or
 :class:`SupportContour` (see :mod:`acausal2d.library.belt.contour` for the
@@ -87,7 +87,7 @@ class _CurvedWheel(_Wheel):
             r' sin(delta) - r cos(delta) = 0.
 
         This is the cross product of the tangent (4.108-4.111) with the span
-        direction; the seed's atan2/floor construction (4.112, 4.113) and
+        direction; the dissertation's atan2/floor construction (4.112, 4.113) and
         additional angle gamma_Z (4.114, 4.115, Tabelle 4.20) are replaced by
         it, the branch (parallel or anti-parallel) being the one of the start
         values (Tabelle 4.21's role), which are computed by belt_layout from
@@ -125,7 +125,7 @@ class _CurvedWheel(_Wheel):
 
 
 class CurvedPulley(_CurvedWheel):
-    """Pulley with curved contour "Bandrolle mit Kurvenkontur" (seed 4.4.5,
+    """Pulley with curved contour "Bandrolle mit Kurvenkontur" (Ebert 2015, ch. 4.4.5,
     eq. 4.100-4.122, Tabelle 4.20-4.22).
 
     ``CurvedPulley(contour, w_i=-1, friction=False, **parameters)`` with a
@@ -220,7 +220,7 @@ class CurvedPulley(_CurvedWheel):
 class CurvedDrum(_CurvedWheel):
     """Drum with curved contour: one contact point K1, rope end fastened on
     the contour at the contour angle ``alpha_fix`` (the curved counterpart of
-    :class:`~acausal2d.library.belt.Drum`; seed end of ch. 4.4.4 / 4.4.5).
+    :class:`~acausal2d.library.belt.Drum`; Ebert 2015, end of ch. 4.4.4 / 4.4.5).
 
     ``w_i=-1`` (default; ``w = -w_i`` below): a positive turn winds the rope
     up.  Contact point and tangency

@@ -1,4 +1,4 @@
-"""Circular rope drum (end of seed ch. 4.4.4): the Bandrolle with one contact
+"""Circular rope drum (end of Ebert (2015), ch. 4.4.4): the Bandrolle with one contact
 point and the rope end fastened on the contour.
 """
 
@@ -11,7 +11,7 @@ from .pulley import _Wheel
 
 class Drum(_Wheel):
     """Circular rope drum: one contact point K1, rope end fixed on the
-    contour (seed end of 4.4.4: the Bandrolle without ctrK2/ctrB2).
+    contour (Ebert 2015, end of 4.4.4: the Bandrolle without ctrK2/ctrB2).
 
     Winding direction ``w_i`` as the pulley's at K1 (eq. 4.95): ``w_i=-1``
     (default) -- a positive turn winds the rope up; ``w = -w_i`` below (the

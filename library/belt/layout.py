@@ -2,7 +2,7 @@
 end to a pulley contact, :func:`tangent`/:func:`tangent_any` construct the
 common tangents of two wheels (circular or curved), and :func:`belt_layout`
 evaluates the tangent construction of all belts of a model at t0 for the
-start values of the unwrapped span angles and wrap angles (seed ch. 4.4,
+start values of the unwrapped span angles and wrap angles (Ebert 2015, ch. 4.4,
 eq. 4.57 without its branch cut).
 """
 import math

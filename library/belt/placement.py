@@ -1,4 +1,4 @@
-"""Placement of a wheel's axis by offset (seed Anhang A.1, eq. A.1-A.18,
+"""Placement of a wheel's axis by offset (Ebert 2015, Anhang A.1, eq. A.1-A.18,
 Tabelle A.1 and 4.15) and the start poses of the frames a wheel may sit on.
 
 A pulley's housing frame PKS1 (origin P1 on the axis) has the constant
@@ -114,7 +114,7 @@ def legacy_placement(cls_name, kw):
             % (cls_name, ", ".join(clash), ", ".join(given)))
     new = ", ".join("%s=%r" % (_LEGACY[k], kw[k]) for k in given)
     warnings.warn("%s(%s): the parameters x0, y0, phi0 are deprecated; write %s, "
-                  "frameRef='global' (seed Tabelle 4.15, Anhang A.1)"
+                  "frameRef='global' (Ebert 2015, Tabelle 4.15, Anhang A.1)"
                   % (cls_name, ", ".join("%s=%r" % (k, kw[k]) for k in given), new),
                   DeprecationWarning, stacklevel=4)
     for k in given:
@@ -123,18 +123,18 @@ def legacy_placement(cls_name, kw):
 
 
 def winding(cls_name, w, w_i, default=-1):
-    """The seed's winding direction w_i (eq. 4.95, 4.96: ``w_i = +1`` -- a
+    """The dissertation's winding direction w_i (eq. 4.95, 4.96: ``w_i = +1`` -- a
     positive turn pays the band out at K1) from ``w_i`` or the deprecated
     ``w`` (``w = -w_i``: ``w = +1`` wound up at K1), with a
     DeprecationWarning for ``w``; ``default`` when neither is given."""
     if w is not None and w_i is not None:
-        raise ModelDefinitionError("%s: give the winding direction as w_i (seed eq. 4.95) or "
+        raise ModelDefinitionError("%s: give the winding direction as w_i (Ebert 2015, eq. 4.95) or "
                                    "(deprecated) as w = -w_i, not both" % cls_name)
     if w is not None:
         if w not in (1, -1):
             raise ModelDefinitionError("%s: winding direction w must be +1 or -1, got %r"
                                        % (cls_name, w))
-        warnings.warn("%s(w=%d): w is deprecated; write w_i=%d (the seed's winding "
+        warnings.warn("%s(w=%d): w is deprecated; write w_i=%d (the dissertation's winding "
                       "direction, eq. 4.95/4.96: w_i = +1 pays the band out at K1 on a "
                       "positive turn; w_i = -w)" % (cls_name, w, -w),
                       DeprecationWarning, stacklevel=4)
@@ -200,7 +200,7 @@ class StartPoses:
 
     def _seed_frames(self, comp):
         """Frame poses of a component's ``_linkage_seed()`` (node frames,
-        Carriage mounts); components without frames (drives seed their
+        Carriage mounts); components without frames (drives start their
         flanges) are skipped."""
         seed = getattr(comp, "_linkage_seed", None)
         if seed is None or not any(isinstance(c, Frame) for c in comp._connectors.values()):

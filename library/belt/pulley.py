@@ -1,6 +1,6 @@
-"""Circular pulley "Bandrolle" (seed ch. 4.4.4, eq. 4.87-4.99) and the wheel
+"""Circular pulley "Bandrolle" (Ebert 2015, ch. 4.4.4, eq. 4.87-4.99) and the wheel
 machinery it shares with the drum and the curved wheels: mass, housing,
-flange, wrap angles and the Coulomb bearing friction of seed ch. 7.3.1.
+flange, wrap angles and the Coulomb bearing friction of Ebert (2015), ch. 7.3.1.
 """
 import math
 import warnings
@@ -70,9 +70,9 @@ class _Wheel(_BandElement):
                             doc="connection of the housing (fixed in the ground with P1 at "
                                 "x10, y10 and the angle phi10 if unconnected)")
         self.ctrR1 = RotationalFlange(doc="housing: angle of the housing frame PKS1, torque "
-                                          "acting on the housing (seed ctrR1 = T_R1)")
+                                          "acting on the housing (Ebert 2015: ctrR1 = T_R1)")
         self.ctrR2 = RotationalFlange(doc="pulley: absolute pulley angle phi, torque acting on "
-                                          "the pulley (seed ctrR2 = T_R2)")
+                                          "the pulley (Ebert 2015: ctrR2 = T_R2)")
         self.ctrR = RotationalFlange(doc="deprecated: pulley angle relative to the housing; "
                                          "torque between housing and pulley (use ctrR2 with "
                                          "the support on ctrR1)")
@@ -163,7 +163,7 @@ class _Wheel(_BandElement):
 
     def _contact(self, port, s):
         """kappa and contact point for the leaving angle port.gamma, with the
-        pulley on side s (kappa = gamma + s*pi/2, the seed's gamma_z)."""
+        pulley on side s (kappa = gamma + s*pi/2, the dissertation's gamma_z)."""
         kap = port.gamma + s * _PI / 2
         return kap, self.xP1 + self.r * ca.cos(kap), self.yP1 + self.r * ca.sin(kap)
 
@@ -191,8 +191,8 @@ class _Wheel(_BandElement):
         return eqs, tau
 
     def _balance(self, contacts):
-        """Force and moment balance (eq. 4.97-4.99 with the sign fix of the
-        spec, moments about the centre of gravity).  contacts: list of
+        """Force and moment balance (eq. 4.97-4.99 with the moment sign fixed,
+        moments about the centre of gravity).  contacts: list of
         (frame, x, y)."""
         P = self.ctr2D1
         eqs, tau = self._housing()
@@ -247,9 +247,9 @@ class _Wheel(_BandElement):
         return out
 
     def topology(self):
-        """Planar topology for seed eq. 2.1: the wheel is a link joined to
+        """Planar topology for Ebert (2015), eq. 2.1: the wheel is a link joined to
         its housing ``ctr2D1`` by a revolute joint (f = 1), as the pulley
-        ("Rolle") of seed Bild 2.1 c.  The wheel has no frame of its own; its
+        ("Rolle") of Ebert (2015), Bild 2.1 c.  The wheel has no frame of its own; its
         contact frames (``ctrK1``, and ``ctrK2`` of a pulley) -- the wheel
         side of the band joints -- stand for it (``("rigid", contacts)``).
         The spans connected there are force elements and declare nothing,
@@ -263,8 +263,8 @@ class _Wheel(_BandElement):
             + self._contacts(1)
 
     def start_checks(self, context):
-        """Winding-sign check at t0 of a pulley (circular or curved) (seed eq. 4.87-4.96 and the geometric
-        test of the winding sense, spec section 1.6): with ``w`` the bands
+        """Winding-sign check at t0 of a pulley (circular or curved) (Ebert 2015, eq. 4.87-4.96 and the geometric
+        test of the winding sense): with ``w`` the bands
         leave the contacts on the sides ``kappa1 = gamma1 + w pi/2``,
         ``kappa2 = gamma2 - w pi/2``; when the two bands then cross each
         other, the band passes through itself -- the sign contradicts how
@@ -298,15 +298,15 @@ class _Wheel(_BandElement):
 
     def _contacts(self, f):
         """``("contact", band_port, f)`` of each band port: the band joints
-        of inextensible spans ending here (seed Tab. 2.1: f = 1 rolling, 2
+        of inextensible spans ending here (Ebert 2015, Tab. 2.1: f = 1 rolling, 2
         sliding)."""
         return [("contact", self._connectors[n], f) for n in ("ctrB1", "ctrB2")
                 if n in self._connectors]
 
 
 class Pulley(_Wheel):
-    """Circular pulley "Bandrolle" (seed 4.4.4, eq. 4.87-4.99, Tabelle
-    4.14-4.17; SimulationX: FixPulley) with the seed's ports, parameters
+    """Circular pulley "Bandrolle" (Ebert 2015, ch. 4.4.4, eq. 4.87-4.99, Tabelle
+    4.14-4.17; SimulationX: FixPulley) with the dissertation's ports, parameters
     and signs.
 
     Ports (Tabelle 4.14): ``ctr2D1`` connection of the housing,
@@ -347,8 +347,8 @@ class Pulley(_Wheel):
     pays the band out into the span at K1 and winds it up at K2 (the band
     wraps the pulley clockwise from K1 to K2, beta = kappa1 - kappa2 > 0,
     4.93); ``w_i = -1`` the reverse (the default, the former ``w=+1``).
-    The seed's Tabelle 4.15 and Bild 4.21 describe the opposite sense in
-    words; the equations are followed here (spec section 1.6).  The former
+    The dissertation's Tabelle 4.15 and Bild 4.21 describe the opposite sense in
+    words; the equations are followed here.  The former
     ``w`` is ``-w_i`` (DeprecationWarning).
 
     Mounting variant (Tabelle 4.16, Bild 4.20): the contact angles are
@@ -357,7 +357,7 @@ class Pulley(_Wheel):
 
         kappa1 = gamma1 - w_i*pi/2,   kappa2 = gamma2 + w_i*pi/2,
 
-    i.e. the seed's gamma_z = +-pi/2 follows from ``w_i``.  ``enumHE1``,
+    i.e. the dissertation's gamma_z = +-pi/2 follows from ``w_i``.  ``enumHE1``,
     ``enumHE2`` (``'upper'``, ``'lower'``, ``'left'``, ``'right'``: the
     half-plane around P1 in which K1, K2 lie at t0) are checked against the
     tangent construction at compilation: a half-plane that the winding
@@ -381,7 +381,7 @@ class Pulley(_Wheel):
     use (see :meth:`start_checks`; bands that both run to other wheels, a
     crossed belt drive, are not checked).
 
-    Forces (4.97-4.99 with the moment sign fixed as in spec section 1.7):
+    Forces (4.97-4.99 with the moment sign fixed):
     mass ``m`` at the centre of gravity ``cog`` (pulley frame), inertia
     ``J`` about it, gravity from the PlanarWorld, contact forces at K1, K2,
     bearing force at P1, the flange torques ``ctrR2.tau`` and ``ctrR.tau``
@@ -479,13 +479,13 @@ def _segments_cross(a, b, c, d):
 
 class GuideContour(Pulley):
     """Circular contour over which a band slides without friction (the
-    "Kurvenkontur" of seed Bild 2.1 b/c): the equations of a massless
+    "Kurvenkontur" of Ebert (2015), Bild 2.1 b/c): the equations of a massless
     :class:`Pulley` (``m = J = 0`` are required), whose angle ``phi`` is here
     the slip coordinate of the band over the contour (the moment balance
     makes both span forces equal).  Fixed in the ground while ``ctr2D1`` is
     unconnected, or carried by a turning wheel (Bild 2.1 c) connected there.
 
-    Topology (seed eq. 2.1): the contour belongs to the link of its housing;
+    Topology (Ebert 2015, eq. 2.1): the contour belongs to the link of its housing;
     the two band joints slide (f = 2) and are coupled by the wrapped band
     (one more constraint), so that Bild 2.1 b counts F = 3(5-1) - [4(3-1) +
     2(3-2) + 1] = 1.
@@ -501,7 +501,7 @@ class GuideContour(Pulley):
 
     def topology(self):
         """Contour and contacts rigid with the housing, two sliding band
-        joints (f = 2) and their coupling (seed Bild 2.1 b)."""
+        joints (f = 2) and their coupling (Ebert 2015, Bild 2.1 b)."""
         items = [] if is_connected(self.ctr2D1) else [("ground", [self.ctr2D1])]
         return items + [("rigid", [self.ctr2D1, self.ctrK1, self.ctrK2]),
                         ("coupling", 1)] + self._contacts(2)

@@ -1,5 +1,5 @@
 """A rope end driven along a straight line by a signal (for pulling a rope
-with a drive function, as the seed's drum drive functions of ch. 8.1).
+with a drive function, as the dissertation's drum drive functions of ch. 8.1).
 """
 import casadi as ca
 

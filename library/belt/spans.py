@@ -1,4 +1,4 @@
-"""Belt spans (seed ch. 4.4.1-4.4.3): the elastic belt or rope span (eq.
+"""Belt spans (Ebert 2015, ch. 4.4.1-4.4.3): the elastic belt or rope span (eq.
 4.52-4.66), the inextensible band (its rigid limit), the inextensible band with a tension spring and damper (eq.
 4.78-4.86) and the elastic belt through a draw-off nozzle (eq. 4.67-4.77).
 Slack spans carry no force (events).
@@ -42,7 +42,7 @@ class _Span(_BandElement):
 
 
 class Belt(_Span):
-    """Elastic belt or rope span between P1 and P2 (seed 4.4.1, eq. 4.52-4.66).
+    """Elastic belt or rope span between P1 and P2 (Ebert 2015, ch. 4.4.1, eq. 4.52-4.66).
 
     Straight, massless and bending-free.  ``l`` is the free length |P2 - P1|
     (4.52), ``gamma`` the span angle (4.57, unwrapped).  The unstretched
@@ -54,23 +54,22 @@ class Belt(_Span):
 
         F = c*eps + d*der(eps)   while eps > 0,   F = 0 while slack,
 
-    with ``c`` the stiffness per unit strain (the seed's k_Bc, N per unit
+    with ``c`` the stiffness per unit strain (the dissertation's k_Bc, N per unit
     strain = N.m/m; the span's spring rate is c/l_u) and ``d`` the damping per
     unit strain (b_Bc).  ``eps > 0`` is a relation, so slackening and
-    re-tensioning are events.  As in the seed, the damping term may make F
+    re-tensioning are events.  As in the dissertation, the damping term may make F
     negative for a taut span that is unloaded very quickly.
 
     Numerics: the strain is normally chosen as the integrator state and
     ``l_u0`` is then recovered from it, so the conservation of belt material
     holds to the integration tolerance (about 1e-6 relative at rtol 1e-8),
     not exactly.  (Making ``l_u0`` the state keeps it exact but, with
-    damping, made IDA re-evaluate the Jacobian on almost every step -- see
-    the report of issue 4.)  Very stiff belts (c above ~1e8 N) need rtol
+    damping, made IDA re-evaluate the Jacobian on almost every step.)  Very stiff belts (c above ~1e8 N) need rtol
     >= 1e-9: the force is c times a difference of lengths, so its round-off
     is about 1e-16 * c.
 
     Initial state: by default the strain is fixed at 0 (the span starts just
-    unstretched, the seed's l_B0 = l_B(t=0)).  Give a pretension with
+    unstretched, the dissertation's l_B0 = l_B(t=0)).  Give a pretension with
     ``Belt(eps=start(1e-4, fixed=True))`` or an initial force with
     ``Belt(F=start(250.0, fixed=True), eps=start(1e-4, fixed=False))``.
     """
@@ -93,7 +92,7 @@ class Belt(_Span):
 
 
 class SpringBelt(_Span):
-    """Band with a tension spring (seed 4.4.3, eq. 4.78-4.86).
+    """Band with a tension spring (Ebert 2015, ch. 4.4.3, eq. 4.78-4.86).
 
     Two inextensible, massless band pieces with a linear spring k and a
     viscous damper b between them.  The spring length is
@@ -134,14 +133,14 @@ class SpringBelt(_Span):
 
 class Band(_Span):
     """Inextensible band or rope span between P1 and P2 (the rigid limit of
-    seed 4.4.1, eq. 4.52-4.58: strain zero).
+    Ebert 2015, ch. 4.4.1, eq. 4.52-4.58: strain zero).
 
     The free length equals the band material in the span, ``l = l_x0 +
     ctrB1.L + ctrB2.L`` with the constant ``l_x0`` (``der(l_x0) = 0``, found
     at initialization), so ``F`` is a constraint force.  The span is
     bilateral: it carries compression too, so a model with it must keep it
     taut (check ``F > 0``).  Unlike the elastic spans (force elements), a
-    band is a link of seed eq. 2.1 (Bild 2.1 b/c: "das Band in zwei
+    band is a link of Ebert (2015), eq. 2.1 (Bild 2.1 b/c: "das Band in zwei
     Abschnitte aufgeteilt"): each end is a pin (f = 1) where it is fastened
     to a frame, or a band joint where it lies on a wheel contact (f = 1
     rolling, 2 sliding, as the wheel declares).
@@ -161,7 +160,7 @@ class Band(_Span):
             self.l == self.l_x]
 
     def topology(self):
-        """The band section is a link with a joint at each end (seed eq. 2.1,
+        """The band section is a link with a joint at each end (Ebert 2015, eq. 2.1,
         Bild 2.1 b/c): ``("band", ...)`` items, a band joint on a wheel
         contact or a pin on a frame."""
         return [("band", self._link, self.ctr2D1, self.ctrB1),
@@ -169,7 +168,7 @@ class Band(_Span):
 
 
 class NozzleBelt(_BandElement):
-    """Elastic belt through a draw-off nozzle (seed 4.4.2, eq. 4.67-4.77).
+    """Elastic belt through a draw-off nozzle (Ebert 2015, ch. 4.4.2, eq. 4.67-4.77).
 
     The band runs from P1 through the frictionless nozzle at P3 (``ctr2D3``)
     to P2.  Both pieces form one elastic span of free length

@@ -1,7 +1,7 @@
-"""Structures of four-link band mechanisms (seed ch. 2.5.2, Bild 2.6-2.8)
+"""Structures of four-link band mechanisms (Ebert 2015, ch. 2.5.2, Bild 2.6-2.8)
 as runnable models, generated from their structure code.
 
-Notation (seed ch. 2.1 and 2.4): a four-link chain is named by its four
+Notation (Ebert 2015, ch. 2.1 and 2.4): a four-link chain is named by its four
 joints read around the loop starting at the frame, so the first and the
 last letter are the joints on the frame: D revolute, S prismatic, B band
 joint (the band rolls off a disc, f = 1).  ``~`` marks the link between two
@@ -76,7 +76,7 @@ def parse_structure(code):
     if "S" in ends or "B" not in ends:
         raise ModelDefinitionError(
             "band structure %r: the band's joints are %s; each end must be a pin D or a "
-            "disc B, at least one B (seed ch. 2.5.2: a band joint does not combine with a "
+            "disc B, at least one B (Ebert 2015, ch. 2.5.2: a band joint does not combine with a "
             "prismatic joint)" % (code, ends))
     if any(ch == "B" and i not in (b - 1, b % 4) for i, ch in enumerate(letters)):
         raise ModelDefinitionError("band structure %r: a disc B is a band joint; here one is "
@@ -95,7 +95,7 @@ def _cross(a, b):
 
 def _disc(p, on_link):
     """The disc of a B joint at ``p``: placed by its axis (x10, y10,
-    frameRef='global', seed Anhang A.1) on the ground; on a linkage element
+    frameRef='global', Ebert (2015), Anhang A.1) on the ground; on a linkage element
     its start still comes from the former x0, y0 (the start poses of
     :mod:`~acausal2d.library.belt.placement` do not follow the linkage
     elements' frames yet)."""

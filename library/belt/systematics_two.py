@@ -1,4 +1,4 @@
-"""Two-band structures of four-link band mechanisms (seed ch. 2.5.2, Bild
+"""Two-band structures of four-link band mechanisms (Ebert 2015, ch. 2.5.2, Bild
 2.6: "optionally two rigid links are replaced by bands", R1), generated from
 their code as :mod:`acausal2d.library.belt.systematics` does for one band.
 
@@ -69,8 +69,8 @@ def parse_two_bands(code):
             "and the band as the frame); two bands are never adjacent" % code)
     for b in marks:
         if "B" not in letters[b - 1] + letters[b % 4]:
-            raise ModelDefinitionError("two-band structure %r: band L%d has no disc B (seed "
-                                       "ch. 2.5.2: D-B or B-B)" % (code, b))
+            raise ModelDefinitionError("two-band structure %r: band L%d has no disc B (Ebert "
+                                       "2015, ch. 2.5.2: D-B or B-B)" % (code, b))
     return letters, marks
 
 

@@ -1,4 +1,4 @@
-"""Linkage elements after VDI 2729 with masses (seed ch. 4.2, Anhang A, B),
+"""Linkage elements after VDI 2729 with masses (Ebert 2015, ch. 4.2, Anhang A, B),
 one element per module, named after its section of Anhang B:
 
 - :mod:`.dan` -- DAN, rotary drive (B.1); :mod:`.san` -- SAN, linear drive
@@ -13,12 +13,12 @@ one element per module, named after its section of Anhang B:
 
 Conventions (common to all elements)
 ------------------------------------
-* Ports carry the seed's names: ``ctr2D1`` .. ``ctr2D4`` are planar frames
+* Ports carry the dissertation's names: ``ctr2D1`` .. ``ctr2D4`` are planar frames
   (:class:`~acausal2d.language.connectors.Frame`: x, y, phi; fx, fy, t = force and
   torque acting *on the element* from the connected part, world frame);
   ``ctrR1``/``ctrR2`` are 1D rotational and ``ctrT1``/``ctrT2`` 1D
   translational flanges.
-* Ports drawn with a triangle in the seed (bearing housings and guides,
+* Ports drawn with a triangle in the dissertation (bearing housings and guides,
   Tabelle 4.1) are fixed to ground while unconnected; ports drawn with a
   plug (the moving planes of links and sliders) are free (zero force) while
   unconnected.
@@ -47,7 +47,7 @@ Conventions (common to all elements)
   checks).  Inertia terms are ``m der(der(xS))`` and ``J der(der(phi))`` with
   J about the centre of gravity (A.27-A.29); gravity comes from the model's
   :class:`~acausal2d.library.planar.PlanarWorld` (default {0, -9.81} m/s²,
-  the seed's g_x, g_y defaults).
+  the dissertation's g_x, g_y defaults).
 * Massless bearing housings and guides (Anhang B intro) pass forces from the
   joint to their port; their moment balance about the connection point
   includes the offset of the placed point (A.16-A.18).
@@ -82,7 +82,7 @@ drawn at the connection point (guides are then left out).  The slider foot
 points ``xPS, yPS`` (SAN, DSD), ``xPS1, yPS1`` (SSD, SDS) and ``xPS2, yPS2``
 (SSD) are variables for this purpose.
 
-``topology()`` (seed eq. 2.1) uses the element's *output* frames as its
+``topology()`` (Ebert 2015, eq. 2.1) uses the element's *output* frames as its
 links: every moving body of an element has exactly one plug port (DAN crank
 ``ctr2D2``; SAN slider ``ctr2D2``; DDD links ``ctr2D3``/``ctr2D4``; DDS link
 ``ctr2D3``, slider ``ctr2D4``; DSD guide ``ctr2D3``, slider ``ctr2D4``;
@@ -95,9 +95,9 @@ FGP is rigid with its predecessor (``("rigid", [ctr2D1, ctr2D2])``).  The
 motion presets declare nothing: eq. 2.1 counts the mechanism's DOF, which
 a drive uses up but does not remove from the chain.
 
-Sign conventions differing from the extracted seed text (typos there):
+Sign conventions differing from the dissertation's text (typos there):
 slider foot points are ``PS = P_guide + x_G (cos phi_U, sin phi_U)`` in all
-elements (the seed's B.10/B.99 print ``x_P1 - x_G cos``, contradicting B.126,
+elements (the dissertation's B.10/B.99 print ``x_P1 - x_G cos``, contradicting B.126,
 B.158, B.197); the DSD start direction uses ``H6 = (H2 H4 - v H1)/H3`` so that
 it is consistent with B.132/B.133.
 """

@@ -1,4 +1,4 @@
-"""What the VDI 2729 linkage elements share (seed ch. 4.2, Anhang A): the
+"""What the VDI 2729 linkage elements share (Ebert 2015, ch. 4.2, Anhang A): the
 point-direction helpers, the d'Alembert forces of a body (A.27-A.29), the
 sequential pre-assembly that evaluates the closed-form VDI positions with
 the assembly parameter K (ch. 4.2.1, Bild 4.3) as start values, frame

@@ -1,4 +1,4 @@
-"""Rotary drive DAN (seed Anhang B.1, Tabellen B.1-B.3, eqs. B.1-B.9)."""
+"""Rotary drive DAN (Ebert 2015, Anhang B.1, Tabellen B.1-B.3, eqs. B.1-B.9)."""
 import casadi as ca
 
 from acausal2d import der, Parameter, Variable
@@ -14,7 +14,7 @@ __all__ = ["DAN"]
                      "ctrR1": rotational("housing (support) flange"),
                      "ctrR2": rotational("link flange")}, outputs=(2,))
 class DAN(_Linkage):
-    """Rotary drive DAN (seed Anhang B.1, Tabellen B.1-B.3, eqs. B.1-B.9).
+    """Rotary drive DAN (Ebert 2015, Anhang B.1, Tabellen B.1-B.3, eqs. B.1-B.9).
 
     A crank (Link) of length ``lL`` turns about the bearing point P1; its end
     point P moves on a circle.  Ports: ``ctr2D1`` bearing housing at P1

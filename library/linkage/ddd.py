@@ -1,4 +1,4 @@
-"""Dyad with three revolute joints DDD (seed Anhang B.4, Tabellen B.10-B.12,
+"""Dyad with three revolute joints DDD (Ebert 2015, Anhang B.4, Tabellen B.10-B.12,
 eqs. B.42-B.70)."""
 import casadi as ca
 
@@ -32,7 +32,7 @@ def vdi_ddd(x1, y1, x2, y2, l1, l2, K, sqrt=ca.sqrt):
                      "ctrR1": rotational("housing 2 (support) flange"),
                      "ctrR2": rotational("link 2 flange")}, outputs=(3, 4))
 class DDD(_Linkage):
-    """Dyad with three revolute joints DDD (seed Anhang B.4, Tabellen
+    """Dyad with three revolute joints DDD (Ebert 2015, Anhang B.4, Tabellen
     B.10-B.12, eqs. B.42-B.70).
 
     Link 1 (length ``lL1``) turns about P1, link 2 (``lL2``) about P2; they

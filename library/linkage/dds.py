@@ -1,4 +1,4 @@
-"""Dyad with a prismatic joint as outer joint DDS (seed Anhang B.5, Tabellen
+"""Dyad with a prismatic joint as outer joint DDS (Ebert 2015, Anhang B.5, Tabellen
 B.13-B.15, eqs. B.71-B.118)."""
 import casadi as ca
 
@@ -39,7 +39,7 @@ def vdi_dds(x1, y1, x2, y2, phiU, l, v, K, sqrt=ca.sqrt):
                      "ctrT1": translational("guide support flange"),
                      "ctrT2": translational("slider flange")}, outputs=(3, 4))
 class DDS(_Linkage):
-    """Dyad with a prismatic joint as outer joint DDS (seed Anhang B.5,
+    """Dyad with a prismatic joint as outer joint DDS (Ebert 2015, Anhang B.5,
     Tabellen B.13-B.15, eqs. B.71-B.118).
 
     A link of length ``lL`` turns about P1; at its other end P it carries,

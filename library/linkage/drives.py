@@ -1,4 +1,4 @@
-"""Drives and measuring modules for the linkage elements (seed ch. 3.2, 4.2,
+"""Drives and measuring modules for the linkage elements (Ebert 2015, ch. 3.2, 4.2,
 7.1: ``preset1`` and the VDI 2729 measuring modules).
 
 * :class:`Preset` - motion preset for a rotational flange (angle) or a
@@ -55,7 +55,7 @@ def _spline_expr(t, table):
 
 
 class Preset(Component):
-    """Motion preset (the seed's ``preset1``): prescribes the angle of a
+    """Motion preset (the dissertation's ``preset1``): prescribes the angle of a
     rotational flange (default) or, with ``translational=True``, the position
     of a translational flange.
 
@@ -96,7 +96,7 @@ class Preset(Component):
             self.support = TranslationalFlange() if translational else RotationalFlange()
 
     def topology(self):
-        """Nothing: the seed's eq. 2.1 counts the degree of freedom of the
+        """Nothing: the dissertation's eq. 2.1 counts the degree of freedom of the
         mechanism; a preset uses that DOF up (the driven flange follows the
         motion) but adds no link or joint to the planar chain."""
         return []

@@ -1,4 +1,4 @@
-"""Dyad with a prismatic joint as inner joint DSD (seed Anhang B.6, Tabellen
+"""Dyad with a prismatic joint as inner joint DSD (Ebert 2015, Anhang B.6, Tabellen
 B.16-B.18, eqs. B.119-B.148)."""
 import casadi as ca
 
@@ -29,7 +29,7 @@ def vdi_dsd(x1, y1, x2, y2, v, sqrt=ca.sqrt):
                      "ctrT1": translational("slider flange"),
                      "ctrT2": translational("guide flange")}, outputs=(3, 4))
 class DSD(_Linkage):
-    """Dyad with a prismatic joint as inner joint DSD (seed Anhang B.6,
+    """Dyad with a prismatic joint as inner joint DSD (Ebert 2015, Anhang B.6,
     Tabellen B.16-B.18, eqs. B.119-B.148).
 
     A guide with mass turns about P1; a slider with mass slides on it and

@@ -1,4 +1,4 @@
-"""Guided link point FGP (seed Anhang B.3, Tabellen B.7-B.9, eqs. B.33-B.41)."""
+"""Guided link point FGP (Ebert 2015, Anhang B.3, Tabellen B.7-B.9, eqs. B.33-B.41)."""
 import casadi as ca
 
 from acausal2d import Parameter, Variable
@@ -12,7 +12,7 @@ __all__ = ["FGP"]
          connectors={"ctr2D1": triangle("connection to the predecessor plane"),
                      "ctr2D2": plug("guided point P")}, outputs=(2,))
 class FGP(_Linkage):
-    """Guided link point FGP (seed Anhang B.3, Tabellen B.7-B.9, B.33-B.41).
+    """Guided link point FGP (Ebert 2015, Anhang B.3, Tabellen B.7-B.9, B.33-B.41).
 
     A rigid link with mass, fixed to the plane of its predecessor at
     ``ctr2D1``: its start point P1 and direction phiL are the placed frame
@@ -21,7 +21,7 @@ class FGP(_Linkage):
     points and for the second arm of a bell crank.  Ports: ``ctr2D1``
     (triangle: ground-fixed while unconnected), ``ctr2D2`` plane at P (angle
     phiL).  Parameters (Tabelle B.8): ``lL``, ``xSLrel = lL/2``, ``ySLrel =
-    0``, ``mL = 1 kg``, ``JL = 0.1 kg m²`` (set both to 0 for the seed's
+    0``, ``mL = 1 kg``, ``JL = 0.1 kg m²`` (set both to 0 for the dissertation's
     "masselos").
     """
     lL = Parameter(1.0, "m", "link length l_L (P1 -> P)", positive=True)

@@ -1,4 +1,4 @@
-"""Linear drive SAN (seed Anhang B.2, Tabellen B.4-B.6, eqs. B.10-B.32)."""
+"""Linear drive SAN (Ebert 2015, Anhang B.2, Tabellen B.4-B.6, eqs. B.10-B.32)."""
 import casadi as ca
 
 from acausal2d import Parameter, Variable
@@ -15,7 +15,7 @@ __all__ = ["SAN"]
                      "ctrT1": translational("guide support flange"),
                      "ctrT2": translational("slider flange")}, outputs=(2,))
 class SAN(_Linkage):
-    """Linear drive SAN (seed Anhang B.2, Tabellen B.4-B.6, eqs. B.10-B.32).
+    """Linear drive SAN (Ebert 2015, Anhang B.2, Tabellen B.4-B.6, eqs. B.10-B.32).
 
     A slider with mass moves on a massless straight guide through P1 with
     direction phiU (angle of the placed frame at P1).  The slider travel
@@ -28,7 +28,7 @@ class SAN(_Linkage):
     force on the guide), ``ctrT2`` slider flange (s = xG, tangential force on
     the slider Ft_S).  Connect a translational motion preset to ``ctrT2`` to
     drive the slider.  Parameters (Tabelle B.5): ``v = 0``, ``xS0`` start
-    travel, ``xSrel = ySrel = 0``, ``mS`` (no seed default; 1 kg), ``JS``
+    travel, ``xSrel = ySrel = 0``, ``mS`` (no default in Ebert 2015; 1 kg), ``JS``
     (0.1 kg m²).
     """
     v = Parameter(0.0, "m", "offset of P from the guide line")

@@ -1,4 +1,4 @@
-"""Dyad with prismatic joints as outer joints SDS (seed Anhang B.8, Tabellen
+"""Dyad with prismatic joints as outer joints SDS (Ebert 2015, Anhang B.8, Tabellen
 B.22-B.24, eqs. B.195-B.236)."""
 import casadi as ca
 
@@ -26,7 +26,7 @@ def solve_sds(x1, y1, a1, x2, y2, a2, v1, v2):
                      "ctr2D3": plug("slider 1 plane at P"),
                      "ctr2D4": plug("slider 2 plane at PS2")}, outputs=(3, 4))
 class SDS(_TwoSliders):
-    """Dyad with prismatic joints as outer joints SDS (seed Anhang B.8,
+    """Dyad with prismatic joints as outer joints SDS (Ebert 2015, Anhang B.8,
     Tabellen B.22-B.24, eqs. B.195-B.236).
 
     Slider 1 slides on the massless guide 1 at P1 (direction phiU1), slider 2

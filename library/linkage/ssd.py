@@ -1,4 +1,4 @@
-"""Dyad with prismatic joints as outer and inner joint SSD (seed Anhang B.7,
+"""Dyad with prismatic joints as outer and inner joint SSD (Ebert 2015, Anhang B.7,
 Tabellen B.19-B.21, eqs. B.149-B.194)."""
 import math
 
@@ -27,7 +27,7 @@ def solve_ssd(x1, y1, a1, x2, y2, v1, v2, phiv):
                      "ctr2D3": plug("slider 1 plane at P"),
                      "ctr2D4": plug("slider 2 plane at P2")}, outputs=(3, 4))
 class SSD(_TwoSliders):
-    """Dyad with prismatic joints as outer and inner joint SSD (seed Anhang
+    """Dyad with prismatic joints as outer and inner joint SSD (Ebert 2015, Anhang
     B.7, Tabellen B.19-B.21, eqs. B.149-B.194).
 
     Slider 1 slides on a massless guide 1 fixed to the plane at P1 (direction

@@ -1,4 +1,4 @@
-"""The node/constraint front end of the talk "Lightweight prototypal
+"""The node/constraint front end of Schnabel and Gössner's talk "Lightweight prototypal
 mechanism simulation on the web" (Schnabel/Goessner; cstr.js and mec2):
 
 - :mod:`.model`: :class:`NodeModel`, models written as nodes and
@@ -9,7 +9,7 @@ mechanism simulation on the web" (Schnabel/Goessner; cstr.js and mec2):
   in polar form (eq. 3), the included angle, holds, drives, couplings and
   the loads of mec2;
 - :mod:`.drives`: mec2's drive laws (Dt, Dz, t0, repeat, bounce, seq);
-- :mod:`.correction`: the talk's position correction (eq. 3-16).
+- :mod:`.correction`: Schnabel and Gössner's position correction (eq. 3-16).
 """
 from .elements import (AngleDrive, AngleHold, Coupling, IncludedAngle, LengthDrive, LengthHold,
                        Link, Node, NodeForce, NodePort, NodeSpring)

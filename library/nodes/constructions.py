@@ -1,4 +1,4 @@
-"""The four-node geometric constructions of the talk's constraint library
+"""The four-node geometric constructions of Schnabel and Gössner's constraint library
 ("Lightweight prototypal mechanism simulation on the web", ch. 2.3 and the
 cstr.js manual): a constraint whose length or angle is taken from another
 constraint by ``ref`` (cstr.js ``len.from``, ``ang.from``) or ``delta``
@@ -15,7 +15,7 @@ constraint by ``ref`` (cstr.js ``len.from``, ``ang.from``) or ``delta``
 * :func:`angle_bisector` - ``AD ang = delta('AB', 'AC', 1/2)``.
 
 Lengths left free by a helper stay free: the constructed node slides on
-the constructed line, as on the talk's pages.
+the constructed line, as on Schnabel and Gössner's pages.
 """
 import math
 

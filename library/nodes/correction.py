@@ -1,5 +1,5 @@
 """Position correction of node/constraint models by corrective impulses
-(the talk's eq. 3-16; the algorithm of cstr.js's ``correct()``), and the
+(Schnabel and Gössner's eq. 3-16; the algorithm of cstr.js's ``correct()``), and the
 velocity correction by impulses of eq. 6-10
 (:meth:`PositionCorrection.correct_velocities`).
 
@@ -18,7 +18,7 @@ nodes.  One *sweep* corrects every constraint once (angle first, then
 length).  Sweeps repeat until no correction exceeds ``lentol`` (the
 number of sweeps is reported) or ``itrmax`` sweeps are done; then the
 positions are undone to the state before the last sweep and the result
-reports failure, as cstr.js does.  Details of cstr.js that the talk does
+reports failure, as cstr.js does.  Details of cstr.js that Schnabel and Gössner's talk does
 not show are kept: a node's mass grows by one for every correction it
 received in the current sweep (its "dynamic mass" ``dym``), a mass of 0
 counts as 1, a three-node constraint moves only its third node.
@@ -41,7 +41,7 @@ _EPS = float(np.finfo(float).eps)
 
 class Correction:
     """Outcome of one :meth:`PositionCorrection.correct`: ``converged``,
-    ``iterations`` (sweeps done; the talk's "itr"), ``undone`` (positions
+    ``iterations`` (sweeps done; Schnabel and Gössner's "itr"), ``undone`` (positions
     reset to before the last sweep after a failure) and the constraint with
     the largest correction in the last sweep (``worst``, ``largest``)."""
 
@@ -294,7 +294,7 @@ class PositionCorrection:
         return rows
 
     def correct_velocities(self, velocities, rates=None, tol=1e-12, itrmax=None):
-        """Correct node velocities by impulses (the talk's eq. 6-10) so that
+        """Correct node velocities by impulses (Schnabel and Gössner's eq. 6-10) so that
         ``J q' + C_t = 0`` (eq. 4) holds at the current positions.  For each
         active two-node constraint row C (length: ``|p2 - p1| - r``, angle:
         ``(p2 - p1) . e~``) with ``J = (-u, u)`` the violated velocity balance
@@ -344,7 +344,7 @@ class PositionCorrection:
                 self.angle(c["id"])
 
     def kinematics(self, times):
-        """The kinematic solver of the talk: for each time, prescribe the
+        """The kinematic solver of Schnabel and Gössner's talk: for each time, prescribe the
         drives and correct from the previous positions.  Returns
         ``(positions, reports)``: {node id: array of shape (len(times), 2)}
         and the :class:`Correction` of every step."""

@@ -1,7 +1,7 @@
 """Drive laws of the node/constraint front end: the prescribed value of a
 constraint's length or angle as a CasADi expression of time.
 
-* ``speed``: ``z0 + om t`` - the talk's drives, which add a constant
+* ``speed``: ``z0 + om t`` - Schnabel and Gössner's drives, which add a constant
   increment to the crank angle on every tick (``crank.ang += pi/180``).
 * ``mec2``: the drive functions of mec2 (mec.drive.js, goessner/mec2 v0.9.5,
   MIT): ``z(t) = z0 + Dz f(q)`` with ``q = clamp((t - t0)/Dt_total, 0, 1)``

@@ -1,4 +1,4 @@
-"""Elements of the node/constraint front end (the talk "Lightweight
+"""Elements of the node/constraint front end (Schnabel and Gössner's talk "Lightweight
 prototypal mechanism simulation on the web", Schnabel/Goessner; cstr.js
 and mec2): nodes are point masses, constraints the polar vector between two
 nodes (talk eq. 3: ``p2 - p1 = r e(w)``).
@@ -92,7 +92,7 @@ def _force_terms(comp):
 
 
 class Node(Component):
-    """A node of the talk (slide "4) Implementierung - Nodes": x, y, m,
+    """A node of Schnabel and Gössner's talk (slide "4) Implementierung - Nodes": x, y, m,
     base): a point mass without extent and rotation (talk eq. 5,
     ``m p'' = J^T lambda + Q`` with Q the weight), or a point fixed to
     ground at (x0, y0) when ``base=True`` (m = infinity).
@@ -101,7 +101,7 @@ class Node(Component):
     the rough start of a moving node (the node assembly, talk eq. 3-16,
     turns them into consistent start values).  ``m = 0`` makes a massless
     point (decided when the model is compiled).  ``counted=False`` leaves
-    the node and its constraints out of the talk's eq. 1/2 counts (the
+    the node and its constraints out of Schnabel and Gössner's eq. 1/2 counts (the
     needle-bar drive's point G, "G nicht beachtet").
 
     Connectors: ``port`` (the constraints), ``frame`` (created on first
@@ -306,7 +306,7 @@ class LengthHold(Component):
 
 class _Drive(Component):
     """Prescribed value z(t) of a constraint's angle or length (a drive of
-    the talk or of mec2), optionally clamped into [lo, hi] (a range of
+    Schnabel and Gössner's talk or of mec2), optionally clamped into [lo, hi] (a range of
     cstr.js with a source), optionally stopped by ranges of other values
     (see :meth:`set_stops`).  ``law(t, get)`` returns z(t) from the time
     symbol and a parameter getter."""
@@ -373,7 +373,7 @@ def _drive_parameters(unit, z0, Dz, mec2_name):
 
 @_drive_parameters("rad", 0.0, 6.283185307179586, "Dw")
 class AngleDrive(_Drive):
-    """Prescribed angle of a constraint (see :class:`_Drive`): the talk's
+    """Prescribed angle of a constraint (see :class:`_Drive`): Schnabel and Gössner's
     driven crank (``ang`` incremented each tick: law ``z0 + om t``) or a
     mec2 ``ori`` drive; its flange torque is the drive torque."""
     _flange_class = RotationalFlange
@@ -491,7 +491,7 @@ class NodeSpring(Component):
     """Linear spring between two nodes (mec2 ``spring``): force
     ``k (L - len0)`` along p1 -> p2 (pulling the nodes together when
     stretched), energy ``k (L - len0)^2 / 2``; ``len0 = 0`` (a zero-free-
-    length spring, seed eq. 3.11/3.12) is written without the length so
+    length spring, Ebert (2015), eq. 3.11/3.12) is written without the length so
     that coincident nodes are no singularity."""
     k = Parameter(1.0, "N/m", "spring rate", min=0.0)
     len0 = Parameter(0.0, "m", "unloaded length", min=0.0)

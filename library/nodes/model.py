@@ -1,4 +1,4 @@
-"""Nodes and constraints: the modelling style of the talk "Lightweight
+"""Nodes and constraints: the modelling style of Schnabel and Gössner's talk "Lightweight
 prototypal mechanism simulation on the web" (Schnabel, Goessner; the
 libraries cstr.js and mec2), compiled into the same DAE as every other
 model.
@@ -26,7 +26,7 @@ each one of
 * ``"const"``: held at the value the given coordinates have;
 * a number: held at that value (length in the model's coordinate unit,
   angle in rad);
-* :func:`speed` (the talk's drives: ``+pi/180`` per tick), :func:`drive`
+* :func:`speed` (Schnabel and Gössner's drives: ``+pi/180`` per tick), :func:`drive`
   (a function of time) or :func:`mec2_drive` (mec2's drive functions): a
   prescribed value, the model's input;
 * :func:`ref` (cstr.js ``from``, mec2 ``ref`` with ``ratio``) and
@@ -51,7 +51,7 @@ constraint a :class:`~acausal2d.library.nodes.Link` (or
 :class:`~acausal2d.library.nodes.IncludedAngle`) with the elements that
 hold, drive or couple its values; their frames (``node.frame``,
 ``link.frame``) connect library elements, so a node model can carry a
-pulley or a VDI element.  The talk's degree of freedom (eq. 1) and loop
+pulley or a VDI element.  Schnabel and Gössner's degree of freedom (eq. 1) and loop
 count (eq. 2) are :meth:`NodeModel.node_counts`, printed by ``acausal2d
 check``.  The start values come from the position correction of eq. 3-16
 (:mod:`acausal2d.library.nodes.correction`) applied to the given
@@ -82,7 +82,7 @@ class NodeModel(Component):
 
     Class attributes: ``length_unit`` (metres per coordinate unit of
     :meth:`node` and of lengths given as numbers; 1e-3 for coordinates in
-    mm, mec2's 0.01 for cm), ``gravity`` ((gx, gy) in m/s^2; the talk
+    mm, mec2's 0.01 for cm), ``gravity`` ((gx, gy) in m/s^2; Schnabel and Gössner's talk
     neglects impressed forces, Q = 0, so the default is (0, 0)),
     ``lentol`` (coordinate units) and ``itrmax``: the position
     correction's tolerance and sweep limit (cstr.js: 0.1, 256)."""
@@ -396,14 +396,14 @@ class NodeModel(Component):
 
     # ------------------------------------------------------------ eq. 1 and 2
     def node_counts(self):
-        """The talk's structure counts: N nodes, N_base of them fixed, C1
+        """Schnabel and Gössner's structure counts: N nodes, N_base of them fixed, C1
         constraints fixing one of (len, ang), C2 fixing both, the degree of
         freedom ``F = 2 (N - N_base) - C1 - 2 C2`` (eq. 1) and the number of
         independent loops ``m = C1 + C2 - N + N_base`` (eq. 2).  A driven
         value is the input and no constraint ("driven constraints handled
-        as the talk does": the needle-bar drive's crank A0A, len + driven
+        as Schnabel and Gössner's talk does": the needle-bar drive's crank A0A, len + driven
         ang, is one C1); nodes with ``counted=False`` and their constraints
-        are left out (the talk's "G nicht beachtet").  Returns a dict with
+        are left out (Schnabel and Gössner's "G nicht beachtet").  Returns a dict with
         N, N_base, C1, C2, F, m, ``driven`` (the driven values) and
         ``not_counted`` (node and constraint ids left out)."""
         counted = {k for k, n in self._nodes.items() if n.counted}

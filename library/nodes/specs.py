@@ -44,7 +44,7 @@ class _Drive(_Spec):
 
 def speed(om, start=None):
     """Drive at constant speed from the value the coordinates give (or
-    ``start``): ``z(t) = z0 + om t`` - the talk's drives, which add a fixed
+    ``start``): ``z(t) = z0 + om t`` - Schnabel and Gössner's drives, which add a fixed
     increment each tick.  om in rad/s (angles) or coordinate units per
     second (lengths)."""
     return _Drive(lambda t, get: get("z0") + get("om") * t, {"om": om}, "speed", start=start)

@@ -2,11 +2,11 @@
 PlanarMechanics (frames resolved in the world frame, phi and t
 counter-clockwise positive), one concern per module:
 
-- :mod:`.base`: rotations (seed Anhang A.1), the gravity field
+- :mod:`.base`: rotations (Ebert 2015, Anhang A.1), the gravity field
   :class:`PlanarWorld`, connection queries.
 - :mod:`.parts`: Fixed, Body, FixedTranslation, FixedRotation, BodyShape.
 - :mod:`.joints`: Revolute, Prismatic, IdealRolling.
-- :mod:`.cam`: CamFollower, the cam joint K of seed Tab. 2.1.
+- :mod:`.cam`: CamFollower, the cam joint K of Ebert (2015), Tab. 2.1.
 - :mod:`.forces`: Spring, Damper, SpringDamper, LineSpringDamper,
   WorldForce, WorldTorque, RelativeForce.
 - :mod:`.sensors`: absolute and relative position/velocity/acceleration

@@ -1,5 +1,5 @@
 """Shared pieces of the planar elements: rotations between a frame and the
-world (seed Anhang A.1), the gravity field :class:`PlanarWorld`, and the
+world (Ebert 2015, Anhang A.1), the gravity field :class:`PlanarWorld`, and the
 connection queries used for drawing and topology.
 """
 import casadi as ca
@@ -10,7 +10,7 @@ from acausal2d.language.unionfind import connector_sets
 
 def rotate(phi, vx, vy):
     """World components of the vector (vx, vy) given in a frame turned by
-    ``phi``: R(phi) (vx, vy), R the 2x2 rotation (seed Anhang A.1)."""
+    ``phi``: R(phi) (vx, vy), R the 2x2 rotation (Ebert 2015, Anhang A.1)."""
     c, s = ca.cos(phi), ca.sin(phi)
     return c * vx - s * vy, s * vx + c * vy
 

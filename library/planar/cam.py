@@ -1,4 +1,4 @@
-"""Cam joint "Kurvengelenk" K (seed Tab. 2.1): a follower in contact with a
+"""Cam joint "Kurvengelenk" K (Ebert 2015, Tab. 2.1): a follower in contact with a
 cam contour, f = 2 (rolling-sliding) or f = 1 (rolling without slip).
 
 The cam contour is given in the forms of the curved pulley
@@ -63,7 +63,7 @@ _TENSILE = ("the contact force turned tensile (Fn < 0): the follower lifts off t
 
 
 class CamFollower(Component):
-    """Cam joint K (seed Tab. 2.1) between the cam (``frame_a``, the frame
+    """Cam joint K (Ebert 2015, Tab. 2.1) between the cam (``frame_a``, the frame
     the contour is given in) and the follower (``frame_b``).
 
     ``CamFollower(contour, follower="roller"|"flat", rolling=False,
@@ -198,7 +198,7 @@ class CamFollower(Component):
 
     def topology(self):
         """A joint of f = 2 (rolling-sliding) or 1 (rolling) between cam and
-        follower (seed Tab. 2.1, eq. 2.1); none for the compliant contact
+        follower (Ebert 2015, Tab. 2.1, eq. 2.1); none for the compliant contact
         (a force element: the follower keeps its freedom)."""
         if self.contact == "compliant":
             return []

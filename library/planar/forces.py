@@ -2,10 +2,10 @@
 (Parts.Spring, Parts.Damper, Parts.SpringDamper, Sources.WorldForce,
 Sources.WorldTorque, Sources.RelativeForce), as described in the project's
 reference README, section "Further component kinds", and the line
-spring-damper :class:`LineSpringDamper` (seed Bild 4.1; the line-force
+spring-damper :class:`LineSpringDamper` (Ebert 2015, Bild 4.1; the line-force
 semantics of Modelica.Mechanics.MultiBody.Forces.SpringDamperParallel).
 
-Sign of flows (seed eq. 4.1): the flows (fx, fy, t) of a frame are the
+Sign of flows (Ebert 2015, eq. 4.1): the flows (fx, fy, t) of a frame are the
 force and torque acting ON the element through that frame; the element
 pushes the part attached there with their negative.
 
@@ -67,7 +67,7 @@ class Spring(_WorldAxisSpring):
     are zero.  ``c_phi`` and ``phi_rel0`` are declared, as in
     PlanarMechanics, but take part in no equation (``phi_rel`` is only
     reported).  Stored energy ``energy = c_x (s_relx - s_relx0)^2/2 +
-    c_y (s_rely - s_rely0)^2/2``.  Seed eq. 4.1 at the frames."""
+    c_y (s_rely - s_rely0)^2/2``.  Ebert (2015), eq. 4.1 at the frames."""
     energy = Variable(unit="J", doc="energy stored in the two axis springs")
 
     def equations(self):
@@ -89,7 +89,7 @@ class SpringDamper(_WorldAxisSpring):
     der(phi_rel)``.  The frame_b part receives (-f_x, -f_y) and -tau, the
     frame_a part (+f_x, +f_y) and +tau.  ``energy`` is the energy stored in
     the three springs, ``loss_power = d_x v_relx^2 + d_y v_rely^2 + d_phi
-    w_rel^2`` the power dissipated.  Seed eq. 4.1 at the frames."""
+    w_rel^2`` the power dissipated.  Ebert (2015), eq. 4.1 at the frames."""
     d_x = Parameter(1.0, "N.s/m", "damping constant in world x", min=0.0)
     d_y = Parameter(1.0, "N.s/m", "damping constant in world y", min=0.0)
     d_phi = Parameter(1.0, "N.m.s/rad", "rotational damping constant", min=0.0)
@@ -130,7 +130,7 @@ class Damper(Component):
     force fades out when the origins coincide; here ``e = r/sqrt(|r|^2 +
     s_small^2)``, which is the same to a relative ``(s_small/|r|)^2/2``
     (below 1e-12 for |r| > 1e-4 m with the default s_small) and smooth
-    through |r| = 0 (no event, no division by zero).  Seed eq. 4.1 at the
+    through |r| = 0 (no event, no division by zero).  Ebert (2015), eq. 4.1 at the
     frames."""
     d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
     s_small = Parameter(1e-10, "m", "length below which the force fades out", positive=True)
@@ -171,19 +171,19 @@ def _line_equations(comp):
 class LineSpringDamper(Component):
     """A linear spring and a viscous damper in parallel acting along the
     line between the origins of frame_a and frame_b: the 2D spring-damper
-    of seed Bild 4.1 (ch. 4.1: the planar spring-damper-mass oscillator,
-    whose elements the seed does not define) with the line-force
+    of Ebert (2015), Bild 4.1 (ch. 4.1: the planar spring-damper-mass oscillator,
+    whose elements the dissertation does not define) with the line-force
     semantics of Modelica.Mechanics.MultiBody.Forces.SpringDamperParallel:
     with the distance ``length = |r_b - r_a|`` and its rate ``v``,
 
         f = c (length - s_unstretched) + d v,
 
     tension positive: for ``f > 0`` the parts at frame_a and frame_b are
-    pulled towards each other with ``f`` along the line (frame flows, seed
+    pulled towards each other with ``f`` along the line (frame flows, Ebert (2015),
     eq. 4.1: ``frame_b.f = f e``, ``frame_a.f = -f e``, no torques).  The
     element declares position-level quantities only (length, force); it
     pushes as well as pulls (a band, which only pulls, is
-    :class:`acausal2d.library.belt.Belt`, seed eq. 4.52-4.66).  ``energy``
+    :class:`acausal2d.library.belt.Belt`, Ebert (2015), eq. 4.52-4.66).  ``energy``
     is the energy of the spring, ``loss_power = d v^2`` the power of the
     damper.  The unit vector is ``e = r/sqrt(|r|^2 + s_small^2)`` as in
     :class:`Damper` (the same to a relative ``(s_small/|r|)^2/2``, smooth
@@ -271,7 +271,7 @@ class WorldForce(_ForceSignals):
     the signals are components along the attached body's own axes and
     turn with it), ``"world"`` (psi = 0) or ``"frame_resolve"``.
     Variables: ``fx``, ``fy`` (the applied force in world components) and
-    ``tau`` (the applied torque).  Seed eq. 4.1 at the frame."""
+    ``tau`` (the applied torque).  Ebert (2015), eq. 4.1 at the frame."""
     fx = Variable(unit="N", doc="applied force, world x")
     fy = Variable(unit="N", doc="applied force, world y")
     tau = Variable(unit="N.m", doc="applied torque")
@@ -298,7 +298,7 @@ class WorldTorque(Component):
     ``resolve_in_frame`` (``"frame_b"``, ``"world"`` or
     ``"frame_resolve"``) is accepted for parity and changes nothing but the
     ``frame_resolve`` connector.  Variable ``tau``: the applied torque.
-    Seed eq. 4.1 at the frame."""
+    Ebert (2015), eq. 4.1 at the frame."""
     tau = Variable(unit="N.m", doc="applied torque")
 
     def __init__(self, resolve_in_frame="frame_b", **kw):
@@ -324,7 +324,7 @@ class RelativeForce(_ForceSignals):
     no couple is added for the offset of the two origins).  ``psi``: the
     angle of ``resolve_in_frame`` = ``"frame_a"`` (default), ``"frame_b"``,
     ``"world"`` or ``"frame_resolve"``.  Variables ``fx``, ``fy``, ``tau``:
-    force (world components) and torque on the frame_b part.  Seed eq. 4.1
+    force (world components) and torque on the frame_b part.  Ebert (2015), eq. 4.1
     at the frames."""
     fx = Variable(unit="N", doc="force on the frame_b part, world x")
     fy = Variable(unit="N", doc="force on the frame_b part, world y")

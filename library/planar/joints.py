@@ -1,7 +1,7 @@
 """Joints of the planar library (PlanarMechanics.Joints): revolute and
 prismatic joints with optional 1D flanges, and ideal rolling on the ground.
 
-Position-level equations and force balances only (seed eq. 4.1 at the
+Position-level equations and force balances only (Ebert 2015, eq. 4.1 at the
 frames); velocities come from index reduction.
 """
 import math
@@ -23,7 +23,7 @@ class Revolute(Component):
     part -tau, so a 1D element that pushes the flange positively drives phi
     positively; the support is grounded inside the joint (PlanarMechanics
     Joints.Revolute).  ``state_select`` applies to phi and w (default
-    'prefer'; PlanarMechanics' default is 'default').  Seed eq. 2.1 (a joint
+    'prefer'; PlanarMechanics' default is 'default').  Ebert (2015), eq. 2.1 (a joint
     of one degree of freedom), eq. 4.1 at the frames.  Every run holds the
     relative angular acceleration z = der(w) too (PlanarMechanics' z; a
     derived signal, see :mod:`acausal2d.derived`) where index reduction made
@@ -75,7 +75,7 @@ class Prismatic(Component):
     (fixed at 0) are added: the joint pushes the frame_b part with +f e0 and
     the frame_a part with -f e0 (e0 the axis in world), the support is
     grounded inside the joint (PlanarMechanics Joints.Prismatic).
-    ``state_select`` applies to s and v.  Seed eq. 2.1, eq. 4.1 at the
+    ``state_select`` applies to s and v.  Ebert (2015), eq. 2.1, eq. 4.1 at the
     frames.  Every run holds the relative acceleration a = der(v) too
     (PlanarMechanics' a; a derived signal) where index reduction made it.
 
@@ -179,7 +179,7 @@ class IdealRolling(Component):
     height R, and ``x + R phi = x0`` (rolling, written at position level;
     ``x0`` is the centre's x at phi = 0).  The contact force passes through
     the contact point (x, 0), hence ``frame_a.t = R frame_a.fx``; the
-    normal force is whatever holds the centre at y = R (seed eq. 4.1 at the
+    normal force is whatever holds the centre at y = R (Ebert 2015, eq. 4.1 at the
     frame, eq. 2.1: a joint of one degree of freedom against the ground).
 
     The wheel's mass is a :class:`Body` at frame_a.  Variables: x, phi,
@@ -212,7 +212,7 @@ class IdealRolling(Component):
 
     def topology(self):
         """A joint of one degree of freedom between the ground and the
-        wheel (seed eq. 2.1: rolling without slip removes two)."""
+        wheel (Ebert 2015, eq. 2.1: rolling without slip removes two)."""
         return [("ground", [self._ground_side]), ("joint", self._ground_side, self.frame_a, 1)]
 
     def shapes(self):

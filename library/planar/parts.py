@@ -4,7 +4,7 @@ with mass, rigid rods and rotations.
 Each element states position-level equations, force/torque balances and mass
 data only; velocities and accelerations are produced by index reduction.
 The flows of a :class:`~acausal2d.language.connectors.Frame` are the force and torque
-acting on the element from the connected part (seed eq. 4.1 at the nodes).
+acting on the element from the connected part (Ebert 2015, eq. 4.1 at the nodes).
 """
 import casadi as ca
 
@@ -38,7 +38,7 @@ class Fixed(Component):
 
 class Body(Component):
     """Rigid body: point mass m at its frame origin, rotational inertia I about
-    that origin, under the world's gravity (PlanarMechanics Body; seed Anhang
+    that origin, under the world's gravity (PlanarMechanics Body; Ebert (2015), Anhang
     A.3 with the centre of gravity at the frame origin).
 
     Outputs: x, y, phi of the frame and the velocities vx = der(x),
@@ -125,7 +125,7 @@ class FixedTranslation(Component):
 class FixedRotation(Component):
     """Rigid rotation by the constant angle ``alpha`` (PlanarMechanics
     Parts.FixedRotation): frame_b has frame_a's origin and the angle
-    ``frame_a.phi + alpha``; forces and torque pass unchanged (seed
+    ``frame_a.phi + alpha``; forces and torque pass unchanged (Ebert 2015,
     Anhang A.1 placement of a frame, eq. 4.1 at the frames)."""
     alpha = Parameter(0.0, "rad", "angle of frame_b against frame_a")
 
@@ -154,7 +154,7 @@ class BodyShape(Component):
     """Rigid link with mass (PlanarMechanics Parts.BodyShape): frame_b at
     ``r`` from frame_a (resolved in frame_a, as :class:`FixedTranslation`),
     the centre of mass at ``r_CM`` from frame_a, mass ``m`` and inertia
-    ``I`` about the centre of mass, under the world's gravity (seed Anhang
+    ``I`` about the centre of mass, under the world's gravity (Ebert 2015, Anhang
     A.2/A.3: centre-of-gravity transform and inertia forces).
 
     Newton-Euler at the centre of mass C:

@@ -16,7 +16,7 @@ of the frame ``resolve_in_frame`` names:
   or ``"frame_resolve"``;
 
 ``"frame_resolve"`` adds a frame connector ``frame_resolve`` that takes no
-force and must be connected.  Seed eq. 4.1: the frame flows are the forces
+force and must be connected.  Ebert (2015), eq. 4.1: the frame flows are the forces
 acting on the sensor (zero for the kinematic sensors).
 """
 import casadi as ca
@@ -94,7 +94,7 @@ class AbsolutePosition(_Sensor):
     """Position and angle of frame_a (PlanarMechanics
     Sensors.AbsolutePosition): ``(r_x, r_y) = R(psi)^T (x, y)`` and ``phi =
     frame_a.phi - psi``, psi the angle of the resolve frame (world: the
-    plain x, y, phi).  Seed Anhang A.1 (frame
+    plain x, y, phi).  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     OUTPUTS = ("r_x", "r_y", "phi")
 
@@ -107,7 +107,7 @@ class AbsolutePosition(_Sensor):
 class AbsoluteVelocity(_Sensor):
     """Velocity of frame_a's origin (PlanarMechanics
     Sensors.AbsoluteVelocity): ``(v_x, v_y) = R(psi)^T der((x, y))`` and
-    ``w = der(phi)``.  Seed Anhang A.1 (frame
+    ``w = der(phi)``.  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     OUTPUTS = ("v_x", "v_y", "w")
 
@@ -120,7 +120,7 @@ class AbsoluteVelocity(_Sensor):
 class AbsoluteAcceleration(_Sensor):
     """Acceleration of frame_a's origin (PlanarMechanics
     Sensors.AbsoluteAcceleration): ``(a_x, a_y) = R(psi)^T
-    der(der((x, y)))`` and ``z = der(der(phi))``.  Seed Anhang A.1 (frame
+    der(der((x, y)))`` and ``z = der(der(phi))``.  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     OUTPUTS = ("a_x", "a_y", "z")
 
@@ -133,7 +133,7 @@ class AbsoluteAcceleration(_Sensor):
 class RelativePosition(_Sensor):
     """Position of frame_b against frame_a (PlanarMechanics
     Sensors.RelativePosition): ``(r_rel_x, r_rel_y) = R(psi)^T (r_b -
-    r_a)``, ``phi_rel = phi_b - phi_a``.  Seed Anhang A.1 (frame
+    r_a)``, ``phi_rel = phi_b - phi_a``.  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     FRAMES = ("frame_a", "frame_b")
     OUTPUTS = ("r_rel_x", "r_rel_y", "phi_rel")
@@ -160,7 +160,7 @@ class RelativeVelocity(_Sensor):
     offset ``q = R(phi_a)^T (r_b - r_a)`` is differentiated in frame_a's
     axes and re-expressed in the resolve frame, ``v_rel = R(psi)^T R(phi_a)
     der(q)`` (for psi = phi_a simply der(q)); ``w_rel = der(phi_b -
-    phi_a)``.  Seed Anhang A.1 (frame
+    phi_a)``.  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     FRAMES = ("frame_a", "frame_b")
     OUTPUTS = ("v_rel_x", "v_rel_y", "w_rel")
@@ -176,7 +176,7 @@ class RelativeAcceleration(_Sensor):
     """Relative acceleration (PlanarMechanics Sensors.RelativeAcceleration):
     ``a_rel = der(v_rel)`` of the :class:`RelativeVelocity` vector in the
     same resolve frame, differentiated as it stands (no rotation terms
-    added); ``z_rel = der(der(phi_b - phi_a))``.  Seed Anhang A.1 (frame
+    added); ``z_rel = der(der(phi_b - phi_a))``.  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     FRAMES = ("frame_a", "frame_b")
     OUTPUTS = ("a_rel_x", "a_rel_y", "z_rel")
@@ -203,7 +203,7 @@ class _PassThrough(_Sensor):
         return _mark("frame_a")
 
     def topology(self):
-        """frame_a and frame_b are one point of one link (seed eq. 2.1)."""
+        """frame_a and frame_b are one point of one link (Ebert 2015, eq. 2.1)."""
         return [("rigid", [self.frame_a, self.frame_b])]
 
 
@@ -211,7 +211,7 @@ class CutForce(_PassThrough):
     """Cut force (PlanarMechanics Sensors.CutForce): an ideal pass-through
     from frame_a to frame_b whose output is the force flowing in at
     frame_a, ``(f_x, f_y) = R(psi)^T (frame_a.fx, frame_a.fy)`` (default
-    resolve frame: frame_a).  No influence on the motion.  Seed eq. 4.1 (the flows
+    resolve frame: frame_a).  No influence on the motion.  Ebert (2015), eq. 4.1 (the flows
     pass from frame_a to frame_b)."""
     OUTPUTS = ("f_x", "f_y")
 
@@ -224,7 +224,7 @@ class CutTorque(_PassThrough):
     """Cut torque (PlanarMechanics Sensors.CutTorque): pass-through from
     frame_a to frame_b; output ``torque = frame_a.t``.  A planar torque is
     the same in every frame; ``resolve_in_frame`` is accepted for
-    parity.  Seed eq. 4.1 (the flows
+    parity.  Ebert (2015), eq. 4.1 (the flows
     pass from frame_a to frame_b)."""
     OUTPUTS = ("torque",)
 
@@ -236,7 +236,7 @@ class Power(_PassThrough):
     """Power flowing from frame_a to frame_b (PlanarMechanics
     Sensors.Power): ``power = (frame_a.fx, frame_a.fy) . der((x, y)) +
     frame_a.t der(phi)``, the power the frame_a side delivers into the
-    frame_b side through the cut.  Seed eq. 4.1 (the flows
+    frame_b side through the cut.  Ebert (2015), eq. 4.1 (the flows
     pass from frame_a to frame_b)."""
     OUTPUTS = ("power",)
 
@@ -254,7 +254,7 @@ class Distance(_Sensor):
     no forces.  PlanarMechanics smooths the square root below ``s_small``;
     here ``distance = L^2/sqrt(L^2 + s_small^2)``, L = |r_b - r_a|: equal
     to L to a relative ``(s_small/L)^2/2``, zero with zero slope at L = 0
-    (smooth, no event).  Seed Anhang A.1 (frame
+    (smooth, no event).  Ebert (2015), Anhang A.1 (frame
     transforms), eq. 4.1 (zero flows)."""
     FRAMES = ("frame_a", "frame_b")
     OUTPUTS = ("distance",)

@@ -1,17 +1,17 @@
-"""Assessment of band curves (seed ch. 5, eq. 5.1-5.18): whether a
+"""Assessment of band curves (Ebert 2015, ch. 5, eq. 5.1-5.18): whether a
 synthesised cam contour can be built, as findings, a short text report and a
 plot.
 
 The quantities come from :func:`acausal2d.library.synthesis.band_criteria`
 (exact derivatives, via :func:`acausal2d.library.synthesis.functional.synthesize`
 or the outputs of a ``Bandkurve(criteria=True)``).  The checks follow the
-seed's recommendations of ch. 5.3, in its order:
+dissertation's recommendations of ch. 5.3, in its order:
 
 1. pre-check of the transfer function: continuous up to the second
    derivative, no dwell (:func:`precheck_transfer`);
 2. physical existence of the band curve: GF1 = Z (5.7) without a sign
    change (C0 of the contour), GF2 (5.9) without a sign change (C1, no
-   cusp) and the seed's recommended flag S_Bf = sign(dl_Bf/dphi) (5.11)
+   cusp) and the dissertation's recommended flag S_Bf = sign(dl_Bf/dphi) (5.11)
    constant; a jump of the free band length is a C0 break as well;
 3. space: the largest cam radius max a (5.12) against ``a_max``;
 4. band stresses sigma_z (5.16) + sigma_b (5.17) <= sigma_zul (5.18) from
@@ -35,8 +35,8 @@ __all__ = ["Finding", "BandMaterial", "Assessment", "assess", "precheck_transfer
 
 @dataclass
 class Finding:
-    """A violated criterion: ``criterion`` (short name), ``equation`` (seed
-    equation), ``message`` (what and where) and ``phi`` (drive parameter
+    """A violated criterion: ``criterion`` (short name), ``equation`` (equation of
+    Ebert 2015), ``message`` (what and where) and ``phi`` (drive parameter
     values where it happens)."""
     criterion: str
     equation: str
@@ -49,7 +49,7 @@ class Finding:
 
 @dataclass
 class BandMaterial:
-    """Band data for the stresses of seed eq. 5.16-5.18: height (thickness)
+    """Band data for the stresses of Ebert (2015), eq. 5.16-5.18: height (thickness)
     ``h_B`` [m], width ``br_B`` [m], Young's modulus ``E`` [Pa] and the
     allowed stress ``sigma_allow`` [Pa]."""
     h_B: float
@@ -121,7 +121,7 @@ def _intervals(points):
 
 
 def precheck_transfer(phi, f, refine=None, dcam=1.0):
-    """Pre-check of the transfer function (seed ch. 5.3): ``f`` is an (n, 4)
+    """Pre-check of the transfer function (Ebert 2015, ch. 5.3): ``f`` is an (n, 4)
     array of its values and first three derivatives with respect to the cam
     angle over the grid ``phi`` of the drive parameter; ``dcam`` the
     derivative of the cam angle with respect to it (array or number);
@@ -171,7 +171,7 @@ class Assessment:
         return any(criterion in f.criterion for f in self.findings)
 
     def report(self):
-        """Short text report of all criteria (seed ch. 5.3 order)."""
+        """Short text report of all criteria (Ebert 2015, ch. 5.3 order)."""
         v, syn = self.values, self.synthesis
         phi = syn.phi
         lines = ["Band curve assessment (Ebert 2015, ch. 5) of %s over phi = %.4g .. %.4g (%d points)"
@@ -345,7 +345,7 @@ def _signs(v):
 
 def assess(synthesis, a_max=None, band=None, torque=None, force=None, rho_min=None):
     """Assess the band curve of ``synthesis`` (a
-    :class:`~acausal2d.library.synthesis.functional.BandSynthesis`) after seed
+    :class:`~acausal2d.library.synthesis.functional.BandSynthesis`) after Ebert (2015),
     ch. 5.3.  Optional limits: ``a_max`` (largest allowed cam radius, 5.12),
     ``rho_min`` (smallest radius of curvature of the contour); band stresses
     (5.16-5.18) with ``band`` (a :class:`BandMaterial`) and the cam torque

@@ -1,4 +1,4 @@
-"""Complete static balancing with spring-band mechanisms (seed ch. 6, eq.
+"""Complete static balancing with spring-band mechanisms (Ebert 2015, ch. 6, eq.
 6.1-6.8): from a required torque T(phi) at the cam axis to the spring travel
 x_S(phi) (transfer function of order 0) and the effective lever arm h(phi) =
 x_S'(phi) (order 1, the diagonal Drehschubstrecke) that a DB~SD cam (or a
@@ -9,19 +9,19 @@ band with F_S = c_S x_S on the lever arm h (6.1-6.4), so
 
     T(phi) = c_S x_S(phi) x_S'(phi)                                  (6.5)
 
-with the sign convention of the seed: T > 0 where the spring is stretched
+with the sign convention of the dissertation: T > 0 where the spring is stretched
 as phi grows.  (For a cam that pays the band out as phi grows -- DB~SD with
 K = -1 and h > 0 -- solve in the angle that runs the other way, or pass -T;
 see models/cabinet_door.py.)
 
-- :func:`spring_band_transfer` -- the seed's method: least squares (6.6)
+- :func:`spring_band_transfer` -- the dissertation's method: least squares (6.6)
   over a polynomial (6.7) or Fourier (6.8) ansatz x_A, with side constraints
   ``h_min <= x_A' <= h_max`` and a fixed start travel, solved by IPOPT
   (CasADi) and accepted by its KKT conditions
   (:mod:`acausal2d.analysis.optimality`), never by an exit flag; the spring
   rate fixed or free (run 1 of example 7.2.1).
 - :func:`exact_spring_travel` -- the exact solution of 6.5 (derived here;
-  the seed calls 6.5 closed-form solvable only for few T): since T =
+  the dissertation calls 6.5 closed-form solvable only for few T): since T =
   (c_S/2) d(x_S^2)/dphi,
 
       x_S(phi) = sqrt(x_S(phi0)^2 + (2/c_S) integral_phi0^phi T dpsi),  h = T/(c_S x_S),
@@ -147,7 +147,7 @@ class _Basis:
                                           for m in range(1, n + 1))
 
     def seed_coefficients(self, coef):
-        """Coefficients in the seed's form: polynomial a0..an in phi (6.7),
+        """Coefficients in the dissertation's form: polynomial a0..an in phi (6.7),
         or Fourier a0, a1..an, b1..bn (6.8)."""
         if self.kind == "fourier":
             return np.asarray(coef, dtype=float)
@@ -162,7 +162,7 @@ class SpringBandFit:
     Arrays on the grid ``phi``: ``T`` required torque, ``x`` = x_A (spring
     travel), ``h`` = x_A' (lever arm), ``F_S`` = c_S x_A, ``residual`` = T -
     c_S x_A x_A' (6.6); numbers ``c_S``, ``rms``, ``max_abs`` (torque
-    residual), ``coefficients`` (seed form 6.7/6.8), ``ansatz``; the exact
+    residual), ``coefficients`` (form of Ebert 2015, eq.  6.7/6.8), ``ansatz``; the exact
     solution of 6.5 with the fit's start travel in ``x_exact``, ``h_exact``.
     Functions of the angle: :meth:`x_at`, :meth:`h_at` (numpy) and
     :meth:`x_expr`, :meth:`h_expr` (CasADi, exact derivatives)."""
@@ -312,7 +312,7 @@ def _solve(B, D, T, c, a0, eq, bounds):
 
 def spring_band_transfer(phi, T, c_S=None, ansatz=("poly", 3), x_start=None, h_max=None,
                          h_min=None):
-    """Transfer function of a spring-band balancer (seed ch. 6.2, eq. 6.6-6.8).
+    """Transfer function of a spring-band balancer (Ebert 2015, ch. 6.2, eq. 6.6-6.8).
 
     ``phi`` grid of the k samples (6.6), ``T`` the required torque (function
     of phi or samples on the grid), ``c_S`` the spring rate [N/m] (None:

@@ -1,6 +1,6 @@
-"""Bandkurve (seed ch. 4.3.4, eq. 4.50/4.51 with 3.7-3.9): the involute of the
+"""Bandkurve (Ebert 2015, ch. 4.3.4, eq. 4.50/4.51 with 3.7-3.9): the involute of the
 material point by kinematic inversion about the cam axis, its evolute (the
-cam contour) and, optionally, the criteria of seed ch. 5 (eq. 5.1-5.17).
+cam contour) and, optionally, the criteria of Ebert (2015), ch. 5 (eq. 5.1-5.17).
 :func:`involute`, :func:`evolute_terms` and :func:`band_criteria` are shared
 with :mod:`.functional`.
 """
@@ -12,14 +12,14 @@ from .base import _zero_flows
 
 def involute(xP1, yP1, phiP1, xP2, yP2, cos=ca.cos, sin=ca.sin):
     """Involute point (x_e, y_e) in the cam frame BKS: the material point P2
-    turned back about the cam pivot P1 by -phi_P1 (seed eq. 4.50, 4.51)."""
+    turned back about the cam pivot P1 by -phi_P1 (Ebert 2015, eq. 4.50, 4.51)."""
     dx, dy = xP2 - xP1, yP2 - yP1
     c, s = cos(phiP1), sin(phiP1)
     return c * dx + s * dy, -s * dx + c * dy
 
 
 def evolute_terms(xe1, ye1, xe2, ye2):
-    """(Z, E2) of the evolute (seed eq. 3.7, 3.8): ``Z = x_e' y_e'' - y_e'
+    """(Z, E2) of the evolute (Ebert 2015, eq. 3.7, 3.8): ``Z = x_e' y_e'' - y_e'
     x_e''`` (= GF1, eq. 5.7) and ``E2 = x_e'^2 + y_e'^2``; the evolute is
     ``x_u = x_e - y_e' E2/Z``, ``y_u = y_e + x_e' E2/Z``."""
     return xe1 * ye2 - ye1 * xe2, xe1 * xe1 + ye1 * ye1
@@ -33,7 +33,7 @@ CRITERIA = ("Z", "N", "rho_k", "l_Bf", "GF2", "dl_Bf", "S_Bf", "a", "h", "u_PS",
 
 def band_criteria(xe, ye, xe1, ye1, xe2, ye2, xe3, ye3, xu, yu, sqrt=ca.sqrt, fabs=ca.fabs,
                   sign=ca.sign):
-    """The geometric quantities of seed ch. 5 from the involute (x_e, y_e),
+    """The geometric quantities of Ebert (2015), ch. 5 from the involute (x_e, y_e),
     its first three derivatives with respect to the cam angle and the
     evolute (x_u, y_u): CasADi expressions, or numpy arrays with
     ``sqrt=np.sqrt, fabs=np.abs, sign=np.sign``.  Returns a dict with the
@@ -54,7 +54,7 @@ def band_criteria(xe, ye, xe1, ye1, xe2, ye2, xe3, ye3, xu, yu, sqrt=ca.sqrt, fa
     - radius of curvature of the cam contour (5.17) ``rho_cam = |dl_Bf|
       E2/|Z|``: the evolute's arc length is the change of l_Bf and its
       tangent turns with the involute's normal (third derivatives instead of
-      the seed's fourth)."""
+      the dissertation's fourth)."""
     Z, E2 = evolute_terms(xe1, ye1, xe2, ye2)
     root = sqrt(E2)
     N = E2 * root
@@ -69,7 +69,7 @@ def band_criteria(xe, ye, xe1, ye1, xe2, ye2, xe3, ye3, xu, yu, sqrt=ca.sqrt, fa
 
 class Bandkurve(Component):
     """Synthesis element Bandkurve: involute and evolute (cam contour) of a
-    material point of the band (seed ch. 4.3.4, eq. 4.50, 4.51 with 3.7-3.9,
+    material point of the band (Ebert 2015, ch. 4.3.4, eq. 4.50, 4.51 with 3.7-3.9,
     Tabelle 4.6, 4.7, Bild 4.11); optionally the criteria of ch. 5.
 
     ``Bandkurve(criteria=False)``.  Ports: ``ctr2D1`` the cam plane (x_P1,
@@ -87,7 +87,7 @@ class Bandkurve(Component):
     (:func:`evolute_terms`; Z = GF1).  ``xK, yK``: the contact point in the
     world (the evolute point turned forward).
 
-    With ``criteria=True`` (seed end of 4.3.4, ch. 5; all finite product
+    With ``criteria=True`` (Ebert 2015, end of 4.3.4, ch. 5; all finite product
     forms):
 
     - ``Z`` = GF1 (5.7), ``N = E2^(3/2)``, curvature ``rho_k N = Z`` (5.2);
@@ -96,7 +96,7 @@ class Bandkurve(Component):
       ``N' = 3 E2^(1/2) (x_e1 x_e2 + y_e1 y_e2)``;
     - ``dl_Bf`` = l_Bf' (5.10) from ``dl_Bf Z |Z| = -GF2`` (exact
       derivative of N/|Z|), and the flag ``S_Bf = sign(dl_Bf)`` (5.11): a
-      relation, so every sign change is an event of the run (the seed's
+      relation, so every sign change is an event of the run (the dissertation's
       comparison with the previous value; C0 and C1 breaks of the contour
       show as such a change);
     - space ``a = |(x_u, y_u)|`` (5.12);
@@ -106,7 +106,7 @@ class Bandkurve(Component):
       v_PS`` = ((e.e')/E2) e';
     - radius of curvature of the cam contour (5.17) ``rho_cam |Z| = |dl_Bf|
       E2`` (the evolute's arc length is the change of l_Bf; third instead of
-      the seed's fourth derivatives).
+      the dissertation's fourth derivatives).
 
     The band stresses (5.16-5.18) need the band force: see
     :mod:`acausal2d.library.synthesis.assessment`, which also gives the report.
@@ -167,7 +167,7 @@ class Bandkurve(Component):
         return eqs
 
     def _criteria_equations(self):
-        """Seed ch. 5 quantities (:func:`band_criteria`), explicit in the
+        """Ebert (2015), ch. 5 quantities (:func:`band_criteria`), explicit in the
         involute's derivatives (not in the output variables), so that the
         outputs do not couple back into the initialization."""
         crit = band_criteria(self.xe, self.ye, self.xe1, self.ye1, self.xe2, self.ye2,

@@ -1,8 +1,8 @@
-"""What the synthesis elements of seed ch. 4.3 share: the mounting parameter
+"""What the synthesis elements of Ebert (2015), ch. 4.3 share: the mounting parameter
 K check and the start positions of the frames they read (the linkage
 pre-assembly extended across revolute joints and rigid rods), used to start
 the unwrapped band angles on the right branch; ports that carry no force
-(seed Tabelle 4.3, 4.5, 4.7).
+(Ebert 2015, Tabelle 4.3, 4.5, 4.7).
 """
 import math
 

@@ -1,5 +1,5 @@
 """Cam contours from a band synthesis: a closed outline to manufacture
-(CSV, SVG, DXF -- the seed's cams were laser-cut, ch. 7.2.1, 7.2.2) and a
+(CSV, SVG, DXF -- the dissertation's cams were laser-cut, ch. 7.2.1, 7.2.2) and a
 closed :class:`~acausal2d.library.belt.curved.Contour` for the analysis
 elements (CurvedDrum, CurvedPulley), which closes the loop synthesis ->
 analysis.

@@ -1,4 +1,4 @@
-"""Synthesis element DB~BD: cam and circular roller (seed ch. 4.3.2, eq.
+"""Synthesis element DB~BD: cam and circular roller (Ebert 2015, ch. 4.3.2, eq.
 4.2-4.34).  :func:`dbbd_band` is the band geometry in the homogeneous pole
 form (shared with :mod:`.functional`), :class:`DB_BD` the element; the
 corrections of the printed equations are listed in :mod:`acausal2d.library.synthesis`.
@@ -10,7 +10,7 @@ from .base import _check_K, _direction_guess, _zero_flows
 
 
 def dbbd_band(x1, y1, x2, y2, i, r4, K, sqrt=ca.sqrt):
-    """Band of DB~BD (seed eq. 4.3-4.23 and 4.29-4.34) in homogeneous pole form.
+    """Band of DB~BD (Ebert 2015, eq. 4.3-4.23 and 4.29-4.34) in homogeneous pole form.
 
     Cam pivot P1 = pole 12, roller pivot P2 = pole 14, velocity ratio
     ``i = omega_P2/omega_P1`` (4.2), roller radius ``r4``, mounting ``K``
@@ -42,7 +42,7 @@ def dbbd_band(x1, y1, x2, y2, i, r4, K, sqrt=ca.sqrt):
 
 
 class DB_BD(Component):
-    """Synthesis element DB~BD: cam with a circular roller (seed ch. 4.3.2,
+    """Synthesis element DB~BD: cam with a circular roller (Ebert 2015, ch. 4.3.2,
     eq. 4.2-4.34, Tabelle 4.2, 4.3, Bild 4.8, 4.9).
 
     ``DB_BD(K=1, r4=..., x_s0=...)``.  The cam plane turns about P1 (pole
@@ -68,7 +68,7 @@ class DB_BD(Component):
 
     ``gamma_B`` is an unwrapped angle (no atan2): its start guess is the
     direction P1 -> P2 found from the parameters; give ``gamma_B=start(...)``
-    when the pivots are not fixed frames of the model.  The seed's element
+    when the pivots are not fixed frames of the model.  The dissertation's element
     assumes both pivots in the ground (poles 12 and 14); ``dgamma_B`` then
     only holds the change of the band's inclination.
 

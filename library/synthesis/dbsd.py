@@ -1,5 +1,5 @@
 """Synthesis element DB~SD: cam and a tension spring in the band or a draw-off
-nozzle (seed ch. 4.3.3, eq. 4.35-4.49).  :func:`dbsd_band` is the explicit
+nozzle (Ebert 2015, ch. 4.3.3, eq. 4.35-4.49).  :func:`dbsd_band` is the explicit
 band geometry (shared with :mod:`.functional`), :class:`DB_SD` the element;
 the corrections of the printed equations are listed in
 :mod:`acausal2d.library.synthesis`.
@@ -11,7 +11,7 @@ from .base import _check_K, _direction_guess, _zero_flows
 
 
 def dbsd_band(x1, y1, x2, y2, h, K, sqrt=ca.sqrt):
-    """Band of DB~SD (seed eq. 4.35-4.46) in explicit form.
+    """Band of DB~SD (Ebert 2015, eq. 4.35-4.46) in explicit form.
 
     The band runs through P2 (spring pivot or nozzle) at the signed lever
     arm ``h`` from the cam pivot P1; with u the unit vector P1 -> P2 and v
@@ -35,7 +35,7 @@ def dbsd_band(x1, y1, x2, y2, h, K, sqrt=ca.sqrt):
 
 class DB_SD(Component):
     """Synthesis element DB~SD: cam with a tension spring in the band or a
-    draw-off nozzle (seed ch. 4.3.3, eq. 4.35-4.49, Tabelle 4.4, 4.5, Bild
+    draw-off nozzle (Ebert 2015, ch. 4.3.3, eq. 4.35-4.49, Tabelle 4.4, 4.5, Bild
     4.10, 6.2).
 
     ``DB_SD(K=1, x0=...)``.  The cam plane turns about P1 (port ``ctr2D1``);

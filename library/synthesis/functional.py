@@ -1,4 +1,4 @@
-"""Functional band synthesis (seed ch. 4.3, 5): involute, evolute and the
+"""Functional band synthesis (Ebert 2015, ch. 4.3, 5): involute, evolute and the
 criteria of ch. 5 as CasADi expressions of the drive parameter, evaluated on
 a grid -- exact derivatives by automatic differentiation, no time
 integration.
@@ -7,7 +7,7 @@ It uses the same band geometry as the elements of
 :mod:`acausal2d.library.synthesis` (:func:`dbbd_band`,
 :func:`dbsd_band`, :func:`involute`, :func:`band_criteria`) and agrees with
 a DB~BD / DB~SD / linkage + Bandkurve model to the integration tolerance.
-The seed warns that the fourth derivatives of the transfer function a
+The dissertation warns that the fourth derivatives of the transfer function a
 simulation tool differentiates numerically carry noise (ch. 7.2.2); here
 every derivative is exact.
 
@@ -57,7 +57,7 @@ class BandStructure:
     (numbers or functions of p), ``cam_angle(p)`` the angle of the cam plane
     (default: p itself) and, for the pre-check of ch. 5.3, ``transfer(p)``
     the prescribed transfer function.  Build it directly for a band fastened
-    to any linkage point (seed Bild 4.7: give the point's closed-form
+    to any linkage point (Ebert 2015, Bild 4.7: give the point's closed-form
     position, e.g. :func:`acausal2d.library.linkage.vdi_ddd`), or with
     :meth:`dbbd`, :meth:`dbsd`, :meth:`slider`."""
 
@@ -83,7 +83,7 @@ class BandStructure:
 
     @classmethod
     def dbbd(cls, cam_pivot, roller_pivot, roller_angle, r4, K, x_s0, cam_angle=None, phi0=0.0):
-        """DB~BD (seed ch. 4.3.2, eq. 4.2-4.34; element :class:`DB_BD`): cam
+        """DB~BD (Ebert 2015, ch. 4.3.2, eq. 4.2-4.34; element :class:`DB_BD`): cam
         about ``cam_pivot``, circular roller of radius ``r4`` about
         ``roller_pivot`` (both fixed in the ground) whose angle is
         ``roller_angle(p)``; ``K``, ``x_s0`` as the element's; ``phi0`` the
@@ -106,9 +106,9 @@ class BandStructure:
 
     @classmethod
     def dbsd(cls, cam_pivot, spring_pivot, travel, K, x0, cam_angle=None, phi0=0.0):
-        """DB~SD (seed ch. 4.3.3, eq. 4.35-4.49; element :class:`DB_SD`): cam
+        """DB~SD (Ebert 2015, ch. 4.3.3, eq. 4.35-4.49; element :class:`DB_SD`): cam
         about ``cam_pivot``, band through ``spring_pivot`` (spring pivot or
-        nozzle, fixed in the ground).  ``travel(p)`` is the seed's x of eq.
+        nozzle, fixed in the ground).  ``travel(p)`` is the dissertation's x of eq.
         4.49 (any additive constant; x = travel(p) - travel(phi0)), so the
         lever arm is h = d travel / d cam_angle; ``K``, ``x0`` as the
         element's."""
@@ -126,7 +126,7 @@ class BandStructure:
 
     @classmethod
     def slider(cls, cam_pivot, guide_point, guide_angle, travel, v=0.0, cam_angle=None):
-        """DB~DS (seed ch. 7.2.2): the band is fastened to a slider (as
+        """DB~DS (Ebert 2015, ch. 7.2.2): the band is fastened to a slider (as
         :class:`~acausal2d.library.linkage.SAN`): ``P = G + x_S e + v n`` with
         G = ``guide_point``, e the guide direction ``guide_angle``, n its left
         normal and ``travel(p)`` the slider travel x_S."""
@@ -212,7 +212,7 @@ class BandSynthesis:
         return write_text(path, "\n".join(rows) + "\n")
 
     def assess(self, **kw):
-        """Assessment of the band curve after seed ch. 5 (see
+        """Assessment of the band curve after Ebert (2015), ch. 5 (see
         :func:`acausal2d.library.synthesis.assessment.assess`)."""
         return assess(self, **kw)
 

@@ -1,0 +1,221 @@
+"""Modelica elements drive trains need (Blocks.Math.Product, Rotational
+TorqueStep, QuadraticSpeedDependentTorque, IdealGearR2T, IdealRollingWheel,
+Translational Mass.L and Brake) against closed forms.
+
+Tolerances: IDA at RTOL; speeds and positions within 100 RTOL of their
+scale (the global error)."""
+
+import numpy as np
+import pytest
+
+import acausal2d
+from acausal2d import Component, start
+from acausal2d.library import blocks, signals
+from acausal2d.library import rotational as rot
+from acausal2d.library import translational as tr
+
+RTOL = 1e-8
+T = np.linspace(0.0, 1.0, 101)
+
+
+class Driven(Component):
+    """Inertia J from rest driven by ``source`` (a torque element with a
+    ``flange``)."""
+
+    def __init__(self, source, J=2.0, w0=0.0, **kw):
+        super().__init__(**kw)
+        self.src = source
+        self.inertia = rot.Inertia(J=J, phi=start(0.0, fixed=True), w=start(w0, fixed=True))
+        self.connect(self.src.flange, self.inertia.flange_a)
+
+
+def test_torque_step_accelerates_by_offset_then_step():
+    """tau = 1 N m, 1 + 4 N m from 0.5 s, J = 2: w = t/2, then 0.25 +
+    2.5 (t - 0.5); tau is the accelerating torque (= -flange.tau)."""
+    res = acausal2d.simulate(Driven(rot.TorqueStep(stepTorque=4.0, offsetTorque=1.0,
+                                                   startTime=0.5)),
+                             stop_time=1.0, rtol=RTOL, output_times=T)
+    t = res.time
+    want = np.where(t < 0.5, t / 2, 0.25 + 2.5 * (t - 0.5))
+    assert np.max(np.abs(res["inertia.w"] - want)) <= 100 * RTOL * 1.5
+    assert res.final("src.tau") == pytest.approx(5.0, abs=100 * RTOL * 5)
+
+
+@pytest.mark.parametrize("direction", (True, False))
+def test_quadratic_speed_dependent_load_brakes_as_the_closed_form(direction):
+    """tau_nominal = -1 N m at w_nominal = 1 rad/s, J = 2, from w0 = 2: J w'
+    = -w^2 (both directions the same for w > 0): w = w0 / (1 + w0 t / J)."""
+    src = rot.QuadraticSpeedDependentTorque(tau_nominal=-1.0, w_nominal=1.0,
+                                            TorqueDirection=direction)
+    res = acausal2d.simulate(Driven(src, w0=2.0), stop_time=1.0, rtol=RTOL, output_times=T)
+    want = 2.0 / (1.0 + 2.0 * T / 2.0)
+    assert np.max(np.abs(res["inertia.w"] - want)) <= 100 * RTOL * 2.0
+
+
+def test_quadratic_load_against_the_motion_backward():
+    """TorqueDirection=False from w0 = -2: J w' = +w^2: w = -2 / (1 + t)."""
+    src = rot.QuadraticSpeedDependentTorque(tau_nominal=-1.0, w_nominal=1.0,
+                                            TorqueDirection=False)
+    res = acausal2d.simulate(Driven(src, w0=-2.0), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["inertia.w"] + 2.0 / (1.0 + T))) <= 100 * RTOL * 2.0
+
+
+class ProductDrive(Component):
+    """Product of t and 3 as the torque on an inertia J = 2."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.t = signals.TimeFunction(lambda t: t)
+        self.k = signals.Constant(k=3.0)
+        self.prod = blocks.Product()
+        self.src = rot.Torque()
+        self.inertia = rot.Inertia(J=2.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.connect(self.t.y, self.prod.u1)
+        self.connect(self.k.y, self.prod.u2)
+        self.connect(self.prod.y, self.src.tau_in)
+        self.connect(self.src.flange, self.inertia.flange_a)
+
+
+def test_product_multiplies_its_inputs():
+    """J w' = 3 t: w = 0.75 t^2."""
+    res = acausal2d.simulate(ProductDrive(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["inertia.w"] - 0.75 * T ** 2)) <= 100 * RTOL
+
+
+class Hoist(Component):
+    """Inertia J driven by the torque 1 N m, through a converter to a mass m."""
+
+    def __init__(self, converter, J=0.5, m=4.0, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=1.0)
+        self.inertia = rot.Inertia(J=J, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.conv = converter
+        self.mass = tr.Mass(m=m)
+        self.connect(self.src.flange, self.inertia.flange_a)
+        self.connect(self.inertia.flange_b, self.conv.flangeR)
+        self.connect(self.conv.flangeT, self.mass.flange_a)
+
+
+@pytest.mark.parametrize("make, ratio", [
+    (lambda: rot.IdealGearR2T(ratio=5.0), 5.0),
+    (lambda: rot.IdealRollingWheel(radius=0.25), 4.0)])
+def test_rotation_to_translation_converters_by_energy(make, ratio):
+    """phi = ratio s: 1 N m = (J + m / ratio^2) phi'' (the energy balance of
+    the lossless converter); the mass follows s = phi / ratio."""
+    J, m = 0.5, 4.0
+    acc = 1.0 / (J + m / ratio ** 2)
+    res = acausal2d.simulate(Hoist(make(), J=J, m=m), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["inertia.w"] - acc * T)) <= 100 * RTOL * acc
+    assert np.max(np.abs(res["mass.v"] - acc * T / ratio)) <= 100 * RTOL * acc
+    power = res["inertia.w"] * 1.0
+    kinetic = 0.5 * J * res["inertia.w"] ** 2 + 0.5 * m * res["mass.v"] ** 2
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(T))])
+    assert np.max(np.abs(kinetic - work)) <= 1e-6 * float(np.max(kinetic))   # trapezoid of a line
+
+
+class Long(Component):
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.fix = tr.Fixed(s0=1.0)
+        self.mass = tr.Mass(m=1.0, L=0.4)
+        self.connect(self.fix.flange, self.mass.flange_a)
+
+
+def test_mass_length_puts_the_centre_half_way():
+    """flange_a at 1 m and L = 0.4: the centre s at 1.2 m."""
+    res = acausal2d.simulate(Long(), stop_time=0.1, rtol=RTOL)
+    assert res.final("mass.s") == pytest.approx(1.2, abs=1e-12)
+
+
+class BrakedMass(Component):
+    """Mass 2 kg pushed by the force F, braked (capacity peak mu0 cgeo
+    fn_max = 1.2 * 0.5 * 1 * 10 = 6 N, sliding 5 N)."""
+
+    def __init__(self, F, **kw):
+        super().__init__(**kw)
+        self.force = tr.Force()
+        self.f = signals.Constant(k=F)
+        self.mass = tr.Mass(m=2.0, s=start(0.0, fixed=True), v=start(0.0, fixed=True))
+        self.brake = tr.Brake(fn_max=10.0, peak=1.2)
+        self.one = signals.Constant(k=1.0)
+        self.connect(self.f.y, self.force.f_in)
+        self.connect(self.force.flange, self.mass.flange_a)
+        self.connect(self.mass.flange_b, self.brake.flange_a)
+        self.connect(self.one.y, self.brake.f_normalized)
+
+
+@pytest.mark.parametrize("share", (0.99, 1.01))
+def test_translational_brake_holds_below_capacity_slips_above(share):
+    """0.99 of 6 N: held (v = 0 to the locking's rounding); 1.01: slides
+    against 5 N: v = (F - 5) t / 2."""
+    F = share * 6.0
+    res = acausal2d.simulate(BrakedMass(F), stop_time=1.0, rtol=RTOL, output_times=T)
+    if share < 1:
+        assert np.max(np.abs(res["mass.v"])) <= 1e-9
+        assert np.max(np.abs(res["brake.f"] - F)) <= 100 * RTOL * F
+    else:
+        assert np.max(np.abs(res["mass.v"] - (F - 5.0) * res.time / 2.0)) <= 100 * RTOL
+
+
+class Measured(Component):
+    """Torque 1 N m -- MultiSensor -- inertia J = 2 from rest."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=1.0)
+        self.sensor = rot.MultiSensor()
+        self.inertia = rot.Inertia(J=2.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.connect(self.src.flange, self.sensor.flange_a)
+        self.connect(self.sensor.flange_b, self.inertia.flange_a)
+
+
+def test_multisensor_measures_torque_speed_and_power():
+    """w = t / 2, the torque passed 1 N m, power = tau w = t / 2 (the
+    kinetic energy J w^2 / 2 = t^2 / 4 grows at that rate)."""
+    res = acausal2d.simulate(Measured(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["sensor.w.u"] - T / 2)) <= 100 * RTOL
+    assert np.max(np.abs(res["sensor.tau.u"] - 1.0)) <= 100 * RTOL
+    assert np.max(np.abs(res["sensor.power.u"] - T / 2)) <= 100 * RTOL
+
+
+class Reaction(Component):
+    """Torque 1 N m between a shaft (J1 = 1) and its housing (J2 = 3), the
+    housing free: the source's support connected to it."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=1.0)
+        self.shaft = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.housing = rot.Inertia(J=3.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.connect(self.src.flange, self.shaft.flange_a)
+        self.connect(self.src.support, self.housing.flange_a)
+
+
+def test_torque_support_takes_the_reaction():
+    """The reaction -1 N m turns the housing: w1 = t, w2 = -t / 3, the
+    angular momentum J1 w1 + J2 w2 stays 0."""
+    res = acausal2d.simulate(Reaction(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["shaft.w"] - T)) <= 100 * RTOL
+    assert np.max(np.abs(res["housing.w"] + T / 3)) <= 100 * RTOL
+
+
+class Equilibrium(Component):
+    """Inertia on a torsion spring (c = 4) under 2 N m, started with
+    a(fixed=True) = 0 and w = 0: the start is the equilibrium phi = 0.5."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.src = rot.ConstantTorque(tau=2.0)
+        self.inertia = rot.Inertia(J=1.0, a=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.spring = rot.Spring(c=4.0)
+        self.fix = rot.Fixed()
+        self.connect(self.src.flange, self.inertia.flange_a)
+        self.connect(self.inertia.flange_b, self.spring.flange_b)
+        self.connect(self.spring.flange_a, self.fix.flange)
+
+
+def test_inertia_acceleration_fixed_at_the_start_gives_the_equilibrium():
+    """a = 0 and w = 0 at the start: c phi = 2, phi = 0.5, and it stays."""
+    res = acausal2d.simulate(Equilibrium(), stop_time=1.0, rtol=RTOL, output_times=T)
+    assert np.max(np.abs(res["inertia.phi"] - 0.5)) <= 100 * RTOL
+    assert np.max(np.abs(res["inertia.a"])) <= 100 * RTOL * 2.0
