@@ -5,9 +5,11 @@ objects."""
 from __future__ import annotations
 
 import copy as _copy
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 import time as _time
+
+import warnings
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,7 +27,7 @@ from .derived import derived_columns, derived_signals
 from .analysis.modes import linearize
 from .analysis.modes import modes
 from .analysis.equilibrium import find_equilibrium
-from .language.dsl import Parameter
+from .language.dsl import Parameter, compile_reads
 from .options import CHECKS, RunOptionError, RunOptions, number
 from .protocols import ParameterValue, Params, Start
 from .progress import time_progress
@@ -81,6 +83,21 @@ def _uncopyable(model: Component) -> str:
     return "an attribute"
 
 
+def _with_values(model: Component, values: Mapping[str, float | tuple[float, ...]]) -> Component:
+    """A copy of ``model`` (as given to the compiler, not its compiled copy)
+    with the parameters ``values`` ({dotted name: value checked by
+    :meth:`CompiledModel.parameter_values`}) given as if by keyword (the
+    model is not changed)."""
+    copy = own_copy(model)
+    by_path = {c.path: c for c in copy.components()}
+    for name, value in values.items():
+        path, _, pname = name.rpartition(".")
+        comp = by_path[path]
+        comp._param_values[pname] = value
+        comp._given.add(pname)
+    return copy
+
+
 class CompiledModel:
     """A model ready to simulate; reusable with other parameter values.
 
@@ -96,15 +113,37 @@ class CompiledModel:
 
     def __init__(self, model: Component) -> None:
         t0 = _time.perf_counter()
-        model = own_copy(model)
+        given, model = model, own_copy(model)
         self.model = model
-        with translated("compiling %s" % type(model).__name__, StructuralError):
-            self.system = compile_system(model)
-        self.system.model_name = type(model).__name__     # named in the native runtime's notices
-        self._whole = self._whole_parameters()
-        self._units: dict[str, str] | None = None
-        self.derived = derived_signals(model, self.system.names)
+        with compile_reads() as reads:
+            with translated("compiling %s" % type(model).__name__, StructuralError):
+                self.system = compile_system(model)
+            self.system.model_name = type(model).__name__  # named in the native runtime's notices
+            self._whole = self._whole_parameters()
+            self._units: dict[str, str] | None = None
+            self.derived = derived_signals(model, self.system.names)
+        self.structural = self._read_while_compiling(reads)
+        self._recompiled: dict[tuple[tuple[str, str], ...], CompiledModel] = {}
+        self._source = given if self.structural else None     # compiled again from it
         self.compile_time = _time.perf_counter() - t0
+
+    structural: frozenset[str]
+    """Parameters (vectors as a whole) whose value the compiler read: the
+    compiled model depends on them beyond their symbol (a pulley's ``m``
+    decides whether it has mass), so a run refuses a changed value of one
+    (:meth:`parameter_values`) and the live page offers no slider for it."""
+
+    def _read_while_compiling(self, reads: list[tuple[Component, str]]) -> frozenset[str]:
+        found = set()
+        ours = {id(c) for c in self.model.components()}     # not a class's throwaway instance
+        for comp, name in reads:
+            if id(comp) not in ours:
+                continue
+            path = comp.path
+            full = "%s.%s" % (path, name) if path else name
+            if full in self._whole:
+                found.add(full)
+        return frozenset(found)
 
     # ------------------------------------------------------------ parameters
     @property
@@ -182,20 +221,92 @@ class CompiledModel:
             whole.setdefault(base, (decl, []))[1].append(k)
         return whole
 
-    def parameter_values(self, params: Params | None = None) -> NDArray[np.float64]:
+    def parameter_values(self, params: Params | None = None, structural: bool = False,
+                         rules: bool = True) -> NDArray[np.float64]:
         """Numeric parameter vector with overrides ``{dotted name: value}``
         (vector parameters as a whole, ``"rod.r": (1, 0)``, or by element,
-        ``"rod.r[0]"``); every value is checked against its declaration."""
+        ``"rod.r[0]"``); every value is checked against its declaration, and
+        the rules between parameters of each component changed
+        (:meth:`~acausal2d.language.dsl.Component.check_parameters`) on the
+        final values.  A changed :attr:`structural` parameter is refused,
+        naming it (:meth:`simulate` compiles the model again instead),
+        unless ``structural`` (values checked only); ``rules`` False leaves
+        the rules between parameters to a later call with all the values."""
         vals = np.array([v for _, _, v, _ in self.system.parameters], dtype=float)
         if params is None:
             return vals
         if not isinstance(params, dict):
             raise ModelDefinitionError("params must be a dict {'comp.param': value}, got %r"
                                        % (params,))
+        base = vals.copy()
         for name, value in params.items():
             index = self._indices(name)
             vals[index] = np.atleast_1d(self._checked(name, value))
+        changed = [n for n in params if not np.array_equal(vals[self._indices(n)],
+                                                             base[self._indices(n)])]
+        if rules:
+            self._check_components(changed, vals)
+        if not structural:
+            self._refuse_structural(changed)
         return vals
+
+    def _whole_name(self, name: str) -> str:
+        return name.rsplit("[", 1)[0] if name not in self._whole and name.endswith("]") else name
+
+    def _check_components(self, changed: list[str], vals: NDArray[np.float64]) -> None:
+        """The rules between parameters of each component with a changed
+        parameter, on the values ``vals``."""
+        paths = {self._whole_name(n).rsplit(".", 1)[0] if "." in n else "" for n in changed}
+        if not paths:
+            return
+        for comp in self.model.components():
+            if comp.path not in paths:
+                continue
+            prefix = comp.path + "." if comp.path else ""
+
+            def value(pname: str, prefix: str = prefix) -> float | tuple[float, ...]:
+                return self._whole_value(prefix + pname, vals)
+            comp.check_parameters(value)
+
+    def _whole_value(self, name: str, vals: NDArray[np.float64]) -> float | tuple[float, ...]:
+        """The value of parameter ``name`` (a whole vector) in ``vals``."""
+        decl, idx = self._whole[name]
+        return float(vals[idx[0]]) if decl.size == 1 else tuple(float(vals[k]) for k in idx)
+
+    def for_values(self, params: Params | None) -> "CompiledModel":
+        """This model, or, where ``params`` change a :attr:`structural`
+        parameter, the model compiled again with the new values (one line
+        on stderr names them; kept for the next run with the same values)."""
+        if not params or not isinstance(params, dict) or not self.structural:
+            return self
+        vals = self.parameter_values(params, structural=True)
+        base = self.parameter_values()
+        names = sorted({self._whole_name(n) for n in params} & self.structural)
+        new = {n: self._whole_value(n, vals) for n in names
+               if not np.array_equal(vals[self._whole[n][1]], base[self._whole[n][1]])}
+        if not new:
+            return self
+        key = tuple(sorted((n, repr(v)) for n, v in new.items()))
+        cache = self._recompiled
+        if key not in cache:
+            from .runtime.cstore import notice
+            notice("%s %s read while %s is compiled; it is compiled again with %s" % (
+                ", ".join(new), "is" if len(new) == 1 else "are", type(self.model).__name__,
+                ", ".join("%s = %s" % (n, v) for n, v in new.items())))
+            if len(cache) >= 8:
+                cache.pop(next(iter(cache)))
+            assert self._source is not None              # kept where a parameter is structural
+            cache[key] = CompiledModel(_with_values(self._source, new))
+        return cache[key]
+
+    def _refuse_structural(self, changed: list[str]) -> None:
+        hit = sorted({self._whole_name(n) for n in changed} & self.structural)
+        if hit:
+            raise ModelDefinitionError(
+                "parameter %s is read while the model is compiled (it decides the model's "
+                "structure or start layout), so a new value would change nothing in this "
+                "compiled model; give it in the model file, or run the model through "
+                "simulate(), which compiles it again for it" % ", ".join(hit))
 
     def _indices(self, name: str) -> list[int]:
         if name in self._whole:
@@ -289,11 +400,10 @@ class CompiledModel:
         ``experiment`` and checked against the model (atol, output times)."""
         opts = RunOptions.of(options, "simulate", **keywords).resolved(_experiment(self.model))
         _check_atol(opts.atol, self.system.node_names)
-        times = opts.times()
-        if opts.output_times is None:
+        if opts.output_times is None:                   # before the grid is made
             assert opts.intervals is not None           # resolved() fills it
             _check_size(opts.intervals, len(self.names))
-        _check_clock(times)
+        _check_clock(opts.times())
         return opts
 
     def simulate(self, stop_time: float | None = None, params: Params | None = None,
@@ -311,17 +421,23 @@ class CompiledModel:
         options: a :class:`~acausal2d.options.RunOptions`, or its settings
         as keywords (stop_time, rtol, atol, intervals, start_time,
         output_times, progress, max_steps, max_wall_time, native; see
-        there; not both).  A run that uses up a budget stops early with the data so
-        far (``result.stopped`` says why).
+        there; not both).  A run that uses up a budget stops early with the
+        data so far (``result.stopped`` says why).  A changed
+        :attr:`structural` parameter compiles the model again
+        (:meth:`for_values`).
         """
         opts = self.run_options(options, stop_time=stop_time, rtol=rtol, atol=atol,
                                 intervals=intervals, start_time=start_time,
                                 output_times=output_times, progress=progress,
                                 max_steps=max_steps, max_wall_time=max_wall_time,
                                 native=native)
+        other = self.for_values(params)
+        if other is not self:                  # a structural parameter changed: compiled again
+            return other.simulate(params=params, start=start, options=opts)
         p = self.parameter_values(params)
         held = self.start_indices(start)
         self.system.check_fixed_values(p)
+        self._warn_far_angles(held, opts.rtol)
         tol = np.asarray(opts.atol) if isinstance(opts.atol, tuple) else opts.atol
         times = opts.times()
         assert opts.rtol is not None                    # resolved() fills it
@@ -336,6 +452,29 @@ class CompiledModel:
                 setattr(exc, "result", self._result(partial, p))
             raise
         return self._result(log, p)
+
+    ANGLE_RESOLUTION = 0.1
+    """rad: a start angle whose integrator tolerance (rtol |phi|) is coarser
+    than this is warned about (:meth:`_warn_far_angles`)."""
+
+    def _warn_far_angles(self, held: dict[int, float] | None, rtol: float | None) -> None:
+        """A warning for each angle (unit rad) that starts so far from one
+        turn that the run's tolerance on it, rtol |phi|, exceeds
+        :data:`ANGLE_RESOLUTION`: its motion would be lost in rounding (1e17
+        rad: no step changes it).  Its start is best given modulo 2 pi."""
+        s, rtol = self.system, float(rtol or 1e-6)
+        for j in s.level0:
+            info = s.node_info[j]
+            value = (held or {}).get(int(j), info.start)
+            if info.unit != "rad" or isinstance(value, bool) or \
+                    not isinstance(value, (int, float, np.floating)):
+                continue
+            if rtol * abs(float(value)) > self.ANGLE_RESOLUTION:
+                warnings.warn("%s starts at %.6g rad, far outside one turn: with rtol %g the "
+                              "run resolves it only to %.3g rad, and its motion is lost in "
+                              "rounding; give its start modulo 2 pi (math.remainder(phi, "
+                              "2 * math.pi))" % (s.node_names[j], float(value), rtol,
+                                                rtol * abs(float(value))), stacklevel=3)
 
     def _result(self, log: RunLog, p: NDArray[np.float64]) -> Result:
         """The :class:`Result` of a run log."""

@@ -191,16 +191,21 @@ class Limiter(_SISO):
         if "uMax" in kw and "uMin" not in kw:
             kw["uMin"] = -kw["uMax"] if isinstance(kw["uMax"], (int, float)) else kw["uMax"]
         super().__init__(**kw)
-        _check_limits(self, "uMax", "uMin")
+        self.check_parameters(self.parameter_value)
+
+    def check_parameters(self, value):
+        """``uMax >= uMin`` (on the values ``value(name)`` gives)."""
+        _check_limits(self, "uMax", "uMin", value)
 
     def equations(self):
         return [self.y.u == _limit(self.u.u, self.uMin, self.uMax)]
 
 
-def _check_limits(comp, hi, lo):
-    if comp.parameter_value(hi) < comp.parameter_value(lo):
+def _check_limits(comp, hi, lo, value):
+    """``value(hi) >= value(lo)``, else an error naming both."""
+    if value(hi) < value(lo):
         raise ModelDefinitionError("%s: parameter %s = %g is below %s = %g; give %s >= %s" % (
-            comp.describe(), hi, comp.parameter_value(hi), lo, comp.parameter_value(lo), hi, lo))
+            comp.describe(), hi, value(hi), lo, value(lo), hi, lo))
 
 
 class Integrator(_SISO):

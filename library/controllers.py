@@ -175,9 +175,8 @@ class LimPID(_Controller):
         super().__init__(**kw)
         self.controllerType = _choice(self, "controllerType", controllerType,
                                       CONTROLLER_TYPES)
-        _check_limits(self, "yMax", "yMin")
         self._setup_init(initType, "I" in self.controllerType, "D" in self.controllerType)
-        self._check_y_start()
+        self.check_parameters(self.parameter_value)
         self._fix_output("gainPID_y")
         self.withFeedForward = bool(withFeedForward)
         self.u_s = RealInput(doc="set point")
@@ -186,10 +185,12 @@ class LimPID(_Controller):
         if self.withFeedForward:
             self.u_ff = RealInput(doc="feed-forward input")
 
-    def _check_y_start(self):
-        """Modelica's error for initType InitialOutput with y_start outside
-        [yMin, yMax]."""
-        y0, lo, hi = (self.parameter_value(n) for n in ("y_start", "yMin", "yMax"))
+    def check_parameters(self, value):
+        """``yMax >= yMin``, and Modelica's error for initType InitialOutput
+        with y_start outside [yMin, yMax] (on the values ``value(name)``
+        gives)."""
+        _check_limits(self, "yMax", "yMin", value)
+        y0, lo, hi = (value(n) for n in ("y_start", "yMin", "yMax"))
         if self.initType == "InitialOutput" and not lo <= y0 <= hi:
             raise ModelDefinitionError("%s: parameter y_start = %g is outside the limits yMin = "
                                        "%g, yMax = %g; give a y_start between them"

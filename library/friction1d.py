@@ -399,17 +399,21 @@ class OneWayClutch(_Modes):
             raise ModelDefinitionError("%s: w_s is the width of the stick zones of law='zone'; "
                                        "drop it or give law='zone'" % self.describe())
         self.mu_pos = table_rows(self, "mu_pos", mu_pos, [(0.0, 0.5)])
-        if not interpolate(self.mu_pos, 0.0) * self.parameter_value("cgeo") > 0:
-            raise ModelDefinitionError(
-                "%s: the freewheel's lock torque peak mu0 cgeo fn_max is 0 (mu_pos at w = 0 is "
-                "%g, cgeo = %g); give mu_pos(0) > 0 and cgeo > 0" % (
-                    self.describe(), interpolate(self.mu_pos, 0.0),
-                    self.parameter_value("cgeo")))
+        self.check_parameters(self.parameter_value)
         self.flange_a = RotationalFlange()
         self.flange_b = RotationalFlange()
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
     sliding_mode_advice = _Friction.sliding_mode_advice
+
+    def check_parameters(self, value):
+        """The lock torque peak mu0 cgeo fn_max > 0 (on the values
+        ``value(name)`` gives): a freewheel without it never locks."""
+        if not interpolate(self.mu_pos, 0.0) * value("cgeo") > 0:
+            raise ModelDefinitionError(
+                "%s: the freewheel's lock torque peak mu0 cgeo fn_max is 0 (mu_pos at w = 0 is "
+                "%g, cgeo = %g); give mu_pos(0) > 0 and cgeo > 0" % (
+                    self.describe(), interpolate(self.mu_pos, 0.0), value("cgeo")))
 
     def equations(self):
         free = self.f_normalized.u <= 0

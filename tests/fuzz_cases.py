@@ -386,9 +386,11 @@ def all_cases():
     import fuzz_cases_pulley
     import fuzz_cases_seednums
     import fuzz_cases_tx
+    import fuzz_cases_untrusted
     return (structure_cases() + connection_cases() + parameter_cases() + geometry_cases()
             + numeric_cases() + file_cases() + compare_cases() + trust_cases()
             + fuzz_cases_geometry.cases() + fuzz_cases_fitopt.cases()
             + fuzz_cases_friction.cases() + fuzz_cases_tx.cases()
             + fuzz_cases_drivetrain.cases() + fuzz_cases_hydraulics.cases()
-            + fuzz_cases_pulley.cases() + fuzz_cases_seednums.cases())
+            + fuzz_cases_pulley.cases() + fuzz_cases_seednums.cases()
+            + fuzz_cases_untrusted.cases())

@@ -37,9 +37,12 @@ def server():
     proc = subprocess.Popen([sys.executable, "-m", "acausal2d", "explore",
                              "models/piston_engine.py", "--port", "0"], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    url = proc.stdout.readline().strip()
-    assert url.startswith("http://127.0.0.1:"), (url, proc.stderr.read() if proc.poll() else "")
-    yield url, proc
+    page = proc.stdout.readline().strip()
+    assert page.startswith("http://127.0.0.1:"), (page, proc.stderr.read() if proc.poll() else "")
+    url, _, token = page.partition("?token=")
+    assert len(token) >= 32, page                   # the API's token is in the page's URL
+    TOKENS[url] = token
+    yield url, proc, page
     proc.send_signal(signal.SIGINT)
     try:
         code = proc.wait(timeout=30)
@@ -49,10 +52,17 @@ def server():
     assert code == 0, proc.stderr.read()[-2000:]
 
 
-def call(url, path, body=None, raw=None):
-    """(status, decoded JSON or text) of GET (body None) or POST."""
+TOKENS: dict = {}      # server URL -> its API token (from the printed page URL)
+
+
+def call(url, path, body=None, raw=None, headers=None):
+    """(status, decoded JSON or text) of GET (body None) or POST, sent as
+    the page sends it (its token, JSON) unless ``headers`` replace that."""
     data = raw if raw is not None else (None if body is None else json.dumps(body).encode())
-    req = urllib.request.Request(url + path, data=data, method="GET" if data is None else "POST")
+    sent = {"X-Acausal2d-Token": TOKENS.get(url, ""), "Content-Type": "application/json"}
+    sent.update(headers or {})
+    req = urllib.request.Request(url + path, data=data, method="GET" if data is None else "POST",
+                                 headers={k: v for k, v in sent.items() if v is not None})
     try:
         with urllib.request.urlopen(req, timeout=120) as r:
             status, text, kind = r.status, r.read().decode(), r.headers.get_content_type()
@@ -285,7 +295,7 @@ def test_page_slider_changes_curve_and_animation_pin_and_error(server, tmp_path)
     try:
         page = Page(cdp)
         page.resize(1200, 800)
-        page.open(server[0])
+        page.open(server[2])
         wait_for(page, "window.explore && explore.runs >= 1 && explore.sceneLoads >= 1")
         first = shot(page, "explore_first.png")
         assert_not_blank(first)

@@ -21,7 +21,8 @@ def _sweep_settings(args, cm, vary):
             close = [n for n in cm.parameter_names if name.split(".")[-1] in n][:8]
             raise Acausal2dError("--vary/--set: unknown parameter %r%s" % (
                 name, "; similar: " + ", ".join(close) if close else ""))
-    cm.parameter_values(fixed)                  # fixed values checked against their rules
+    cm.parameter_values(fixed, structural=True, rules=False)   # each against its rule (the
+    # rules between parameters and a structural one are the runs', with the varied values)
     outputs = [n.strip() for n in args.outputs.split(",") if n.strip()] if args.outputs \
         else list(cm.outputs)
     _check_names(outputs, cm, "--outputs")

@@ -31,6 +31,13 @@ MAX_INTERVALS = 20000
 MAX_BODY = 1 << 20
 """Largest request body in bytes."""
 
+MAX_DEPTH = 4
+"""Deepest nesting of a request's values (``{"drag": {"to": [X, Y]}}`` is 3)."""
+
+MAX_NUMBER_TEXT = 400
+"""Longest JSON number text read as a number (longer ones are taken as
+infinite and refused by their field)."""
+
 _FIELDS = ("set", "stop_time", "intervals", "signals", "scene", "session", "start", "drag")
 
 
@@ -69,16 +76,41 @@ def parse_body(raw):
     if not raw.strip():
         return {}
     try:
-        body = json.loads(raw.decode("utf-8"))
+        body = json.loads(raw.decode("utf-8"), parse_int=_number, parse_float=_number)
+    except RecursionError:
+        raise BadRequest("body", "nested too deeply (at most %d levels are accepted)"
+                         % MAX_DEPTH) from None
     except (UnicodeDecodeError, ValueError) as exc:
         raise BadRequest("body", "malformed JSON (%s); send an object such as "
                          '{"set": {"crank.r": [0.3, 0]}, "stop_time": 2}' % exc) from None
     if not isinstance(body, dict):
         raise BadRequest("body", "must be a JSON object, got %s" % type(body).__name__)
+    for key, value in body.items():
+        _check_depth(value, key, 1)
     unknown = sorted(set(body) - set(_FIELDS))
     if unknown:
         raise BadRequest(unknown[0], "unknown field; the fields are %s" % ", ".join(_FIELDS))
     return body
+
+
+def _number(text):
+    """A JSON number as a float; one too large for a float (a 401-digit
+    integer, 1e400) becomes inf, which the field's check refuses by name."""
+    if len(text) > MAX_NUMBER_TEXT:
+        return math.inf
+    return float(text)
+
+
+def _check_depth(value, field, depth):
+    """BadRequest naming ``field`` where ``value`` nests deeper than
+    :data:`MAX_DEPTH` (a request has at most an object of lists)."""
+    if depth > MAX_DEPTH:
+        raise BadRequest(field, "nested too deeply (at most %d levels are accepted)" % MAX_DEPTH)
+    items = value.items() if isinstance(value, dict) else \
+        enumerate(value) if isinstance(value, list) else ()
+    for key, item in items:
+        _check_depth(item, "%s.%s" % (field, key) if isinstance(value, dict) else
+                     "%s[%d]" % (field, key), depth + 1)
 
 
 def _finite_number(field, value):
@@ -113,7 +145,9 @@ def intervals_of(body, default):
 
 def params_of(body, compiled):
     """The checked ``set``: {parameter: float or tuple}; each value is
-    checked against its declaration (its rule, its size, finite)."""
+    checked against its declaration (its rule, its size, finite; field
+    ``set.<name>``), then the rules between a component's parameters on
+    all of them (``uMax >= uMin``; field ``set``)."""
     given = body.get("set") or {}
     if not isinstance(given, dict):
         raise BadRequest("set", 'must be an object {"comp.param": value}, got %s'
@@ -123,10 +157,14 @@ def params_of(body, compiled):
         if isinstance(value, list):
             value = tuple(value)
         try:
-            compiled.parameter_values({name: value})
+            compiled.parameter_values({name: value}, rules=False)
         except Acausal2dError as exc:
             raise BadRequest("set.%s" % name, str(exc)) from None
         params[name] = value
+    try:                       # the rules between parameters, on all the values given
+        compiled.parameter_values(params)
+    except Acausal2dError as exc:
+        raise BadRequest("set", str(exc)) from None
     return params
 
 
@@ -166,9 +204,7 @@ def start_of(body, compiled):
         raise BadRequest("start", 'must be an object {"joint.phi": value}, got %s'
                          % json.dumps(given)[:60])
     for name, value in given.items():
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise BadRequest("start.%s" % name, "must be a number, got %s"
-                             % json.dumps(value)[:60])
+        _finite_number("start.%s" % name, value)
         try:
             compiled.start_indices({name: value})
         except Acausal2dError as exc:

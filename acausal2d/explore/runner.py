@@ -119,11 +119,16 @@ class Explorer:
     def parameters(self):
         """Every parameter (vectors as a whole): name, value (a list), unit,
         rule, doc, min, max, positive, nonzero and the slider's range per
-        component (``GET /api/params``)."""
+        component (``GET /api/params``); not the parameters read while
+        compiling (:attr:`~acausal2d.compiled.CompiledModel.structural`:
+        a slider would change nothing, a request changing one is refused
+        naming it)."""
         cm = self.compiled
         vals = cm.parameter_values()
         out = []
         for name, (decl, idx) in cm.parameter_declarations.items():
+            if name in cm.structural:
+                continue
             v = [float(vals[i]) for i in idx]
             out.append({"name": name, "value": v, "unit": decl.unit or "", "rule": decl.rule,
                         "doc": decl.doc or "", "min": decl.min, "max": decl.max,
@@ -139,6 +144,7 @@ class Explorer:
                 "parameters": self.parameters(), "figures": self.figures(),
                 "signals": [{"name": n, "unit": units.get(n, "")} for n in cm.names],
                 "outputs": list(cm.outputs), "stop_time": self.defaults["stop_time"],
+                "structural": sorted(cm.structural),
                 "movable": movable(cm),
                 "max_stop_time": self.defaults["max_stop_time"],
                 "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time}

@@ -3,12 +3,18 @@
 Routes (the page uses nothing else)::
 
     GET  /             the page
-    GET  /api/params   the model: parameters (unit, rule, value, slider range),
+    GET  /api/params   the model: parameters (unit, rule, value, slider range;
+                       not those read while compiling, listed as "structural"),
                        signals with units, figures, default and largest stop time
     POST /api/run      a run: {"time", "signals", "elapsed_s", "stopped", ...}
     POST /api/csv      the same run as CSV (every column), for the export button
     POST /api/start    a run request with "drag": {"x", "y", "to"}: the start values
                        ({"start": {unknown: value}}) that put that point at "to"
+
+Every request passes :class:`~acausal2d.explore.guard.Guard` first: the
+``Host`` of the listening address, the server's token (in the printed URL,
+``?token=``) on ``/api/``, the server's own ``Origin`` and JSON on a POST,
+a bounded body (403, 415, 413, 408 otherwise).
 
 Answers: 200 with the run (its "run" number counts the server's runs in
 the order they came); 400 ``{"error", "field"}`` for a bad request
@@ -20,8 +26,10 @@ assemble, an integrator failure).  The server writes nothing to disk.
 import asyncio
 import importlib.resources
 import json
+import secrets
 
 from ..errors import Acausal2dError
+from .guard import Guard, allowed_hosts, protocol
 from .requests import BadRequest
 from .runner import Superseded
 
@@ -42,9 +50,12 @@ def page_html():
             .replace("%%JS%%", _asset("explore.js")))
 
 
-def make_app(explorer):
-    """The Starlette application serving ``explorer`` (an
-    :class:`~acausal2d.explore.runner.Explorer`)."""
+def make_app(explorer, token, hosts):
+    """The application serving ``explorer`` (an
+    :class:`~acausal2d.explore.runner.Explorer`): Starlette's routes behind
+    :class:`~acausal2d.explore.guard.Guard` (``token``: the API's token;
+    ``hosts``: the allowed ``Host`` values, a set filled in once the port
+    is known)."""
     from starlette.applications import Starlette
     from starlette.responses import HTMLResponse, Response
     from starlette.routing import Route
@@ -93,13 +104,13 @@ def make_app(explorer):
     routes = [Route("/", index), Route("/api/params", params),
               Route("/api/run", run, methods=["POST"]), Route("/api/csv", csv, methods=["POST"]),
               Route("/api/start", start, methods=["POST"])]
-    return Starlette(routes=routes)
+    return Guard(Starlette(routes=routes), token, hosts)
 
 
 def serve(explorer, host="127.0.0.1", port=8765, open_browser=False, announce=print):
     """Serve ``explorer`` on ``host``:``port`` (0: a free port) until
     Ctrl-C; ``announce(url)`` is called once the server accepts
-    connections, then the page is opened in a browser if ``open_browser``.
+    connections (the URL carries the token the API needs), then the page is opened in a browser if ``open_browser``.
     Returns 0 after Ctrl-C (the run in progress finished, nothing written)."""
     import uvicorn
 
@@ -109,14 +120,18 @@ def serve(explorer, host="127.0.0.1", port=8765, open_browser=False, announce=pr
             if self.should_exit or not self.servers:
                 return
             bound = self.servers[0].sockets[0].getsockname()[1]
-            url = "http://%s:%d/" % (host if ":" not in host else "[%s]" % host, bound)
+            hosts.update(allowed_hosts(host, bound))
+            url = "http://%s:%d/?token=%s" % (host if ":" not in host else "[%s]" % host, bound,
+                                               token)
             announce(url)
             if open_browser:
                 import webbrowser
                 webbrowser.open(url)
 
-    config = uvicorn.Config(make_app(explorer), host=host, port=port, log_level="warning",
-                            access_log=False, lifespan="off")
+    token, hosts = secrets.token_urlsafe(24), set()
+    config = uvicorn.Config(make_app(explorer, token, hosts), host=host, port=port,
+                            log_level="warning", access_log=False, lifespan="off",
+                            http=protocol(), timeout_keep_alive=5, limit_concurrency=64)
     server = _Server(config)
     try:
         server.run()

@@ -42,10 +42,15 @@ _ACLASS = ["Atrajectory", "1.1", "", "binTrans"]
 
 
 def _char_matrix(strings, by_column):
-    """Character matrix of ``strings`` padded with blanks: one string per
-    column (``by_column``, binTrans) or per row."""
-    width = max([len(s) for s in strings] + [1])
-    rows = np.array([list(s.ljust(width)) for s in strings], dtype="U1")
+    """Character matrix (uint8) of ``strings`` in UTF-8, padded with blanks:
+    one string per column (``by_column``, binTrans) or per row.  A MAT v4
+    text matrix holds bytes (readers take them as Latin-1); a name outside
+    ASCII (``φ_gelenk``, ``関節``) is stored as its UTF-8 bytes, as
+    OpenModelica stores it, and :func:`read_mat` gives it back."""
+    encoded = [s.encode("utf-8") for s in strings]
+    width = max([len(b) for b in encoded] + [1])
+    rows = np.array([list(b.ljust(width)) for b in encoded], dtype=np.uint8).reshape(
+        len(encoded), width)
     return rows.T if by_column else rows
 
 
@@ -53,8 +58,7 @@ def _matrix_bytes(name, array, text=False):
     """One MAT v4 matrix: header (type, rows, columns, imaginary flag, name
     length), the name with its NUL, the data in column-major order."""
     if text:
-        data = np.vectorize(ord, otypes=[np.uint8])(array) if array.size else \
-            np.zeros(array.shape, np.uint8)
+        data = array.astype(np.uint8)
         mtype = 51                   # little-endian, uint8, text
     elif array.dtype.kind == "i":
         data, mtype = array.astype("<i4"), 20
@@ -121,8 +125,18 @@ def write_mat(path: PathT, time: ArrayLike, columns: Mapping[str, ArrayLike],
 
 
 def _strings(matrix, by_column):
+    """The strings of a text matrix (scipy reads its bytes as Latin-1):
+    UTF-8 where the bytes are (:func:`_char_matrix`), else Latin-1."""
     chars = matrix.T if by_column else matrix
-    return ["".join(row).rstrip(" \0") for row in chars]
+    out = []
+    for row in chars:
+        text = "".join(row).rstrip(" \0")
+        try:
+            text = text.encode("latin-1").decode("utf-8")
+        except (UnicodeEncodeError, UnicodeDecodeError):
+            pass
+        out.append(text)
+    return out
 
 
 def _load(path):

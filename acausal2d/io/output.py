@@ -246,6 +246,9 @@ class OutputFolder:
         self._signals = None
 
     def __enter__(self):
+        if not self.out.strip():
+            raise OutputFolderError("--out %r names no folder (it would write into the current "
+                                    "folder); give one, e.g. --out out" % self.out)
         if os.path.basename(self.final_folder) == "":
             raise OutputFolderError("--out %s: choose a folder below the root" % self.out)
         self._signals = terminate_as_interrupt()

@@ -32,11 +32,12 @@ from the whole model), :meth:`~Component.guesses` (start guesses),
 :meth:`~Component.equations`.  After a simulation, :meth:`~Component.shapes`
 and :meth:`~Component.topology` describe drawing and structure.
 """
+import contextlib
+import difflib
 import numbers
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
-import difflib
 
 from ..errors import ModelDefinitionError
 from .declarations import (STATE_SELECT, Parameter, Variable, VarInfo, start,  # noqa: F401
@@ -104,6 +105,23 @@ def _unknown_attribute(comp, name):
                                           for kind, group in groups if group) + "."
 
 
+_reads: list = []       # the open compile_reads() lists (innermost last)
+
+
+@contextlib.contextmanager
+def compile_reads():
+    """Collect the (component, parameter name) pairs whose numeric value is
+    read (:meth:`Component.parameter_value`) inside the block: the
+    compiler's reads, after which a changed value would change nothing
+    (a pulley's ``m`` decides whether it has mass)."""
+    found: list = []
+    _reads.append(found)
+    try:
+        yield found
+    finally:
+        _reads.remove(found)
+
+
 class Component:
     """Base class of every component and model.
 
@@ -157,7 +175,17 @@ class Component:
     def parameter_value(self, name):
         """Numeric value of the parameter ``name`` (float or tuple): given by
         keyword, else derived for the current flattening
-        (:meth:`derived_parameters`), else the declared default."""
+        (:meth:`derived_parameters`), else the declared default.  A value
+        read while a model is compiled (:func:`compile_reads`) makes the
+        parameter structural: the compiled model depends on it beyond its
+        symbol."""
+        if _reads:
+            _reads[-1].append((self, name))
+        return self._value(name)
+
+    def _value(self, name):
+        """:meth:`parameter_value` not counted as a compiler's read (the
+        value the parameter's symbol starts with)."""
         if name in self._given:
             return self._param_values[name]
         if name in self._derived:
@@ -165,6 +193,14 @@ class Component:
         if name not in self._param_values:
             self.parameter_declaration(name)        # raises with the list
         return self._param_values[name]
+
+    def check_parameters(self, value: Callable[[str], float | tuple[float, ...]]) -> None:
+        """Rules between parameters of this component (``uMax >= uMin``),
+        checked on the values ``value(name)`` gives: by the constructor on
+        its own values and again on the final values of a run whatever way
+        they came (``--set``, ``params=``, a sweep, a fit, the live page).
+        Raises :class:`ModelDefinitionError` naming the component and the
+        parameters; the base class has none."""
 
     def is_given(self, name):
         """True if the model set the parameter or variable ``name`` of this
@@ -452,7 +488,7 @@ class Component:
             decl = self.parameter_declaration(name)
             sym = table.new_parameter(_join(path, name), decl.size)
             self._param_syms[name] = sym if decl.size > 1 else sym[0]
-            vals = np.atleast_1d(np.asarray(self.parameter_value(name), dtype=float))
+            vals = np.atleast_1d(np.asarray(self._value(name), dtype=float))
             for i in range(decl.size):
                 pname = _join(path, name) + ("[%d]" % i if decl.size > 1 else "")
                 params_out.append((pname, sym[i], float(vals[i]), decl))

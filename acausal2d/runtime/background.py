@@ -39,10 +39,12 @@ def queue(key, recipe, label=None):
 
 
 def _environment():
-    """The worker's environment: this acausal2d importable first."""
+    """The worker's environment: this acausal2d importable first, the
+    cache folder this process uses (it may be a private fallback)."""
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
+    env[cstore.CACHE_ENV] = cstore.folder()        # the folder this process checked and uses
     return env
 
 

@@ -170,12 +170,21 @@ def lookup(key, name="lib"):
     """The verified library indexed by ``key`` (:func:`fingerprint`), or None
     (no index, no library, or a damaged one: removed, one line on stderr)."""
     folder = store.folder()
+    index = index_path(key, name)
     try:
-        with open(index_path(key, name), encoding="utf-8") as fh:
-            path = os.path.join(folder, os.path.basename(fh.read().strip()))
-    except (OSError, UnicodeDecodeError):
+        with open(index, encoding="utf-8") as fh:
+            named = fh.read(300).strip()
+    except FileNotFoundError:
         return None
-    return path if path.endswith(".so") and store.verified(path) else None
+    except (OSError, UnicodeDecodeError) as exc:
+        named = "unreadable: %s" % (getattr(exc, "strerror", None) or type(exc).__name__)
+    path = os.path.join(folder, os.path.basename(named))
+    if not (path.endswith(".so") and os.path.basename(path).startswith(name + "-")
+            and os.path.exists(path)):
+        store.notice("the index %s names no library of the cache (%r); it is compiled again"
+                     % (index, named[:80]))
+        return None
+    return path if store.verified(path) else None
 
 
 def build_indexed(key, make, name="lib"):
@@ -194,22 +203,25 @@ def build_indexed(key, make, name="lib"):
 
 def publish_index(key, name, path):
     """Write the index of ``key`` naming the library ``path`` (atomically;
-    an unwritable folder only costs the next lookup)."""
+    an unwritable folder or a full disk only costs the next lookup: said in
+    one line, since every run then compiles again)."""
     try:
         store.write_atomic(index_path(key, name), os.path.basename(path).encode("utf-8"))
-    except OSError:
-        pass
+    except OSError as exc:
+        store.notice("the index of the compiled library %s could not be written (%s); later "
+                     "runs compile it again until the cache folder %s can be written"
+                     % (os.path.basename(path), exc.strerror or exc, store.folder()))
 
 
 def load(key, make, name, loader):
     """``loader(path)`` of the library of ``key`` (:func:`build_indexed`).
-    A library the loader refuses (``OSError``: the dynamic loader, or
-    ``RuntimeError``: CasADi) is reported on stderr, removed and built
+    A library the loader refuses (``OSError``: the dynamic loader,
+    ``RuntimeError``: CasADi, ``AttributeError``: a symbol ctypes misses) is reported on stderr, removed and built
     again once."""
     path = build_indexed(key, make, name)
     try:
         return loader(path)
-    except (OSError, RuntimeError) as exc:
+    except (OSError, RuntimeError, AttributeError) as exc:    # AttributeError: a symbol missing
         store.notice("the cached library %s could not be loaded (%s); rebuilding it"
                      % (path, str(exc).strip().splitlines()[0] if str(exc).strip() else exc))
         store.discard(path)

@@ -6,9 +6,11 @@ numbers, exit 0) is found before the dynamic loader sees it: the library is
 removed and built again, with one line on stderr.
 
 - :func:`folder`: the cache folder in use, the configured one
-  (:func:`cache_dir`) or, where that cannot be
-  written, a private folder under the temporary directory (one line on
-  stderr) - never the slow path because of a read-only home;
+  (:func:`cache_dir`) or, where that cannot be written or is not private
+  (owned by the user, mode 0700, not a link: :mod:`~acausal2d.io.private_dir`,
+  so that no other user can plant a library, a digest or a job in it), a
+  private fallback (one line on stderr) - never the slow path because of a
+  read-only home;
 - :func:`publish`: a library and its digest moved into place atomically;
 - :func:`locked`: one builder per library at a time (``flock`` on
   ``<library>.lock``, :mod:`~acausal2d.runtime.posix`; a second waits, then finds the library built);
@@ -22,6 +24,7 @@ import tempfile
 import shutil
 import time
 
+from ..io import private_dir
 from . import posix
 
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
@@ -40,7 +43,7 @@ TMP_PREFIX = ".tmp-"
 _said: set = set()
 
 
-def notice(message):
+def notice(message: str) -> None:
     """One line ``acausal2d: <message>`` on stderr, once per process."""
     if message not in _said:
         _said.add(message)
@@ -58,30 +61,66 @@ def cache_dir():
     return os.path.join(base, "acausal2d", "cbuild")
 
 
-def _writable(path):
-    try:
-        os.makedirs(path, exist_ok=True)
-    except OSError:
-        return False
-    return os.path.isdir(path) and os.access(path, os.W_OK | os.X_OK)
+def fallback_folders():
+    """The folders tried, in order, where the configured cache cannot be
+    used: ``$XDG_RUNTIME_DIR/acausal2d-cbuild`` (a folder of the user's own
+    that others cannot enter) and ``acausal2d-cbuild-<uid>`` in the
+    temporary directory (checked as the configured one: a folder another
+    user created there is refused); :func:`folder` falls back on a new
+    private folder of this process (``mkdtemp``) after them."""
+    found = []
+    runtime = os.environ.get("XDG_RUNTIME_DIR")
+    if runtime and os.path.isabs(runtime):
+        found.append(os.path.join(runtime, "acausal2d-cbuild"))
+    found.append(os.path.join(tempfile.gettempdir(), "acausal2d-cbuild-%d" % os.getuid()))
+    return found
 
 
 def fallback_folder():
-    """The folder used where the configured cache cannot be written."""
-    return os.path.join(tempfile.gettempdir(), "acausal2d-cbuild-%d" % os.getuid())
+    """The shared temporary directory's fallback (see :func:`fallback_folders`)."""
+    return fallback_folders()[-1]
+
+
+_own: list = []        # the private folder made for this process (last resort), once
+NOWHERE = os.path.join(os.devnull, "acausal2d-cbuild")
+"""The folder of a process that has none it may use: nothing can be
+written or loaded there, so native code is not used."""
+
+
+def _own_folder():
+    if not _own:
+        try:
+            _own.append(tempfile.mkdtemp(prefix="acausal2d-cbuild-%d-" % os.getuid()))
+        except OSError:
+            _own.append(NOWHERE)
+    return _own[0]
 
 
 def folder():
-    """The cache folder in use (see the module docstring)."""
+    """The cache folder in use (see the module docstring): the configured
+    one where it is private (:mod:`~acausal2d.io.private_dir`) and
+    writable, else the first usable fallback (:func:`fallback_folders`),
+    with one line on stderr saying why and what to do."""
     want = cache_dir()
-    if _writable(want):
+    why = private_dir.problem(want)
+    if why is None:
         return want
-    other = fallback_folder()
-    if other != want and _writable(other):
-        notice("the native cache %s cannot be written; using %s instead (set $%s to a "
-               "writable folder)" % (want, other, "ACAUSAL2D_CACHE_DIR"))
+    for other in [f for f in fallback_folders() if f != want] + [None]:
+        if other is None:
+            other = _own_folder()
+            if other == NOWHERE:
+                notice("%s; no private folder could be made for native code, so this run "
+                       "uses the Python path" % why)
+                return other
+        else:
+            refused = private_dir.problem(other)
+            if refused is not None:
+                if refused.unsafe:            # said: someone may be planting code there
+                    notice(refused.message)
+                continue
+        notice("%s; using %s instead (set $%s to a private folder of your own)"
+               % (why, other, CACHE_ENV))
         return other
-    return want
 
 
 def build_key(sources, flags=(), compiler=""):
@@ -148,6 +187,12 @@ def verified(path, full=False):
     try:
         st = os.stat(path)
     except OSError:
+        return False
+    if not private_dir.ours(path) or (os.path.lexists(path + DIGEST)
+                                      and not private_dir.ours(path + DIGEST)):
+        notice("the cached library %s (or its digest) is not a file of your own that only "
+               "you can write; it is removed and built again" % path)
+        discard(path)
         return False
     want, identity = _record(path)
     if not full and want is not None and identity == _identity(st) and \

@@ -25,6 +25,7 @@ import os
 import time
 
 from . import cbuild, cstore
+from ..errors import Acausal2dError
 from .background import failure_path, launch, pending, queue, wait  # noqa: F401 - the worker side
 
 ENV = "ACAUSAL2D_NATIVE"
@@ -35,13 +36,22 @@ _spent = [0.0]          # seconds this process spent compiling native code in th
 def mode(chosen=None):
     """``auto``, ``now`` or ``off``: ``chosen`` (a run's
     ``RunOptions.native``), else ``$ACAUSAL2D_NATIVE`` (see the module
-    docstring; unset: auto)."""
+    docstring; unset: auto); :class:`NativeModeError` naming the modes for
+    another value."""
     value = (chosen or os.environ.get(ENV, "auto")).strip().lower()
     if value in ("0", "off", "no", "false"):
         return "off"
     if value in ("now", "1", "on", "yes", "true"):
         return "now"
-    return "auto"
+    if value in ("auto", ""):
+        return "auto"
+    raise NativeModeError("$%s=%r is not a native mode; give one of %s (or 1/on for now, "
+                          "0/off for off), or unset it for auto" % (ENV, os.environ.get(ENV),
+                                                                   ", ".join(MODES)))
+
+
+class NativeModeError(Acausal2dError):
+    """``$ACAUSAL2D_NATIVE`` names no mode (:data:`MODES`)."""
 
 
 def _failed_before(key, name):
@@ -72,7 +82,10 @@ def obtain(key, recipe, loader, chosen=None, label=None):
     t0 = time.perf_counter()
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)
-    except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError):
+    except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError) as exc:
+        why = str(exc).strip().splitlines()[0][:200] if str(exc).strip() else type(exc).__name__
+        cstore.notice("the native code %s for %s could not be built or loaded (%s); this run "
+                      "uses the Python path" % (recipe.name, label or "this model", why))
         return None
     finally:
         _spent[0] += time.perf_counter() - t0 if path is None else 0.0

@@ -8,6 +8,7 @@
   var sceneLoads = 0, dragStart = null, drags = 0, csvBytes = 0;
   var LINE = ["#4682b4", "#e07b00", "#2e9e4f", "#8e44ad", "#c0392b", "#16a085"];
   var PIN = ["#d35400", "#27ae60", "#7f8c8d", "#9b59b6", "#2c3e50"];
+  var TOKEN = new URLSearchParams(location.search).get("token") || "";  // the API's token
   var WAIT_MS = 400;  // a run still going after this is overtaken by the next change
 
   function $(id) { return document.getElementById(id); }
@@ -53,7 +54,8 @@
     send();
   }
   function post(url, body) {
-    return fetch(url, { method: "POST", headers: { "Content-Type": "application/json" },
+    return fetch(url, { method: "POST", headers: { "Content-Type": "application/json",
+                                                   "X-Acausal2d-Token": TOKEN },
                         body: JSON.stringify(body) });
   }
   function send() {
@@ -359,7 +361,7 @@
     addFigure({ groups: [[$("pick").value]], x: null, title: null }); send();
   });
   window.addEventListener("resize", drawFigures);
-  fetch("/api/params").then(function (r) { return r.json(); }).then(start, function (e) {
+  fetch("/api/params", { headers: { "X-Acausal2d-Token": TOKEN } }).then(function (r) { return r.json(); }).then(start, function (e) {
     fail("cannot read the model from the server: " + e);
   });
 
