@@ -442,18 +442,19 @@ def capi_ida(prob, rtol, atol, solver=None):
 _compiled: dict = {}     # fingerprint of the functions -> {name: external Function}
 
 
-def compiled(functions, chosen=None):
+def compiled(functions, chosen=None, label=None):
     """CasADi functions (their names -> Function) as compiled C, loaded back
     as CasADi functions (``casadi.external``) of the same names and signatures,
     or None where the engine ``chosen`` is the Python path, they cannot be
-    built or are not in the cache in mode auto (the caller keeps its own)."""
+    built or are not in the cache in mode auto (the caller keeps its own);
+    ``label``: the model, for the notices."""
     if tiers.mode(chosen) == "off":
         return None
     key = cbuild.fingerprint(functions.values(), _generator(), *functions)
     if key not in _compiled:
         recipe = Recipe("a2d_functions", [("plain", list(functions.values()))])
         found = tiers.obtain(key, recipe, lambda path: {name: ca.external(name, path)
-                                                          for name in functions}, chosen)
+                                                          for name in functions}, chosen, label)
         if found is None:
             return None
         _compiled[key] = found
@@ -489,7 +490,8 @@ def _projector_library(system, chosen=None):
         if plan is None:
             _projectors[system] = False
             return None
-        lib = tiers.obtain(plan[0], plan[1], _declare_projector, chosen)
+        lib = tiers.obtain(plan[0], plan[1], _declare_projector, chosen,
+                           getattr(system, "model_name", None))
         if lib is not None or tiers.mode(chosen) == "now":     # built, or its build failed
             _projectors[system] = lib or False
     return lib or None

@@ -58,7 +58,7 @@ def _mapped_functions(system, native, chosen=None):
                              ("J_rows_%d" % K, system.jacobian_fn)):
                 fns[name] = fn.map(name, "serial", K, [2, 3], [])
         if native and not too_large(system.residual_fn, system.jacobian_fn):
-            fns = compiled(fns, chosen) or fns
+            fns = compiled(fns, chosen, getattr(system, "model_name", None)) or fns
         _MAPS[system][native] = fns
     return fns
 

@@ -42,11 +42,12 @@ class DeterminantScan:
 
     CHUNK = 256
 
-    def __init__(self, form, chosen=None):
+    def __init__(self, form, chosen=None, label=None):
         K, fn = self.CHUNK, form.det_fn
         mapped = fn.map("det_scan", "serial", K, [3, 4], [])
         if not too_large(fn):
-            mapped = (compiled({"det_scan": mapped}, chosen) or {"det_scan": mapped})["det_scan"]
+            mapped = (compiled({"det_scan": mapped}, chosen, label)
+                      or {"det_scan": mapped})["det_scan"]
         self.fn = Buffered(mapped,
                            [np.zeros(K), np.zeros(K * form.n), np.zeros(K * form.n),
                             np.zeros(fn.nnz_in(3)), np.zeros(fn.nnz_in(4))])
@@ -116,7 +117,7 @@ def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found, befo
     if form.det_fn is None or n < 3:
         return {}
     if getattr(form, "det_scan", None) is None:
-        form.det_scan = DeterminantScan(form, chosen)
+        form.det_scan = DeterminantScan(form, chosen, getattr(system, "model_name", None))
     d = np.asarray(d, float)
     dets = form.det_scan.of_rows(T, Z, form.all_deriv, p, d)
     if before is not None:
