@@ -44,6 +44,7 @@ if TYPE_CHECKING:
     from .options import Atol, Progress
     from .runtime.initialize import InitialPoint
     from .runtime.simulation import RunLog
+    from .visual.diagram import DiagramView
 
 
 def compile_model(model: Component) -> "CompiledModel":
@@ -392,6 +393,17 @@ class CompiledModel:
     def describe_equation(self, i: int) -> str:
         """Text of index-reduced equation i with its origin and order."""
         return self.system.describe_equation(i)
+
+    def diagram(self) -> "DiagramView":
+        """The model drawn from its code (a box per component, a line per
+        ``connect``, the unconnected connectors marked): a notebook shows
+        it; ``.svg`` is its text, ``.save(path)`` writes it (SVG, or HTML
+        in which sub-models open)."""
+        from .visual.diagram import DiagramView
+        return DiagramView(self.model)
+
+    def _repr_svg_(self) -> str:
+        return self.diagram().svg
 
     # ------------------------------------------------------------ simulate
     def run_options(self, options: RunOptions | None = None, **keywords: object) -> RunOptions:

@@ -33,6 +33,26 @@ def model_class():
     return load_model_class
 
 
+_COMPILED = {}
+
+
+@pytest.fixture(scope="session")
+def compiled_model():
+    """``compiled_model(filename, classname)``: the compiled model of
+    ``models/<filename>``'s class with its default parameters, compiled
+    once per test run (per worker under xdist) and shared by the tests that
+    only simulate it (a compiled model keeps no state between runs; a test
+    that inspects or changes what compiling builds compiles its own)."""
+    import acausal2d
+
+    def get(filename, classname):
+        key = (filename, classname)
+        if key not in _COMPILED:
+            _COMPILED[key] = acausal2d.compile_model(load_model_class(filename, classname)())
+        return _COMPILED[key]
+    return get
+
+
 # Rounding of a time placed by a few floating-point operations: an output
 # point of numpy's linspace or t0 + k h, a time event's own instant (a few
 # ulps of the time); 8 eps relative leaves room.
@@ -55,3 +75,174 @@ def assert_copied(actual, expected):
     sign flag): exact equality is the claim and holds on any machine.  The only exact array comparison of the suite
     (tests/test_float_equality.py allows it here)."""
     np.testing.assert_array_equal(actual, expected)
+
+
+# ---------------------------------------------------------------- the fast tier
+# ``python -m pytest -m "not slow" -n auto`` is the development run (docs/guide/testing.md);
+# the README's command runs everything.  Tests marked slow: subprocess-heavy command-line
+# and installation tests, browser (headless Chromium) tests, the native engine's tier and
+# build tests, the gallery-like runs of every model, and the fuzz cases beyond each class's
+# first.  A test module marks its own tests with ``@pytest.mark.slow``; the modules below
+# are slow as a whole (each test starts processes, a browser or a compiler, or runs every
+# model) and are marked here, in one place.
+SLOW_MODULES = {
+    "test_animation.py": "headless Chromium",
+    "test_animation_elements.py": "headless Chromium",
+    "test_animation_sync.py": "headless Chromium",
+    "test_node_drag.py": "headless Chromium",
+    "test_mode_page.py": "headless Chromium",
+    "test_plain_clone.py": "a clone installed into a new virtual environment",
+    "test_help_examples.py": "every command's help example as a process",
+    "test_bench_floor.py": "benchmark scripts as processes",
+    "test_bench_small_modes.py": "benchmark scripts as processes",
+    "test_native_tiers.py": "the native engine's tiers (compiler, background worker)",
+    "test_native_tiers_build.py": "the native engine's build tiers (compiler)",
+    "test_fmu.py": "FMUs built with the C compiler and run by fmpy",
+    "test_models_no_deprecation.py": "every model of models/ (as the gallery)",
+}
+
+
+SLOW_TESTS = {
+    "test_ci_run.py": ["test_seen_2_ci_runs_in_a_fresh_environment"],
+    "test_lint.py": ["test_mypy_passes_on_the_package"],
+    "test_readme_commands.py": ["test_every_readme_command_runs_in_a_plain_clone"],
+    "test_clone_root_import.py": ["test_library_imports_from_the_clone_root_without_the_installed_package"],
+    "test_docs.py": ["test_tutorial_notebook_executes_and_shows_figures"],
+    "test_band_models.py": ["test_models_run_from_the_cli"],
+    "test_cli.py": ["test_simulated_animation_draws_in_browser",
+                    "test_simulate_writes_csv_plots_and_animation",
+                    "test_bad_numbers_are_errors_with_exit_code_2",
+                    "test_out_on_an_existing_file_is_an_error_before_simulating",
+                    "test_trace_of_a_frame_and_of_a_signal_pair",
+                    "test_unknown_trace_is_an_error_before_simulating",
+                    "test_simulate_with_parameter_and_stop_time",
+                    "test_check_explains_a_driven_mechanism_s_dof",
+                    "test_check_prints_structure_and_both_dof_counts",
+                    "test_compare_passes_against_shared_reference",
+                    "test_compare_fails_on_perturbed_signal",
+                    "test_broken_model_gives_error_and_exit_code_2"],
+    "test_compare_tube.py": ["test_double_pendulum_default_grid_passes_to_6_5_s",
+                             "test_perturbed_result_fails", "test_time_tolerance_from_the_cli"],
+    "test_contour_export.py": ["test_svg_draws_in_headless_chromium"],
+    "test_cparts.py": ["test_the_parts_give_casadis_values_and_keep_the_null_rules"],
+    "test_discoverability.py": ["test_version", "test_params_lists_value_unit_rule_and_doc",
+                                "test_simulate_summary_names_the_states"],
+    "test_explore.py": ["test_page_slider_changes_curve_and_animation_pin_and_error",
+                        "test_bench_explore_small_prints_its_table"],
+    "test_figure_process.py": ["test_simulate_command_draws_without_importing_matplotlib"],
+    "test_fit_cli.py": ["test_benchmark_small_mode_prints_its_table"],
+    "test_fuzz_output.py": ["test_sigint_and_a_second_run_never_leave_partial_or_stale_files"],
+    "test_import_path.py": ["test_run_and_animation_page_import_neither_scipy_optimize_nor_matplotlib",
+                            "test_scipy_optimize_after_sksundae_is_the_real_module",
+                            "test_native_run_imports_no_scipy_no_scikit_sundae_no_matplotlib",
+                            "test_python_path_still_imports_scikit_sundae",
+                            "test_a_used_up_step_budget_stays_on_the_native_path"],
+    "test_kill_during_write.py": ["test_a_killed_run_leaves_no_result_that_looks_complete"],
+    "test_local_imports.py": ["test_every_function_local_import_has_a_reason"],
+    "test_mec2.py": ["test_cli_runs_a_json_model"],
+    "test_native_cache.py": ["test_a_damaged_library_is_found_and_rebuilt",
+                             "test_a_damaged_index_only_costs_a_lookup",
+                             "test_an_unwritable_cache_falls_back_with_a_notice"],
+    "test_native_prebuilt.py": ["test_setup_py_compiles_the_objects_into_the_package",
+                                "test_an_install_without_a_compiler_goes_on_without_them"],
+    "test_output_transaction.py": ["test_seen4_sigterm_after_the_csv_exits_143_and_leaves_nothing",
+                                   "test_seen4_lock_of_a_killed_run_does_not_block",
+                                   "test_seen4_kill_during_the_final_moves_is_cleaned_by_the_next_run",
+                                   "test_seen6_figure_process_interrupted_early_ends_silently",
+                                   "test_seen6_early_failure_prints_only_its_error"],
+    "test_plots.py": ["test_cli_plots_carry_units_and_model_name",
+                      "test_x_axis_signal_unwrapped_in_degrees",
+                      "test_belt_drive_figures_over_the_drive_angle",
+                      "test_pulley_block_mu_study_from_the_cli"],
+    "test_poles_transfer.py": ["test_cli_transfer_figure_and_pole_layer",
+                               "test_cli_transfer_needs_x_and_valid_orders",
+                               "test_browser_pole_layer_is_drawn_and_hidden_by_its_check_box"],
+    "test_result_formats.py": ["test_compare_of_a_mat_reference_passes_where_its_csv_passes",
+                               "test_mat_errors_name_the_file",
+                               "test_piston_engine_mat_read_by_dymat_equals_the_csv",
+                               "test_compare_plots_carry_units"],
+    "test_sweep.py": ["test_forty_points_on_two_workers_equal_serial_runs",
+                      "test_cli_sweep_on_an_existing_scheduler", "test_cli_sweep_bad_options_exit_2",
+                      "test_tied_parameters_share_one_column_and_value"],
+    "test_talk_synthesis.py": ["test_models_run_from_the_cli_with_figures"],
+    "test_threads.py": ["test_import_and_a_run_leave_omp_num_threads_as_the_user_set_it",
+                        "test_bench_threads_small_prints_its_table"],
+    # sweeps whose every case builds its own native library; the fast tier keeps the
+    # file's other tests of the same functions
+    "test_band_synthesis.py": ["test_constant_ratio_gives_circular_cam",
+                               "test_dbsd_lever_arm_equals_h"],
+    # long single runs (above 4 s of CPU time each)
+    "test_compressor_rounding.py": ["test_events_agree_but_for_valve_touches"],
+    "test_band_balancing.py": ["test_seen_1_bounded_fit_does_not_depend_on_the_optimiser_flag"],
+    "test_compile_memory.py": ["test_fifty_compiles_keep_symbol_table_and_memory_flat"],
+    "test_compressor.py": ["test_periodic_steady_state"],
+    "test_belt_curved.py": ["test_noncircular_drive_follows_designed_ratio",
+                            "test_curved_pulley_bearing_friction_torque_balance",
+                            "test_elliptic_contour_contacts_and_tangency",
+                            "test_curved_drum_wound_length_is_contour_arc_length"],
+    "test_dummy_large.py": ["test_chain_sparse_choice_equals_dense_choice"],
+    "test_fit_edges.py": ["test_seen6_cli_exit_codes_of_a_bound_and_of_the_tube"],
+    "test_belt_drawing.py": ["test_cable_crane_drawing"],
+    "test_modes.py": ["test_cable_crane_hook_returns_to_its_rest_position_and_swings_at_sqrt_g_over_l",
+                      "test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia"],
+    "test_output_rows.py": ["test_chain_rows_satisfy_every_equation_at_20000_points"],
+    "test_planar_references.py": ["test_cli_reproduces_reference"],
+    "test_talk_mechanisms.py": ["test_position_correction_agrees_with_the_dae_within_its_lentol",
+                                "test_node_model_agrees_with_the_vdi_elements_over_a_crank_turn"],
+    "test_modes_cli.py": ["test_modes_campbell_of_the_four_bar_follows_its_reduced_inertia"],
+}
+"""Single tests of otherwise fast modules that start processes (the command
+line, a benchmark's small mode, a killed run, a dask cluster) or a browser,
+or take more than 4 s of CPU time: {module: [test function names]}."""
+
+
+FAST_CASES = {
+    "test_band_systematics.py": {"test_structure_static_and_power_balance": 4,
+                                 "test_two_band_coupler_static_and_power_balance": 2},
+    "test_trust_mec2.py": {"test_seen_9_every_example_loads_checks_and_simulates": 5},
+    "test_talk_mechanisms.py": {"test_counts_and_closed_loops_over_the_run": 4},
+}
+"""Parametrized tests over many models of which the fast tier takes the
+first few cases (the others are slow): {module: {test function: cases}}."""
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark the tests of :data:`SLOW_MODULES` and :data:`SLOW_TESTS` slow,
+    and the cases of :data:`FAST_CASES` beyond the first few."""
+    slow = pytest.mark.slow
+    seen = {}
+    for item in items:
+        module = os.path.basename(str(item.fspath))
+        name = getattr(item, "originalname", item.name)
+        keep = FAST_CASES.get(module, {}).get(name)
+        if keep is not None:
+            seen[(module, name)] = seen.get((module, name), 0) + 1
+        if module in SLOW_MODULES or name in SLOW_TESTS.get(module, ()) or \
+                (keep is not None and seen[(module, name)] > keep):
+            item.add_marker(slow)
+
+
+FUZZ_ALL = os.environ.get("ACAUSAL2D_FUZZ", "") == "all"
+FUZZ_SHARE = 0.25
+FUZZ_SEED = 46
+
+
+def fuzz_sample(cases, key="category"):
+    """The fuzz cases a run takes, as pytest params: of each class (the
+    cases' ``key``) a quarter drawn with a fixed seed (the same cases on
+    every run and machine; at least one), all of them with
+    ``ACAUSAL2D_FUZZ=all``.  The first case of each class runs in the fast
+    tier, the others are marked slow."""
+    import random
+    groups = {}
+    for case in cases:
+        groups.setdefault(case[key], []).append(case)
+    rng = random.Random(FUZZ_SEED)
+    params = []
+    for group in groups.values():
+        n = len(group) if FUZZ_ALL else max(1, round(FUZZ_SHARE * len(group)))
+        picked = sorted(rng.sample(range(len(group)), n))
+        for k, i in enumerate(picked):
+            params.append(pytest.param(group[i], id=group[i]["id"],
+                                       marks=() if k == 0 else pytest.mark.slow))
+    return params

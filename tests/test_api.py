@@ -30,8 +30,8 @@ def test_check_and_compare_can_be_called_again(tmp_path):
         assert len(cmp.rows) >= 2 and all(r.max_deviation <= 1e-6 * r.tolerance for r in cmp.rows)
 
 
-def test_simulate_rejects_bad_settings():
-    cm = acausal2d.compile_model(load_model_class("pendulum.py", "Pendulum")())
+def test_simulate_rejects_bad_settings(compiled_model):
+    cm = compiled_model("pendulum.py", "Pendulum")
     with pytest.raises(acausal2d.Acausal2dError, match="must be larger than start_time"):
         cm.simulate(stop_time=0.0)
     with pytest.raises(acausal2d.Acausal2dError, match="output_times must be at least two"):

@@ -1,8 +1,8 @@
 """The drive-train fuzz cases' errors (tests/fuzz_cases_drivetrain.py):
 each invalid parameter is refused when the model is defined, with a
 message naming the component's class and the parameter; the valid model
-they derive from defines without error.  (test_fuzz runs all the cases
-through the API and the command line.)"""
+they derive from defines without error.  (test_fuzz runs a fixed sample of the
+cases, all with ACAUSAL2D_FUZZ=all, through the API and the command line.)"""
 import pytest
 
 import fuzz_cases_drivetrain

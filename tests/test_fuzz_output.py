@@ -30,7 +30,7 @@ from fuzz_cases_tx import signal_plans
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir)
 PENDULUM = os.path.join(ROOT, "models", "pendulum.py")
 INTERVALS = 1000          # half a MB of CSV and animation
-EXPECTED = {"result.csv", "animation.html", "body.phi.png", "revolute.w.png"}
+EXPECTED = {"result.csv", "animation.html", "diagram.svg", "body.phi.png", "revolute.w.png"}
 
 
 def _start(out):

@@ -9,9 +9,9 @@ E0 = 0.3125  # 0.5*0.1*2.5**2 at the dead centre (piston at rest)
 
 
 @pytest.fixture(scope="module")
-def engine_result():
-    model = load_model_class("piston_engine.py", "PistonEngine")()
-    return acausal2d.simulate(model, stop_time=10.0, rtol=1e-8, intervals=5000)
+def engine_result(compiled_model):
+    engine = compiled_model("piston_engine.py", "PistonEngine")
+    return engine.simulate(stop_time=10.0, rtol=1e-8, intervals=5000)
 
 
 def test_energy_is_conserved(engine_result):

@@ -64,14 +64,13 @@ def test_overlay_is_one_axes_with_n_lines_and_a_legend():
     assert [a.get_ylabel() for a in fig2.axes] == ["rope1.F [N]", "load.y [m]"]
 
 
-def test_x_axis_signal_unwrapped_in_degrees(tmp_path):
+def test_x_axis_signal_unwrapped_in_degrees(tmp_path, compiled_model):
     proc = run("simulate", os.path.join(MODELS, "piston_engine.py"), "--x", "revoluteDrive.phi",
                "--plot", "revoluteDrive.w", "--format", "svg", "--out", str(tmp_path))
     assert proc.returncode == 0, proc.stderr
     texts = svg_texts(tmp_path / "revoluteDrive.w.svg")
     assert "revoluteDrive.phi [deg]" in texts and "revoluteDrive.w [rad/s]" in texts
-    cm = acausal2d.compile_model(load_model_class("piston_engine.py", "PistonEngine")())
-    res = cm.simulate(stop_time=10.0)
+    res = compiled_model("piston_engine.py", "PistonEngine").simulate(stop_time=10.0)
     fig = res.plot(["revoluteDrive.w"], x="revoluteDrive.phi")
     x = fig.axes[0].get_lines()[0].get_xdata()
     np.testing.assert_allclose(x, np.degrees(res["revoluteDrive.phi"]), rtol=0, atol=1e-9)

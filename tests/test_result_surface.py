@@ -9,17 +9,16 @@ import sys
 import numpy as np
 import pytest
 
-import acausal2d
 from acausal2d.errors import Acausal2dError
-from conftest import assert_copied, load_model_class
+from conftest import assert_copied
 
 RTOL = 1e-8
 G = 9.81          # the planar world's gravity (PlanarMechanics' default g = {0, -9.81})
 
 
 @pytest.fixture(scope="module")
-def compiled():
-    return acausal2d.compile_model(load_model_class("pendulum.py", "Pendulum")())
+def compiled(compiled_model):
+    return compiled_model("pendulum.py", "Pendulum")
 
 
 @pytest.fixture(scope="module")

@@ -27,7 +27,7 @@ from .examples import add_examples
 
 
 COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",
-                   "export_fmu", "explore", "cache")
+                   "export_fmu", "explore", "cache", "diagram")
 """The modules under acausal2d.cli that add subcommands (``add_parsers(sub)``), in help order."""
 
 

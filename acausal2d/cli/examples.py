@@ -24,6 +24,7 @@ EXAMPLES = {
     "export-fmu": "acausal2d export-fmu models/pendulum.py --kind cs --out out/Pendulum.fmu",
     "explore": "acausal2d explore models/piston_engine.py --port 8765",
     "cache": "acausal2d cache list",
+    "diagram": "acausal2d diagram models/compressor.py --out out/compressor.svg",
 }
 """Subcommand -> its example command line."""
 

@@ -1,13 +1,36 @@
 """``acausal2d check`` (the structure report) and ``acausal2d params`` (the
 parameter table) of a model file."""
+import sys
+
 from ..analysis.check import check
 from ..io.loader import load_model
 
 
 def cmd_check(args):
-    """``acausal2d check``: print the structure report of a model."""
-    print(check(load_model(args.model_file, args.model)))
+    """``acausal2d check``: print the structure report of a model; with
+    ``--diagram FILE`` also write its diagram, even when the model does not
+    compile (then it marks the components the error names)."""
+    from ..errors import Acausal2dError
+    from ..visual.diagram import check_diagram_path
+    if args.diagram:
+        check_diagram_path(args.diagram)          # before the model is compiled
+    model = load_model(args.model_file, args.model)
+    try:
+        report = check(model)
+    except Acausal2dError as exc:
+        if args.diagram:
+            _diagram(model, args.diagram, exc)
+        raise
+    print(report)
+    if args.diagram:
+        _diagram(model, args.diagram)
     return 0
+
+
+def _diagram(model, path, error=None):
+    from ..visual.diagram import write_diagram
+    write_diagram(model, path, error)
+    print("  diagram:           %s" % path, file=sys.stderr if error else sys.stdout)
 
 
 def cmd_params(args):
@@ -25,6 +48,9 @@ def add_parsers(sub):
     c = sub.add_parser("check", help="print the structure of a model")
     c.add_argument("model_file")
     c.add_argument("--model")
+    c.add_argument("--diagram", metavar="FILE", nargs="?", const="diagram.svg",
+                   help="also write the model's diagram (default diagram.svg; .html: with its "
+                   "sub-models), also when the model does not compile")
     c.set_defaults(func=cmd_check)
     r = sub.add_parser("params", help="list a model's parameters with value, unit, rule and "
                        "description")

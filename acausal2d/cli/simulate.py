@@ -58,7 +58,7 @@ def _print_summary(model, res, out, pngs, extra=(), table="result.csv"):
     st = res.stats
     print("%s: simulated %.4g s in %.3f s (compile %.3f s%s); %d steps, %d output points, "
           "%d events, %d state re-selections, %d residual evaluations -> %s/ (%s, "
-          "%d plot%s, animation.html%s)" % (
+          "%d plot%s, animation.html, diagram.svg%s)" % (
               type(model).__name__, res.time[-1] - res.time[0], st["wall_time"],
               st["compile_time"], ", native code %.3f s" % st["native_compile_time"]
               if st.get("native_compile_time") else "", st["steps"], len(res.time),
@@ -162,6 +162,8 @@ def _write_outputs(res, tx, settings, args, drawer=None):
     else:
         res.to_csv(table)
     res.animate(tx.file("animation.html"), traces=settings["traces"], **settings["animation"])
+    if res.model is not None:
+        _write_diagram(res.model.model, tx.file("diagram.svg"))
     if jobs is not None:
         pngs = drawer.collect() if drawer is not None else draw_jobs(jobs)
     if not settings["specs"]:
@@ -169,6 +171,19 @@ def _write_outputs(res, tx, settings, args, drawer=None):
     tx.info.update(model=type(res.model.model).__name__ if res.model else None,
                    stopped=res.stopped, units=_units(res))
     return pngs, _model_files(res, out)
+
+
+def _write_diagram(model, path):
+    """The model's diagram beside the results; a drawing that fails is a
+    warning naming why, never the loss of the run."""
+    from ..visual.diagram import write_diagram
+    try:
+        write_diagram(model, path)
+    except (KeyboardInterrupt, MemoryError, OSError):
+        raise
+    except Exception as exc:          # noqa: BLE001 - the run's results matter more
+        import warnings
+        warnings.warn("diagram.svg is not written: %s: %s" % (type(exc).__name__, exc))
 
 
 def _units(res):

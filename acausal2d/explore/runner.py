@@ -101,6 +101,7 @@ class Explorer:
         self._latest = collections.OrderedDict()
         self._lock = threading.Lock()
         self.runs = 0
+        self._diagrams, self.flow_names = None, []
 
     # ---------------------------------------------------------------- model
     def figures(self):
@@ -147,7 +148,27 @@ class Explorer:
                 "structural": sorted(cm.structural),
                 "movable": movable(cm),
                 "max_stop_time": self.defaults["max_stop_time"],
-                "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time}
+                "intervals": self.defaults["intervals"], "max_wall_time": self.max_wall_time,
+                "diagrams": self.diagrams(), "planar": has_geometry(cm.model)}
+
+    def diagrams(self):
+        """The model's diagram and each sub-model's (``[{"path", "svg"}]``,
+        the model first; see :mod:`acausal2d.visual.diagram`), made once."""
+        if self._diagrams is None:
+            from ..visual.diagram import diagram_svg, structure, submodel_paths
+            model, names = self.compiled.model, set(self.compiled.names)
+            levels = [""] + submodel_paths(model)
+            try:
+                self._diagrams = [{"path": p, "svg": diagram_svg(model, path=p)}
+                                  for p in levels]
+                self.flow_names = [f for p in levels for ln in structure(model, path=p).lines
+                                   for f in ln.flows if f in names]
+            except Exception as exc:     # noqa: BLE001 - the page works without its diagram
+                import warnings
+                warnings.warn("explore: no diagram of the model (%s: %s)"
+                              % (type(exc).__name__, exc))
+                self._diagrams, self.flow_names = [], []
+        return self._diagrams
 
     def parse(self, raw, drag=False):
         """A checked :class:`~acausal2d.explore.requests.RunSpec` from a
@@ -227,6 +248,8 @@ class Explorer:
                        for k, v in spec.params.items()}, "start": spec.start}
         if spec.scene:
             out["scene"] = scene_page(res)
+            self.diagrams()
+            out["flows"] = {n: _column(res[n]) for n in self.flow_names}
         return out
 
     @staticmethod
@@ -239,6 +262,19 @@ class Explorer:
     def close(self):
         """Stop the worker (waits for the run in progress)."""
         self._worker.shutdown(wait=True, cancel_futures=True)
+
+
+def has_geometry(model):
+    """True if a component of ``model`` draws itself in the animation (a
+    planar mechanism); the page shows a drive train or a hydraulic circuit
+    by its diagram only."""
+    for comp in model.components():
+        try:
+            if comp.shapes():
+                return True
+        except Exception:        # noqa: BLE001 - a drawing hook that fails: no geometry
+            continue
+    return False
 
 
 def scene_page(res):

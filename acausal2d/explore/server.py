@@ -47,7 +47,7 @@ def _asset(name):
 def page_html():
     """The explore page: its HTML with the CSS and script inlined."""
     return (_asset("explore.html").replace("%%CSS%%", _asset("explore.css"))
-            .replace("%%JS%%", _asset("explore.js")))
+            .replace("%%JS%%", _asset("explore.js")).replace("%%DIAGRAM_JS%%", _asset("diagram.js")))
 
 
 def make_app(explorer, token, hosts):

@@ -411,6 +411,12 @@ class Component:
         k)`` (passive constraints s).  Default: nothing."""
         return []
 
+    def _repr_svg_(self):
+        """The component's diagram as a notebook shows it (see
+        :mod:`acausal2d.visual.diagram`)."""
+        from ..visual.diagram import diagram_svg
+        return diagram_svg(self)
+
     # ----------------------------------------------------------- tree
     @property
     def path(self):

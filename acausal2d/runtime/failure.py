@@ -107,9 +107,10 @@ class Approach:
         if away is not None:
             return away
         if t_f > sim.t:
-            limit = sing.limit_position(sim.system, sim.ev, sim.selection, t_f, z_f, sim.d)
+            limit, decided = sing.limit_position(sim.system, sim.ev, sim.selection, t_f, z_f,
+                                                 sim.d, self._span())
             if limit is not None:
-                return self._limit(limit, t_f, z_f)
+                return self._limit(limit, t_f, z_f, decided)
         raise integration_error(sim, self.form, self.prob, f)
 
     def near(self):
@@ -164,15 +165,35 @@ class Approach:
         rows = np.asarray(rows)[order]
         return ts, rows[:, :self.n_held], rows[:, self.n_held:]
 
-    def _step_away(self, t_f, z_f, times, kept):
-        """Just past a passage IDA fails again: move further on (True), or
-        None if no passage precedes this point closely."""
+    def _span(self):
+        sim = self.sim
+        return max(sim.t_end - float(sim.times[0]), 1e-9)
+
+    def _since(self, t_f, z_f):
+        """When the singular position behind (t_f, z_f) was passed: the
+        last passage recorded closely before, else where the conditioning,
+        rising along the motion (:func:`~acausal2d.runtime.singularities.conditioning_trend`),
+        extrapolates to zero; None if none is behind."""
         sim = self.sim
         passed = [r["time"] for r in sim.singular if r["kind"] == "singular position passed"]
-        if not passed or t_f - passed[-1] > 1e-3 * max(sim.t_end - float(sim.times[0]), 1e-9):
+        if passed and t_f - passed[-1] <= 1e-3 * self._span():
+            return passed[-1]
+        worst = sing.worst_level(sim.system, sim.ev, sim.selection, t_f, z_f, sim.d)
+        if worst is None or worst[0] > sing.SINGULAR_CONDITION:
+            return None
+        sign, distance = sing.conditioning_trend(sim.system, sim.ev, sim.selection, t_f, z_f,
+                                                 sim.d, self._span())
+        return t_f - distance if sign > 0 else None
+
+    def _step_away(self, t_f, z_f, times, kept):
+        """Just past a singular position IDA fails again: move further on,
+        or None if no singular position lies closely behind this point."""
+        sim = self.sim
+        since = self._since(t_f, z_f)
+        if since is None:
             return None
         away = sing.step_away(sim.system, sim.ev, sim.selection, self.form, sim.d, t_f, z_f,
-                              self._history(times, kept), sim.t_end, sim.times, passed[-1])
+                              self._history(times, kept), sim.t_end, sim.times, since)
         if away is None:
             return None
         return Decision(True, away[0], away[1], rows=away[2])
@@ -182,9 +203,11 @@ class Approach:
         event = (record["time"], "singular position passed in %s" % ", ".join(record["elements"]))
         return Decision(True, t_land, z, rows=filled, events=[event], singular=[record])
 
-    def _limit(self, limit, t_f, z_f):
+    def _limit(self, limit, t_f, z_f, decided=True):
         """The run ends at a singular position: report it and keep the data
-        up to the last point reached."""
+        up to the last point reached; ``decided`` False: the conditioning
+        did not change beyond rounding along the drive's motion, and the
+        report says that the drive's rule decided."""
         sim = self.sim
         held = list(self.form.states)
         try:
@@ -194,6 +217,9 @@ class Approach:
         stopped = ("stopped at t=%.6g: the mechanism reached a limit position in %s (its "
                    "position equations become singular; the drive cannot move further)"
                    % (limit["time"], ", ".join(limit["elements"])))
+        if not decided:
+            stopped += ("; the block's conditioning did not change beyond rounding along the "
+                        "drive's motion, so the run stops where the drive cannot move it away")
         return Decision(False, rows=[(t_f, np.array(z_f))], singular=[limit], stopped=stopped)
 
 

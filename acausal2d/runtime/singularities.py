@@ -21,14 +21,53 @@ from .selection import SINGULAR_CONDITION, singularity, worst_level
 MAX_SINGULAR_EVENTS = 60     # then stop watching (a mechanism resting at a singular position)
 
 
-def limit_position(system, ev, selection, t, z, d):
-    """Singularity record if the highest dummy block is singular at z."""
+COND_ROUNDING = 1e4 * float(np.finfo(float).eps)
+"""Margin of a change of the conditioning (a smallest singular value
+relative to the largest): its rounding error is a few ulps times the
+block size, plus the rounding of the Jacobian entries; 1e4 eps (2e-12)
+leaves room.  A change above it is a trend, not rounding."""
+
+
+def conditioning_trend(system, ev, selection, t, z, d, span, levels=None):
+    """Which way the worst dummy block's conditioning goes along the
+    predicted motion from (t, z) (the drive's direction: the Taylor series
+    of the motion, :func:`taylor`): ``(sign, distance)``; sign +1 rising
+    (the singular position is behind, the motion moves away from it), -1
+    falling (it is ahead), 0 where no change beyond :data:`COND_ROUNDING`
+    shows up to 1e-3 of ``span`` ahead (the margin cannot decide);
+    ``distance`` the time to the singular position by linear extrapolation
+    (None for sign 0).  Probed at distances growing from 1e-9 ``span``
+    until the change exceeds the margin."""
+    worst = worst_level(system, ev, selection, t, z, d, levels)
+    if worst is None:
+        return 0, None
+    for k in range(9, 2, -1):
+        h = 10.0 ** -k * max(span, 1e-9)
+        change = worst_level(system, ev, selection, t + h, taylor(system, z, h), d, levels)[0] \
+            - worst[0]
+        if abs(change) > COND_ROUNDING:
+            return (1 if change > 0 else -1), worst[0] * h / abs(change)
+    return 0, None
+
+
+def limit_position(system, ev, selection, t, z, d, span=1.0):
+    """``(record, decided)``: the singularity record if the highest dummy
+    block is singular at z and the motion does not move away from the
+    singular position (its conditioning does not rise along the drive's
+    direction beyond :data:`COND_ROUNDING`, see :func:`conditioning_trend`),
+    else None; ``decided`` is False where the margin could not tell the
+    direction and the drive's rule decided (a position the motion does not
+    move away from is a limit) - the run reports that."""
     if not selection.levels:
-        return None
-    worst = worst_level(system, ev, selection, t, z, d, selection.levels[:1])
+        return None, True
+    levels = selection.levels[:1]
+    worst = worst_level(system, ev, selection, t, z, d, levels)
     if worst[0] > SINGULAR_CONDITION:
-        return None
-    return singularity(system, t, "limit position", worst)
+        return None, True
+    sign, _ = conditioning_trend(system, ev, selection, t, z, d, span, levels)
+    if sign > 0:
+        return None, True     # the singular position lies behind: a passage, not a limit
+    return singularity(system, t, "limit position", worst), sign != 0
 
 
 class DeterminantScan:
@@ -352,7 +391,7 @@ def step_away(system, ev, selection, form, d, t_f, z_f, history, t_end, output_t
     h0 = max(t_f - since, 1e-9 * max(1.0, abs(t_f)))
     states = _hermite(history, t_f, h0) if len(form.states) else None
     land = _Landing(system, ev, selection, form, d, t_f, z_f, states)
-    landed = land.first(h0, [h0 * 2.0 ** k for k in range(13)], t_end, worst[0])
+    landed = land.first(0.0, [h0 * 2.0 ** k for k in range(13)], t_end, worst[0])
     if landed is None:
         return None
     return landed[0], landed[1], land.fill(output_times, landed[0])

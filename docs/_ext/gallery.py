@@ -34,12 +34,13 @@ GROUPS = [
     ("Dissertation ch. 2: joints, degree of freedom, linkages, band and rope mechanisms",
      ["four_link_mechanisms", "dof_bild_2_1", "cam_follower", "rope_drives",
       "band_mechanisms", "band_systematics"]),
-    ("Dissertation ch. 3: balancing", ["hain_spring_lever"]),
+    ("Dissertation ch. 3: problem examples and balancing", ["accessory_drive", "hain_spring_lever"]),
     ("Dissertation ch. 7: the VDI 2729 eight-link mechanism, balancing, belt and rope drives",
      ["eight_link_vdi2729", "cabinet_door", "db_ds_synthesis", "pulley_block",
       "noncircular_belt_drive"]),
     ("Dissertation ch. 8: cable crane and belt-driven compressor",
-     ["cable_crane", "hydraulic_drum_drive", "compressor", "clutch_motor", "belt_span_rig"]),
+     ["cable_crane", "hydraulic_drum_drive", "hydraulic_cable_crane", "compressor", "clutch_motor",
+      "belt_span_rig"]),
     ("Modelica PlanarMechanics references (Dymola results in tests/data/references)",
      ["pendulum", "double_pendulum", "crane_crab", "piston_engine", "piston_engine_dynamic",
       "planar_examples"]),
@@ -163,7 +164,7 @@ def _cached(cache, key, folder, anim_folder):
     try:
         with open(os.path.join(cache, key + ".json"), encoding="utf-8") as fh:
             entry = json.load(fh)
-        for png in entry["figures"]:
+        for png in entry["figures"] + [entry["diagram"]]:
             shutil.copy2(os.path.join(cache, png), os.path.join(folder, png))
         os.makedirs(anim_folder, exist_ok=True)
         shutil.copy2(os.path.join(cache, entry["animation"]),
@@ -177,7 +178,7 @@ def _store(cache, key, entry, folder, anim_folder):
     import json
     import shutil
     os.makedirs(cache, exist_ok=True)
-    for png in entry["figures"]:
+    for png in entry["figures"] + [entry["diagram"]]:
         shutil.copy2(os.path.join(folder, png), os.path.join(cache, png))
     shutil.copy2(os.path.join(anim_folder, entry["animation"]),
                  os.path.join(cache, entry["animation"]))
@@ -219,7 +220,8 @@ def _entry_text(path, name, entry):
     rel = os.path.relpath(path, ROOT)
     title = name or os.path.basename(path)
     command = "acausal2d simulate %s%s" % (rel, " --model " + name if name else "")
-    lines = ["## %s" % title, "", entry["doc"] or "", "", "```", command, "```", ""]
+    lines = ["## %s" % title, "", entry["doc"] or "", "", "```", command, "```", "",
+             "![diagram of %s](%s)" % (title, entry["diagram"]), ""]
     for png in entry["figures"]:
         lines += ["![%s](%s)" % (title, png), ""]
     lines += ["```{raw} html",

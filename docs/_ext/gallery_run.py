@@ -13,6 +13,7 @@ import acausal2d  # noqa: E402
 from acausal2d.io.files import safe_filename  # noqa: E402
 from acausal2d.library.inputs import bind_inputs  # noqa: E402
 from acausal2d.visual.animation import render_html  # noqa: E402
+from acausal2d.visual.diagram import write_diagram  # noqa: E402
 from acausal2d.visual.plotting import declared_figures, plot  # noqa: E402
 from acausal2d.visual.scene import build_scene  # noqa: E402
 
@@ -38,15 +39,17 @@ def _doc(obj):
 
 
 def run_model(path, name, folder, anim_folder):
-    """Simulate model ``name`` of the file ``path``; figures go to
-    ``folder``, the animation page to ``anim_folder``.  Returns a dict:
-    name, doc, figures, animation, summary (or error)."""
+    """Simulate model ``name`` of the file ``path``; its diagram and figures
+    go to ``folder``, the animation page to ``anim_folder``.  Returns a
+    dict: name, doc, diagram, figures, animation, summary (or error)."""
     start = time.perf_counter()
     stem = safe_filename("_".join([os.path.splitext(os.path.basename(path))[0]] +
                                   ([name] if name else [])))
     model = acausal2d.load_model(path, name)
     doc = _doc(type(model)).replace(os.path.abspath(path), os.path.relpath(path, ROOT))
-    entry = {"name": name, "doc": doc, "figures": [], "animation": None}
+    entry = {"name": name, "doc": doc, "figures": [], "animation": None,
+             "diagram": stem + "_diagram.svg"}
+    write_diagram(model, os.path.join(folder, entry["diagram"]))
     model, inputs = bind_inputs(model)      # inputs of an FMU model: held at 0 here
     if inputs:
         entry["note"] = "Its inputs %s are held at 0 by constant sources here (as `linearize` " \

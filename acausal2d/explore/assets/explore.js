@@ -372,6 +372,7 @@
     get error() { return lastError; }, get sceneLoads() { return sceneLoads; },
     get busy() { return !!inflight || pending; }, get drags() { return drags; },
     get starts() { return starts; }, get csvBytes() { return csvBytes; },
+    get meta() { return meta; },
     session: session, values: values, figures: figures, setOptions: setOptions,
     send: send, moveStart: moveStart
   };
