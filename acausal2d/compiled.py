@@ -18,6 +18,7 @@ from .compiler.gc_pause import cyclic_gc_paused
 from .compiler.pipeline import compile_system
 from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
                       translated)
+from .runtime.cstore import notice
 from .runtime.evaluator import Evaluator
 from .runtime.initialize import initial_point
 from .runtime.selection import select
@@ -290,7 +291,6 @@ class CompiledModel:
         key = tuple(sorted((n, repr(v)) for n, v in new.items()))
         cache = self._recompiled
         if key not in cache:
-            from .runtime.cstore import notice
             notice("%s %s read while %s is compiled; it is compiled again with %s" % (
                 ", ".join(new), "is" if len(new) == 1 else "are", type(self.model).__name__,
                 ", ".join("%s = %s" % (n, v) for n, v in new.items())))

@@ -7,7 +7,7 @@ removed and built again, with one line on stderr.
 
 - :func:`folder`: the cache folder in use, the configured one
   (:func:`cache_dir`) or, where that cannot be written or is not private
-  (owned by the user, mode 0700, not a link: :mod:`~acausal2d.io.private_dir`,
+  (owned by the user, mode 0700, not a link: :mod:`~acausal2d.runtime.private_dir`,
   so that no other user can plant a library, a digest or a job in it), a
   private fallback (one line on stderr) - never the slow path because of a
   read-only home;
@@ -24,7 +24,7 @@ import tempfile
 import shutil
 import time
 
-from ..io import private_dir
+from . import private_dir
 from . import posix
 
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
@@ -98,7 +98,7 @@ def _own_folder():
 
 def folder():
     """The cache folder in use (see the module docstring): the configured
-    one where it is private (:mod:`~acausal2d.io.private_dir`) and
+    one where it is private (:mod:`~acausal2d.runtime.private_dir`) and
     writable, else the first usable fallback (:func:`fallback_folders`),
     with one line on stderr saying why and what to do."""
     want = cache_dir()
