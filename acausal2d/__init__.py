@@ -18,6 +18,7 @@ import importlib
 from .language.connectors import (BandPort, Connector, Frame, RealInput, RealOutput,  # noqa: E402,F401
                          RotationalFlange, TranslationalFlange, HydraulicPort)
 from .language.dsl import Component, Outer, Parameter, Variable, start  # noqa: E402,F401
+from .language.dsl import register_display as _register_display  # noqa: E402
 from .errors import (Acausal2dError, InitializationError, ModelDefinitionError,  # noqa: E402,F401
                      SimulationError, StructuralError)
 from .language.symbols import der, time, time_derivative  # noqa: E402,F401
@@ -82,6 +83,16 @@ def _read_mec2(path: str) -> Any:
 
 
 _loader.register_reader(".json", "mec2", _read_mec2)
+
+
+def _component_svg(component: Any) -> str:
+    """A component's diagram as SVG (:func:`acausal2d.visual.diagram.diagram_svg`;
+    imported when a notebook first shows one: its layout loads networkx)."""
+    from .visual.diagram import diagram_svg
+    return diagram_svg(component)
+
+
+_register_display("svg", _component_svg)
 
 
 def __getattr__(name: str) -> Any:

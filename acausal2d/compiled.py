@@ -20,6 +20,7 @@ from .compiler.gc_pause import cyclic_gc_paused
 from .compiler.pipeline import compile_system
 from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
                       translated)
+from .runtime.cstore import notice
 from .runtime.evaluator import Evaluator
 from .runtime.initialize import initial_point
 from .runtime.selection import select
@@ -307,7 +308,6 @@ class CompiledModel:
         key = tuple(sorted((n, repr(v)) for n, v in new.items()))
         cache = self._recompiled
         if key not in cache:
-            from .runtime.cstore import notice
             notice("%s %s read while %s is compiled; it is compiled again with %s" % (
                 ", ".join(new), "is" if len(new) == 1 else "are", type(self.model).__name__,
                 ", ".join("%s = %s" % (n, v) for n, v in new.items())))
@@ -447,7 +447,7 @@ class CompiledModel:
                  output_times: Sequence[float] | NDArray[np.float64] | None = None,
                  progress: Progress | None = None, max_steps: int | None = None,
                  max_wall_time: float | None = None, start: Start | None = None,
-                 options: RunOptions | None = None) -> Result:
+                 options: RunOptions | None = None, native: str | None = None) -> Result:
         """Simulate and return a :class:`~acausal2d.result.Result`.
 
         params: {dotted parameter name: value}; start: {unknown: value}
@@ -455,15 +455,17 @@ class CompiledModel:
         guess moves the assembly guess; names from :attr:`start_names`);
         options: a :class:`~acausal2d.options.RunOptions`, or its settings
         as keywords (stop_time, rtol, atol, intervals, start_time,
-        output_times, progress, max_steps, max_wall_time; see there; not
-        both).  A run that uses up a budget stops early with the data so
-        far (``result.stopped`` says why).  A changed :attr:`structural`
-        parameter compiles the model again (:meth:`for_values`).
+        output_times, progress, max_steps, max_wall_time, native; see
+        there; not both).  A run that uses up a budget stops early with the
+        data so far (``result.stopped`` says why).  A changed
+        :attr:`structural` parameter compiles the model again
+        (:meth:`for_values`).
         """
         opts = self.run_options(options, stop_time=stop_time, rtol=rtol, atol=atol,
                                 intervals=intervals, start_time=start_time,
                                 output_times=output_times, progress=progress,
-                                max_steps=max_steps, max_wall_time=max_wall_time)
+                                max_steps=max_steps, max_wall_time=max_wall_time,
+                                native=native)
         other = self.for_values(params)
         if other is not self:                  # a structural parameter changed: compiled again
             return other.simulate(params=params, start=start, options=opts)
@@ -479,7 +481,7 @@ class CompiledModel:
                     translated("simulating %s" % type(self.model).__name__), our_threads(), \
                     time_progress(opts.progress, times[0], times[-1]) as progress:
                 log = Simulation(self.system, p, times, opts.rtol, tol, progress,
-                                 opts.max_steps, opts.max_wall_time, held).run()
+                                 opts.max_steps, opts.max_wall_time, held, opts.native).run()
         except SimulationError as exc:
             partial = getattr(exc, "partial", None)
             if partial is not None:

@@ -111,6 +111,16 @@ def _progress(value: object) -> Progress:
                          "progress(t, t_end), got %r" % (value,))
 
 
+NATIVE_MODES = ("auto", "now", "off")
+
+
+def _native(value: object) -> str:
+    if isinstance(value, str) and value.strip().lower() in NATIVE_MODES:
+        return value.strip().lower()
+    raise RunOptionError("native", "must be one of %s (or None: $ACAUSAL2D_NATIVE), got %r"
+                         % (", ".join(NATIVE_MODES), value))
+
+
 CHECKS: dict[str, Callable[[Any], Any]] = {
     "stop_time": lambda v: number("stop_time", v),
     "rtol": _rtol,
@@ -121,6 +131,7 @@ CHECKS: dict[str, Callable[[Any], Any]] = {
     "max_steps": lambda v: _whole("max_steps", v),
     "max_wall_time": lambda v: _positive("max_wall_time", v),
     "progress": _progress,
+    "native": _native,
 }
 """The one check of each option: value -> the option's normal form, or a
 :class:`RunOptionError` naming it (the command line's types call these)."""
@@ -140,8 +151,11 @@ class RunOptions:
     agree with them); max_steps, max_wall_time:
     budgets of integrator steps and wall-clock seconds after which a run
     stops early with its data so far; progress: ``True`` (a bar on standard
-    error when it is a terminal), ``False`` or ``progress(t, t_end)``.
-    ``None`` leaves a setting to the model and :data:`DEFAULTS`.
+    error when it is a terminal), ``False`` or ``progress(t, t_end)``;
+    native: the engine - ``auto`` (native code where its library is in the
+    cache, else the Python path and a compile after the run), ``now`` (the
+    compiled tier: compile first), ``off`` (the Python path); None:
+    ``$ACAUSAL2D_NATIVE``, else auto.  ``None`` leaves a setting to the model and :data:`DEFAULTS`.
     """
 
     stop_time: float | None = None
@@ -153,6 +167,7 @@ class RunOptions:
     max_steps: int = int(DEFAULTS["max_steps"])
     max_wall_time: float | None = None
     progress: Progress = True
+    native: str | None = None
 
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):

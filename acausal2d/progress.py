@@ -16,6 +16,18 @@ DELAY = 1.0
 """Seconds of wall time before a bar appears (a short run shows none)."""
 
 
+def on_terminal() -> bool:
+    """True where standard error is a terminal, the one place a bar is
+    drawn (tqdm's ``disable=None``).  Elsewhere no bar is made: tqdm is not
+    imported (its import, with ``importlib.metadata``, was about 25 ms of
+    every run) and a run gets no progress callback at all."""
+    isatty = getattr(sys.stderr, "isatty", None)
+    try:
+        return bool(isatty is not None and isatty())
+    except (ValueError, OSError):        # a closed or detached stream
+        return False
+
+
 def _bar(total: float, unit: str, **kw: Any) -> Any:
     from tqdm import tqdm
     return tqdm(total=total, unit=unit, file=sys.stderr, delay=DELAY, disable=None,
@@ -27,11 +39,12 @@ def time_progress(progress: bool | Callable[[float, float], Any], t0: float,
                   t_end: float) -> Iterator[Callable[[float, float], Any] | None]:
     """The ``progress(t, t_end)`` callback of a run from ``t0`` to ``t_end``:
     ``progress`` itself if it is a function, a tqdm bar over simulated time
-    if it is True (shown on a terminal only), None if False."""
+    if it is True and standard error is a terminal (:func:`on_terminal`),
+    else None (the run then calls nothing per step or output row)."""
     if callable(progress) and not isinstance(progress, bool):
         yield progress
         return
-    if not progress:
+    if not progress or not on_terminal():
         yield None
         return
     bar = _bar(t_end - t0, "s", bar_format="{l_bar}{bar}| t = {n:.4g} / {total:.4g} s "
@@ -51,7 +64,7 @@ def count_progress(total: int, unit: str, enabled: bool = True) -> Iterator[Call
     """``done(failed)`` counts one finished item (a sweep's point) on a tqdm
     bar of ``total`` items, with the failed ones in its postfix; a no-op
     when ``enabled`` is False (or standard error is not a terminal)."""
-    if not enabled:
+    if not enabled or not on_terminal():
         yield lambda failed: None
         return
     bar = _bar(total, unit)

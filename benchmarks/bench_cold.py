@@ -11,7 +11,7 @@ Every figure is measured in a fresh process with a cache folder of its own:
 
 - "Python path": ``ACAUSAL2D_NATIVE=off``, compile_model + simulate;
 - "first run (auto)": an empty cache in mode auto: compile_model +
-  simulate while the worker compiles (target: <= 1.2x the Python path);
+  simulate on the Python path, the worker launched after it;
   the drivers' objects are those ``pip install`` compiled into the package
   (:mod:`acausal2d.runtime.drivers`; the header says whether there are);
 - "no drivers": the same with ``ACAUSAL2D_PREBUILT=0``: an install that
@@ -20,10 +20,8 @@ Every figure is measured in a fresh process with a cache folder of its own:
   published (at -O0 first where the C is large: runs from then on are
   native; target for the chain of 81 links: <= 5 s);
 - "alone": the same as "native in" where no run is beside the worker (a
-  run of a millisecond launches it): the background compile itself.  After
-  a longer first run the worker waits for the run's end where its compile
-  cannot be done before (:func:`acausal2d.runtime.background.hold`), and
-  "native in" counts that wait;
+  run of a millisecond launches it): the background compile itself (the
+  worker is launched when the run has ended);
 - "background": from the worker's start to its end (the -O1 libraries
   replaced the -O0 ones), and the CPU seconds of the worker and its
   compiler processes ("bg CPU": on a machine shared with other jobs the wall
@@ -80,7 +78,7 @@ def _model(kind, n):
 def child(kind, n, stop):
     """One run in this process; prints its times as JSON."""
     import acausal2d
-    from acausal2d.runtime import background, cbuild
+    from acausal2d.runtime import background
     model = _model(kind, n)
     t0 = time.perf_counter()
     cm = acausal2d.compile_model(model)
@@ -88,16 +86,13 @@ def child(kind, n, stop):
     t1 = time.perf_counter()
     worker = usable = None
     if os.environ.get(KILL) == "1":       # a first run measured only: its worker is not waited for
-        for proc, _, _, _ in background._workers:
+        for proc in background._workers:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
         background._workers.clear()
-    for proc, start, _, jobs in background._workers:
-        while proc.poll() is None:
-            if usable is None and all(cbuild.lookup(key, name) for key, name in jobs):
-                usable = time.perf_counter() - start
-            time.sleep(0.05)
-        worker = max(worker or 0.0, time.perf_counter() - start)
+    for proc in background._workers:      # launched at the run's end (t1)
+        proc.wait()
+        worker = max(worker or 0.0, time.perf_counter() - t1)
     use = resource.getrusage(resource.RUSAGE_CHILDREN)
     print(json.dumps({"run": t1 - t0, "worker": worker, "steps": res.stats["steps"],
                       "usable": worker if usable is None else usable,

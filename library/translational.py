@@ -144,8 +144,9 @@ class PositionSensor(Component):
 
 
 # Modelica.Mechanics.Translational.Components' friction, where Modelica users look for it
-from acausal2d.library.friction1d import (MassWithStopAndFriction, SupportFriction,  # noqa: E402,F401
-                                          interpolate, table_rows)
+from acausal2d.library.friction_translational import (  # noqa: E402,F401
+    MassWithStopAndFriction, SupportFriction)
+from acausal2d.library.friction1d import interpolate, table_rows  # noqa: E402,F401
 
 
 class Brake(SupportFriction):

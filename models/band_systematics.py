@@ -1,7 +1,15 @@
-"""Systematics of four-link band mechanisms (Ebert 2015, ch. 2.5.2, Bild 2.6-2.8):
-every structure that the text's construction rules derive, as a runnable
-model (one class per structure, built by
+"""Systematics of four-link band mechanisms (Ebert (2015), ch. 2.5.2, Bild
+2.6-2.8): every structure that the text's construction rules derive, as a
+runnable model (one class per structure, built by
 :class:`acausal2d.library.belt.systematics.BandStructure` from its code).
+
+The classes are generated: :func:`acausal2d.library.belt.structures.derive_structures`
+derives the structures from the rules (chain, bands, discs, frame, the two
+readings of a structure identified), and this module makes one model class
+per derived structure, built in the reading :data:`DESCRIPTIONS` names (the
+one its skeleton assembles in; the name of Ebert (2015) where it has one, DB~DS)
+with that entry's description; a structure the rules gave without an entry
+would be built in its canonical reading.
 
 How the structures are enumerated (the figures are lost; the rules are
 those of the text): a band replaces a rigid link of a
@@ -36,7 +44,7 @@ cross-slider, band B-B    SB~BS, SSB~B, (band frame) BSSB
 
 ((a): each rigid link carries a pivot and a disc; (b): one rigid link
 carries two discs, the other two pivots), i.e. 18 four-bar structures from
-6 chains and 19 slider structures from 5 chains, against the dissertation's 16
+6 chains and 19 slider structures from 5 chains, against Ebert's (2015) 16
 from 5 starting combinations (Bild 2.6) and 27 from 7 (Bild 2.7, 2.8). The
 stated rules do not reproduce those counts: dropping one of the two-
 structure four-bar chains gives 16, and the slider counts presumably
@@ -72,242 +80,165 @@ code with ``_`` for ``~`` (DB_DD is DB~DD); each class docstring says what
 the structure is.  ``acausal2d simulate models/band_systematics.py --model
 DB_DD`` runs one.
 """
+from acausal2d.library.belt.structures import derive_structures
 from acausal2d.library.belt.systematics import BandStructure
 from acausal2d.library.belt.systematics_two import TwoBandStructure
 
-
-class DB_DD(BandStructure):
-    """DB~DD (4-bar, band D-B): cam disc on a crank pivoted in the frame, band to the tip of a
-    rocker pivoted in the frame."""
-    code = "DB~DD"
-
-
-class D_BDD(BandStructure):
-    """D~BDD (4-bar, band D-B): band from a frame pin to a disc on the coupler, which is pinned
-    to a rocker."""
-    code = "D~BDD"
-
-
-class B_DDD(BandStructure):
-    """B~DDD (4-bar, band D-B): band from a disc fixed in the frame to a pin on the coupler,
-    which is pinned to a rocker."""
-    code = "B~DDD"
-
-
-class DB_BD(BandStructure):
-    """DB~BD (4-bar, band B-B): band between discs on two cranks pivoted in the frame."""
-    code = "DB~BD"
-
-
-class B_BDD(BandStructure):
-    """B~BDD (4-bar, band B-B): band from a disc fixed in the frame to a disc on the coupler,
-    which is pinned to a rocker."""
-    code = "B~BDD"
-
-
-class SB_DD(BandStructure):
-    """SB~DD (slider-crank, band B-D): disc on a slider guided in the frame, band to the tip of
-    a rocker."""
-    code = "SB~DD"
-
-
-class D_BSD(BandStructure):
-    """D~BSD (slider-crank, band B-D): band from a frame pin to a disc on a slider guided on a
-    rocker."""
-    code = "D~BSD"
-
-
-class SDD_B(BandStructure):
-    """SDD~B (slider-crank, band B-D): slider in the frame, coupler pinned to it, band from the
-    coupler's pin to a disc fixed in the frame."""
-    code = "SDD~B"
-
-
-class DB_DS(BandStructure):
-    """DB~DS (slider-crank, band D-B): disc on a crank, band to a slider guided in the frame
-    (Ebert 2015, ch. 7.2.2, 'mit Schieber im Gestell')."""
-    code = "DB~DS"
-
-
-class SDB_D(BandStructure):
-    """SDB~D (slider-crank, band D-B): slider in the frame, a link pinned to it carries a disc,
-    band to a frame pin."""
-    code = "SDB~D"
-
-
-class DSD_B(BandStructure):
-    """DSD~B (slider-crank, band D-B): crank with a guide, the slider's pin holds the band from
-    a disc fixed in the frame."""
-    code = "DSD~B"
-
-
-class SB_BD(BandStructure):
-    """SB~BD (slider-crank, band B-B): disc on a slider guided in the frame, band to a disc on a
-    rocker."""
-    code = "SB~BD"
-
-
-class SDB_B(BandStructure):
-    """SDB~B (slider-crank, band B-B): slider in the frame, a link pinned to it carries a disc,
-    band to a disc fixed in the frame."""
-    code = "SDB~B"
-
-
-class DSB_B(BandStructure):
-    """DSB~B (slider-crank, band B-B): crank with a guide, disc on its slider, band to a disc
-    fixed in the frame."""
-    code = "DSB~B"
-
-
-class SB_DS(BandStructure):
-    """SB~DS (cross-slider, band D-B): disc on a slider guided in the frame, band to a second
-    slider guided in the frame."""
-    code = "SB~DS"
-
-
-class SSB_D(BandStructure):
-    """SSB~D (cross-slider, band D-B): slider in the frame carries the guide of a second slider
-    with a disc, band to a frame pin."""
-    code = "SSB~D"
-
-
-class SSD_B(BandStructure):
-    """SSD~B (cross-slider, band D-B): slider in the frame carries the guide of a second slider,
-    band from its pin to a disc fixed in the frame."""
-    code = "SSD~B"
-
-
-class SB_BS(BandStructure):
-    """SB~BS (cross-slider, band B-B): discs on two sliders guided in the frame, band between
-    them."""
-    code = "SB~BS"
-
-
-class SSB_B(BandStructure):
-    """SSB~B (cross-slider, band B-B): slider in the frame carries the guide of a second slider
-    with a disc, band to a disc fixed in the frame."""
-    code = "SSB~B"
-
-
-class BDDD_frame(BandStructure):
-    """BDDD~, the band as the frame (4-bar, band D-B): a rocker pivoted on the band drives a
-    coupler whose other link carries a disc rolling on the band."""
-    code = "BDDD~"
-
-
-class BDDB_frame(BandStructure):
-    """BDDB~, the band as the frame (4-bar, band B-B): a disc rolling on the band, its link
-    pinned to a driven coupler, whose other link carries a second disc rolling on the
-    band."""
-    code = "BDDB~"
-
-
-class DDSB_frame(BandStructure):
-    """DDSB~, the band as the frame (slider-crank, band B-D): a crank pivoted on the band, a
-    coupler carrying a guide, the slider on it carries a disc rolling on the band."""
-    code = "DDSB~"
-
-
-class DSDB_frame(BandStructure):
-    """DSDB~, the band as the frame (slider-crank, band D-B): a crank pivoted on the band
-    with a guide, its slider's pin carries a link with a disc rolling on the band."""
-    code = "DSDB~"
-
-
-class BDSB_frame(BandStructure):
-    """BDSB~, the band as the frame (slider-crank, band B-B): a disc rolling on the band,
-    its link pinned to a driven coupler carrying a guide, whose slider carries a second
-    rolling disc."""
-    code = "BDSB~"
-
-
-class DSSB_frame(BandStructure):
-    """DSSB~, the band as the frame (cross-slider, band D-B): a crank pivoted on the band
-    with a guide, a slider on it with a second guide, whose slider carries a disc rolling on
-    the band."""
-    code = "DSSB~"
-
-
-class D_BD_B(TwoBandStructure):
-    """D~BD~B (4-bar, 2 bands D-B (a)): a frame pin and a frame disc hold the bands on which
-    the coupler (a disc and a pin) hangs."""
-    code = "D~BD~B"
-
-
-class B_DD_B(TwoBandStructure):
-    """B~DD~B (4-bar, 2 bands D-B (b)): two frame discs hold the bands that hang the coupler
-    by two pins."""
-    code = "B~DD~B"
-
-
-class D_BB_D(TwoBandStructure):
-    """D~BB~D (4-bar, 2 bands D-B (b)): two frame pins hold the bands that wrap two discs on
-    the coupler."""
-    code = "D~BB~D"
-
-
-class B_BD_B(TwoBandStructure):
-    """B~BD~B (4-bar, 2 bands B-B, D-B): a B-B band from a frame disc to a coupler disc, a
-    D-B band from the coupler's pin to a frame disc."""
-    code = "B~BD~B"
-
-
-class D_BB_B(TwoBandStructure):
-    """D~BB~B (4-bar, 2 bands B-B, D-B): a D-B band from a frame pin to a coupler disc, a
-    B-B band from a second coupler disc to a frame disc."""
-    code = "D~BB~B"
-
-
-class B_BB_B(TwoBandStructure):
-    """B~BB~B (4-bar, 2 bands B-B, B-B): two B-B bands between frame discs and coupler
-    discs."""
-    code = "B~BB~B"
-
-
-MODELS = [DB_DD, D_BDD, B_DDD, DB_BD, B_BDD, SB_DD, D_BSD, SDD_B, DB_DS, SDB_D, DSD_B, SB_BD,
-          SDB_B, DSB_B, SB_DS, SSB_D, SSD_B, SB_BS, SSB_B]
-class BSSB_frame(BandStructure):
-    """BSSB~, the band as the frame (cross-slider, band B-B): a disc rolling on the band
-    carries a guide, the coupler slides on it (driven relative to the guide) and carries the
-    guide of a slider with a second rolling disc."""
-    code = "BSSB~"
-
-
-BAND_FRAME = [BDDD_frame, BDDB_frame, DDSB_frame, DSDB_frame, BDSB_frame, DSSB_frame, BSSB_frame]
-TWO_BANDS = [D_BD_B, B_DD_B, D_BB_D, B_BD_B, D_BB_B, B_BB_B]
-
-
-class DB_DB_frame(TwoBandStructure):
-    """DB~DB~, the band as the frame with a second band L2 (4-bar, 2 bands D-B (a)): a crank
-    pivoted on the band frame carries a disc, the band L2 runs to a pin on a wheel rolling on
-    the band frame."""
-    code = "DB~DB~"
-
-
-class DD_BB_frame(TwoBandStructure):
-    """DD~BB~, the band as the frame with a second band L2 (4-bar, 2 bands D-B (b)): the band
-    L2 from the tip of a crank pivoted on the band frame to a disc on a wheel rolling on it."""
-    code = "DD~BB~"
-
-
-class DB_BB_frame(TwoBandStructure):
-    """DB~BB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, D-B): the band
-    L2 from a disc on a crank pivoted on the band frame to a disc on a wheel rolling on it."""
-    code = "DB~BB~"
-
-
-class BB_DB_frame(TwoBandStructure):
-    """BB~DB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, D-B): two
-    wheels rolling on the band frame, the band L2 from a winch disc on the first (driven) to
-    a pin on the second."""
-    code = "BB~DB~"
-
-
-class BB_BB_frame(TwoBandStructure):
-    """BB~BB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, B-B): two
-    wheels rolling on the band frame, the band L2 from a winch disc on the first (driven) to
-    a disc on the second."""
-    code = "BB~BB~"
-
-
-TWO_BANDS_FRAME = [DB_DB_frame, DD_BB_frame, DB_BB_frame, BB_DB_frame, BB_BB_frame]
+DESCRIPTIONS = {
+    "DB~DD":
+     "DB~DD (4-bar, band D-B): cam disc on a crank pivoted in the frame, band to the tip of a "
+     "rocker pivoted in the frame.",
+    "D~BDD":
+     "D~BDD (4-bar, band D-B): band from a frame pin to a disc on the coupler, which is pinned "
+     "to a rocker.",
+    "B~DDD":
+     "B~DDD (4-bar, band D-B): band from a disc fixed in the frame to a pin on the coupler, "
+     "which is pinned to a rocker.",
+    "DB~BD":
+     "DB~BD (4-bar, band B-B): band between discs on two cranks pivoted in the frame.",
+    "B~BDD":
+     "B~BDD (4-bar, band B-B): band from a disc fixed in the frame to a disc on the coupler, "
+     "which is pinned to a rocker.",
+    "SB~DD":
+     "SB~DD (slider-crank, band B-D): disc on a slider guided in the frame, band to the tip of "
+     "a rocker.",
+    "D~BSD":
+     "D~BSD (slider-crank, band B-D): band from a frame pin to a disc on a slider guided on a "
+     "rocker.",
+    "SDD~B":
+     "SDD~B (slider-crank, band B-D): slider in the frame, coupler pinned to it, band from the "
+     "coupler's pin to a disc fixed in the frame.",
+    "DB~DS":
+     "DB~DS (slider-crank, band D-B): disc on a crank, band to a slider guided in the frame "
+     "(Ebert (2015), ch. 7.2.2, 'mit Schieber im Gestell').",
+    "SDB~D":
+     "SDB~D (slider-crank, band D-B): slider in the frame, a link pinned to it carries a disc, "
+     "band to a frame pin.",
+    "DSD~B":
+     "DSD~B (slider-crank, band D-B): crank with a guide, the slider's pin holds the band from "
+     "a disc fixed in the frame.",
+    "SB~BD":
+     "SB~BD (slider-crank, band B-B): disc on a slider guided in the frame, band to a disc on "
+     "a rocker.",
+    "SDB~B":
+     "SDB~B (slider-crank, band B-B): slider in the frame, a link pinned to it carries a disc, "
+     "band to a disc fixed in the frame.",
+    "DSB~B":
+     "DSB~B (slider-crank, band B-B): crank with a guide, disc on its slider, band to a disc "
+     "fixed in the frame.",
+    "SB~DS":
+     "SB~DS (cross-slider, band D-B): disc on a slider guided in the frame, band to a second "
+     "slider guided in the frame.",
+    "SSB~D":
+     "SSB~D (cross-slider, band D-B): slider in the frame carries the guide of a second slider "
+     "with a disc, band to a frame pin.",
+    "SSD~B":
+     "SSD~B (cross-slider, band D-B): slider in the frame carries the guide of a second "
+     "slider, band from its pin to a disc fixed in the frame.",
+    "SB~BS":
+     "SB~BS (cross-slider, band B-B): discs on two sliders guided in the frame, band between "
+     "them.",
+    "SSB~B":
+     "SSB~B (cross-slider, band B-B): slider in the frame carries the guide of a second slider "
+     "with a disc, band to a disc fixed in the frame.",
+    "BDDD~":
+     "BDDD~, the band as the frame (4-bar, band D-B): a rocker pivoted on the band drives a "
+     "coupler whose other link carries a disc rolling on the band.",
+    "BDDB~":
+     "BDDB~, the band as the frame (4-bar, band B-B): a disc rolling on the band, its link "
+     "pinned to a driven coupler, whose other link carries a second disc rolling on the band.",
+    "DDSB~":
+     "DDSB~, the band as the frame (slider-crank, band B-D): a crank pivoted on the band, a "
+     "coupler carrying a guide, the slider on it carries a disc rolling on the band.",
+    "DSDB~":
+     "DSDB~, the band as the frame (slider-crank, band D-B): a crank pivoted on the band with "
+     "a guide, its slider's pin carries a link with a disc rolling on the band.",
+    "BDSB~":
+     "BDSB~, the band as the frame (slider-crank, band B-B): a disc rolling on the band, its "
+     "link pinned to a driven coupler carrying a guide, whose slider carries a second rolling "
+     "disc.",
+    "DSSB~":
+     "DSSB~, the band as the frame (cross-slider, band D-B): a crank pivoted on the band with "
+     "a guide, a slider on it with a second guide, whose slider carries a disc rolling on the "
+     "band.",
+    "BSSB~":
+     "BSSB~, the band as the frame (cross-slider, band B-B): a disc rolling on the band "
+     "carries a guide, the coupler slides on it (driven relative to the guide) and carries the "
+     "guide of a slider with a second rolling disc.",
+    "D~BD~B":
+     "D~BD~B (4-bar, 2 bands D-B (a)): a frame pin and a frame disc hold the bands on which "
+     "the coupler (a disc and a pin) hangs.",
+    "B~DD~B":
+     "B~DD~B (4-bar, 2 bands D-B (b)): two frame discs hold the bands that hang the coupler by "
+     "two pins.",
+    "D~BB~D":
+     "D~BB~D (4-bar, 2 bands D-B (b)): two frame pins hold the bands that wrap two discs on "
+     "the coupler.",
+    "B~BD~B":
+     "B~BD~B (4-bar, 2 bands B-B, D-B): a B-B band from a frame disc to a coupler disc, a D-B "
+     "band from the coupler's pin to a frame disc.",
+    "D~BB~B":
+     "D~BB~B (4-bar, 2 bands B-B, D-B): a D-B band from a frame pin to a coupler disc, a B-B "
+     "band from a second coupler disc to a frame disc.",
+    "B~BB~B":
+     "B~BB~B (4-bar, 2 bands B-B, B-B): two B-B bands between frame discs and coupler discs.",
+    "DB~DB~":
+     "DB~DB~, the band as the frame with a second band L2 (4-bar, 2 bands D-B (a)): a crank "
+     "pivoted on the band frame carries a disc, the band L2 runs to a pin on a wheel rolling "
+     "on the band frame.",
+    "DD~BB~":
+     "DD~BB~, the band as the frame with a second band L2 (4-bar, 2 bands D-B (b)): the band "
+     "L2 from the tip of a crank pivoted on the band frame to a disc on a wheel rolling on it.",
+    "DB~BB~":
+     "DB~BB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, D-B): the band "
+     "L2 from a disc on a crank pivoted on the band frame to a disc on a wheel rolling on it.",
+    "BB~DB~":
+     "BB~DB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, D-B): two "
+     "wheels rolling on the band frame, the band L2 from a winch disc on the first (driven) to "
+     "a pin on the second.",
+    "BB~BB~":
+     "BB~BB~, the band as the frame with a second band L2 (4-bar, 2 bands B-B, B-B): two "
+     "wheels rolling on the band frame, the band L2 from a winch disc on the first (driven) to "
+     "a disc on the second.",
+}
+"""The reading each structure is built in, and what the structure is."""
+
+
+def _reading(structure):
+    """The reading of ``structure`` named in :data:`DESCRIPTIONS`, else its
+    canonical code."""
+    named = [r for r in structure.readings if r in DESCRIPTIONS]
+    return named[0] if named else structure.code
+
+
+def _class_name(code):
+    """``DB~DD`` -> ``DB_DD``; a band as the frame (trailing ``~``) ->
+    ``BDDD_frame``."""
+    return code.replace("~", "_") + ("frame" if code.endswith("~") else "")
+
+
+def _model_class(structure):
+    """The model class of one derived structure."""
+    code = _reading(structure)
+    base = TwoBandStructure if structure.bands == 2 else BandStructure
+    doc = DESCRIPTIONS.get(code, "%s (%s, %d band(s)): derived from the rules."
+                           % (code, structure.chain, structure.bands))
+    return type(_class_name(code), (base,), {"code": code, "__doc__": doc,
+                                             "__module__": __name__,
+                                             "__qualname__": _class_name(code)})
+
+
+STRUCTURES = derive_structures()
+"""The derived structures (:class:`~acausal2d.library.belt.structures.Structure`)."""
+CLASSES = [_model_class(s) for s in STRUCTURES]
+"""One model class per derived structure, in the order of :data:`STRUCTURES`."""
+globals().update({cls.__name__: cls for cls in CLASSES})
+
+MODELS = [c for c in CLASSES if c.code.count("~") == 1 and not c.code.endswith("~")]
+"""The 19 structures with one band that is a moving link."""
+BAND_FRAME = [c for c in CLASSES if c.code.count("~") == 1 and c.code.endswith("~")]
+"""The 7 one-band structures with the band as the frame."""
+TWO_BANDS = [c for c in CLASSES if c.code.count("~") == 2 and not c.code.endswith("~")]
+"""The 6 two-band structures with the bands L1 and L3."""
+TWO_BANDS_FRAME = [c for c in CLASSES if c.code.count("~") == 2 and c.code.endswith("~")]
+"""The 5 two-band structures with the band L2 and the band as the frame."""

@@ -103,6 +103,7 @@ H_MAX = 0.08                  # m
 A_MAX = 0.09                  # m, largest cam radius (assumed, see above)
 X_OPEN = 0.036                # m, spring extension with the door open (chosen for run 1, see above)
 L0_SPRING = 0.10              # m, unloaded spring length
+ROCKER_L = 0.10               # m, door-side rocker A0 -> its joint with the coupler
 DEGREE = 5
 QUASI_STATIC = {"stop_time": SPAN / OMEGA_STATIC, "intervals": 200, "rtol": 1e-9}
 
@@ -110,7 +111,7 @@ QUASI_STATIC = {"stop_time": SPAN / OMEGA_STATIC, "intervals": 200, "rtol": 1e-9
 def _add_door(model):
     """The four-bar door mechanism (module docstring) with a quasi-static
     speed preset on the door-side rocker, into ``model``."""
-    model.rocker = DAN(x10=A0[0], y10=A0[1], lL=0.10, mL=0.05, JL=1e-4, xSLrel=0.05,
+    model.rocker = DAN(x10=A0[0], y10=A0[1], lL=ROCKER_L, mL=0.05, JL=1e-4, xSLrel=0.05,
                        phiL0=PHI_CLOSED)
     model.dyad = DDD(x10=-0.04, y10=-0.06, lL1=0.12, lL2=0.10, K=1, mL1=0.05, JL1=1e-4,
                      xSL1rel=0.06, mL2=2.0, JL2=0.04, xSL2rel=0.0, ySL2rel=-0.25)
@@ -242,16 +243,21 @@ class BalancedDoor(DoorMechanism):
         k_open = float(des.contour.kappa([SPAN])[0])
         v = des.synthesis.evaluate([0.0])
         gamma = math.atan2(B0[1] - v["y_u"][0], B0[0] - v["x_u"][0])
-        # the drum's angle is the cam angle: housing turned by -PHI_CLOSED
-        self.cam = CurvedDrum(des.contour.contour, w_i=1, x10=A0[0], y10=A0[1], phi10=-PHI_CLOSED,
+        # the cam sits on the rocker, its axis on the rocker's pivot A0 (the
+        # offset -lL from the rocker's end in the rocker's frame, Anhang A.1)
+        # and locked to it; its housing is turned by -PHI_CLOSED so that the
+        # cam angle is the rocker's angle from the closed door
+        self.cam = CurvedDrum(des.contour.contour, w_i=1, x10=-ROCKER_L, y10=0.0,
+                              phi10=-PHI_CLOSED,
                               alpha_fix=k_closed + 0.1 * math.copysign(1.0, k_closed - k_open),
                               kappa1=start(k_closed))
+        self.connect(self.rocker.ctr2D2, self.cam.ctr2D1)
+        self.connect(self.cam.ctrR1, self.cam.ctrR2)
         self.spring = SpringBelt(k=C_SPRING, l0=L0_SPRING, gamma=start(gamma),
                                  l_dF=start(des.x_closed, fixed=True))
         self.B0 = Fixed(r=B0)
         connect_band(self, self.spring, 1, self.cam, 1)
         self.connect(self.spring.ctr2D2, self.B0.frame)
-        self.connect(self.cam.ctrR, self.rocker.ctrR2)
 
     def write_outputs(self, res, folder):
         """Drive torque of the balanced door against the required torque."""

@@ -371,15 +371,19 @@ class CableCrane(Component):
             setattr(self, name, Drum(r=R_DRUM, x10=x0, y10=y0, w_i=-w, J=J_DRUM, n_wound=N_WOUND))
         self.anchor = Fixed(r=ANCHOR)
         self.top = Fixed(r=TOP)
-        phi1, phi2 = drum_angles(strokes)
+        self._drives(*drum_angles(strokes))
+        for rope, nodes in ROPES.items():
+            self._rope(rope, nodes, forces[rope], pose, st0["hook"])
+
+    def _drives(self, phi1, phi2):
+        """The "rigid" drum drives of Bild 8.3: each drum's angle follows
+        its motion law (``phi1``, ``phi2``: functions of time)."""
         self.drive1, self.drive2 = rotational.Position(), rotational.Position()
         self.law1, self.law2 = TimeFunction(phi1), TimeFunction(phi2)
         self.connect(self.law1.y, self.drive1.phi_in)
         self.connect(self.law2.y, self.drive2.phi_in)
         self.connect(self.drive1.flange, self.D1.ctrR2)
         self.connect(self.drive2.flange, self.D2.ctrR2)
-        for rope, nodes in ROPES.items():
-            self._rope(rope, nodes, forces[rope], pose, st0["hook"])
 
     def _rope(self, rope, nodes, F, pose, hook):
         """The spans of one rope along its ``nodes``, pretensioned to F."""

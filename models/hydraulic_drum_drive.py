@@ -134,24 +134,11 @@ class DrumString(Component):
             self.connect(a, b)
 
 
-class HydraulicDrumDrive(Component):
-    """Diesel -- splitter gear -- pressure-controlled pump -- line (volume,
-    relief valve) -- two speed-controlled motors with planetary stages and
-    drums (module docstring: data and what is assumed)."""
-    experiment = {"stop_time": 6.0, "intervals": 600, "rtol": 1e-7}
-    outputs = ["diesel.w", "line.p", "pump_control.y_value", "hoist.drum.w", "haul.drum.w",
-               "hoist.control.y_value", "haul.control.y_value"]
-
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self._diesel()
-        self._hydraulics()
-        for name, (vg, force, mass, w_set, t0) in DRUMS.items():
-            setattr(self, name, DrumString(vg=vg, force=force, mass=mass, w_set=w_set,
-                                           t_start=t0))
-            string = getattr(self, name)
-            self.connect(self.line.port, string.motor.port_a)
-            self.connect(string.motor.port_b, self.tank.port)
+class DriveUnit:
+    """The drive unit of Bild 8.6 up to the line (mixin of a Component):
+    speed-controlled diesel, splitter gear, pressure-controlled pump, line
+    volume, relief valve, leakage and tank (module docstring: the assumed
+    data).  The consumers connect to ``line.port`` and ``tank.port``."""
 
     def _diesel(self):
         self.diesel = rotational.Inertia(J=2.5, phi=start(0.0, fixed=True),
@@ -190,3 +177,23 @@ class HydraulicDrumDrive(Component):
                      (self.p_set.y, self.pump_control.u_s), (self.p_norm.y, self.pump_control.u_m),
                      (self.pump_control.y, self.pump.alpha)]:
             self.connect(a, b)
+
+
+class HydraulicDrumDrive(DriveUnit, Component):
+    """Diesel -- splitter gear -- pressure-controlled pump -- line (volume,
+    relief valve) -- two speed-controlled motors with planetary stages and
+    drums (module docstring: data and what is assumed)."""
+    experiment = {"stop_time": 6.0, "intervals": 600, "rtol": 1e-7}
+    outputs = ["diesel.w", "line.p", "pump_control.y_value", "hoist.drum.w", "haul.drum.w",
+               "hoist.control.y_value", "haul.control.y_value"]
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self._diesel()
+        self._hydraulics()
+        for name, (vg, force, mass, w_set, t0) in DRUMS.items():
+            setattr(self, name, DrumString(vg=vg, force=force, mass=mass, w_set=w_set,
+                                           t_start=t0))
+            string = getattr(self, name)
+            self.connect(self.line.port, string.motor.port_a)
+            self.connect(string.motor.port_b, self.tank.port)

@@ -12,6 +12,8 @@ result's geometry independently of the model's equations:
 
 The tolerances follow from the run's rtol = 1e-10 on positions and forces
 of order 0.1 m and 10 N (relative residuals 1e-7 leave a factor of 1000)."""
+import collections
+import itertools
 import os
 import sys
 
@@ -184,6 +186,61 @@ def test_structure_static_and_power_balance(cls):
     assert np.max(np.abs(residual)) < REL * np.max(np.abs(p_drive))
     ratio = _load_power(res, model) / model.load_value / res["drive.w"]
     assert np.ptp(ratio) > 1e-3 * np.max(np.abs(ratio))        # not a constant ratio
+
+
+def _independent_enumeration():
+    """The structures by brute force over the code grammar, written without
+    the derivation's chain-bands-discs-frame construction: every string of
+    four joints from D, S, B with one or two '~' marks (after a joint: the
+    link to the next joint, cyclically, is a band), kept if
+
+    * two bands are never adjacent;
+    * a band's two joints are D or B (no S), at least one B;
+    * a B is at a band's end (it is the band's disc);
+    * replacing every B by D leaves a chain with at most two S;
+
+    and identified with its reading from the other side (joints reversed,
+    the band marks moved with the links).  Returns {canonical code: both
+    codes}."""
+    found = {}
+    for joints in itertools.product("DSB", repeat=4):
+        for marks in itertools.chain(itertools.combinations(range(4), 1),
+                                     itertools.combinations(range(4), 2)):
+            if len(marks) == 2 and marks[1] - marks[0] in (1, 3):
+                continue
+            ends = [(joints[k], joints[(k + 1) % 4]) for k in marks]
+            if any("S" in e or "B" not in e for e in ends):
+                continue
+            at_band = {j for k in marks for j in (k, (k + 1) % 4)}
+            if any(ch == "B" and i not in at_band for i, ch in enumerate(joints)):
+                continue
+            if joints.count("S") > 2:
+                continue
+            code = "".join(j + ("~" if i in marks else "") for i, j in enumerate(joints))
+            rev = "".join(joints[::-1][i] + ("~" if (2 - i) % 4 in marks else "")
+                          for i in range(4))
+            found.setdefault(min(code, rev), {code, rev})
+    return found
+
+
+def test_the_derived_structures_are_complete():
+    """The derivation from the rules (library/belt/structures.py) and the
+    brute-force enumeration above give the same 37 structures: 18 four-bar,
+    12 slider-crank and 7 cross-slider structures from 6 + 3 + 2 chains
+    with bands; the models file makes one class of each, named by the
+    reading it is built in."""
+    from acausal2d.library.belt.structures import derive_structures, derived_chains
+    derived = {s.code: set(s.readings) for s in derive_structures()}
+    assert derived == _independent_enumeration()
+    chains = collections.Counter(s.chain for s in derive_structures())
+    assert chains == {"4-bar": 18, "slider-crank": 12, "cross-slider": 7}
+    assert derived_chains() == {"4-bar": 6, "slider-crank": 3, "cross-slider": 2,
+                                "slotted slider": 0}
+    built = {c.code for c in bs.CLASSES}
+    assert len(built) == len(bs.CLASSES) == 37
+    assert {min(r) for r in derived.values() for c in built if c in r} == set(derived)
+    for c in bs.CLASSES:
+        assert getattr(bs, c.__name__) is c
 
 
 def test_every_structure_has_its_own_class():

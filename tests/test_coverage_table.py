@@ -22,7 +22,7 @@ def rows():
 
 def test_every_row_of_the_seed_table_is_there_once():
     expected = {"D%d" % k for k in range(1, 78)} | {"D27" + c for c in "abcdef"} | \
-        {"D10a", "D62a"} | {"T%d" % k for k in range(1, 30)}
+        {"D10a", "D10b", "D62a"} | {"T%d" % k for k in range(1, 30)}
     assert set(rows()) == expected
 
 

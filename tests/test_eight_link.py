@@ -78,6 +78,14 @@ def test_power_balance_kinematic(model_module):
         s = res[out]
         assert abs(s[-1] - s[0]) < 1e-9 and np.ptp(s) > 5e-3
     assert np.max(np.abs(res["relC0C.s_rel"] - res["sDS1.xG1"])) < 1e-12
+    # all five sliders have a travel range (Ebert 2015, Bild 7.4), the DSD's
+    # the range of its own travel xG (the guide runs from its pivot P1)
+    from acausal2d.analysis.slider_ranges import slider_ranges
+    ranges = {r.name: r for r in slider_ranges(res)}
+    assert sorted(ranges) == ["dSD1", "sDS1[1]", "sDS1[2]", "sSD1[1]", "sSD1[2]"]
+    xG = res["dSD1.xG"]
+    assert abs(ranges["dSD1"].s_min - np.min(xG)) < 1e-9
+    assert abs(ranges["dSD1"].s_max - np.max(xG)) < 1e-9 and ranges["dSD1"].stroke > 5e-3
 
 
 def test_force_driven_conserves_energy(model_module):

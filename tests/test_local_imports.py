@@ -48,6 +48,12 @@ SITES = {
     ("acausal2d/analysis/fit.py", "acausal2d.analysis.optimality"): "imports scipy.optimize",
     ("library/linkage/base.py", "acausal2d.library"):
         "the module defines a function 'translational' and planar imports linkage",
+    ("acausal2d/compiled.py", "acausal2d.visual.diagram"):
+        "the diagram's layout loads networkx (COSTLY): only when a diagram is drawn",
+    ("acausal2d/explore/runner.py", "acausal2d.visual.diagram"):
+        "the diagram's layout loads networkx (COSTLY): once per explored model",
+    ("library/belt/placement.py", "acausal2d.library"):
+        "the linkage imports planar, which imports the belts: a module-level import is a cycle",
 }
 """(file, imported module) -> reason, for the sites no rule above covers."""
 

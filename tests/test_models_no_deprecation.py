@@ -23,17 +23,7 @@ OPEN_INPUTS = {("clutch_motor.py", "ClutchMotor"): "brake.tau_in",
 their own, so they are instantiated but not compiled here."""
 
 
-STILL_DEPRECATED = {("cabinet_door.py", "BalancedDoor"):
-                    "the cam turns with the rocker about a housing turned by -PHI_CLOSED: "
-                    "it needs the relative flange ctrR (no relative angle source or turned "
-                    "contour exists yet to express it with ctrR1/ctrR2)"}
-DISC_ON_A_LINK = ("a disc carried by a linkage element takes its start from the former x0, y0: "
-                  "the start poses of library/belt/placement.py do not follow the linkage "
-                  "elements' frames yet (library/belt/systematics.py:_disc)")
-STILL_DEPRECATED.update({("band_systematics.py", name): DISC_ON_A_LINK for name in (
-    "D_BSD", "DB_DS", "SDB_D", "SB_BD", "SDB_B", "DSB_B", "SB_DS", "SSB_D", "DB_DD", "D_BDD",
-    "DB_BD", "B_BDD", "SB_BS", "SB_DD", "SSB_B", "B_BB_B", "DB_DB_frame", "DD_BB_frame",
-    "DB_BB_frame", "BB_DB_frame", "BB_BB_frame", "D_BD_B", "D_BB_D", "B_BD_B", "D_BB_B")})
+STILL_DEPRECATED: dict = {}
 """Models still on a former name; strict xfail: fixing one fails here as a
 reminder to drop it from this list."""
 

@@ -1,10 +1,12 @@
-"""Tiered execution (issue 30, acausal2d.runtime.tiers): a run whose
-structure has no library starts on the Python path while a background
-worker compiles it; a library that appears during a run is taken up; two
-processes compiling one structure at once publish one library; a failed
-background compile is said once and the run stays on the Python path; and
-the answer does not depend on the tier (per model, to the integration
-tolerance, with the same events)."""
+"""The native engine's two rules (acausal2d.runtime.tiers): a run whose
+structure has a library in the cache uses it; one that has none runs on the
+Python path alone - nothing is compiled or waited for during it, its IDA
+takes the steps of the Python path - and a detached worker compiles the
+library after the run, where a later run finds it.  The engine is a field
+of the run's options; two processes compiling one structure at once publish
+one library; a failed background compile is said once and the run stays on
+the Python path; and the answer does not depend on the engine (per model,
+to the integration tolerance, with the same events)."""
 import os
 import subprocess
 import sys
@@ -13,6 +15,7 @@ import numpy as np
 import pytest
 
 import acausal2d
+from acausal2d.options import RunOptionError
 from acausal2d.runtime import background, cbuild, cstore, native, tiers
 from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
 from tiers_support import agree as _agree
@@ -29,14 +32,13 @@ pytestmark = NEEDS_NATIVE
 def auto(tmp_path, monkeypatch):
     """Mode auto with an empty cache of its own and this process's queue."""
     folder = fresh_cache(tmp_path, monkeypatch)
-    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)   # no library is small enough to wait
     yield folder
-    background.wait(lambda: False, WAIT)
+    assert background.wait(WAIT)
 
 
-def _run(model, stop_time=0.5, rtol=1e-8):
+def _run(model, stop_time=0.5, rtol=1e-8, **options):
     cm = acausal2d.compile_model(model)
-    res = cm.simulate(stop_time=stop_time, rtol=rtol, intervals=200)
+    res = cm.simulate(stop_time=stop_time, rtol=rtol, intervals=200, **options)
     form = next(iter(cm.system._formulations.values()))
     return res, form
 
@@ -46,36 +48,46 @@ def _libraries(folder):
 
 
 def test_a_run_before_the_library_exists_takes_the_python_path(auto, capfd, monkeypatch):
-    res, form = _run(PistonEngine())
+    workers = []             # workers of this process at each step of the run
+
+    def progress(t, t_end):
+        workers.append(len(background._workers))
+    res, form = _run(PistonEngine(), progress=progress)
+    assert len(workers) > 2 and max(workers[:-1]) == 0     # none during the run (the last
+    #                                                        call: after it, at its end)
     err = capfd.readouterr().err
     assert err.count("compiling native code for PistonEngine in the background") == 1
-    assert background.wait(lambda: False, WAIT) is False and not background.pending()
+    assert len(background._workers) == 1                   # launched after it
+    assert background.wait(WAIT) and not background.pending()
     assert len(_libraries(auto)) == 1                      # published by the worker
     again, form2 = _run(PistonEngine())                   # a later run finds it
     assert native.library(form2) is not None
     assert "in the background" not in capfd.readouterr().err
-    monkeypatch.setenv(tiers.ENV, "off")
-    ref, _ = _run(PistonEngine())
+    ref, _ = _run(PistonEngine(), native="off")
+    # the first run's IDA ran alone on the Python path: the steps of the Python path
+    assert res.stats["steps"] == ref.stats["steps"]
+    assert res.stats["segments"] == ref.stats["segments"]
     _agree(res, ref, ("revoluteDrive.phi", "revoluteDrive.w", "prismatic.s"), 1e-8)
     _agree(again, ref, ("revoluteDrive.phi", "revoluteDrive.w", "prismatic.s"), 1e-8)
 
 
-def test_a_library_that_appears_during_a_run_is_taken_up(auto, monkeypatch):
-    def wait_for_it(self, t, t_left, now, ready):      # as if the run were long
-        self.decided = True
-        background.release()                            # held since its launch: it goes on
-        assert background.wait(ready, WAIT)
-        self.notes.append("waited")
-    monkeypatch.setattr(background.Tiering, "decide", wait_for_it)
-    res, form = _run(Pendulum(), stop_time=3.0)
-    assert any(n.startswith("native loop from t=") for n in res.native_notes), res.native_notes
-    t_switch = float([n for n in res.native_notes if n.startswith("native")][0].split("t=")[1]
-                     .split()[0])
-    first = 3.0 / background.CHUNKS                        # the first checkpoint: its output time
-    assert first - 1e-9 <= t_switch <= first + 3.0 / 200 + 1e-9, t_switch
-    monkeypatch.setenv(tiers.ENV, "off")
-    ref, _ = _run(Pendulum(), stop_time=3.0)
-    _agree(res, ref, ("revolute.phi", "revolute.w"), 1e-8)
+def test_the_engine_is_chosen_per_run(auto, monkeypatch):
+    """``native`` of the run's options over ``$ACAUSAL2D_NATIVE`` (auto
+    here), run by run in one process: ``now`` compiles first and runs
+    natively, ``off`` then runs on the Python path with the library there."""
+    calls = []
+    real = native.NativeIDA.run
+    monkeypatch.setattr(native.NativeIDA, "run",
+                        lambda self, *a: calls.append(1) or real(self, *a))
+    fast, form = _run(Pendulum(), native="now")
+    assert calls and native.library(form, "now") is not None
+    assert fast.stats["native_compile_time"] > 0.0
+    del calls[:]
+    slow, form2 = _run(Pendulum(), native="off")
+    assert calls == [] and native.library(form2, "off") is None
+    _agree(fast, slow, ("revolute.phi", "revolute.w"), 1e-8)
+    with pytest.raises(RunOptionError, match="native"):
+        acausal2d.RunOptions(native="sometimes")
 
 
 def test_two_processes_compiling_one_structure_publish_one_library(tmp_path):
@@ -100,7 +112,7 @@ def test_a_failed_background_compile_is_said_once_and_stays_on_python(auto, capf
                                                                      monkeypatch):
     monkeypatch.setenv("CC", "/bin/false")
     res, form = _run(PistonEngine())
-    background.wait(lambda: False, WAIT)
+    assert background.wait(WAIT)
     marker = [f for f in os.listdir(auto) if f.endswith(".failed")]
     assert marker, os.listdir(auto)
     assert "failed (exit 1)" in (auto / marker[0]).read_text()
@@ -118,29 +130,13 @@ def test_a_failed_background_compile_is_said_once_and_stays_on_python(auto, capf
     _agree(again, ref, ("revoluteDrive.phi", "prismatic.s"), 1e-8)
 
 
-def test_a_small_library_is_compiled_first_and_a_failure_said_once(auto, capfd, monkeypatch):
-    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 1e9)   # every library is small
-    res, form = _run(Pendulum())
-    assert native.library(form) is not None                # in this run, not in the background
-    assert any(n.startswith("compile first: a2d_model is small") for n in res.native_notes)
-    err = capfd.readouterr().err
-    assert "before the run" not in err
-    monkeypatch.setenv(cbuild.CACHE_ENV, str(auto) + "-2")
+def test_a_compile_first_that_fails_keeps_the_python_path(auto, capfd, monkeypatch):
     monkeypatch.setenv("CC", "/bin/false")
-    said = []
-    for _ in range(3):              # the first fails (and may say so), each failure said once
-        again, form2 = _run(Pendulum())
-        background.wait(lambda: False, WAIT)               # the maps' library (not small)
-        assert native.library(form2) is None
-        said.append([line for line in capfd.readouterr().err.splitlines()
-                     if "compile of native code for Pendulum failed" in line])
-    lines = said[0] + said[1] + said[2]
-    assert lines and len(set(lines)) == len(lines) and not said[2], said
-    assert any(f.endswith(".failed") for f in os.listdir(str(auto) + "-2"))
-    monkeypatch.setenv(tiers.ENV, "off")
-    ref, _ = _run(Pendulum())
+    res, form = _run(Pendulum(), native="now")
+    assert native.library(form, "now") is None
+    assert "Traceback" not in capfd.readouterr().err
+    ref, _ = _run(Pendulum(), native="off")
     _agree(res, ref, ("revolute.phi", "revolute.w"), 1e-8)
-    _agree(again, ref, ("revolute.phi", "revolute.w"), 1e-8)
 
 
 SEPARATED = 0.01     # s: events further apart than this are compared one by one

@@ -1,25 +1,19 @@
 """How the background worker and the foreground build native code (issue
-30, a cheaper compile): a large library is published at -O0 first and
-replaced by its -O1 build; the drivers' constant C is compiled once per
+30, a cheaper compile): the drivers' constant C is compiled once per
 machine into cached, verified object files that every structure's library
-links; a small model's first run compiles first only where those objects
-are there; a run whose Python path ends before the compile goes on in one
-piece, its worker held until the run ends; the row maps are not compiled
-where the C projector serves; and the worker compiles two libraries at
-once, their C generated in its main thread."""
+links; the row maps are not compiled where the C projector serves; and the
+worker compiles two libraries at once, their C generated in its main
+thread."""
 import os
-import pickle
-import subprocess
 import sys
 import threading
-import time
 import types
 
 import pytest
 
 import acausal2d
-from acausal2d.runtime import (background, cbuild, codegen, cstore, native, projection,
-                               simulation, tiers)
+from acausal2d.runtime import (background, cbuild, cstore, projection,
+                               tiers)
 from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
 from tiers_support import agree as _agree
 
@@ -38,60 +32,12 @@ def cache(tmp_path, monkeypatch):
     folder = fresh_cache(tmp_path, monkeypatch)
     yield folder
     assert not background._queue                           # every library asked for is built
-    background.wait(lambda: False, WAIT)
+    assert background.wait(WAIT)
 
 
 def _run(model, stop_time=0.5, rtol=1e-8, intervals=200):
     cm = acausal2d.compile_model(model)
     return cm.simulate(stop_time=stop_time, rtol=rtol, intervals=intervals)
-
-
-def test_a_large_library_is_published_at_O0_first_then_replaced_at_O1(cache, monkeypatch):
-    launch = background.launch
-    monkeypatch.setattr(background, "launch", lambda label=None, held=False: False)
-    monkeypatch.setattr(simulation, "launch", lambda label=None, held=False: False)
-    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)
-    _run(Pendulum())
-    jobs = [(key, recipe) for key, recipe, _ in background._queue]
-    del background._queue[:]                               # this test is the worker
-    assert "a2d_model" in [recipe.name for _, recipe in jobs]
-    path = str(cache / ".tmp-job-test")
-    with open(path, "wb") as fh:
-        pickle.dump(jobs, fh)
-    builds, published = [], []
-    real_build, real_publish = cbuild.build, cbuild.publish_index
-
-    def build(sources, flags=(), **kw):
-        out = real_build(sources, flags=flags, **kw)
-        builds.append((kw.get("name"), list(flags), out))
-        return out
-
-    def publish(key, name, lib):
-        published.append((name, lib))
-        real_publish(key, name, lib)
-    monkeypatch.setattr(cbuild, "build", build)
-    monkeypatch.setattr(cbuild, "publish_index", publish)
-    monkeypatch.setattr(codegen, "QUICK_FROM", 0)         # every library is large
-    monkeypatch.setattr(codegen, "QUICK_BODY", 0)         # and long
-    monkeypatch.setattr(os, "nice", lambda inc: 0)         # the worker's, not this process's
-    background._work(path)
-    model = [(flags, out) for name, flags, out in builds if name == "a2d_model"]
-    assert [("-O0" in f, "-O1" in f) for f, _ in model] == [(True, False), (False, True)]
-    quick, full = model[0][1], model[1][1]
-    assert [lib for name, lib in published if name == "a2d_model"] == [quick, full]
-    key = next(key for key, recipe in jobs if recipe.name == "a2d_model")
-    assert cbuild.lookup(key, "a2d_model") == full
-    assert not os.path.exists(quick)                       # the -O0 file went
-    assert not os.path.exists(path)                        # the job file too
-    monkeypatch.setattr(background, "_seen", set())
-    monkeypatch.setattr(background, "launch", launch)     # workers again for the rest
-    monkeypatch.setattr(simulation, "launch", launch)
-    cm = acausal2d.compile_model(Pendulum())               # finds the -O1 library
-    with_full = cm.simulate(stop_time=0.5, rtol=1e-8, intervals=200)
-    assert native.library(next(iter(cm.system._formulations.values()))) is not None
-    monkeypatch.setenv(tiers.ENV, "off")
-    ref = _run(Pendulum())
-    _agree(with_full, ref, ("revolute.phi", "revolute.w"), 1e-8)
 
 
 def _objects(folder):
@@ -129,46 +75,15 @@ def test_the_drivers_are_compiled_once_and_verified(cache, monkeypatch, capfd):
     _agree(third, _run(PistonEngine()), ("revoluteDrive.phi", "prismatic.s"), 1e-8)
 
 
-def test_a_small_model_compiles_first_only_with_the_drivers_there(cache, monkeypatch):
-    res = _run(PistonEngine())
-    assert not any(n.startswith("compile first") for n in res.native_notes), res.native_notes
-    background.wait(lambda: False, WAIT)                   # the worker compiled the drivers
-    assert _objects(cache)
-    again = _run(Pendulum())                                # a new small structure
-    assert any(n.startswith("compile first: a2d_model is small") for n in again.native_notes), \
-        again.native_notes
-
-
-def test_a_run_whose_python_path_ends_before_the_compile_goes_on_in_one_piece(cache,
-                                                                              monkeypatch):
-    """The checkpoint decides without ending the call of IDA: the run takes
-    the same steps as the Python path alone, its worker held until the end."""
-    monkeypatch.setattr(tiers, "FOREGROUND_BELOW", 0.0)
-    monkeypatch.setattr(background, "expected_left", lambda: 1e6)   # a compile of ages
-    held = []
-    monkeypatch.setattr(background.Tiering, "held",
-                        lambda self, now: held.append(bool(background._holds)))
-    res = _run(Pendulum(), stop_time=2.0)
-    assert held == [True]                                  # launched held
-    assert res.stats["segments"] == 1
-    assert any(n.startswith("Python path: it needs about") and "waits for the run's end" in n
-               for n in res.native_notes), res.native_notes
-    assert not background._holds                           # released at the run's end
-    monkeypatch.setenv(tiers.ENV, "off")
-    ref = _run(Pendulum(), stop_time=2.0)
-    assert ref.stats["segments"] == 1 and res.stats["steps"] == ref.stats["steps"]
-    _agree(res, ref, ("revolute.phi", "revolute.w"), 1e-8)
-
-
 def test_the_row_maps_are_compiled_only_where_the_c_projector_cannot_serve(cache,
                                                                           monkeypatch):
     monkeypatch.setenv(tiers.ENV, "now")
     asked = []
     real = projection.compiled
 
-    def compiled(functions):
+    def compiled(functions, chosen=None):
         asked.extend(functions)
-        return real(functions)
+        return real(functions, chosen)
     monkeypatch.setattr(projection, "compiled", compiled)
     res = _run(Pendulum())
     assert not [name for name in asked if name.startswith(("E_rows", "J_rows"))], asked
@@ -176,82 +91,13 @@ def test_the_row_maps_are_compiled_only_where_the_c_projector_cannot_serve(cache
     _agree(res, _run(Pendulum()), ("revolute.phi", "revolute.w"), 1e-8)
 
 
-def test_a_held_worker_waits_for_the_release(tmp_path, monkeypatch):
-    """The lock of :func:`background.hold`: a worker process (here one that
-    only waits at ``_held`` and then writes a file) goes on only after
-    :func:`background.release`."""
-    monkeypatch.setattr(background, "_holds", {})
-    job = str(tmp_path / "job")
-    background._holds[job + background.HOLD] = os.open(job + background.HOLD,
-                                                       os.O_CREAT | os.O_RDWR, 0o600)
-    background.hold()
-    done = tmp_path / "went on"
-    code = ("import sys; from acausal2d.runtime import background; "
-            "background._held(sys.argv[1]); open(sys.argv[2], 'w').close()")
-    proc = subprocess.Popen([sys.executable, "-c", code, job, str(done)])
-    try:
-        with pytest.raises(subprocess.TimeoutExpired):
-            proc.wait(timeout=2.0)                     # held: still waiting
-        assert not done.exists()
-        background.release()
-        assert proc.wait(timeout=WAIT) == 0
-        assert done.exists() and not background._holds
-    finally:
-        proc.kill()
-
-
-@pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="reads /proc/PID/maps")
-def test_a_worker_launched_held_waits_before_it_imports_then_builds(cache, monkeypatch):
-    """:data:`background.BOOT`: held, the worker has started Python only
-    (no CasADi in its memory map); released, it builds and publishes."""
-    import casadi as ca
-    x = ca.SX.sym("x")
-    recipe = codegen.Recipe("a2d_held", [("plain", [ca.Function("f", [x], [ca.sin(x) * x])])])
-    background.queue("held-test-key", recipe, "HeldTest")
-    monkeypatch.setattr(background, "_holds", {})
-    assert background.launch(held=True)
-    proc = background._workers[-1][0]
-    try:
-        time.sleep(1.0)                                    # Python has long started by now
-        assert proc.poll() is None                         # waiting, not ended
-        with open("/proc/%d/maps" % proc.pid) as fh:
-            assert "casadi" not in fh.read()
-        assert cbuild.lookup("held-test-key", "a2d_held") is None
-        background.release()
-        assert proc.wait(timeout=WAIT) == 0
-        assert cbuild.lookup("held-test-key", "a2d_held") is not None
-    finally:
-        proc.kill()
-
-
-def test_a_run_that_outlives_its_estimate_releases_its_worker(tmp_path, monkeypatch):
-    """The estimate from the first piece can be far off (the compressor's
-    valves start after it): past :data:`background.HELD_AT_MOST` times the
-    estimated rest the held worker is released, so that formulations met
-    later in the run may use its library."""
-    monkeypatch.setattr(background, "_holds", {})
-    job = str(tmp_path / "job")
-    background._holds[job + background.HOLD] = os.open(job + background.HOLD,
-                                                       os.O_CREAT | os.O_RDWR, 0o600)
-    monkeypatch.setattr(background.Tiering, "active", lambda self: True)
-    monkeypatch.setattr(background, "expected_left", lambda: 10.0)
-    tiering = background.Tiering()
-    tiering.begin(0.0, 100.0, 4.0)
-    tiering.decide(1.0, 1.0, 101.0, lambda: False)        # rest 1 s < compile 10 s: held
-    assert tiering.gave_up and background._holds
-    limit = 101.0 + background.HELD_AT_MOST * 1.0 + 0.5
-    tiering.overdue(limit - 0.01)
-    assert background._holds                               # within the estimate: still held
-    tiering.overdue(limit + 0.01)
-    assert not background._holds
-    assert tiering.notes[-1].startswith("the run outlived its estimate")
-
-
 class _Slow:
-    """A recipe whose C takes a while to compile, or cannot be generated."""
+    """A recipe whose compile runs until another one runs beside it (at
+    most ``WAIT`` s), or whose C cannot be generated; ``running`` counts the
+    compiles running at once (shared by the recipes of one test)."""
 
-    def __init__(self, name, fails=False):
-        self.name, self.fails, self.events = name, fails, []
+    def __init__(self, name, running, fails=False):
+        self.name, self.fails, self.events, self.running = name, fails, [], running
 
     def code(self):                        # made once, as Recipe.code
         if getattr(self, "_code", None) is None:
@@ -261,14 +107,16 @@ class _Slow:
             self._code = "/* %s */" % self.name
         return self._code
 
-    def builds_twice(self):
-        return False
-
-    def make(self, quick=False):
+    def make(self):
         self.code()
-        self.events.append(("start", time.perf_counter()))
-        time.sleep(0.3)
-        self.events.append(("end", time.perf_counter()))
+        with self.running["lock"]:
+            self.running["now"] += 1
+            self.running["most"] = max(self.running["most"], self.running["now"])
+            self.running["lock"].notify_all()
+            # the first two wait until both run: one at a time would end here after WAIT s
+            together = self.running["lock"].wait_for(lambda: self.running["most"] >= 2, WAIT)
+            self.running["now"] -= 1
+        self.events.append(("together", together))
         return "/nonexistent/%s.so" % self.name
 
 
@@ -278,7 +126,8 @@ def test_the_worker_compiles_two_libraries_at_once_and_generates_in_one_thread(
     monkeypatch.setattr(cbuild, "publish_index", lambda key, name, lib: published.append(name))
     monkeypatch.setattr(os, "nice", lambda inc: 0)         # the worker's, not this process's
     monkeypatch.setattr(background, "BUILDS_AT_ONCE", 2)
-    jobs = [("k%d" % i, _Slow("lib%d" % i, fails=(i == 3))) for i in range(4)]
+    running = {"lock": threading.Condition(), "now": 0, "most": 0}
+    jobs = [("k%d" % i, _Slow("lib%d" % i, running, fails=(i == 3))) for i in range(4)]
     os.makedirs(cache, exist_ok=True)
     path = str(cache / ".tmp-job-test")
     with open(path, "wb") as fh:
@@ -288,9 +137,8 @@ def test_the_worker_compiles_two_libraries_at_once_and_generates_in_one_thread(
     main = threading.current_thread().name
     for _, recipe in jobs:                 # CasADi (the C's generation): this thread only
         assert {who for what, who in recipe.events if what == "generate"} == {main}
-    times = {r.name: dict((w, t) for w, t in r.events if w in ("start", "end")) for _, r in jobs}
-    assert times["lib1"]["start"] < times["lib0"]["end"]    # compiled beside each other
-    assert times["lib2"]["start"] >= times["lib0"]["end"]   # BUILDS_AT_ONCE at most
+    assert running["most"] == 2                              # two at once, BUILDS_AT_ONCE at most
+    assert all(dict(r.events).get("together") for _, r in jobs[:2])
     assert sorted(published) == ["lib0", "lib1", "lib2"]
     marker = background.failure_path("k3", "lib3")          # the failure recorded
     with open(marker, encoding="utf-8") as fh:

@@ -15,7 +15,7 @@ import sys
 import numpy as np
 import pytest
 
-from acausal2d.io import private_dir
+from acausal2d.runtime import private_dir
 from acausal2d.runtime import cbuild, cstore, native
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

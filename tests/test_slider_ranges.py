@@ -66,3 +66,57 @@ def test_simulate_prints_the_ranges(tmp_path, capsys):
     assert code == 0
     line = [s for s in capsys.readouterr().out.splitlines() if "slider dyad" in s]
     assert line and "stroke 0.2 m" in line[0], line
+
+
+def test_dsd_slider_has_its_range():
+    """The slider of a DSD (the swinging crank-slider DDSD of
+    models/four_link_mechanisms.py: guide pivot B0 = (-0.25, 0), crank pin
+    at radius 0.1 from the origin, offset v = 0.02) travels from P1 by
+    xG = sqrt(|P2 - B0|^2 - v^2), |P2 - B0| between 0.15 and 0.35 m (pin at
+    phi = pi and 0, both output points): the range follows this closed
+    form; before, the DSD drew no guide and had no range."""
+    res = acausal2d.simulate(flm.DDSD(), stop_time=1.0, intervals=200, rtol=1e-8)
+    (rng,) = [r for r in slider_ranges(res) if r.name == "dyad"]
+    v = 0.02
+    assert abs(rng.s_min - np.sqrt(0.15 ** 2 - v ** 2)) < TOL
+    assert abs(rng.s_max - np.sqrt(0.35 ** 2 - v ** 2)) < TOL
+
+
+def test_slider_on_an_offset_guide_has_its_range():
+    """A SAN whose guide sits on a turning crank with an offset (x10 = 0.05
+    in the crank's frame: its start point is no result signal) travels
+    xG = 0.1 + 0.2 t, driven against its guide: the range is 0.1 .. 0.3 m
+    from the element's own travel, and the guide point PS - xG e it
+    implies is the crank tip plus the offset (A.7, A.8) at every output
+    point; the animation draws the guide over the range."""
+    from acausal2d import Component
+    from acausal2d.library.linkage import DAN, SAN
+    from acausal2d.library.linkage.drives import Preset
+
+    class CrankSlider(Component):
+        def __init__(self, **kw):
+            super().__init__(**kw)
+            self.crank = DAN(lL=0.2, mL=0.1, JL=1e-3)
+            self.turn = Preset(kind="speed", om=1.0, phi0=0.3)
+            self.slider = SAN(x10=0.05, mS=0.2, JS=1e-3)
+            self.push = Preset(kind="speed", om=0.2, phi0=0.1, translational=True,
+                               use_support=True)
+            self.connect(self.turn.flange, self.crank.ctrR2)
+            self.connect(self.crank.ctr2D2, self.slider.ctr2D1)
+            self.connect(self.push.flange, self.slider.ctrT2)
+            self.connect(self.push.support, self.slider.ctrT1)
+
+    res = acausal2d.simulate(CrankSlider(), stop_time=1.0, rtol=1e-8,
+                             output_times=np.linspace(0.0, 1.0, 21))
+    (rng,) = slider_ranges(res)
+    assert rng.name == "slider"
+    assert abs(rng.s_min - 0.1) < TOL and abs(rng.s_max - 0.3) < TOL
+    phi = 0.3 + res.time
+    G = (0.25 * np.cos(phi), 0.25 * np.sin(phi))
+    e = (np.cos(res["slider.phiS"]), np.sin(res["slider.phiS"]))
+    assert np.max(np.abs(res["slider.xPS"] - res["slider.xG"] * e[0] - G[0])) < TOL
+    assert np.max(np.abs(res["slider.yPS"] - res["slider.xG"] * e[1] - G[1])) < TOL
+    scene = build_scene(res)
+    validate_scene(scene)
+    (sh,) = [s for s in scene["shapes"] if s["type"] == "slider"]
+    assert len(sh["guide"]) == 2 and len(sh["travel"]) == 2

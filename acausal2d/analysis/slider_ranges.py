@@ -2,7 +2,9 @@
 ranges of the sliders are recognised automatically and visualised").
 
 A slider is what a component draws as a ``"slider"`` shape with a
-``guide`` (the linkage elements SAN, DSD, SDS, SSD, ...; see
+``guide``, or with its travel signal ``s`` where its guide's start point is
+no result signal (a linkage element's guide placed with an offset on a
+moving link) (the linkage elements SAN, DDS, DSD, SDS, SSD; see
 :mod:`acausal2d.visual.animation`): a block at the foot point PS with the
 guide angle phi on a guide through the point G.  Its travel along the guide
 is ``s(t) = (PS - G) . (cos phi, sin phi)``, measured from G in the guide
@@ -36,7 +38,14 @@ def _values(get, v, n):
 
 def _travel(get, sh, n):
     """(G, u, s): guide point, unit direction (n x 2 arrays) and the travel
-    s(t) of the slider shape ``sh``."""
+    s(t) of the slider shape ``sh`` (a shape without a drawn guide gives its
+    travel ``s`` itself; the guide point is then PS - s u)."""
+    if not sh.get("guide"):
+        phi = _values(get, sh["phi"], n)
+        u = np.column_stack([np.cos(phi), np.sin(phi)])
+        PS = np.column_stack([_values(get, sh["x"], n), _values(get, sh["y"], n)])
+        s = _values(get, sh["s"], n)
+        return PS - s[:, None] * u, u, s
     G = np.column_stack([_values(get, c, n) for c in sh["guide"][0]])
     far = sh["guide"][1]
     if all(not isinstance(c, str) for c in list(sh["guide"][0]) + list(far)) \
@@ -55,8 +64,11 @@ def _qualified(sh, prefix):
     signal names prefixed by the component path."""
     def q(v):
         return prefix + v if isinstance(v, str) else v
-    return {"x": q(sh["x"]), "y": q(sh["y"]), "phi": q(sh["phi"]),
-            "guide": [[q(c) for c in p] for p in sh["guide"]]}
+    out = {"x": q(sh["x"]), "y": q(sh["y"]), "phi": q(sh["phi"]),
+           "guide": [[q(c) for c in p] for p in sh.get("guide") or []]}
+    if "s" in sh:
+        out["s"] = q(sh["s"])
+    return out
 
 
 def _slider_shapes(model):
@@ -64,7 +76,8 @@ def _slider_shapes(model):
     out = []
     for comp in model.components():
         prefix = comp.path + "." if comp.path else ""
-        mine = [sh for sh in comp.shapes() if sh.get("type") == "slider" and sh.get("guide")]
+        mine = [sh for sh in comp.shapes() if sh.get("type") == "slider"
+                and (sh.get("guide") or sh.get("s"))]
         for k, sh in enumerate(mine):
             name = comp.path or type(comp).__name__
             out.append((name + ("[%d]" % (k + 1) if len(mine) > 1 else ""),
@@ -108,7 +121,7 @@ def travel_shapes(shapes, signals):
     n = len(next(iter(signals.values()))) if signals else 0
     k = 0
     for sh in shapes:
-        if sh.get("type") != "slider" or not sh.get("guide") or n == 0:
+        if sh.get("type") != "slider" or not (sh.get("guide") or sh.get("s")) or n == 0:
             continue
         G, u, s = _travel(signals.__getitem__, sh, n)
         ends = {"min": float(np.min(s)), "max": float(np.max(s))}
@@ -120,7 +133,7 @@ def travel_shapes(shapes, signals):
             signals[base + ".x"], signals[base + ".y"] = p[:, 0].tolist(), p[:, 1].tolist()
             names.append([base + ".x", base + ".y"])
         sh["travel"] = names[:2]
-        if any(isinstance(v, str) for pt in sh["guide"] for v in pt):
+        if not sh.get("guide") or any(isinstance(v, str) for pt in sh["guide"] for v in pt):
             sh["guide"] = names[2:]        # a guide drawn up to the moving slider: the whole range
         k += 1
     return shapes

@@ -8,7 +8,7 @@ def _mb(n):
 
 
 def cmd_cache(args):
-    """``acausal2d cache [path|list|size|clear]``."""
+    """``acausal2d cache [path|list|size|verify|clear]``."""
     from ..runtime import cstore
     where = cstore.folder()
     if args.action == "path":
@@ -19,6 +19,13 @@ def cmd_cache(args):
             print("%10s  %s" % (_mb(size), name))
         print("%d librar%s, %s in %s" % (len(libs), "y" if len(libs) == 1 else "ies", _mb(total),
                                           where))
+        _print_installed()
+    elif args.action == "verify":
+        checked, damaged = cstore.verify_all()
+        print("%d file%s checked against its SHA-256 in %s%s" % (
+            checked, "" if checked == 1 else "s", where,
+            "; removed as damaged (compiled again when needed): " + ", ".join(damaged)
+            if damaged else "; each matches"))
         _print_installed()
     elif args.action == "size":
         libs, total = cstore.entries()
@@ -49,10 +56,12 @@ def _print_installed():
 def add_parsers(sub):
     """``acausal2d cache``."""
     c = sub.add_parser("cache", help="the native cache: where it lives (path), its libraries "
-                       "(list), its size, or clear it")
-    c.add_argument("action", nargs="?", default="list", choices=("path", "list", "size", "clear"),
+                       "(list), its size, verify or clear it")
+    c.add_argument("action", nargs="?", default="list",
+                   choices=("path", "list", "size", "verify", "clear"),
                    help="path: the folder ($ACAUSAL2D_CACHE_DIR, else ~/.cache/acausal2d/"
                    "cbuild); list (default): the libraries, and the driver objects compiled at "
-                   "install; size; clear: remove them (they are "
+                   "install; size; verify: check each library's SHA-256 in full (a run checks "
+                   "size, time, inode and mode only); clear: remove them (they are "
                    "compiled again when needed)")
     c.set_defaults(func=cmd_cache)

@@ -4,6 +4,7 @@ import sys
 
 from .args import MODEL_FILE_HELP, MODEL_HELP
 from ..analysis.check import check
+from ..errors import Acausal2dError
 from ..io.loader import load_model
 
 
@@ -11,7 +12,6 @@ def cmd_check(args):
     """``acausal2d check``: print the structure report of a model; with
     ``--diagram FILE`` also write its diagram, even when the model does not
     compile (then it marks the components the error names)."""
-    from ..errors import Acausal2dError
     from ..visual.diagram import check_diagram_path
     if args.diagram:
         check_diagram_path(args.diagram)          # before the model is compiled

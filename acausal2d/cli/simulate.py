@@ -2,6 +2,7 @@
 the animation page and the run's manifest."""
 import os
 import sys
+import warnings
 
 from .args import MODEL_FILE_HELP
 from ..errors import Acausal2dError
@@ -136,15 +137,10 @@ def cmd_simulate(args):
 def _run(args):
     """Load, compile and simulate the model file: (result, settings)."""
     from ..compiled import compile_model
-    from ..runtime import tiers
-    options = run_options(args)              # checked before the model is compiled
+    options = run_options(args, native=args.native)   # checked before the model is compiled
     cm = compile_model(load_model(args.model_file, args.model))
     settings = _simulate_settings(args, cm)
-    previous = tiers.choose(args.native)
-    try:
-        res = cm.simulate(params=settings["params"], options=options)
-    finally:
-        tiers.choose(previous)
+    res = cm.simulate(params=settings["params"], options=options)
     return res, settings
 
 
@@ -214,7 +210,6 @@ def _write_diagram(model, path):
     except (KeyboardInterrupt, MemoryError, OSError):
         raise
     except Exception as exc:          # noqa: BLE001 - the run's results matter more
-        import warnings
         warnings.warn("diagram.svg is not written: %s: %s" % (type(exc).__name__, exc))
 
 
@@ -273,8 +268,8 @@ def add_parsers(sub):
                    "1=ground,2=A0A,3=AB,4=B0B (frames, node constraints or x:y:phi signals)")
     s.add_argument("--native", choices=("auto", "now", "off"), help="native code: auto (default, "
                    "$ACAUSAL2D_NATIVE): a structure not compiled yet runs on the Python path "
-                   "while it is compiled in the background; now: compile first; off: the "
-                   "Python path only")
+                   "and is compiled in the background after the run; now: compile first; "
+                   "off: the Python path only")
     s.add_argument("--result-format", choices=("csv", "mat"), default="csv",
                    help="result.csv (default) or result.mat in Dymola's result format (MAT v4, "
                    "read by Modelica plotting tools, DyMat, buildingspy)")

@@ -15,6 +15,7 @@ import io
 import math
 import threading
 import time
+import warnings
 
 import numpy as np
 
@@ -165,7 +166,6 @@ class Explorer:
                 self.flow_names = [f for p in levels for ln in structure(model, path=p).lines
                                    for f in ln.flows if f in names]
             except Exception as exc:     # noqa: BLE001 - the page works without its diagram
-                import warnings
                 warnings.warn("explore: no diagram of the model (%s: %s)"
                               % (type(exc).__name__, exc))
                 self._diagrams, self.flow_names = [], []

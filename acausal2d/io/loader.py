@@ -61,7 +61,18 @@ def model_names(path):
     path = os.path.abspath(os.fspath(path))
     module, modname = _import(path)
     models = _classes(module, modname)[1]
-    return [c.__name__ for c in sorted(models, key=lambda c: inspect.getsourcelines(c)[1])]
+    order = list(vars(module))
+    return [c.__name__ for c in sorted(models, key=lambda c: (_source_line(c),
+                                                              order.index(c.__name__)))]
+
+
+def _source_line(cls):
+    """The line of ``cls``'s class statement; classes a file generates (no
+    class statement) follow, in the order the file defines them."""
+    try:
+        return inspect.getsourcelines(cls)[1]
+    except (OSError, TypeError):
+        return float("inf")
 
 
 def _choose(path, module, modname, name):

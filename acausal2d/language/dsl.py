@@ -114,6 +114,18 @@ def _unknown_attribute(comp, name):
 
 _reads: list = []       # the open compile_reads() lists (innermost last)
 
+_DISPLAY: dict = {}
+"""{format: draw(component) -> text}: how a notebook displays a component
+(:func:`register_display`)."""
+
+
+def register_display(fmt: str, draw) -> None:
+    """Let a notebook display a component as ``fmt`` (``"svg"``) with
+    ``draw(component)``.  The package root registers the diagram, so that
+    the language imports nothing of the layers above it
+    (tests/test_layering.py)."""
+    _DISPLAY[fmt] = draw
+
 
 @contextlib.contextmanager
 def compile_reads():
@@ -446,10 +458,12 @@ class Component:
         return []
 
     def _repr_svg_(self):
-        """The component's diagram as a notebook shows it (see
-        :mod:`acausal2d.visual.diagram`)."""
-        from ..visual.diagram import diagram_svg
-        return diagram_svg(self)
+        """The component's diagram as a notebook shows it (drawn by
+        :mod:`acausal2d.visual.diagram`, which the package root registers
+        with :func:`register_display`); None (the notebook's text display)
+        where none is registered."""
+        draw = _DISPLAY.get("svg")
+        return draw(self) if draw is not None else None
 
     # ----------------------------------------------------------- tree
     @property

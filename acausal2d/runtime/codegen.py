@@ -10,27 +10,10 @@ background worker (:mod:`~acausal2d.runtime.background`).
 
 import casadi as ca
 
-from . import cbuild, cparts, cstraight
+from . import cbuild
 from . import drivers
 from .drivers import GCC_LIMITS, is_gcc
 
-OPTIMIZE_BELOW = 1_000_000   # characters of generated C compiled with -O1 (-O0 above)
-QUICK_FROM = 200_000
-"""Characters of generated C from which the background worker builds a
-library twice - at -O0 first (published at once, so runs switch to native
-code early), then at -O1, which replaces it - where a function of it is
-still long after :func:`~acausal2d.runtime.cparts.partition`
-(:data:`QUICK_BODY`).  Measured (seconds of wall time from the code
-generator to the published library, a 2-core machine): belt drive, whose
-bodies are not cut, -O1 2.9 and 4.5 s, -O0 1.3 and 1.4 s, and its -O0 code
-ran 3.6x slower; chain of 81 links, cut into parts, -O1 2.2 and 2.3 s, -O0
-1.1 and 2.2 s, so it is built once, at -O1.  Below it the -O1 compile takes
-about a second and is done once."""
-QUICK_BODY = 4000
-"""Lines of a library's longest function from which it is built twice
-(:data:`QUICK_FROM`; the belt drive's are 9449 and 10263 lines, the chain
-of 81 links' 1201 and 2254 after :func:`~acausal2d.runtime.cparts.
-partition`)."""
 NATIVE_BELOW = 1_000_000     # no native code from this size on (the Python path)
 CHARS_PER_INSTRUCTION = 20   # generated C per CasADi instruction, low (measured: 23-30)
 """Compile time of the generated C grows with its size and is paid once per
@@ -38,7 +21,9 @@ model structure and machine (gcc, measured: piston engine 36 kB 0.25 s at
 -O1; chain of 20 links 157 kB 1.2 s; belt drive 856 kB about 3 s for its
 first simulate; chain of 100 links 787 kB 7.2 s at -O1, 2.3 s at -O0).
 -O0 code was 1.4x (chain) to 3.6x (belt drive) slower in warm runs, so -O1
-is kept; above :data:`NATIVE_BELOW` large models keep the Python path."""
+is kept; above :data:`NATIVE_BELOW` large models keep the Python path.
+A library is compiled by the detached worker after a run (or first, in
+mode ``now``), so its compile time delays only the runs that follow."""
 def eliminated(fn):
     """``fn`` with its common subexpressions merged (``casadi.cse``): the
     same operations on the same inputs, so the same values to the last bit,
@@ -66,11 +51,9 @@ slower: :mod:`~acausal2d.runtime.csplit`)."""
 
 
 def generate(recipe):
-    """The C text of a :class:`Recipe`: CasADi's
-    code of its functions, made straight-line (:func:`~acausal2d.runtime.
-    cstraight.straighten`), then its suffix.  Its size is what the size
-    limits measure (:func:`optimization`); :meth:`Recipe.code` then cuts
-    its large bodies into parts."""
+    """The C text of a :class:`Recipe`: CasADi's code of its functions,
+    then its suffix.  Its size is what the size limits measure
+    (:func:`optimization`)."""
     cg = ca.CodeGenerator(recipe.name + ".c", CODEGEN)
     for how, fns in recipe.parts:
         if how == "ej":
@@ -78,7 +61,7 @@ def generate(recipe):
         else:
             for fn in fns:
                 cg.add(eliminated(fn) if how == "cse" else fn)
-    return cstraight.straighten(cg.dump()) + "\n" + recipe.suffix
+    return cg.dump() + "\n" + recipe.suffix
 
 
 def too_large(*functions):
@@ -93,16 +76,14 @@ def too_large(*functions):
     return count * CHARS_PER_INSTRUCTION >= NATIVE_BELOW
 
 
-def optimization(size, compiler=None, quick=False):
+def optimization(size, compiler=None):
     """The compiler flags for ``size`` characters of generated C
     (:func:`generate`), or None: too large to compile at run time (see
-    :data:`NATIVE_BELOW`); -O0 where ``quick`` (the first of two builds,
-    :data:`QUICK_FROM`); gcc's alias query limits (:data:`GCC_LIMITS`)
-    where ``compiler`` is gcc."""
+    :data:`NATIVE_BELOW`); -O1, with gcc's alias query limits
+    (:data:`GCC_LIMITS`) where ``compiler`` is gcc."""
     if size >= NATIVE_BELOW:
         return None
-    flags = ["-O1"] if size < OPTIMIZE_BELOW and not quick else ["-O0"]
-    return flags + list(GCC_LIMITS) if is_gcc(compiler) else flags
+    return ["-O1"] + (list(GCC_LIMITS) if is_gcc(compiler) else [])
 
 
 class Recipe:
@@ -118,17 +99,6 @@ class Recipe:
         self.name, self.parts, self.suffix = name, list(parts), suffix
         self.libraries, self.library_dirs = list(libraries), list(library_dirs)
         self.objects = list(objects)
-
-    def instructions(self):
-        """CasADi instructions of the functions (the size of the C)."""
-        count = 0
-        for _, fns in self.parts:
-            for fn in fns:
-                try:
-                    count += fn.n_instructions()
-                except RuntimeError:       # a map: judged by its base function's size
-                    count += 1000
-        return count
 
     def __getstate__(self):
         parts = [(how, [cbuild.serialized(fn) for fn in fns]) for how, fns in self.parts]
@@ -146,36 +116,21 @@ class Recipe:
     def _object_flags():
         return drivers.flags(cbuild.find_compiler())
 
-    def objects_missing(self):
-        """How many of the objects are not compiled yet (in the cache)."""
-        return sum(not cbuild.object_built(drivers.text(name), self._object_flags(), name)
-                   for name in self.objects)
-
     def code(self):
-        """The C compiled: :func:`generate`'s, its large bodies cut into
-        parts (:func:`~acausal2d.runtime.cparts.partition`), made once per
-        recipe."""
+        """The C compiled (:func:`generate`'s), made once per recipe."""
         if getattr(self, "_code", None) is None:
-            text = generate(self)
-            self._size, self._code = len(text), cparts.partition(text)
+            self._code = generate(self)
         return self._code
 
     def size(self):
         """Characters of :func:`generate`'s C (what the limits measure)."""
-        self.code()
-        return self._size
+        return len(self.code())
 
-    def builds_twice(self):
-        """True where the background worker builds this library at -O0
-        first, then at -O1 (:data:`QUICK_FROM`, :data:`QUICK_BODY`)."""
-        return QUICK_FROM <= self.size() < OPTIMIZE_BELOW and \
-            cparts.longest(self.code()) >= QUICK_BODY
-
-    def make(self, quick=False):
+    def make(self):
         """Generate the C and compile it (:func:`~acausal2d.runtime.cbuild.
-        build`), at -O0 where ``quick``; the library's path."""
+        build`); the library's path."""
         code = self.code()
-        flags = optimization(self.size(), cbuild.find_compiler(), quick)
+        flags = optimization(self.size(), cbuild.find_compiler())
         if flags is None:
             raise cbuild.BuildFailed("the generated C of %s is too large to compile at run "
                                      "time (%d characters)" % (self.name, self.size()))

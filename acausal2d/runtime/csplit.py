@@ -16,9 +16,7 @@ returned as one unit.
 
 Measured (chain of 81 links, 2 cores, a loaded machine): the formulation's
 library is two bodies of 265 and 273 kB (residual, iteration matrix), so two
-units halve the compile's wall time.  Large bodies are cut before, by
-:func:`~acausal2d.runtime.cparts.partition` (its parts, ``A2D_NOINLINE``,
-are bodies here too); CasADi's ``avoid_stack`` form, which could be cut
+units halve the compile's wall time.  CasADi's ``avoid_stack`` form, which could be cut
 anywhere, compiled in 0.43x the wall time but ran the chain 1.8x slower
 (warm simulate 1.9 s against 1.05 s).
 """
@@ -27,9 +25,8 @@ import re
 SPLIT_FROM = 150_000
 """Characters of C from which a file is cut (below, one compiler process
 starts faster than two)."""
-BODY = re.compile(r"^static (?:A2D_NOINLINE )?int (casadi_f\d+(?:_s\d*)?)\(([^)]*)\) \{\n(.*?)^\}\n", re.M | re.S)
-"""A function body of the generated C: name, parameters, body (CasADi's,
-its straight form ``_s``, and the parts of :mod:`~acausal2d.runtime.cparts`)."""
+BODY = re.compile(r"^static int (casadi_f\d+)\(([^)]*)\) \{\n(.*?)^\}\n", re.M | re.S)
+"""A function body of CasADi's generated C: name, parameters, body."""
 _HELPER = re.compile(r"^(casadi_real|casadi_int|void|int) (casadi_\w+)\(", re.M)
 _EXPORTED = re.compile(r"^CASADI_SYMBOL_EXPORT [^\n]*\{(?:[^\n]*\}\n|\n.*?^\}\n)", re.M | re.S)
 

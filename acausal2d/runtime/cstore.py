@@ -7,13 +7,13 @@ removed and built again, with one line on stderr.
 
 - :func:`folder`: the cache folder in use, the configured one
   (:func:`cache_dir`) or, where that cannot be written or is not private
-  (owned by the user, mode 0700, not a link: :mod:`~acausal2d.io.private_dir`,
+  (owned by the user, mode 0700, not a link: :mod:`~acausal2d.runtime.private_dir`,
   so that no other user can plant a library, a digest or a job in it), a
   private fallback (one line on stderr) - never the slow path because of a
   read-only home;
 - :func:`publish`: a library and its digest moved into place atomically;
-- :func:`locked`: one builder per library at a time (``fcntl.flock`` on
-  ``<library>.lock``; a second waits, then finds the library built);
+- :func:`locked`: one builder per library at a time (``flock`` on
+  ``<library>.lock``, :mod:`~acausal2d.runtime.posix`; a second waits, then finds the library built);
 - :func:`sweep`: build folders and temporary files left by a killed build
   removed (those whose lock nobody holds).
 """
@@ -22,11 +22,11 @@ import os
 import logging
 import sys
 import tempfile
-import fcntl
 import shutil
 import time
 
-from ..io import private_dir
+from . import private_dir
+from . import posix
 
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
     from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
@@ -131,7 +131,7 @@ def _own_folder():
 
 def folder():
     """The cache folder in use (see the module docstring): the configured
-    one where it is private (:mod:`~acausal2d.io.private_dir`) and
+    one where it is private (:mod:`~acausal2d.runtime.private_dir`) and
     writable, else the first usable fallback (:func:`fallback_folders`),
     with one line on stderr saying why and what to do."""
     want = cache_dir()
@@ -178,21 +178,48 @@ def file_digest(path):
     return h.hexdigest()
 
 
-def recorded(path):
-    """The digest recorded for ``path``, or None (missing or unreadable)."""
+def _identity(st):
+    """What the cheap check at load compares (:func:`verified`): size,
+    modification time (ns), inode and mode of a file's ``os.stat``."""
+    return "%d %d %d %o" % (st.st_size, st.st_mtime_ns, st.st_ino, st.st_mode)
+
+
+def _record(path):
+    """(digest, identity) recorded beside ``path``: the digest file's first
+    line, and its second (:func:`_identity` at publish), either None."""
     try:
         with open(path + DIGEST, encoding="ascii") as fh:
-            text = fh.read(200).strip()
+            lines = fh.read(400).splitlines()
     except (OSError, UnicodeDecodeError):
-        return None
-    return text if len(text) == 64 else None
+        return None, None
+    digest = lines[0].strip() if lines else ""
+    if len(digest) != 64:
+        return None, None
+    return digest, (lines[1].strip() if len(lines) > 1 else None)
 
 
-def verified(path):
+def recorded(path):
+    """The digest recorded for ``path``, or None (missing or unreadable)."""
+    return _record(path)[0]
+
+
+def _write_record(path, digest, st):
+    """Record ``digest`` and the identity of ``st`` beside ``path``."""
+    write_atomic(path + DIGEST, ("%s\n%s\n" % (digest, _identity(st))).encode("ascii"))
+
+
+def verified(path, full=False):
     """True where ``path`` exists and its bytes have the recorded digest.
-    A library that exists but does not match (or has no digest, or cannot
-    be read) is removed, with one line on stderr; False then."""
-    if not os.path.exists(path):
+    The check at load is cheap: where the file's size, modification time,
+    inode and mode are those recorded at publish (:func:`publish`), its
+    bytes are taken as published; where any of them changed (or ``full``,
+    ``acausal2d cache verify``) its SHA-256 is computed and compared, and a
+    match records the new identity.  A library that exists but does not
+    match (or has no digest, or cannot be read) is removed, with one line
+    on stderr; False then."""
+    try:
+        st = os.stat(path)
+    except OSError:
         return False
     if not private_dir.ours(path) or (os.path.lexists(path + DIGEST)
                                       and not private_dir.ours(path + DIGEST)):
@@ -200,7 +227,10 @@ def verified(path):
                "you can write; it is removed and built again" % path)
         discard(path)
         return False
-    want = recorded(path)
+    want, identity = _record(path)
+    if not full and want is not None and identity == _identity(st) and \
+            os.access(path, os.R_OK):
+        return True
     try:
         got = file_digest(path)
     except FileNotFoundError:
@@ -208,6 +238,8 @@ def verified(path):
     except OSError as exc:
         got, why = None, "unreadable: %s" % exc.strerror
     if want is not None and got == want:
+        with contextlib.suppress(OSError):           # an unwritable folder: checked in full
+            _write_record(path, want, st)
         return True
     if got is not None:
         why = "no digest recorded" if want is None else "its SHA-256 does not match the " \
@@ -240,9 +272,10 @@ def write_atomic(path, data):
 
 
 def publish(built, target):
-    """Move the library ``built`` to ``target`` with its digest (the digest
-    first: a reader never finds a library without one)."""
-    write_atomic(target + DIGEST, file_digest(built).encode("ascii"))
+    """Move the library ``built`` to ``target`` with its digest and its
+    identity (:func:`verified`; the rename keeps size, times, inode and
+    mode), the record first: a reader never finds a library without one."""
+    _write_record(target, file_digest(built), os.stat(built))
     os.replace(built, target)
 
 
@@ -257,15 +290,13 @@ def locked(target, wait=True):
         yield True
         return
     with fh:
-        try:
-            fcntl.flock(fh, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
-        except BlockingIOError:
+        if not posix.lock(fh, wait=wait):
             yield False
             return
         try:
             yield True
         finally:
-            fcntl.flock(fh, fcntl.LOCK_UN)
+            posix.unlock(fh)
 
 
 def busy(target):
@@ -322,6 +353,19 @@ def entries():
         if name.endswith(".so"):
             libs.append((name, size))
     return libs, total
+
+
+def verify_all():
+    """Check every library and object of the cache folder in full (its
+    SHA-256, :func:`verified` with ``full``; a damaged one is removed, one
+    line on stderr each); returns (files checked, names of those removed)."""
+    where = folder()
+    try:
+        names = sorted(n for n in os.listdir(where) if n.endswith((".so", ".o")))
+    except OSError:
+        return 0, []
+    damaged = [name for name in names if not verified(os.path.join(where, name), full=True)]
+    return len(names), damaged
 
 
 def _ours(name):

@@ -58,12 +58,11 @@ OBJECTS = {"a2d_driver": ("", "lu", "driver"),
 GCC_LIMITS = ("--param=sccvn-max-alias-queries-per-access=20",
               "--param=dse-max-alias-queries-per-store=20")
 """gcc's alias queries per memory access in value numbering and dead-store
-elimination (defaults 1000 and 256).  In a straight-line body
-(:mod:`~acausal2d.runtime.cstraight`) every load of an input may alias every
-earlier store of an output, and walking those chains was 42% of gcc's -O1
-time (chain of 81 links, model library unit of 248 kB: 5.0 -> 3.3 s CPU,
-``-ftime-report``); CasADi's code loads each input element once, so the
-queries found nothing to reuse."""
+elimination (defaults 1000 and 256).  In a long body of generated code
+every load of an input may alias every earlier store of an output, and
+walking those chains was 42% of gcc's -O1 time (chain of 81 links, model
+library unit of 248 kB: 5.0 -> 3.3 s CPU, ``-ftime-report``); CasADi's code
+loads each input element once, so the queries found nothing to reuse."""
 
 _texts: dict = {}
 

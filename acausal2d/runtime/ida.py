@@ -130,7 +130,6 @@ class Problem:
         self.hook = None          # the events function given to scikit-sundae
         self.native = None        # its native driver (runtime.native), where there is one
         self.progress = progress
-        self.tick = None          # called on each step of the Python path (runtime.background)
         self._pattern(form)
         # roots: crossings and decayed blocks stop IDA, passages do not
         self.terminal = [True] * (self.n_rel + self.n_mon) + [False] * self.n_pass \
@@ -162,8 +161,6 @@ class Problem:
             self.steps += 1
             if self.progress is not None:
                 self.progress(t)
-            if self.tick is not None:
-                self.tick()
         a = self.res.args
         a[0][0] = t
         a[1][:] = y
@@ -393,14 +390,12 @@ def _advance_native(prob, tspan, y0, yp0, outputs):
     return outcome, T[keep], Y[keep], nfev, njev
 
 
-def _solve(solver, prob, tspan, y0, yp0, pause):
+def _solve(solver, prob, tspan, y0, yp0):
     """scikit-sundae's ``solve(tspan, y0, yp0)`` output time by output
     time through its ``init_step``/``step`` (the same IDA calls: one
     initialization, the stop time ``tspan[-1]``, the events recorded on
-    ``prob`` and a terminal one ending the call), so that ``pause(t)``,
-    called at each output time t, can end the call there (True) without
-    re-initializing IDA between output times.  Returns (times, y, yp, the
-    last step's result: status, message, events and counts)."""
+    ``prob`` and a terminal one ending the call).  Returns (times, y, yp,
+    the last step's result: status, message, events and counts)."""
     sol = solver.init_step(tspan[0], y0, yp0)
     T, Y, YP = [sol.t], [sol.y], [sol.yp]
     t_stop, last = float(tspan[-1]), len(tspan) - 1
@@ -415,25 +410,23 @@ def _solve(solver, prob, tspan, y0, yp0, pause):
         T.append(sol.t)
         Y.append(sol.y)
         YP.append(sol.yp)
-        if stop or (pause is not None and pause(sol.t)):
+        if stop:
             return np.array(T), np.array(Y), np.array(YP), sol
         k += 1
 
 
-def advance(solver, prob, t, y0, yp0, outputs, t_stop, pause=None):
+def advance(solver, prob, t, y0, yp0, outputs, t_stop):
     """Integrate from (t, y0, yp0) to ``t_stop`` through ``outputs`` (the
     output times in (t, t_stop]), natively where the problem has a native
-    driver.  On the Python path ``pause(t)`` (where given) may end the
-    call at an output time t (:func:`_solve`).  Returns (outcome, times and
-    rows of the output points reached, nfev, njev); ``outcome.passes``
-    lists the singular positions passed."""
+    driver.  Returns (outcome, times and rows of the output points reached,
+    nfev, njev); ``outcome.passes`` lists the singular positions passed."""
     tspan = _tspan(t, outputs, t_stop)
     if getattr(prob, "native", None) is not None:
         done = _advance_native(prob, tspan, y0, yp0, outputs)
         if done is not None:
             return done
     prob.reset_events()
-    ts, ys, yps, sol = _solve(solver, prob, tspan, y0, yp0, pause)
+    ts, ys, yps, sol = _solve(solver, prob, tspan, y0, yp0)
     hit = sol.status == ROOT_RETURN
     n = len(ts) - (1 if hit else 0)
     keep = np.isin(ts[1:n], outputs)

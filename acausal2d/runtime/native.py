@@ -34,6 +34,7 @@ import ctypes
 import os
 import re
 import sys
+import tempfile
 import weakref
 
 import casadi as ca
@@ -42,9 +43,8 @@ import numpy as np
 from . import blt_layout, cbuild, cstore, drivers, ordering, tiers
 from ..options import STEPS_PER_OUTPUT
 from ..threads import libraries_loaded
-from .codegen import (NATIVE_BELOW, OPTIMIZE_BELOW, Recipe, eliminated,  # noqa: F401
-                      optimization, too_large)
-from . import codegen, cparts, cstraight
+from .codegen import NATIVE_BELOW, Recipe, eliminated, optimization, too_large  # noqa: F401
+from . import codegen
 
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
              "core")
@@ -87,11 +87,12 @@ _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
 _PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
 
 
-def enabled():
-    """False where ``ACAUSAL2D_NATIVE=0`` (or ``off``), scikit-sundae ships
-    no SUNDIALS libraries, or they are not of :data:`SUNDIALS_VERSION` (said
-    once on stderr)."""
-    if tiers.mode() == "off" or cbuild.sundials_libraries() is None:
+def enabled(chosen=None):
+    """False where the engine chosen is the Python path (``chosen``, a
+    run's ``RunOptions.native``, else ``ACAUSAL2D_NATIVE``: ``0`` or
+    ``off``), scikit-sundae ships no SUNDIALS libraries, or they are not of
+    :data:`SUNDIALS_VERSION` (said once on stderr)."""
+    if tiers.mode(chosen) == "off" or cbuild.sundials_libraries() is None:
         return False
     loaded = loaded_sundials_version()
     if loaded != SUNDIALS_VERSION:
@@ -155,8 +156,7 @@ def _generator():
     so a library generated differently is never found again."""
     if __file__ not in _module_texts:
         _module_texts[__file__] = _text(__file__) + _text(codegen.__file__) + \
-            _text(cstraight.__file__) + _text(cparts.__file__) + _text(drivers.__file__) + \
-            "\n%d %d" % (OPTIMIZE_BELOW, NATIVE_BELOW)
+            _text(drivers.__file__) + "\n%d" % NATIVE_BELOW
     return _module_texts[__file__]
 
 
@@ -175,7 +175,7 @@ def _declare(lib):
     libraries_loaded()            # SUNDIALS' pools (libgomp, OpenBLAS): limited in this run
     lib.a2d_create.restype = ctypes.c_void_p
     lib.a2d_create.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_double, _P, _P, _I, _I,
-                               ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I, _I]
+                               ctypes.c_long, ctypes.c_int, _P, _P, _P, _I, _I, _I, _I]
     lib.a2d_destroy.argtypes = [ctypes.c_void_p]
     lib.a2d_set_progress.argtypes = [ctypes.c_void_p, _PROGRESS]
     lib.a2d_steps.restype = ctypes.c_long
@@ -196,13 +196,17 @@ def _declare(lib):
 _keys: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()       # formulation -> its fingerprint
 
 
-def library(form):
+def library(form, chosen=None, label=None):
     """The compiled library of a formulation (cached on disk), or None where
-    it cannot be built, or is being built in the background
-    (:mod:`~acausal2d.runtime.tiers`: asked again later, it is found)."""
+    the engine ``chosen`` (:func:`~acausal2d.runtime.tiers.mode`) is the
+    Python path, it cannot be built, or it is not in the cache in mode auto
+    (:mod:`~acausal2d.runtime.tiers`: compiled after the run, found by a
+    later one).  ``label``: the model, for the notices."""
+    if not enabled(chosen):
+        return None
     lib = _libs.get(form)
     if lib is None:
-        if not enabled() or too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
+        if too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
             _libs[form] = False
             return None
         folder, libs = cbuild.sundials_libraries()
@@ -211,8 +215,8 @@ def library(form):
             _keys[form] = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
                                              drivers.text("a2d_driver"), *linked)
         lib = tiers.obtain(_keys[form], _model_recipe(form, linked, folder),
-                           lambda path: _declare(ctypes.CDLL(path)))
-        if lib is not None or not tiers.pending():
+                           lambda path: _declare(ctypes.CDLL(path)), chosen, label)
+        if lib is not None or tiers.mode(chosen) == "now":     # built, or its build failed
             _libs[form] = lib or False
     return lib or None
 
@@ -253,7 +257,7 @@ class NativeIDA:
     """IDA of one :class:`~acausal2d.runtime.ida.Problem` in C (see module
     docstring); :meth:`run` is a segment."""
 
-    def __init__(self, lib, prob, rtol, atol, terminal, direction, solver=None):
+    def __init__(self, lib, prob, rtol, atol, terminal, direction, solver=None, ids=None):
         form = prob.form
         self.lib, self.prob, self.n = lib, prob, form.n
         self._keep = [np.ascontiguousarray(atol, float),
@@ -271,7 +275,8 @@ class NativeIDA:
             self.n, prob.n_events, float(rtol), _ptr(self._keep[0]), _ptr(self._keep[1]),
             _ptr(self._keep[2], _I), _ptr(self._keep[3], _I), STEPS_PER_OUTPUT, SOLVERS[solver],
             *(_ptr(b) for b in self._bound), *(_ptr(a, _I) for a in self._pattern),
-            None if self._order is None else _ptr(self._order, _I))
+            None if self._order is None else _ptr(self._order, _I),
+            None if ids is None else _ptr(ids, _I))
         self.roots = np.zeros(max(prob.n_events, 1), dtype=np.intc)
         self.counters = np.zeros(2, dtype=np.dtype(ctypes.c_long))
         self.last = np.zeros(1 + 2 * self.n)
@@ -349,34 +354,108 @@ def _backing(a):
     return a if a.size else np.zeros(1)
 
 
-def native_ida(prob, rtol, atol, solver=None):
+def native_ida(prob, rtol, atol, solver=None, chosen=None, label=None):
     """A :class:`NativeIDA` for ``prob`` with the settings of
     :func:`~acausal2d.runtime.ida.make_solver` (``solver``: a key of
     :data:`SOLVERS`, default the formulation's choice), or None (see module
-    docstring)."""
-    lib = library(prob.form)
+    docstring; ``chosen``, ``label``: :func:`library`)."""
+    lib = library(prob.form, chosen, label)
     if lib is None:
         return None
     drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver)
     return drv if drv.handle else None
 
 
+def _libcasadi():
+    """(folder, path) of the libcasadi the casadi wheel ships, or None."""
+    folder = os.path.dirname(ca.__file__)
+    for name in sorted(os.listdir(folder)):
+        if name.startswith("libcasadi.so") or name == "libcasadi.dylib":
+            return folder, os.path.join(folder, name)
+    return None
+
+
+_capi: dict = {}         # the driver on CasADi's C API, once loaded ("lib": library or None)
+
+
+def capi_driver():
+    """The driver compiled once with no model code (``A2D_CAPI``): it
+    evaluates the model's CasADi functions through CasADi's C API
+    (``casadi_c_eval_id`` of the wheel's libcasadi), so a new structure
+    needs no compiler.  Built on first use into the cache; None where it
+    cannot be built or loaded."""
+    if "lib" not in _capi:
+        _capi["lib"] = None
+        found, casadi_lib = cbuild.sundials_libraries(), _libcasadi()
+        if found is not None and casadi_lib is not None:
+            folder, libs = found
+            text = drivers.GENERATED + "#define A2D_EVENTS 1\n#define A2D_CAPI 1\n" + \
+                drivers.source("lu") + drivers.source("driver")
+            try:
+                path = cbuild.build({"a2d_capi.c": text}, flags=drivers.flags(cbuild.find_compiler()),
+                                    libraries=[libs[k] for k in LIBRARIES if k in libs] +
+                                    [casadi_lib[1]], library_dirs=[folder, casadi_lib[0]],
+                                    name="a2d_capi")
+                lib = _declare(ctypes.CDLL(path))
+                lib.casadi_c_push_file.argtypes = [ctypes.c_char_p]
+                _capi["lib"] = lib
+            except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
+                pass
+    return _capi["lib"]
+
+
+_pushed: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()   # formulation -> C API ids
+
+
+def _capi_ids(lib, form):
+    """The ids (residual, iteration matrix, events; -1: none) of ``form``'s
+    functions in CasADi's C API, pushed once per formulation."""
+    if form not in _pushed:
+        fns = [fn for fn in (form.res_fn, form.jac_fn, form.event_fn) if fn is not None]
+        fd, path = tempfile.mkstemp(suffix=".casadi")
+        os.close(fd)
+        try:
+            writer = ca.FileSerializer(path)
+            writer.pack(fns)
+            del writer
+            base = lib.casadi_c_n_loaded()
+            if lib.casadi_c_push_file(path.encode()):
+                return None
+        finally:
+            os.remove(path)
+        ids = [base, base + 1, base + 2 if form.event_fn is not None else -1]
+        _pushed[form] = np.array(ids, dtype=np.intc)
+    return _pushed[form]
+
+
+def capi_ida(prob, rtol, atol, solver=None):
+    """A :class:`NativeIDA` of ``prob`` on the driver of :func:`capi_driver`
+    (no per-model library), or None."""
+    lib = capi_driver()
+    ids = None if lib is None else _capi_ids(lib, prob.form)
+    if ids is None:
+        return None
+    drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver, ids)
+    return drv if drv.handle else None
+
+
 _compiled: dict = {}     # fingerprint of the functions -> {name: external Function}
 
 
-def compiled(functions):
+def compiled(functions, chosen=None, label=None):
     """CasADi functions (their names -> Function) as compiled C, loaded back
     as CasADi functions (``casadi.external``) of the same names and signatures,
-    or None where they cannot be built or are being built in the background
-    (the caller keeps its own)."""
-    if tiers.mode() == "off":
+    or None where the engine ``chosen`` is the Python path, they cannot be
+    built or are not in the cache in mode auto (the caller keeps its own);
+    ``label``: the model, for the notices."""
+    if tiers.mode(chosen) == "off":
         return None
     key = cbuild.fingerprint(functions.values(), _generator(), *functions)
     if key not in _compiled:
         recipe = Recipe("a2d_functions", [("plain", list(functions.values()))])
         found = tiers.obtain(key, recipe, lambda path: {name: ca.external(name, path)
-                                                          for name in functions})
-        if found is None and tiers.pending():
+                                                          for name in functions}, chosen, label)
+        if found is None:
             return None
         _compiled[key] = found
     return _compiled[key]
@@ -390,8 +469,8 @@ _plans: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> 
 
 def _projector_plan(system):
     """(fingerprint, recipe) of the C projector's library of ``system``, or
-    None where native code is off or too large for it."""
-    if not enabled() or too_large(system.residual_fn, system.jacobian_fn):
+    None where it is too large for native code."""
+    if too_large(system.residual_fn, system.jacobian_fn):
         return None
     if system not in _plans:
         key = cbuild.fingerprint((system.residual_fn,), _derived(system),
@@ -402,26 +481,18 @@ def _projector_plan(system):
     return _plans[system]
 
 
-def prepare_projector(system):
-    """Start compiling the C projector's library of ``system`` where it is
-    missing and would be compiled before the run
-    (:func:`~acausal2d.runtime.tiers.ahead`): beside the model's library,
-    which is asked for next."""
-    if _projectors.get(system) is None:
-        plan = _projector_plan(system)
-        if plan is not None:
-            tiers.ahead(*plan)
-
-
-def _projector_library(system):
+def _projector_library(system, chosen=None):
+    if not enabled(chosen):
+        return None
     lib = _projectors.get(system)
     if lib is None:
         plan = _projector_plan(system)
         if plan is None:
             _projectors[system] = False
             return None
-        lib = tiers.obtain(plan[0], plan[1], _declare_projector)
-        if lib is not None or not tiers.pending():
+        lib = tiers.obtain(plan[0], plan[1], _declare_projector, chosen,
+                           getattr(system, "model_name", None))
+        if lib is not None or tiers.mode(chosen) == "now":     # built, or its build failed
             _projectors[system] = lib or False
     return lib or None
 
@@ -433,15 +504,17 @@ def _declare_projector(path):
     return lib
 
 
-def row_projector(system, free):
+def row_projector(system, free, chosen=None):
     """A function (T, Z, p, d, tol, max_iter, slow) -> (Z solved for the
     unknowns ``free``, converged rows) in C (``native_project.c``, LU of the
     Jacobian's block lower-triangular form with ``native_lu.c`` per block,
     :func:`~acausal2d.runtime.blt_layout.layout`),
-    or None where it cannot be built or dE/dz_free is structurally singular.
+    or None where the engine ``chosen`` is the Python path, it cannot be
+    built (or is not in the cache in mode auto) or dE/dz_free is
+    structurally singular.
     Each row gets at most ``max_iter`` Newton iterations; after a row that
     needed more than ``slow`` of them the next row takes a new LU."""
-    lib = _projector_library(system)
+    lib = _projector_library(system, chosen)
     if lib is None:
         return None
     colind, row = _ccs(system.jacobian_fn.sparsity_out(0))

@@ -115,7 +115,25 @@ typedef struct {
   casadi_real **res;
   casadi_int *iw;
   casadi_real *w;
+  int id, mem;                    /* A2D_CAPI: the function's id and memory in CasADi's C API */
 } a2d_work;
+
+/* A2D_CAPI: the model's functions are not compiled in; they are CasADi functions
+ * deserialized by casadi_c_push_file and evaluated through CasADi's C API (libcasadi
+ * of the casadi wheel), so this file is compiled once, with no per-model code. */
+#ifdef A2D_CAPI
+int casadi_c_eval_id(int id, const casadi_real **arg, casadi_real **res, casadi_int *iw,
+                     casadi_real *w, int mem);
+int casadi_c_work_id(int id, casadi_int *sz_arg, casadi_int *sz_res, casadi_int *sz_iw,
+                     casadi_int *sz_w);
+int casadi_c_checkout_id(int id);
+void casadi_c_release_id(int id, int mem);
+#define A2D_EVAL(x, fn) casadi_c_eval_id((x).id, (x).arg, (x).res, (x).iw, (x).w, (x).mem)
+#define A2D_ALLOC(x, fn, k) a2d_alloc_id(&(x), ids[k])
+#else
+#define A2D_EVAL(x, fn) fn((x).arg, (x).res, (x).iw, (x).w, 0)
+#define A2D_ALLOC(x, fn, k) a2d_alloc(&(x), fn##_work)
+#endif
 
 /* The sparse LU (native_lu.c, before this file) as IDA's linear solver:
  * a SUNLinearSolver made by SUNLinSolNewEmpty whose ops are filled in.  The
@@ -273,6 +291,7 @@ typedef struct {
   SUNLinearSolver LS;
 } a2d_driver;
 
+#ifndef A2D_CAPI
 static void a2d_alloc(a2d_work *w, int (*work)(casadi_int *, casadi_int *, casadi_int *,
                                                 casadi_int *)) {
   work(&w->sz_arg, &w->sz_res, &w->sz_iw, &w->sz_w);
@@ -281,8 +300,25 @@ static void a2d_alloc(a2d_work *w, int (*work)(casadi_int *, casadi_int *, casad
   w->iw = (casadi_int *)calloc(w->sz_iw + 1, sizeof(casadi_int));
   w->w = (casadi_real *)calloc(w->sz_w + 1, sizeof(casadi_real));
 }
+#endif
+
+#ifdef A2D_CAPI
+static void a2d_alloc_id(a2d_work *w, int id) {
+  w->id = id;
+  if (id < 0) return;
+  casadi_c_work_id(id, &w->sz_arg, &w->sz_res, &w->sz_iw, &w->sz_w);
+  w->mem = casadi_c_checkout_id(id);
+  w->arg = (const casadi_real **)calloc(w->sz_arg + 1, sizeof(casadi_real *));
+  w->res = (casadi_real **)calloc(w->sz_res + 1, sizeof(casadi_real *));
+  w->iw = (casadi_int *)calloc(w->sz_iw + 1, sizeof(casadi_int));
+  w->w = (casadi_real *)calloc(w->sz_w + 1, sizeof(casadi_real));
+}
+#endif
 
 static void a2d_free_work(a2d_work *w) {
+#ifdef A2D_CAPI
+  if (w->arg && w->id >= 0) casadi_c_release_id(w->id, w->mem);
+#endif
   free(w->arg); free(w->res); free(w->iw); free(w->w);
 }
 
@@ -300,7 +336,7 @@ static int a2d_res(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, void *da
   if (t != h->t_last) { h->t_last = t; h->steps++; }
   a2d_args(h, &h->wres, t, y, yp);
   h->wres.res[0] = N_VGetArrayPointer(rr);
-  return res(h->wres.arg, h->wres.res, h->wres.iw, h->wres.w, 0) ? -1 : 0;
+  return A2D_EVAL(h->wres, res) ? -1 : 0;
 }
 
 static int a2d_jac(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vector r,
@@ -315,10 +351,10 @@ static int a2d_jac(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vec
     for (c = 0; c <= n; ++c) SUNSparseMatrix_IndexPointers(J)[c] = (int)h->jcol[c];
     for (k = 0; k < h->nnz; ++k) SUNSparseMatrix_IndexValues(J)[k] = (int)h->jrow[k];
     h->wjac.res[0] = SUNSparseMatrix_Data(J);
-    return iteration_matrix(h->wjac.arg, h->wjac.res, h->wjac.iw, h->wjac.w, 0) ? -1 : 0;
+    return A2D_EVAL(h->wjac, iteration_matrix) ? -1 : 0;
   }
   h->wjac.res[0] = h->jnz;
-  if (iteration_matrix(h->wjac.arg, h->wjac.res, h->wjac.iw, h->wjac.w, 0)) return -1;
+  if (A2D_EVAL(h->wjac, iteration_matrix)) return -1;
   {
     double *a = SUNDenseMatrix_Data(J);
     memset(a, 0, sizeof(double) * (size_t)n * (size_t)n);
@@ -335,7 +371,7 @@ static int a2d_roots(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype *g, voi
   a2d_args(h, &h->wev, t, y, yp);
   h->wev.arg[5] = h->ab;
   h->wev.res[0] = g;
-  return events(h->wev.arg, h->wev.res, h->wev.iw, h->wev.w, 0) ? -1 : 0;
+  return A2D_EVAL(h->wev, events) ? -1 : 0;
 }
 #endif
 
@@ -398,7 +434,8 @@ void a2d_destroy(a2d_driver *h);
 a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const double *id,
                        const int *dir, const int *terminal, long max_steps, int solver,
                        const double *p, const double *d, const double *ab,
-                       const int *colind, const int *row, const int *order) {
+                       const int *colind, const int *row, const int *order,
+                       const int *ids) {
   a2d_driver *h = (a2d_driver *)calloc(1, sizeof(a2d_driver));
   if (!h) return 0;
   h->n = n; h->n_ev = n_ev; h->p = p; h->d = d; h->ab = ab;
@@ -411,10 +448,13 @@ a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const d
   h->terminal = (int *)calloc(n_ev + 1, sizeof(int));
   if (n_ev) memcpy(h->terminal, terminal, sizeof(int) * n_ev);
   h->t_last = -1e300;
-  a2d_alloc(&h->wres, res_work);
-  a2d_alloc(&h->wjac, iteration_matrix_work);
+#ifndef A2D_CAPI
+  (void)ids;
+#endif
+  A2D_ALLOC(h->wres, res, 0);
+  A2D_ALLOC(h->wjac, iteration_matrix, 1);
 #ifdef A2D_EVENTS
-  a2d_alloc(&h->wev, events_work);
+  A2D_ALLOC(h->wev, events, 2);
 #endif
   if (a2d_setup(h, rtol, atol, id, dir, max_steps, solver, order)) {
     a2d_destroy(h);

@@ -15,8 +15,9 @@ import weakref
 import numpy as np
 
 from ..compiler.index1 import SPARSE_FROM
+from . import tiers
 from .buffered import Buffered
-from .native import compiled, prepare_projector, row_projector, too_large
+from .native import compiled, row_projector, too_large
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
@@ -39,15 +40,16 @@ one iteration, with the LU of an earlier row mostly 3 or 4."""
 _MAPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> its mapped functions
 
 
-def _mapped_functions(system, native):
+def _mapped_functions(system, native, chosen=None):
     """{name: function} of E and dE/dz of a system mapped over each of
     :data:`CHUNKS` rows (``E_rows_K``, ``J_rows_K``), compiled to C where
-    ``native`` and a compiler is found (:func:`~acausal2d.runtime.native.
-    compiled`).  Only a formulation that the C projector cannot serve asks
+    ``native`` and the engine ``chosen`` compiles them (:func:`~acausal2d.
+    runtime.native.compiled`).  Only a formulation that the C projector cannot serve asks
     for them compiled: compiling them beside the C projector's library
     doubled the background compile of a new structure (chain of 81 links:
     8 maps of 0.8-9 MB serialized, 0.43 s of the first run spent on their
     fingerprint alone)."""
+    native = native and tiers.mode(chosen) != "off"
     fns = _MAPS.setdefault(system, {}).get(native)
     if fns is None:
         fns = {}
@@ -56,7 +58,7 @@ def _mapped_functions(system, native):
                              ("J_rows_%d" % K, system.jacobian_fn)):
                 fns[name] = fn.map(name, "serial", K, [2, 3], [])
         if native and not too_large(system.residual_fn, system.jacobian_fn):
-            fns = compiled(fns) or fns
+            fns = compiled(fns, chosen, getattr(system, "model_name", None)) or fns
         _MAPS[system][native] = fns
     return fns
 
@@ -67,22 +69,14 @@ def _in_c(system, form):
     return 0 < int(np.count_nonzero(~form.differential)) == system.structure.n_eq
 
 
-def prepare(system, form):
-    """Start compiling the C projector's library for the rows of ``form``
-    beside the model's library, where it serves them and would be compiled
-    before the run (:func:`~acausal2d.runtime.native.prepare_projector`)."""
-    if _in_c(system, form):
-        prepare_projector(system)
-
-
 class _Mapped:
     """E and dE/dz of a system mapped over K rows, bound to buffers."""
 
-    def __init__(self, system, K, p, native):
+    def __init__(self, system, K, p, native, chosen=None):
         args = [np.zeros(K), np.zeros(K * system.structure.n_var), np.asarray(p, float),
                 np.zeros(system.d.numel())]
         self.K = K
-        fns = _mapped_functions(system, native)
+        fns = _mapped_functions(system, native, chosen)
         self.E = Buffered(fns["E_rows_%d" % K], args)
         self.J = Buffered(fns["J_rows_%d" % K], args)
 
@@ -96,10 +90,11 @@ class _Mapped:
 
 
 class Projector:
-    """Projection of output rows of one formulation (see module docstring)."""
+    """Projection of output rows of one formulation (see module docstring);
+    ``chosen``: the run's engine (:func:`~acausal2d.runtime.tiers.mode`)."""
 
-    def __init__(self, system, form, p):
-        self.system, self.p = system, p
+    def __init__(self, system, form, p, chosen=None):
+        self.system, self.p, self.chosen = system, p, chosen
         self.n_eq = system.structure.n_eq
         self.free = np.nonzero(~form.differential)[0]
         r, c = system.jacobian_pattern
@@ -114,7 +109,7 @@ class Projector:
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         self.in_c = _in_c(system, form)
-        self.native = row_projector(system, self.free) if self.in_c else None
+        self.native = row_projector(system, self.free, chosen) if self.in_c else None
         self.native_iterations = SIMPLIFIED_ITERATIONS
         self.native_slow = 0 if self.n_eq >= NEW_LU_FROM else 1
         self._to_rows = None
@@ -132,7 +127,7 @@ class Projector:
 
     def _map(self, K):
         if K not in self._maps:
-            self._maps[K] = _Mapped(self.system, K, self.p, not self.in_c)
+            self._maps[K] = _Mapped(self.system, K, self.p, not self.in_c, self.chosen)
         return self._maps[K]
 
     def _converged(self, E, scale):

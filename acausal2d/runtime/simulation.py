@@ -30,9 +30,9 @@ from .failure import Approach
 from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, advance,
                   make_solver, start_solver)
 from . import tiers
-from .background import Tiering, launch, release as release_workers
-from .native import library as native_library, native_ida
-from .projection import Projector, prepare as prepare_projection
+from .background import launch
+from .native import native_ida
+from .projection import Projector
 from .rows import OutputRows
 from .initialize import initial_point, initialization_error
 from .locate import exact_point, exact_rows, locate_on_solution
@@ -94,13 +94,15 @@ class Simulation:
     """One run of ``system`` with parameter vector ``p`` over ``times``
     (the first is the start time); ``start``: {level-0 node index: value}
     replacing those start values (see :func:`.initialize.initial_point`);
-    see module docstring."""
+    ``native``: the engine, ``auto``, ``now`` or ``off`` (None: the
+    environment's, :func:`~acausal2d.runtime.tiers.mode`); see module
+    docstring."""
 
     def __init__(self, system: System, p: NDArray[np.float64], times: NDArray[np.float64],
                  rtol: float, atol: float | NDArray[np.float64] | None = None,
                  progress: Callable[[float, float], object] | None = None,
                  max_steps: int | None = None, max_wall_time: float | None = None,
-                 start: dict[int, float] | None = None) -> None:
+                 start: dict[int, float] | None = None, native: str | None = None) -> None:
         self.system, self.p = system, np.asarray(p, dtype=float)
         self.start = start
         self.max_steps, self.max_wall_time = max_steps, max_wall_time
@@ -120,8 +122,8 @@ class Simulation:
         self.n_singular, self.watch = 0, True
         self.chatter = ChatterWatch(system, self.t_end - float(self.times[0]))
         self.eps = time_resolution(self.t_end)
-        self.tiering = Tiering()
-        tiers.set_label(getattr(system, "model_name", None))
+        self.native = native
+        self.label = getattr(system, "model_name", None)
 
     # ------------------------------------------------------------ run
     def run(self) -> RunLog:
@@ -143,18 +145,17 @@ class Simulation:
             except SimulationError as exc:
                 exc.partial = self._log(wall)       # the motion up to where it stopped
                 raise
-            finally:       # libraries asked for after the last segment (the singular scan's)
-                release_workers()
-                launch(getattr(self.system, "model_name", None))
+            finally:       # the libraries this run asked for: compiled after it, detached
+                launch(self.label)
         if self.progress is not None:
             self.progress(self.out[-1][0], self.t_end)
         return self._log(wall)
 
     def _log(self, wall):
-        """The run log; the time spent compiling native code (in this process,
-        or waiting for the background worker) is reported apart from the
-        simulation's wall time."""
-        native = tiers.spent() - getattr(self, "spent0", tiers.spent()) + self.tiering.waited
+        """The run log; the time spent compiling native code in this process
+        (native mode ``now``) is reported apart from the simulation's wall
+        time."""
+        native = tiers.spent() - getattr(self, "spent0", tiers.spent())
         self.stats.native_compile_time = native
         self.stats.wall_time = _time.perf_counter() - wall - native
         T, Z = self.out.arrays()
@@ -162,7 +163,7 @@ class Simulation:
             self.selection)] if self.selection is not None else []
         log = RunLog(T, Z, self.events, self.singular, self.stopped, self.stats, states)
         log.event_texts = [(t, self.words.get(i, raw)) for i, (t, raw) in enumerate(self.events)]
-        log.native_notes = tiers.take_notes() + list(self.tiering.notes)
+        log.native_notes = []
         return log
 
     def _over_budget(self, wall):
@@ -210,30 +211,15 @@ class Simulation:
             atol = self.atol if self.atol is not None else self.rtol * self.system.nominal
             atol = np.broadcast_to(np.asarray(atol, dtype=float), (form.n,)).copy()
             y0, yp0 = form.y_from(self.z)
-            prepare_projection(self.system, form)     # its compile beside the model's
-            prob.native = native_ida(prob, self.rtol, atol)
+            prob.native = native_ida(prob, self.rtol, atol, chosen=self.native, label=self.label)
             prob.atol = atol
             solver = LazySolver(lambda t=self.t: start_solver(
                 make_solver(prob, self.rtol, atol), prob, t, y0, yp0, self.rtol, atol))
             if prob.native is None:
                 solver = solver._make()
-            self.solvers[key] = (form, prob, solver, Projector(self.system, form, self.p))
-        elif self.solvers[key][1].native is None and self.tiering.waiting:
-            self._upgrade(key)
+            self.solvers[key] = (form, prob, solver,
+                                 Projector(self.system, form, self.p, self.native))
         return self.solvers[key]
-
-    def _upgrade(self, key):
-        """Switch the current formulation to the native loop (and the C
-        projector) where their libraries appeared during the run
-        (:mod:`~acausal2d.runtime.tiers`)."""
-        form, prob, solver, projector = self.solvers[key]
-        still = self.tiering.active()
-        prob.native = native_ida(prob, self.rtol, prob.atol)
-        self.tiering.waiting = still and prob.native is None
-        if prob.native is not None:
-            self.solvers[key] = (form, prob, solver, Projector(self.system, form, self.p))
-            self.tiering.notes.append("native loop from t=%.6g (its library appeared during "
-                                      "the run)" % self.out[-1][0])
 
     def _progress_hook(self):
         if self.progress is None:
@@ -242,9 +228,7 @@ class Simulation:
         return lambda t: progress(t, t_end)
 
     def _segment(self):
-        self.tiering.overdue(_time.perf_counter())
         form, prob, solver, projector = self._solver()
-        self._launch(prob)
         prob.set_relations(self.d)
         self._bias(prob)
         y0, yp0 = form.y_from(self.z)
@@ -254,8 +238,7 @@ class Simulation:
         self.seg_left = (self.t, np.array(self.z))
         steps0 = prob.steps
         try:
-            outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop,
-                                                self._pause(form, prob))
+            outcome, T, Y, nfev, njev = advance(solver, prob, self.t, y0, yp0, outputs, t_stop)
         except Exception as exc:       # scikit-sundae raises on bad input at the start
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
@@ -277,34 +260,6 @@ class Simulation:
             g = self.ev.crossings(self.t, self.z, self.d)[list(rels)]
             prob.set_biases(g, self.d[list(rels)], [self.system.relations[k].strict
                                                    for k in rels])
-
-    def _launch(self, prob):
-        """Start the background worker of libraries asked for (tiers); on
-        the Python path, before the run has decided, it is held until the
-        run's first checkpoint tells whether its compile can be done before
-        the run ends (:meth:`~acausal2d.runtime.background.Tiering.held`)."""
-        python = prob.native is None
-        held = python and not self.tiering.decided
-        if launch(getattr(self.system, "model_name", None), held=held) and \
-                not self.tiering.gave_up:
-            self.tiering.waiting = python
-            if held:
-                self.tiering.held(_time.perf_counter())
-                prob.tick = self.tiering.tick
-
-    def _pause(self, form, prob):
-        """While the run looks for its library on the Python path: the
-        ``pause`` of :func:`~acausal2d.runtime.ida.advance`, which ends the
-        call of IDA where the library is there or the run waits for it
-        (:meth:`~acausal2d.runtime.background.Tiering.pause`); else None."""
-        if prob.native is not None or not self.tiering.waiting:
-            return None
-        tiering, t_end = self.tiering, self.t_end
-        tiering.begin(self.t, _time.perf_counter(), t_end)
-
-        def ready():
-            return native_library(form) is not None
-        return lambda t: tiering.pause(t, t_end - t, _time.perf_counter(), ready)
 
     def _stop_and_outputs(self):
         """(stop time, output times) of the next IDA call: up to the next
@@ -333,7 +288,7 @@ class Simulation:
         before = self.out[n0 - 1] if n0 > 0 else None
         T, Z = np.asarray(T, dtype=float), np.asarray(Z, dtype=float)
         sizes = sing.scan_singular_positions(self.system, self.ev, form, self.selection, self.p,
-                                             self.d, T, Z, self.singular, before)
+                                             self.d, T, Z, self.singular, before, self.native)
         if 0 in sizes:
             self._solver()[1].note_size([sizes[0]])
 

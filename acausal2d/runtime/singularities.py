@@ -76,15 +76,17 @@ class DeterminantScan:
     relation values shared) and evaluated through a :class:`Buffered` on
     arrays filled in place - converting large arrays to CasADi matrices
     would cost ten times the evaluation.  Compiled to C where a compiler
-    is found (:func:`~acausal2d.runtime.native.compiled`)."""
+    is found and the engine ``chosen`` compiles (:func:`~acausal2d.runtime.
+    native.compiled`)."""
 
     CHUNK = 256
 
-    def __init__(self, form):
+    def __init__(self, form, chosen=None, label=None):
         K, fn = self.CHUNK, form.det_fn
         mapped = fn.map("det_scan", "serial", K, [3, 4], [])
         if not too_large(fn):
-            mapped = (compiled({"det_scan": mapped}) or {"det_scan": mapped})["det_scan"]
+            mapped = (compiled({"det_scan": mapped}, chosen, label)
+                      or {"det_scan": mapped})["det_scan"]
         self.fn = Buffered(mapped,
                            [np.zeros(K), np.zeros(K * form.n), np.zeros(K * form.n),
                             np.zeros(fn.nnz_in(3)), np.zeros(fn.nnz_in(4))])
@@ -142,17 +144,19 @@ def _passed(row, n, sign_changes):
     return (np.nonzero(hit)[0] + 1).tolist()
 
 
-def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found, before=None):
+def scan_singular_positions(system, ev, form, selection, p, d, T, Z, found, before=None,
+                            chosen=None):
     """Find singular positions passed between the output points (T, Z) of a
     segment (after the point ``before`` = (t, z), if given): the determinant
     of a watched dummy block changes sign (except the highest level's, whose
     sign changes IDA locates as roots), or has a local minimum far below its
-    typical size.  Returns {level: largest |det| seen}."""
+    typical size (``chosen``: the run's engine).  Returns {level: largest
+    |det| seen}."""
     n = len(T) + (before is not None)
     if form.det_fn is None or n < 3:
         return {}
     if getattr(form, "det_scan", None) is None:
-        form.det_scan = DeterminantScan(form)
+        form.det_scan = DeterminantScan(form, chosen, getattr(system, "model_name", None))
     d = np.asarray(d, float)
     dets = form.det_scan.of_rows(T, Z, form.all_deriv, p, d)
     if before is not None:

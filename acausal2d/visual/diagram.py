@@ -19,9 +19,15 @@ are marked (:func:`named_in`).
 ``CompiledModel.diagram()``, ``check --diagram``, ``simulate``'s
 ``diagram.svg`` and the explore page).
 """
+import os
 import re
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
+
+from ..errors import Acausal2dError, ModelDefinitionError
+from ..io.files import write_text
+from .diagram_layout import layout
+from .diagram_svg import HEADLINE, render_html, render_svg
 
 if TYPE_CHECKING:
     from ..language.dsl import Component
@@ -265,11 +271,6 @@ def _endpoint(conn, scope, boxes):
     return box.path, name
 
 
-HEADLINE = 3
-"""Lines of an error message searched for component names: its headline
-and the first culprits (a structural error goes on to list every equation
-competing for the unknowns, which names every component)."""
-
 
 def named_in(message, model):
     """The paths of the components of ``model`` that the headline of the
@@ -344,7 +345,6 @@ def structure(model, error=None, path=""):
 
 
 def _child(scope, part):
-    from ..errors import ModelDefinitionError
     raise ModelDefinitionError("%s has no sub-model %r; its sub-models: %s" % (
         scope.describe(), part, ", ".join(n for n, c in scope._children.items()
                                            if c._children) or "none"))
@@ -374,8 +374,6 @@ def diagram_svg(model, error=None, path=""):
     """The diagram of ``model`` (a Component instance; with ``path`` of its
     sub-model there) as SVG text; ``error`` is the message it failed to
     compile with."""
-    from .diagram_layout import layout
-    from .diagram_svg import render_svg
     st = structure(model, error, path)
     return render_svg(st, layout(st))
 
@@ -384,7 +382,6 @@ def diagram_html(model, error=None):
     """The diagram of ``model`` and of each of its sub-models as one HTML
     page: a sub-model's box opens its own diagram, one level at a time, and
     a link leads back up."""
-    from .diagram_svg import render_html
     levels = [("", diagram_svg(model, error))]
     levels += [(p, diagram_svg(model, error, p)) for p in submodel_paths(model)]
     return render_html(type(model).__name__, levels)
@@ -393,7 +390,6 @@ def diagram_html(model, error=None):
 def check_diagram_path(path):
     """Raise an error naming ``path`` unless it ends in .svg or .html (a
     diagram never overwrites a model file or a result)."""
-    from ..errors import Acausal2dError
     if not str(path).lower().endswith((".svg", ".html", ".htm")):
         raise Acausal2dError("the diagram is written as .svg or .html, not to %s; name a file "
                              "ending in .svg or .html" % path)
@@ -403,8 +399,6 @@ def write_diagram(model, path, error=None):
     """Write the diagram of ``model`` to ``path``: an HTML page (sub-models
     open in it) if it ends in ``.html``, else SVG; written whole or not at
     all (a temporary file moved in).  Returns ``path``."""
-    import os
-    from ..io.files import write_text
     check_diagram_path(path)
     folder = os.path.dirname(os.fspath(path))
     if folder:

@@ -5,8 +5,15 @@ diagram.  The geometry comes from :mod:`acausal2d.visual.diagram_layout`.
 """
 import html
 import json
+import textwrap
 
 from .diagram_layout import HEAD, GLYPH, PARAM, end_points
+
+HEADLINE = 3
+"""Lines of an error message searched for component names and shown above
+the diagram: its headline and the first culprits (a structural error goes
+on to list every equation competing for the unknowns, which names every
+component)."""
 
 COLOURS = {"frame": "#4b5d6b", "rotational": "#1f6fb4", "translational": "#2e8b57",
            "band": "#d35400", "hydraulic": "#0097a7", "signal": "#8e44ad", "other": "#7f8c8d"}
@@ -304,8 +311,6 @@ def _legend(st, y):
 def _error_lines(error, width, most=5):
     """The headline of the error the model failed to compile with, wrapped
     to the drawing's width (at most ``most`` lines)."""
-    import textwrap
-    from .diagram import HEADLINE
     lines = []
     for k, text in enumerate(error.splitlines()[:HEADLINE]):
         lines += textwrap.wrap(("does not compile: " if k == 0 else "") + text.strip(),

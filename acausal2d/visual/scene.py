@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from ..protocols import ResultData
 
 _SCALAR_KEYS = ("x", "y", "phi", "r", "length", "width", "fx", "fy", "t", "angle", "scale",
-                "offset")
+                "offset", "s")
 _POINT_KEYS = ("a", "b")
 _POINTS_KEYS = ("points", "guide")
 

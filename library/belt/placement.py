@@ -11,11 +11,15 @@ GKS) and both choices place P1 at ``(x10, y10)``.  During the run P1
 follows the connection by A.7-A.9 and the port's torque by A.18; the
 derivatives A.10-A.15 come from index reduction.
 
-:func:`start_poses` finds the start pose of the frame ``ctr2D1`` is
+:class:`StartPoses` finds the start pose of the frame ``ctr2D1`` is
 connected to from parameters and start values alone (fixed frames, bodies
-with start values, rigid rods and rotations, revolute joints with a start
-angle), so that a pulley on a moving body needs no start coordinates of
-its own (the tangent construction of the belts needs P1 at t0).
+with start values, rigid rods, rotations and body shapes, revolute joints
+with a start angle, prismatic joints with a start travel, nodes and
+carriages, and every port of the VDI linkage elements DAN, SAN, DDD, DDS,
+DSD, SDS, SSD, FGP by their closed-form start solution of ch. 4.2.1), so
+that a pulley on a crank, coupler, slider or body needs no start
+coordinates of its own (the tangent construction of the belts needs P1 at
+t0).
 """
 import math
 import warnings
@@ -24,7 +28,8 @@ import casadi as ca
 import numpy as np
 
 from acausal2d import Frame
-from acausal2d.errors import ModelDefinitionError
+from acausal2d.errors import Acausal2dError, ModelDefinitionError
+from acausal2d.language.context import ModelContext
 from acausal2d.language.unionfind import connector_sets
 from acausal2d.library import planar
 
@@ -147,14 +152,34 @@ def winding(cls_name, w, w_i, default=-1):
 
 
 # ------------------------------------------------------------ start poses
+def _numbers(vals):
+    """{x, y, phi} of a pre-assembly node as floats, or None where the
+    pose is incomplete or not a number (it depends on a variable)."""
+    if not vals or not all(k in vals for k in ("x", "y", "phi")):
+        return None
+    out = {}
+    for k in ("x", "y", "phi"):
+        v = vals[k]
+        if isinstance(v, (ca.SX, ca.MX)):
+            if not v.is_constant():
+                return None
+            v = ca.evalf(v)
+        out[k] = float(v)
+    return out if all(math.isfinite(v) for v in out.values()) else None
+
+
 class StartPoses:
     """Start poses (x, y, phi) of the frames of a model at t0 from
     parameters and start values alone (numbers, before the model is bound):
     :class:`~acausal2d.library.planar.Fixed` frames, unconnected housings,
     bodies whose start ``x``/``y`` (and ``phi``) are given, frames seeded by
     a component's ``_linkage_seed()`` (nodes, Carriage mounts), propagated over
-    FixedTranslation, FixedRotation and Revolute joints (the angle of a
-    revolute's frame_b only where its start ``phi`` is given).  ``pose(conn)``
+    FixedTranslation, FixedRotation, BodyShape, Revolute joints (the angle of a
+    revolute's frame_b only where its start ``phi`` is given) and Prismatic
+    joints with a start ``s``, wheels rolling on the ground (IdealRolling)
+    with a start ``phi``, and through the VDI linkage elements (their
+    pre-assembly with the parameters' numbers, :meth:`_linkage_pass`), in
+    turn until nothing more follows.  ``pose(conn)``
     is None where a frame's start pose does not follow this way (then it
     needs the initialization)."""
 
@@ -164,9 +189,42 @@ class StartPoses:
         comps = list(model.components())
         for comp in comps:
             self._seed(comp)
-        for _ in range(len(comps)):
-            if not any([self._propagate(c) for c in comps]):
+        from acausal2d.library.linkage.base import _Linkage   # the linkage imports planar,
+        linkage = [c for c in comps if isinstance(c, _Linkage)]  # which imports the belts
+        for _ in range(len(comps) + 1):
+            while any([self._propagate(c) for c in comps]):
+                pass
+            if not (linkage and self._linkage_pass(model, comps, linkage)):
                 break
+
+    def _linkage_pass(self, model, comps, linkage):
+        """Poses of the VDI linkage elements' ports (DAN, SAN, DDD, DDS,
+        DSD, SDS, SSD, FGP, ...) from their closed-form start solution
+        (the pre-assembly of ch. 4.2.1, evaluated with the parameters'
+        numbers), seeded with the frames known so far; True if a frame
+        became known.  Elements whose inputs stay unknown are left out
+        (no guessed origin)."""
+        from acausal2d.library.linkage.base import _Assembly
+        frames = [c for comp in comps for c in comp._connectors.values() if isinstance(c, Frame)]
+        seeds = [(c, dict(zip(("x", "y", "phi"), self.pose(c)))) for c in frames
+                 if self.pose(c) is not None]
+        saved = [(e, dict(e._rel)) for e in linkage]
+        try:
+            for e, _ in saved:
+                e._rel.clear()
+            asm = _Assembly(ModelContext(model), seeds, fallback=False)
+        except (Acausal2dError, RuntimeError):
+            return False            # the compilation's own assembly names the element
+        finally:
+            for e, rel in saved:
+                e._rel.clear()
+                e._rel.update(rel)
+        moved = False
+        for conn in frames:
+            vals = _numbers(asm.get(conn))
+            if vals is not None:
+                moved |= self._put(conn, vals)
+        return moved
 
     def pose(self, conn):
         """(x, y, phi) of the node of ``conn`` at t0, or None."""
@@ -216,8 +274,20 @@ class StartPoses:
         if isinstance(comp, planar.FixedRotation):
             return self._rigid(comp.frame_a, comp.frame_b,
                                (0.0, 0.0, float(comp.parameter_value("alpha"))))
+        if isinstance(comp, planar.BodyShape):
+            r = np.asarray(comp.parameter_value("r"), dtype=float)
+            return self._rigid(comp.frame_a, comp.frame_b, (r[0], r[1], 0.0))
         if isinstance(comp, planar.Revolute):
             return self._revolute(comp)
+        if isinstance(comp, planar.IdealRolling) and comp.is_given("phi"):
+            phi = comp.start_value("phi")                   # x + R phi = x0, y = R
+            R = float(comp.parameter_value("R"))
+            return self._put(comp.frame_a, {"x": float(comp.parameter_value("x0")) - R * phi,
+                                            "y": R, "phi": phi})
+        if isinstance(comp, planar.Prismatic) and comp.is_given("s"):
+            r = np.asarray(comp.parameter_value("r"), dtype=float)
+            r = r * comp.start_value("s") / float(np.hypot(r[0], r[1]))
+            return self._rigid(comp.frame_a, comp.frame_b, (r[0], r[1], 0.0))
         return False
 
     def _rigid(self, a, b, rel):

@@ -43,9 +43,17 @@ class _Wheel(_BandElement):
 
     phi = Variable(unit="rad", state_select="prefer", doc="pulley angle (world), unwrapped")
     phi_rel = Variable(unit="rad", doc="pulley angle relative to the housing")
-    w_rel = Variable(unit="rad/s", state_select="prefer", doc="der(phi_rel)")
+    w_rel = Variable(unit="rad/s", state_select="prefer",
+                     doc="der(phi_rel): angular velocity relative to the housing")
+    phidot = Variable(unit="rad/s", doc="der(phi): angular velocity in the world frame GKS "
+                      "(the start value phidot_0 of Tabelle 4.15 is given for it; it equals "
+                      "w_rel only on a housing at rest)")
     T_f = Variable(unit="N.m", doc="bearing friction torque acting on the pulley")
     F_bear = Variable(unit="N", doc="magnitude of the bearing force")
+    P_T = Variable(unit="W", doc="power of the inertia force of the wheel, rate of its "
+                   "translational kinetic energy (Anhang A.30, as on the linkage bodies)")
+    P_R = Variable(unit="W", doc="power of the inertia torque of the wheel, rate of its "
+                   "rotational kinetic energy (Anhang A.31)")
     xP1 = Variable(unit="m", state_select="avoid", doc="axis P1, x (eq. A.7)")
     yP1 = Variable(unit="m", state_select="avoid", doc="axis P1, y (eq. A.8)")
 
@@ -124,9 +132,11 @@ class _Wheel(_BandElement):
     def _unknown_start_message(self):
         return ("%s: the start position of its axis P1 is not known: ctr2D1 is connected to a "
                 "frame whose start pose does not follow from parameters and start values "
-                "(Fixed, Body with start x, y, phi, FixedTranslation, FixedRotation, Revolute "
-                "with a start phi).  Give the body that carries it start values (e.g. "
-                "Body(x=start(...), y=start(...), phi=start(...))), or, for frameRef='global', "
+                "(Fixed, Body with start x, y, phi, FixedTranslation, FixedRotation, BodyShape, "
+                "Revolute with a start phi, Prismatic with a start s, the ports of the linkage "
+                "elements DAN, SAN, DDD, ... once their inputs are known).  Give the body that "
+                "carries it start values (e.g. Body(x=start(...), y=start(...), phi=start(...))), "
+                "or, for frameRef='global', "
                 "the axis' start pose x10, y10 together with those start values"
                 % self.describe())
 
@@ -182,6 +192,7 @@ class _Wheel(_BandElement):
         arm = (self.xP1 - C.x) * C.fy - (self.yP1 - C.y) * C.fx if moved else 0
         eqs = [self.xP1 == x, self.yP1 == y,
                self.phi_rel == self.phi - phi_h, self.w_rel == der(self.phi_rel),
+               self.phidot == der(self.phi),
                R.phi == self.phi_rel, self.ctrR1.phi == phi_h, self.ctrR2.phi == self.phi,
                C.t == tau - self.ctrR2.tau - self.ctrR1.tau + arm]
         if is_connected(R):
@@ -227,7 +238,16 @@ class _Wheel(_BandElement):
             eqs.append(self.J * der(der(self.phi)) == mom)
         else:
             eqs.append(0 == mom)
-        return eqs
+        return eqs + self._power((Sx, Sy) if massive else None, massive or J_num != 0.0)
+
+    def _power(self, S, turning):
+        """P_T and P_R (Anhang A.30, A.31): ``P_T = m (xS'' xS' + yS'' yS')``
+        of the centre of gravity ``S`` (None: massless, P_T = 0) and ``P_R =
+        J phi'' phi'`` (0 where the wheel has neither mass nor inertia)."""
+        P_T = (self.m * (der(der(S[0])) * der(S[0]) + der(der(S[1])) * der(S[1]))
+               if S is not None else 0)
+        P_R = self.J * der(der(self.phi)) * der(self.phi) if turning else 0
+        return [self.P_T == P_T, self.P_R == P_R]
 
     def shapes(self):
         """The wheel at its axis P1, turned by its absolute angle ``phi``

@@ -30,8 +30,8 @@ flanges), so every load is a true external or internal force.
 The band as the frame (code with a trailing ``~``, ``"BDDD~"``; see
 :meth:`BandStructure._build_band_frame`) is a taut straight band along y =
 0 on which discs roll.  Two-band structures are not built by this class;
-see models/band_systematics.py for which structures the rules define and
-which ones are modelled.
+:mod:`acausal2d.library.belt.structures` derives the structures the rules
+define; models/band_systematics.py makes a model of each.
 """
 import math
 
@@ -93,15 +93,13 @@ def _cross(a, b):
 
 
 
-def _disc(p, on_link):
-    """The disc of a B joint at ``p``: placed by its axis (x10, y10,
-    frameRef='global', Ebert (2015), Anhang A.1) on the ground; on a linkage element
-    its start still comes from the former x0, y0 (the start poses of
-    :mod:`~acausal2d.library.belt.placement` do not follow the linkage
-    elements' frames yet)."""
-    if on_link:
-        return Drum(r=R_DISC, w=1, n_wound=2.0, x0=p[0], y0=p[1])
+def _disc(p):
+    """The disc of a B joint at ``p``: placed by its axis' start pose
+    (x10, y10, frameRef='global', Ebert (2015), Anhang A.1, A.4-A.6) on the
+    ground or on the linkage element that carries it (its offset in the
+    link's frame follows from the link's start pose)."""
     return Drum(r=R_DISC, w_i=-1, n_wound=2.0, x10=p[0], y10=p[1], frameRef="global")
+
 
 class BandStructure(Component):
     """A four-link band mechanism of the structure ``code`` (class
@@ -229,7 +227,7 @@ class BandStructure(Component):
                 conn = getattr(self, "pin%d" % j).frame
             self.connect(getattr(band, "ctr2D%d" % k), conn)
             return name, p
-        disc = _disc(p, on_link=conn is not None)
+        disc = _disc(p)
         setattr(self, "disc%d" % j, disc)
         if winch is None:                   # the disc is locked to its housing
             self.connect(disc.ctrR1, disc.ctrR2)
@@ -304,7 +302,7 @@ class BandStructure(Component):
         else:
             chain, parent = [(1, 2), (2, 3), (3, 4)], None
             if letters[0] == "B":
-                self.wheel = IdealRolling(R=R_DISC, x0=self._pts[1][0])
+                self.wheel = IdealRolling(R=R_DISC, x0=self._pts[1][0], phi=start(0.0))
                 self._angles["wheel"], self._tip_at["wheel"] = 0.0, self._pts[1]
                 chain, parent = chain[1:], "wheel"
         for jp, jc in chain:
@@ -313,7 +311,8 @@ class BandStructure(Component):
         self.drive_link, self.load_link = first, parent
         self._drive(first, on_wheel=hasattr(self, "wheel"))
         j = chain[-1][1]
-        self.roll = IdealRolling(R=R_DISC, x0=self._pts[j][0] + R_DISC * self._angles[parent])
+        self.roll = IdealRolling(R=R_DISC, x0=self._pts[j][0] + R_DISC * self._angles[parent],
+                                 phi=start(0.0))
         self.connect(self._out(parent), self.roll.frame_a)
         self.load_point, self.load_end, self.drive_point, self.drive_end = "roll", None, None, None
         link = getattr(self, parent)

@@ -187,7 +187,7 @@ class TwoBandStructure(BandStructure):
             self.drive = Preset(kind="speed", om=-OMEGA, phi0=a)
             self.connect(self.drive.flange, self.link12.ctrR2)
             return (self.link12.ctr2D2, "link12.ctr2D2"), None
-        self.roll1 = IdealRolling(R=R_DISC, x0=p1[0])
+        self.roll1 = IdealRolling(R=R_DISC, x0=p1[0], phi=start(0.0))
         self.arm1 = FixedTranslation(r=(p2[0] - p1[0], p2[1] - p1[1]))
         self.connect(self.roll1.frame_a, self.arm1.frame_a)
         self.drive = Preset(kind="speed", om=WINCH, phi0=0.0, use_support=True)
@@ -203,7 +203,7 @@ class TwoBandStructure(BandStructure):
             self.link34 = DAN(x10=p4[0], y10=p4[1], lL=math.dist(p3, p4), mL=0.0, JL=0.0,
                               phiL0=a, phiL=start(a))
             return (self.link34.ctr2D2, "link34.ctr2D2"), p4
-        self.roll = IdealRolling(R=R_DISC, x0=p4[0])
+        self.roll = IdealRolling(R=R_DISC, x0=p4[0], phi=start(0.0))
         self.arm3 = FixedTranslation(r=(p3[0] - p4[0], p3[1] - p4[1]))
         self.connect(self.roll.frame_a, self.arm3.frame_a)
         return (self.arm3.frame_b, "arm3.frame_b"), (p4[0], 0.0)

@@ -76,7 +76,13 @@ class _Assembly:
     """Numeric-symbolic pre-assembly of all linkage elements of one model:
     node potentials (x, y, phi or s) as CasADi expressions of parameters."""
 
-    def __init__(self, context):
+    def __init__(self, context, seeds=(), fallback=True):
+        """``seeds``: further known poses [(connector, {potential:
+        value})] (the start poses of planar frames, see
+        :class:`~acausal2d.library.belt.placement.StartPoses`);
+        ``fallback``: assemble elements whose inputs stay unknown as if
+        those inputs sat at the origin (start guesses only; off where only
+        poses that follow from the parameters are wanted)."""
         root = context.model
         self.root, self.context = root, context
         comps = list(root.components())
@@ -87,17 +93,31 @@ class _Assembly:
         self.checks = []
         self.guesses = {}       # id(element) -> {variable: expression}
         for comp in comps:
-            for conn in comp._connectors.values():
-                if conn.ground is not None and id(conn) not in connected:
-                    g = conn.ground(comp) if callable(conn.ground) else conn.ground
-                    self.put(conn, dict(g))
-            seed = getattr(comp, "_linkage_seed", None)
-            if seed is not None:
-                for conn, vals in seed():
-                    self.put(conn, vals)
-            else:
-                self._seed_library(comp)
-        elems = [c for c in comps if isinstance(c, _Linkage)]
+            self._seed(comp)
+        for conn, vals in seeds:
+            self.put(conn, vals)
+        pending = self._assemble_all([c for c in comps if isinstance(c, _Linkage)])
+        for e in pending if fallback else ():
+            e._assemble_alone(self)
+        self.unresolved = pending
+        self._run_checks(comps)
+
+    def _seed(self, comp):
+        """Known poses of ``comp``: its unconnected ground ports, its
+        ``_linkage_seed()`` or, for library parts, :meth:`_seed_library`."""
+        for conn in comp._connectors.values():
+            if conn.ground is not None and id(conn) not in self.connected:
+                g = conn.ground(comp) if callable(conn.ground) else conn.ground
+                self.put(conn, dict(g))
+        seed = getattr(comp, "_linkage_seed", None)
+        if seed is not None:
+            for conn, vals in seed():
+                self.put(conn, vals)
+        else:
+            self._seed_library(comp)
+
+    def _assemble_all(self, elems):
+        """Assemble the elements in turn until none can; the ones left."""
         pending = list(elems)
         while pending:
             progress = False
@@ -107,10 +127,7 @@ class _Assembly:
                     progress = True
             if not progress:
                 break
-        for e in pending:
-            e._assemble_alone(self)
-        self.unresolved = pending
-        self._run_checks(comps)
+        return pending
 
     def check(self, elem, value, condition, hint):
         """Register an assembly condition ``value >= 0`` of ``elem``."""
@@ -222,6 +239,15 @@ class _Linkage(Component):
 
     def _g(self):
         return self.world.g
+
+    def _start(self, variable, parameter):
+        """The start value given for ``variable`` (``phiL=start(0.3)`` or a
+        number), else the start parameter ``parameter`` (``phiL0``; also
+        for ``start(fixed=True)`` without a value): where the element's
+        pre-assembly puts it at t0."""
+        ov = self._overrides.get(variable)
+        given = ov is not None and getattr(ov, "value", ov) is not None
+        return self.start_value(variable) if given else parameter
 
     def _conn(self, n):
         return getattr(self, "ctr2D%d" % n)
@@ -365,15 +391,20 @@ class _Linkage(Component):
             return [{"type": "link", "points": [c, list(point)]}]
         return []
 
-    def _slider_shape(self, PS, phi, guide_port=None):
+    def _slider_shape(self, PS, phi, guide_port=None, travel=None):
         """Slider block at the foot point ``PS`` with angle ``phi``; its
         guide is drawn from the placed point of ``guide_port`` when that
-        point is a result signal (see :meth:`_port_point`)."""
+        point is a result signal (see :meth:`_port_point`); otherwise the
+        slider's own ``travel`` variable (measured from that point) gives
+        its travel range (``"s"``, see
+        :mod:`acausal2d.analysis.slider_ranges`)."""
         shape = {"type": "slider", "x": PS[0], "y": PS[1], "phi": phi}
         if guide_port is not None:
             start, exact = self._port_point(guide_port)
             if exact:
                 shape["guide"] = [start, PS]
+            elif travel is not None:
+                shape["s"] = travel
         return shape
 
     def _body_shape(self, key):
@@ -552,49 +583,3 @@ def axes(phi):
     angle ``phi`` (Bild 4.3 point-direction form)."""
     c, s = ca.cos(phi), ca.sin(phi)
     return (c, s), (-s, c)
-
-
-class _TwoSliders(_Linkage):
-    """What SSD (Anhang B.7) and SDS (B.8) share: slider 1 slides on the
-    massless guide 1 fixed to the plane at P1 (direction phiU1 = angle of the
-    placed frame), ``PS1 = P1 + xG1 e1`` (B.158/B.197) and carries the joint
-    point P at the offset ``v1`` (``P = PS1 + v1 n1``, B.164/B.209); slider 2
-    slides on guide 2 (angle phiU2), with foot point PS2.  Both sliders have
-    mass (bodies S1 in SKS1 at PS1 and S2 in SKS2 at PS2)."""
-    v1 = Parameter(0.1, "m", "offset of P from guide 1")
-
-    xG1 = Variable(unit="m", doc="travel of slider 1, P1 -> PS1")
-    xG2 = Variable(unit="m", doc="travel of slider 2 along guide 2 to its foot point PS2")
-    phiS1 = Variable(unit="rad", doc="angle of slider 1 (= guide 1)")
-    phiS2 = Variable(unit="rad", doc="angle of slider 2 (= guide 2)")
-    Fn1 = Variable(unit="N", doc="normal force guide 1 -> slider 1")
-    T1 = Variable(unit="N.m", doc="moment guide 1 -> slider 1")
-    Fn2 = Variable(unit="N", doc="normal force guide 2 -> slider 2")
-    T2 = Variable(unit="N.m", doc="moment guide 2 -> slider 2")
-    xPS1 = Variable(unit="m", doc="foot point PS1 of slider 1 on guide 1, x (for drawing)")
-    yPS1 = Variable(unit="m", doc="foot point PS1 of slider 1 on guide 1, y (for drawing)")
-    def _slider1_start(self, x1, y1, a1, xG1):
-        """Start values of slider 1 at travel ``xG1``: (PS1, P, guesses)."""
-        e1, n1 = axes(a1)
-        PS1 = (x1 + xG1 * e1[0], y1 + xG1 * e1[1])
-        P = (PS1[0] + self.v1 * n1[0], PS1[1] + self.v1 * n1[1])
-        return PS1, P, {"xG1": xG1, "phiS1": a1, "xPS1": PS1[0], "yPS1": PS1[1],
-                        **self._mass_start("S1", PS1, a1)}
-
-    def _guide1(self, C1, PS1, N1):
-        """Balance of the massless guide 1 (B.182-B.184, B.221-B.223):
-        normal force ``N1`` (vector) and moment T1 on slider 1 at PS1."""
-        f1 = self.ctr2D1
-        return [f1.fx - N1[0] == 0, f1.fy - N1[1] == 0,
-                f1.t - self.T1 + _moment(PS1, C1, (-N1[0], -N1[1])) == 0]
-
-    def _slider_shapes(self, PS1, PS2, P, guide2_port=None):
-        """Both sliders and the links from their foot points to P; guide 2
-        is drawn from its placed point (SDS) or from P (SSD)."""
-        P1, _ = self._port_point(1)
-        slider2 = self._slider_shape(PS2, "phiS2", guide2_port)
-        if guide2_port is None:
-            slider2["guide"] = [P, PS2]
-        return (self._housing_shapes(1, P1, "phiS1")
-                + [self._slider_shape(PS1, "phiS1", 1), slider2,
-                   {"type": "link", "points": [PS1, P]}])

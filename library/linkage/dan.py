@@ -47,8 +47,8 @@ class DAN(_Linkage):
     def _assemble_at(self, asm, p1):
         x1, y1, a1 = p1
         r = asm.get(self.ctrR2)
-        phi = r["phi"] if r and "phi" in r else self.phiL0
-        om = r["w"] if r and "w" in r else self.omL0
+        phi = r["phi"] if r and "phi" in r else self._start("phiL", self.phiL0)
+        om = r["w"] if r and "w" in r else self._start("omL", self.omL0)
         xP, yP = x1 + self.lL * ca.cos(phi), y1 + self.lL * ca.sin(phi)
         asm.start(self, {"phiL": phi, "omL": om, **self._mass_start("L", (x1, y1), phi)})
         self._set_port(asm, self.ctr2D2, {"x": xP, "y": yP, "phi": phi})

@@ -132,7 +132,7 @@ class DDS(_Linkage):
         P1, PS, P = ["ctr2D3.x", "ctr2D3.y"], ["ctr2D4.x", "ctr2D4.y"], ["xP", "yP"]
         P2, _ = self._port_point(2)
         return (self._housing_shapes(1, P1) + self._housing_shapes(2, P2, "phiS")
-                + [{"type": "link", "points": [P1, P]}, self._slider_shape(PS, "phiS", 2),
+                + [{"type": "link", "points": [P1, P]}, self._slider_shape(PS, "phiS", 2, "xG"),
                    {"type": "link", "points": [PS, P]},
                    {"type": "joint", "x": P1[0], "y": P1[1]},
                    {"type": "joint", "x": P[0], "y": P[1]}]

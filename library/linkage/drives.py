@@ -20,7 +20,7 @@ import casadi as ca
 import numpy as np
 
 from acausal2d import (Component, der, Frame, Parameter, RotationalFlange, time,
-                       time_derivative, TranslationalFlange, Variable)
+                       TranslationalFlange, Variable)
 from acausal2d.errors import ModelDefinitionError
 
 __all__ = ["Preset", "TorqueSource", "ForceSource", "RelativeAngle", "RelativePosition",
@@ -110,9 +110,11 @@ class Preset(Component):
         return _spline_expr(t, self.table)
 
     def _linkage_seed(self):
-        """Start pose for the linkage pre-assembly: position and speed at t = 0."""
+        """Start pose for the linkage pre-assembly: position and speed at t = 0
+        (the motion holds parameters and time only: its time derivative is
+        the partial one, also outside a flattening)."""
         pot = "s" if self.translational else "phi"
-        w0 = ca.substitute(time_derivative(self.motion(time)), time, ca.SX(0.0))
+        w0 = ca.substitute(ca.jacobian(ca.SX(self.motion(time)), time), time, ca.SX(0.0))
         return [(self.flange, {pot: self.motion(0.0), "w": w0})]
 
     def equations(self):

@@ -113,11 +113,20 @@ class DSD(_Linkage):
         P1, P2, PS = ["ctr2D3.x", "ctr2D3.y"], ["ctr2D4.x", "ctr2D4.y"], ["xPS", "yPS"]
         return (self._housing_shapes(1, P1) + self._housing_shapes(2, P2)
                 + [{"type": "link", "points": [P1, PS]},
-                   self._slider_shape(PS, "phiU"),
+                   self._guided_slider(P1, PS),
                    {"type": "link", "points": [PS, P2]},
                    {"type": "joint", "x": P1[0], "y": P1[1]},
                    {"type": "joint", "x": P2[0], "y": P2[1]}]
                 + self._body_shape("U"))
+
+    def _guided_slider(self, P1, PS):
+        """The slider on its guide from the guide's pivot P1 (the plane
+        port ``ctr2D3`` sits at P1 unless it is placed with an offset; then
+        the placed point of port 1 where it is a result signal, see
+        :meth:`_port_point`), so that its travel xG is a slider range."""
+        if self._output_offset(3) is None:
+            return dict(self._slider_shape(PS, "phiU"), guide=[P1, PS])
+        return self._slider_shape(PS, "phiU", 1, "xG")
 
     def topology(self):
         # links: guide = ctr2D3, slider = ctr2D4; revolutes at P1 and P2,

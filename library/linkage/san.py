@@ -50,7 +50,7 @@ class SAN(_Linkage):
     def _assemble_at(self, asm, p1):
         x1, y1, a = p1
         t = asm.get(self.ctrT2)
-        xG = t["s"] if t and "s" in t else self.xS0
+        xG = t["s"] if t and "s" in t else self._start("xG", self.xS0)
         c, s = ca.cos(a), ca.sin(a)
         xPS, yPS = x1 + xG * c, y1 + xG * s
         dx, dy = _rot(a, self.xSrel, self.ySrel)
@@ -90,7 +90,7 @@ class SAN(_Linkage):
         P1, _ = self._port_point(1)
         PS, P = ["xPS", "yPS"], ["ctr2D2.x", "ctr2D2.y"]
         return (self._housing_shapes(1, P1, "phiS")
-                + [self._slider_shape(PS, "phiS", 1),
+                + [self._slider_shape(PS, "phiS", 1, "xG"),
                    {"type": "link", "points": [PS, P]},
                    {"type": "joint", "x": P[0], "y": P[1]}])
 

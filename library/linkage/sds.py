@@ -4,7 +4,8 @@ import casadi as ca
 
 from acausal2d import Parameter, Variable
 
-from .base import (_TwoSliders, _cross, _moment, MassData, axes, element, plug, port_moment,
+from .two_sliders import _TwoSliders
+from .base import (_cross, _moment, MassData, axes, element, plug, port_moment,
                    triangle)
 
 __all__ = ["SDS", "solve_sds"]
