@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 
-from acausal2d.errors import ModelDefinitionError
+from acausal2d.errors import ModelDefinitionError, StartPoseError
 from acausal2d.library import planar
 
 from .placement import StartPoses
@@ -193,7 +193,7 @@ def _named_tangent(span, ends, a, b):
     if isinstance(a, tuple) and isinstance(b, tuple) and a[2] and b[2]:
         dist = math.hypot(b[0] - a[0], b[1] - a[1])
         if dist < abs(a[2]) + abs(b[2]):
-            raise ModelDefinitionError(
+            raise StartPoseError(      # often: a housing connected to nothing, at the origin
                 "%s, which overlap: centre distance %.6g m < sum of the radii %.6g m; move "
                 "them apart (x10, y10) or make them smaller (r)" % (where, dist,
                                                                  abs(a[2]) + abs(b[2])))
