@@ -9,6 +9,7 @@ from collections import Counter
 from ..compiler.connectors import connector_report
 from ..compiler.flatten import grounded_ports
 from ..language.unionfind import UnionFind, connector_sets
+import casadi as ca
 
 
 class CheckReport:
@@ -281,7 +282,6 @@ def _velocity_states(system, states):
 
 def is_linear_pair(expr, a, b):
     """Whether ``expr`` is c1 a + c2 b with constant nonzero c1, c2."""
-    import casadi as ca
     grad = ca.gradient(expr, ca.vertcat(a, b))
     return bool(grad.is_constant()) and all(abs(float(g)) > 0 for g in ca.DM(grad).full().ravel())
 

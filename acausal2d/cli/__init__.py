@@ -27,6 +27,7 @@ from ..io.loader import load_model
 from ..analysis.study import declared_studies
 from .examples import add_examples
 from ..usercode import TRACEBACK_ENV, has_user_cause, print_traceback, wants_traceback
+from ..io.output import Terminated, terminate_as_interrupt
 
 
 COMMAND_MODULES = ("simulate", "model_info", "compare", "studies", "fit", "optimize", "linearize", "modes",
@@ -83,7 +84,6 @@ def main(argv=None):
     temporary folder).  Called as the program (``argv`` None), Ctrl-C is
     ignored once the command has ended: the interpreter's shutdown must not
     turn a finished command into a death by SIGINT."""
-    from ..io.output import terminate_as_interrupt
     cstore.logger().setLevel(logging.INFO)      # the first-run notices, on stderr
     with terminate_as_interrupt():     # SIGTERM ends the command as Ctrl-C does: clean-ups run
         code = _main(argv)
@@ -111,7 +111,6 @@ def _main(argv):
         print("error: %s" % exc, file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:      # Ctrl-C; SIGTERM in an output transaction
-        from ..io.output import Terminated
         print("interrupted%s" % (" (SIGTERM)" if isinstance(exc, Terminated) else ""),
               file=sys.stderr)
         return 143 if isinstance(exc, Terminated) else 130

@@ -1,6 +1,7 @@
 """``acausal2d cache``: the native cache (compiled C of the models run on
 this machine, :mod:`acausal2d.runtime.cstore`): where it lives, what it
 holds, its size, and clearing it."""
+from ..runtime import cstore
 
 
 def _mb(n):
@@ -9,7 +10,6 @@ def _mb(n):
 
 def cmd_cache(args):
     """``acausal2d cache [path|list|size|verify|clear]``."""
-    from ..runtime import cstore
     where = cstore.folder()
     if args.action == "path":
         print(where)
@@ -41,15 +41,15 @@ def cmd_cache(args):
 
 def _print_installed():
     """The drivers' objects compiled at install (not part of the cache)."""
-    from ..runtime import drivers
-    found = drivers.installed()
+    from ..runtime.drivers import PREBUILT, installed
+    found = installed()
     damaged = [name for name, ok in found if not ok]
     if not found:
         print("no driver objects were compiled at install; they are compiled into the cache "
               "on first use")
     else:
         print("%d driver objects compiled at install in %s%s" % (
-            len(found), drivers.PREBUILT, "; SHA-256 not matching (reinstall acausal2d): " +
+            len(found), PREBUILT, "; SHA-256 not matching (reinstall acausal2d): " +
             ", ".join(damaged) if damaged else "; each matches its SHA-256"))
 
 

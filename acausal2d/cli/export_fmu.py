@@ -3,13 +3,13 @@ Python needed by the importer); see :func:`acausal2d.fmu.export_fmu`."""
 from .args import MODEL_FILE_HELP, MODEL_HELP
 from ..io.loader import load_model
 from .args import add_run_options, run_options
+from ..io.output import terminate_as_interrupt
 
 
 def cmd_export_fmu(args):
     """``acausal2d export-fmu MODEL.py [--model NAME] [--kind me|cs] [--out F]
     [--fixed-states]``."""
     from ..fmu import export_fmu
-    from ..io.output import terminate_as_interrupt
     with terminate_as_interrupt():         # SIGTERM cleans up like Ctrl-C
         model = load_model(args.model_file, args.model)
         out = export_fmu(model, kind=args.kind, out=args.out, fixed_states=args.fixed_states,

@@ -13,6 +13,7 @@ from ..analysis.fit_report import COMPARE_TUBE
 from ..errors import Acausal2dError
 from .args import Once, _nonnegative, _parse_set, _positive_float, _positive_int, \
     add_dask_options, add_run_options, run_options
+from ..io.output import OutputFolder
 
 
 def parse_mapping(items, option="--map"):
@@ -62,7 +63,6 @@ def parse_range(text, option="--t-range"):
 
 def cmd_fit(args):
     """``acausal2d fit``: fit, print the report and the compare table, write the files."""
-    from ..io.output import OutputFolder
     with OutputFolder(args.out, "fit") as tx:
         fr = _fit(args)
         files = fr.write(tx.path)

@@ -12,6 +12,7 @@ from .args import _check_names, _parse_set
 from ..io.files import atomic_path
 from ..io.files import write_text
 from ..io.loader import load_model
+from ..io.output import OutputFolder
 
 
 def _names(text):
@@ -69,7 +70,6 @@ def cmd_linearize(args):
     from ..analysis.equilibrium import NoEquilibrium
     from ..compiled import compile_model
     from ..library.inputs import bind_inputs
-    from ..io.output import OutputFolder
     with OutputFolder(args.out, "linearize") as tx:
         model = load_model(args.model_file, args.model)
         model, _ = bind_inputs(model)       # top-level RealInputs become parameters

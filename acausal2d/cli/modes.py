@@ -11,6 +11,7 @@ from .args import _positive_int, add_run_options
 from .linearize import add_point_arguments, point_options
 from ..io.files import write_text
 from ..io.loader import load_model
+from ..io.output import OutputFolder
 
 
 def _campbell(args, vary, options, out):
@@ -35,7 +36,6 @@ def cmd_modes(args):
     """``acausal2d modes``: print the table; write modes.json and modes.html."""
     from ..analysis.equilibrium import NoEquilibrium
     from ..compiled import compile_model
-    from ..io.output import OutputFolder
     from ..visual.mode_page import write_mode_page
     from ..library.inputs import bind_inputs
     from ..analysis.sweep import grid_size, parse_vary

@@ -12,12 +12,12 @@ from .args import MODEL_FILE_HELP
 from ..errors import Acausal2dError
 from .args import Once, _parse_set, _positive_float, _positive_int, add_dask_options, \
     add_run_options, run_options
+from ..io.output import OutputFolder
 
 
 def cmd_optimize(args):
     """``acausal2d optimize``: optimise, print the report, write the files."""
     from ..analysis.optimize import optimize
-    from ..io.output import OutputFolder
     with OutputFolder(args.out, "optimize") as tx:
         opt = optimize(args.model_file, vary=args.vary, objective=args.objective,
                        constraints=args.constraint or (), fixed=_parse_set(args.set),

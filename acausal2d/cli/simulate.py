@@ -15,6 +15,7 @@ from ..io.loader import load_model
 from ..runtime.event_words import event_line
 from ..usercode import user_error_text
 from .args import add_run_options, run_options
+from ..io.output import OutputFolder
 
 
 def _plot_specs(args, cm):
@@ -115,7 +116,6 @@ def cmd_simulate(args):
     animation into ``--out`` as one transaction (:class:`~acausal2d.io.
     output.OutputFolder`: checked and locked before the run, moved in with
     its manifest at the end, nothing left on a failure)."""
-    from ..io.output import OutputFolder
     from ..visual.figure_process import FigureProcess
     with OutputFolder(args.out, "simulate") as tx:
         drawer = FigureProcess.start()     # imports matplotlib on the other core meanwhile

@@ -8,6 +8,7 @@ from ..io.loader import load_model
 from ..analysis.study import declared_studies, run_studies
 from .args import add_run_options, \
     run_options
+from ..io.output import OutputFolder
 
 
 def _sweep_settings(args, cm, vary):
@@ -47,7 +48,6 @@ def _check_run_settings(args, cm):
 def cmd_sweep(args):
     """``acausal2d sweep``: a parameter study on Dask; write sweep.csv and sweep.png."""
     from ..analysis.sweep import ModelSpec, compiled_model, grid_size, parse_vary, sweep
-    from ..io.output import OutputFolder
     vary = parse_vary(args.vary)
     grid_size(vary)                         # a too large grid is refused before anything
     with OutputFolder(args.out, "sweep") as tx:
@@ -78,7 +78,6 @@ def cmd_study(args):
         if not studies:
             print("%s declares no studies" % type(model).__name__)
         return 0
-    from ..io.output import OutputFolder
     with OutputFolder(args.out, "study", merge=True) as tx:    # beside simulate's files
         files = run_studies(args.model_file, model, args.names, tx.path,
                             {"scheduler": args.scheduler, "workers": args.workers,

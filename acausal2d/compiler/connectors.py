@@ -21,6 +21,9 @@ import copy
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
+from ..errors import (Acausal2dError, InitializationError, SimulationError, StartPoseError,
+                      StructuralError)
+
 
 @dataclass
 class ConnectorReport:
@@ -95,7 +98,7 @@ def _names(paths):
 def inside_connected(model):
     """Ids of the connectors that a ``connect`` of an enclosing component
     (or of their own component's parent) joins to something: the
-    connectors the flattening does not close (seed eq. 4.1 sets)."""
+    connectors the flattening does not close (the sets of Ebert (2015), eq. 4.1)."""
     out = set()
     for scope in model.components():
         for a, b in scope._connections:
@@ -182,14 +185,12 @@ def _caused_by_structure(exc):
     """Whether ``exc`` is a failure a loose connector typically causes: a
     structural error, a start pose that cannot be known, a part that cannot
     assemble, no consistent initial values or a failed state selection."""
-    from ..errors import StartPoseError, StructuralError
     text = str(exc)
     return isinstance(exc, (StructuralError, StartPoseError)) or text.startswith(FIRST_FAILURES) \
         or " cannot assemble at the start" in text
 
 
 def _run_failures():
-    from ..errors import InitializationError, SimulationError, StructuralError
     return (InitializationError, SimulationError, StructuralError)
 
 
@@ -208,7 +209,6 @@ def loose_connectors_first(model):
     typically causes (:func:`_caused_by_structure`) in a model without
     suspects ends with its unconnected connectors
     (:meth:`ConnectorReport.unconnected_note`).  The original is chained."""
-    from ..errors import Acausal2dError
     try:
         yield
     except Acausal2dError as exc:

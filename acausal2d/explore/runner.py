@@ -19,7 +19,8 @@ import warnings
 
 import numpy as np
 
-from ..compiled import _experiment, compile_model
+from ..compiled import compile_model
+from ..run_checks import _experiment
 from ..errors import Acausal2dError, SimulationError
 from ..io.loader import load_model
 from ..options import RunOptions

@@ -30,7 +30,8 @@ from ..runtime.evaluator import Evaluator
 from ..runtime.events import relation_owner, values_from
 from ..runtime.initialize import _guess_selection, choose_initial_conditions
 from .. import __version__
-from ..compiled import compile_model, _experiment
+from ..compiled import compile_model
+from ..run_checks import _experiment
 from ..io.output import check_writable
 from ..options import RunOptions
 

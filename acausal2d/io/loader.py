@@ -62,11 +62,11 @@ def model_names(path):
     module, modname = _import(path)
     models = _classes(module, modname)[1]
     order = list(vars(module))
-    return [c.__name__ for c in sorted(models, key=lambda c: (_source_line(c),
+    return [c.__name__ for c in sorted(models, key=lambda c: (_class_line(c),
                                                               order.index(c.__name__)))]
 
 
-def _source_line(cls):
+def _class_line(cls):
     """The line of ``cls``'s class statement; classes a file generates (no
     class statement) follow, in the order the file defines them."""
     try:

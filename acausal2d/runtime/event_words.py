@@ -16,6 +16,10 @@ expressions stay in ``Result.events`` (and ``--verbose`` prints them).
 """
 import re
 
+import casadi as ca
+
+from ..language.dsl import Component
+
 NUDGE = 1e-7
 """How far (relative to the run's time span) before and after an event the
 modes are read."""
@@ -38,7 +42,6 @@ def is_plain(text):
 
 def _tested_variables(system, k, path):
     """Names (relative to ``path``) of the unknowns relation k tests."""
-    import casadi as ca
     g = system.relations[k].g
     names = sorted({str(s) for s in ca.symvar(g)} & set(system.names))
     return [_relative(n, path) for n in names] or ["time"]
@@ -126,7 +129,6 @@ def describe_event(run, changed, z_left, d_left, z, d):
 
 
 def _default_mode():
-    from ..language.dsl import Component
     return Component.describe_mode
 
 

@@ -370,7 +370,7 @@ def submodel_paths(model, path=""):
     return out
 
 
-def diagram_svg(model, error=None, path=""):
+def diagram_svg(model: "Component", error: object = None, path: str = "") -> str:
     """The diagram of ``model`` (a Component instance; with ``path`` of its
     sub-model there) as SVG text; ``error`` is the message it failed to
     compile with."""
