@@ -240,7 +240,7 @@ def _hand_in_optional(lib, solver):
     found = []
     for name, symbol in OPTIONAL:
         try:
-            fn = getattr(ctypes.CDLL(libs[name], mode=ctypes.RTLD_GLOBAL), symbol)
+            fn = getattr(ctypes.CDLL(libs[name]), symbol)   # local: an FMU loaded later binds its own SUNDIALS
             found.append(ctypes.cast(fn, ctypes.c_void_p).value)
         except (KeyError, OSError, AttributeError):
             found.append(None)
