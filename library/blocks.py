@@ -144,7 +144,9 @@ class Add3(Component):
 class Product(Component):
     """Product of two inputs (Modelica.Blocks.Math.Product, MSL 4.0)::
 
-        y = u1 * u2"""
+        y = u1 * u2
+
+    It has no parameters."""
 
     def __init__(self, **kw):
         super().__init__(**kw)
