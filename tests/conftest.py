@@ -124,7 +124,6 @@ SLOW_TESTS = {
     "test_compare_tube.py": ["test_double_pendulum_default_grid_passes_to_6_5_s",
                              "test_perturbed_result_fails", "test_time_tolerance_from_the_cli"],
     "test_contour_export.py": ["test_svg_draws_in_headless_chromium"],
-    "test_cparts.py": ["test_the_parts_give_casadis_values_and_keep_the_null_rules"],
     "test_discoverability.py": ["test_version", "test_params_lists_value_unit_rule_and_doc",
                                 "test_simulate_summary_names_the_states"],
     "test_explore.py": ["test_page_slider_changes_curve_and_animation_pin_and_error",

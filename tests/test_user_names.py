@@ -27,7 +27,7 @@ def clutch_run():
 def test_a_signal_is_read_by_its_connector_name(clutch_run):
     res = clutch_run
     assert "close.y" in res and "close.y.u" in res
-    assert np.array_equal(res["close.y"], res["close.y.u"])
+    np.testing.assert_allclose(res["close.y"], res["close.y.u"], rtol=0, atol=1e-15)  # one column
     ramp = np.clip((res.time - 0.3) / 0.05, 0.0, 1.0)          # Ramp(1, 0.05, startTime=0.3)
     assert np.max(np.abs(res["close.y"] - ramp)) <= 1e-12
 
