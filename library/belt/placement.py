@@ -206,13 +206,13 @@ class StartPoses:
         (no guessed origin)."""
         from acausal2d.library.linkage.base import _Assembly
         frames = [c for comp in comps for c in comp._connectors.values() if isinstance(c, Frame)]
-        seeds = [(c, dict(zip(("x", "y", "phi"), self.pose(c)))) for c in frames
+        known = [(c, dict(zip(("x", "y", "phi"), self.pose(c)))) for c in frames
                  if self.pose(c) is not None]
         saved = [(e, dict(e._rel)) for e in linkage]
         try:
             for e, _ in saved:
                 e._rel.clear()
-            asm = _Assembly(ModelContext(model), seeds, fallback=False)
+            asm = _Assembly(ModelContext(model), known, fallback=False)
         except (Acausal2dError, RuntimeError):
             return False            # the compilation's own assembly names the element
         finally:

@@ -76,8 +76,8 @@ class _Assembly:
     """Numeric-symbolic pre-assembly of all linkage elements of one model:
     node potentials (x, y, phi or s) as CasADi expressions of parameters."""
 
-    def __init__(self, context, seeds=(), fallback=True):
-        """``seeds``: further known poses [(connector, {potential:
+    def __init__(self, context, known=(), fallback=True):
+        """``known``: further known poses [(connector, {potential:
         value})] (the start poses of planar frames, see
         :class:`~acausal2d.library.belt.placement.StartPoses`);
         ``fallback``: assemble elements whose inputs stay unknown as if
@@ -94,7 +94,7 @@ class _Assembly:
         self.guesses = {}       # id(element) -> {variable: expression}
         for comp in comps:
             self._seed(comp)
-        for conn, vals in seeds:
+        for conn, vals in known:
             self.put(conn, vals)
         pending = self._assemble_all([c for c in comps if isinstance(c, _Linkage)])
         for e in pending if fallback else ():
