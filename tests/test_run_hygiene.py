@@ -14,6 +14,7 @@ import pytest
 
 import acausal2d
 from acausal2d import Acausal2dError
+from acausal2d.io.output import OutputFolder
 from acausal2d.runtime import cstore, rundir
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -62,6 +63,13 @@ def test_a_stale_run_folder_of_a_gone_process_is_swept(tmp_path):
     assert _folders(tmp_path) == ["%s%d-def" % (rundir.PREFIX, os.getppid())]
 
 
+def _default_sigint():
+    """In the child before exec: SIGINT's default disposition, so that Python
+    installs its handler even where this suite runs with SIGINT ignored (a
+    background job of a shell without job control)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.mark.slow           # a command-line process interrupted in its run
 @pytest.mark.parametrize("signum,code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
 def test_the_run_folder_is_removed_on_a_signal(tmp_path, signum, code):
@@ -74,7 +82,7 @@ def test_the_run_folder_is_removed_on_a_signal(tmp_path, signum, code):
     proc = subprocess.Popen([sys.executable, "-m", "acausal2d", "simulate", CLUTCH, "--model",
                              "ClutchDrive", "--stop-time", "200", "--native", "off", "--out",
                              str(tmp_path / "o")], env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint)
     deadline = time.monotonic() + 120
 
     def started():       # the run folder and the output transaction's temporary folder
@@ -125,3 +133,53 @@ def test_a_first_run_says_one_notice_and_no_contradicting_notes(tmp_path):
     notices = [line for line in proc.stderr.splitlines() if line.startswith("acausal2d: ")]
     assert len(notices) <= 1, notices
     assert not any(line.startswith("  native: ") for line in proc.stdout.splitlines())
+
+
+def test_a_ctrl_c_swallowed_on_its_way_up_still_rolls_the_output_folder_back(tmp_path):
+    """An interrupt that lands where it is only printed ("Exception ignored",
+    a finaliser or weakref callback) must not let the run commit."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            with OutputFolder(tmp_path / "o", "simulate") as tx:
+                with open(tx.file("result.csv"), "w", encoding="utf-8") as fh:
+                    fh.write("time\n0\n")
+                try:
+                    signal.raise_signal(signal.SIGINT)
+                except KeyboardInterrupt:
+                    pass                 # swallowed, as a weakref callback does
+    finally:
+        signal.signal(signal.SIGINT, old)
+    assert not (tmp_path / "o" / "result.csv").exists()
+    assert [n for n in os.listdir(tmp_path) if n != "o"] == []
+
+
+SWALLOWED = """
+
+class Swallow(ClutchDrive):
+    def write_outputs(self, result, folder):
+        try:    # Ctrl-C inside code run by exec() of a string, caught there
+            exec("import signal; signal.raise_signal(signal.SIGINT)")
+        except KeyboardInterrupt:
+            pass
+        return []
+"""
+
+
+def test_python_m_exits_130_when_ctrl_c_ended_exec_code_and_was_caught(tmp_path):
+    """CPython remembers a KeyboardInterrupt that ended exec() of a string
+    even when it was caught, and under ``python -m`` kills the process with
+    SIGINT after finalisation (exit -2); the command exits 130, with its
+    output folder rolled back and its run folder removed."""
+    model = tmp_path / "swallow.py"
+    model.write_text(open(CLUTCH, encoding="utf-8").read() + SWALLOWED, encoding="utf-8")
+    base = tmp_path / "tmp"
+    base.mkdir()
+    proc = subprocess.run([sys.executable, "-m", "acausal2d", "simulate", str(model), "--model",
+                           "Swallow", "--stop-time", "0.05", "--native", "off", "--out",
+                           str(tmp_path / "o")], env=dict(os.environ, TMPDIR=str(base)),
+                          capture_output=True, text=True, timeout=600, preexec_fn=_default_sigint)
+    assert proc.returncode == 130, proc.stderr
+    assert proc.stderr.splitlines()[-1] == "interrupted"
+    assert not os.path.exists(tmp_path / "o" / "result.csv")
+    assert _folders(base) == []

@@ -85,11 +85,22 @@ def main(argv=None):
     ignored once the command has ended: the interpreter's shutdown must not
     turn a finished command into a death by SIGINT."""
     cstore.logger().setLevel(logging.INFO)      # the first-run notices, on stderr
-    with terminate_as_interrupt():     # SIGTERM ends the command as Ctrl-C does: clean-ups run
+    with terminate_as_interrupt() as interrupts:     # SIGTERM as Ctrl-C: clean-ups run
         code = _main(argv)
+    if code == 0 and interrupts is not None and interrupts.seen:
+        code = _swallowed(interrupts)
     if argv is None:
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     return code
+
+
+def _swallowed(interrupts):
+    """The exit code of a command whose Ctrl-C or SIGTERM was swallowed on
+    its way up (in a finaliser or weakref callback) and that then ended
+    normally: it still ends as interrupted (130/143), never 0."""
+    term = signal.SIGTERM in interrupts.seen
+    print("interrupted%s" % (" (SIGTERM)" if term else ""), file=sys.stderr)
+    return 143 if term else 130
 
 
 def _main(argv):

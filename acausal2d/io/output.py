@@ -80,8 +80,28 @@ class Terminated(KeyboardInterrupt):
     Ctrl-C: the transaction is rolled back; the command exits 143)."""
 
 
-def _raise_terminated(signum, frame):
-    raise Terminated("terminated (SIGTERM)")
+class Interrupts:
+    """The SIGTERM (and, where Python's own handler had it, SIGINT) handler
+    of :func:`terminate_as_interrupt`: raises :class:`Terminated` or
+    KeyboardInterrupt and remembers that it did, so that an interrupt
+    swallowed on its way up (one that lands in a weakref callback or a
+    finaliser is only printed as "Exception ignored") still ends the
+    command: :meth:`raise_seen` raises it again before an output transaction
+    commits, and the command line exits 130/143, never 0."""
+
+    def __init__(self):
+        self.seen = []
+
+    def __call__(self, signum, frame):
+        self.seen.append(signum)
+        self.raise_seen()
+
+    def raise_seen(self):
+        """Raise the interrupt this handler has seen, if any."""
+        if signal.SIGTERM in self.seen:
+            raise Terminated("terminated (SIGTERM)")
+        if self.seen:
+            raise KeyboardInterrupt
 
 
 @contextlib.contextmanager
@@ -103,16 +123,27 @@ def held_signals():
 def terminate_as_interrupt():
     """SIGTERM raises :class:`Terminated` inside the block (where its
     disposition is the default one), so ``finally`` clauses and rollbacks
-    run as for Ctrl-C; the previous handler is restored afterwards."""
+    run as for Ctrl-C; SIGINT, where Python's own handler has it, goes
+    through the same :class:`Interrupts` handler.  Yields that handler (the
+    enclosing block's, when nested), or None where signals are not ours
+    (another thread, another SIGTERM handler); the previous handlers are
+    restored afterwards."""
+    current = signal.getsignal(signal.SIGTERM)
     if threading.current_thread() is not threading.main_thread() or \
-            signal.getsignal(signal.SIGTERM) is not signal.SIG_DFL:
-        yield
+            isinstance(current, Interrupts) or current is not signal.SIG_DFL:
+        yield current if isinstance(current, Interrupts) else None
         return
-    signal.signal(signal.SIGTERM, _raise_terminated)
+    handler = Interrupts()
+    old_int = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGTERM, handler)
+    if old_int is signal.default_int_handler:
+        signal.signal(signal.SIGINT, handler)
     try:
-        yield
+        yield handler
     finally:
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        if old_int is signal.default_int_handler:
+            signal.signal(signal.SIGINT, old_int)
 
 
 def _raise_held():
@@ -244,6 +275,7 @@ class OutputFolder:
         self.entries = []
         self._lock = _Lock(self.final_folder, command)
         self._signals = None
+        self._interrupts = None
 
     def __enter__(self):
         if not self.out.strip():
@@ -252,7 +284,7 @@ class OutputFolder:
         if os.path.basename(self.final_folder) == "":
             raise OutputFolderError("--out %s: choose a folder below the root" % self.out)
         self._signals = terminate_as_interrupt()
-        self._signals.__enter__()
+        self._interrupts = self._signals.__enter__()
         try:
             with held_signals():            # a Ctrl-C meanwhile is raised after the block
                 _prepare(self.final_folder)
@@ -280,6 +312,8 @@ class OutputFolder:
         try:
             if kind is None:
                 with held_signals():
+                    if self._interrupts is not None:    # a Ctrl-C swallowed on its way up
+                        self._interrupts.raise_seen()
                     self._commit()
         finally:
             self._rollback()
