@@ -18,6 +18,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import bench_floor  # noqa: E402
+import capi_driver  # noqa: E402
 from acausal2d.runtime import native, tiers  # noqa: E402
 
 
@@ -46,7 +47,7 @@ def main(argv):
         cm = bench_floor.acausal2d.compile_model(make())
         sim = bench_floor.the_run(cm, stop, rtol, 200 if small else 5000)
         compiled = _ida(sim, native.native_ida)
-        capi = _ida(sim, native.capi_ida)
+        capi = _ida(sim, capi_driver.capi_ida)
         if compiled[0] is None or capi[0] is None:
             print("%-20s  not measured (no native driver here)" % name)
             continue

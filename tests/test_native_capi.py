@@ -1,4 +1,4 @@
-"""The native driver built once with no model code (``A2D_CAPI``): it
+"""The native driver built once with no model code (benchmarks/capi_driver.py): it
 evaluates a formulation's serialized CasADi functions through CasADi's C
 API (``casadi_c_eval_id`` of the wheel's libcasadi).  Over the piston
 engine's run it reaches the stop time with the rows of the per-model
@@ -17,8 +17,9 @@ from acausal2d.runtime.simulation import Simulation
 from tiers_support import NEEDS_NATIVE
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "models"))
+sys.path[:0] = [os.path.join(ROOT, "models"), os.path.join(ROOT, "benchmarks")]
 from piston_engine import PistonEngine  # noqa: E402
+import capi_driver  # noqa: E402
 
 pytestmark = NEEDS_NATIVE
 RTOL = 1e-8
@@ -35,7 +36,7 @@ def test_the_c_api_driver_gives_the_rows_of_the_compiled_library(tmp_path, monke
     atol = np.broadcast_to(sim.rtol * sim.system.nominal, (form.n,)).copy()
     y0, yp0 = form.y_from(sim.out[0][1])
     runs = []
-    for make in (native.native_ida, native.capi_ida):
+    for make in (native.native_ida, capi_driver.capi_ida):
         drv = make(prob, sim.rtol, atol)
         assert drv is not None, make.__name__
         flag, T, Y = drv.run(sim.times, y0, yp0)[:3]

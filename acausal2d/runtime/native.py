@@ -34,7 +34,6 @@ import ctypes
 import os
 import re
 import sys
-import tempfile
 import weakref
 
 import casadi as ca
@@ -363,79 +362,6 @@ def native_ida(prob, rtol, atol, solver=None, chosen=None, label=None):
     if lib is None:
         return None
     drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver)
-    return drv if drv.handle else None
-
-
-def _libcasadi():
-    """(folder, path) of the libcasadi the casadi wheel ships, or None."""
-    folder = os.path.dirname(ca.__file__)
-    for name in sorted(os.listdir(folder)):
-        if name.startswith("libcasadi.so") or name == "libcasadi.dylib":
-            return folder, os.path.join(folder, name)
-    return None
-
-
-_capi: dict = {}         # the driver on CasADi's C API, once loaded ("lib": library or None)
-
-
-def capi_driver():
-    """The driver compiled once with no model code (``A2D_CAPI``): it
-    evaluates the model's CasADi functions through CasADi's C API
-    (``casadi_c_eval_id`` of the wheel's libcasadi), so a new structure
-    needs no compiler.  Built on first use into the cache; None where it
-    cannot be built or loaded."""
-    if "lib" not in _capi:
-        _capi["lib"] = None
-        found, casadi_lib = cbuild.sundials_libraries(), _libcasadi()
-        if found is not None and casadi_lib is not None:
-            folder, libs = found
-            text = drivers.GENERATED + "#define A2D_EVENTS 1\n#define A2D_CAPI 1\n" + \
-                drivers.source("lu") + drivers.source("driver")
-            try:
-                path = cbuild.build({"a2d_capi.c": text}, flags=drivers.flags(cbuild.find_compiler()),
-                                    libraries=[libs[k] for k in LIBRARIES if k in libs] +
-                                    [casadi_lib[1]], library_dirs=[folder, casadi_lib[0]],
-                                    name="a2d_capi")
-                lib = _declare(ctypes.CDLL(path))
-                lib.casadi_c_push_file.argtypes = [ctypes.c_char_p]
-                _capi["lib"] = lib
-            except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError):
-                pass
-    return _capi["lib"]
-
-
-_pushed: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()   # formulation -> C API ids
-
-
-def _capi_ids(lib, form):
-    """The ids (residual, iteration matrix, events; -1: none) of ``form``'s
-    functions in CasADi's C API, pushed once per formulation."""
-    if form not in _pushed:
-        fns = [fn for fn in (form.res_fn, form.jac_fn, form.event_fn) if fn is not None]
-        fd, path = tempfile.mkstemp(suffix=".casadi")
-        os.close(fd)
-        try:
-            writer = ca.FileSerializer(path)
-            writer.pack(fns)
-            del writer
-            base = lib.casadi_c_n_loaded()
-            if lib.casadi_c_push_file(path.encode()):
-                return None
-        finally:
-            os.remove(path)
-        ids = [base, base + 1, base + 2 if form.event_fn is not None else -1]
-        _pushed[form] = np.array(ids, dtype=np.intc)
-    return _pushed[form]
-
-
-def capi_ida(prob, rtol, atol, solver=None):
-    """A :class:`NativeIDA` of ``prob`` on the driver of :func:`capi_driver`
-    (no per-model library), or None."""
-    lib = capi_driver()
-    ids = None if lib is None else _capi_ids(lib, prob.form)
-    if ids is None:
-        return None
-    drv = NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver, ids)
     return drv if drv.handle else None
 
 

@@ -115,24 +115,16 @@ typedef struct {
   casadi_real **res;
   casadi_int *iw;
   casadi_real *w;
-  int id, mem;                    /* A2D_CAPI: the function's id and memory in CasADi's C API */
+  int id, mem;                    /* where A2D_EVAL is given: the function's id and memory */
 } a2d_work;
 
-/* A2D_CAPI: the model's functions are not compiled in; they are CasADi functions
- * deserialized by casadi_c_push_file and evaluated through CasADi's C API (libcasadi
- * of the casadi wheel), so this file is compiled once, with no per-model code. */
-#ifdef A2D_CAPI
-int casadi_c_eval_id(int id, const casadi_real **arg, casadi_real **res, casadi_int *iw,
-                     casadi_real *w, int mem);
-int casadi_c_work_id(int id, casadi_int *sz_arg, casadi_int *sz_res, casadi_int *sz_iw,
-                     casadi_int *sz_w);
-int casadi_c_checkout_id(int id);
-void casadi_c_release_id(int id, int mem);
-#define A2D_EVAL(x, fn) casadi_c_eval_id((x).id, (x).arg, (x).res, (x).iw, (x).w, (x).mem)
-#define A2D_ALLOC(x, fn, k) a2d_alloc_id(&(x), ids[k])
-#else
+/* How a generated function is evaluated, its work arrays made and released.  C put
+ * before this file may define them otherwise (benchmarks/capi_driver.py: through
+ * CasADi's C API, the function ids[k] of a2d_create). */
+#ifndef A2D_EVAL
 #define A2D_EVAL(x, fn) fn((x).arg, (x).res, (x).iw, (x).w, 0)
 #define A2D_ALLOC(x, fn, k) a2d_alloc(&(x), fn##_work)
+#define A2D_RELEASE(x)
 #endif
 
 /* The sparse LU (native_lu.c, before this file) as IDA's linear solver:
@@ -291,34 +283,21 @@ typedef struct {
   SUNLinearSolver LS;
 } a2d_driver;
 
-#ifndef A2D_CAPI
+static void a2d_alloc_arrays(a2d_work *w) {
+  w->arg = (const casadi_real **)calloc(w->sz_arg + 1, sizeof(casadi_real *));
+  w->res = (casadi_real **)calloc(w->sz_res + 1, sizeof(casadi_real *));
+  w->iw = (casadi_int *)calloc(w->sz_iw + 1, sizeof(casadi_int));
+  w->w = (casadi_real *)calloc(w->sz_w + 1, sizeof(casadi_real));
+}
+
 static void a2d_alloc(a2d_work *w, int (*work)(casadi_int *, casadi_int *, casadi_int *,
                                                 casadi_int *)) {
   work(&w->sz_arg, &w->sz_res, &w->sz_iw, &w->sz_w);
-  w->arg = (const casadi_real **)calloc(w->sz_arg + 1, sizeof(casadi_real *));
-  w->res = (casadi_real **)calloc(w->sz_res + 1, sizeof(casadi_real *));
-  w->iw = (casadi_int *)calloc(w->sz_iw + 1, sizeof(casadi_int));
-  w->w = (casadi_real *)calloc(w->sz_w + 1, sizeof(casadi_real));
+  a2d_alloc_arrays(w);
 }
-#endif
-
-#ifdef A2D_CAPI
-static void a2d_alloc_id(a2d_work *w, int id) {
-  w->id = id;
-  if (id < 0) return;
-  casadi_c_work_id(id, &w->sz_arg, &w->sz_res, &w->sz_iw, &w->sz_w);
-  w->mem = casadi_c_checkout_id(id);
-  w->arg = (const casadi_real **)calloc(w->sz_arg + 1, sizeof(casadi_real *));
-  w->res = (casadi_real **)calloc(w->sz_res + 1, sizeof(casadi_real *));
-  w->iw = (casadi_int *)calloc(w->sz_iw + 1, sizeof(casadi_int));
-  w->w = (casadi_real *)calloc(w->sz_w + 1, sizeof(casadi_real));
-}
-#endif
 
 static void a2d_free_work(a2d_work *w) {
-#ifdef A2D_CAPI
-  if (w->arg && w->id >= 0) casadi_c_release_id(w->id, w->mem);
-#endif
+  A2D_RELEASE(*w);
   free(w->arg); free(w->res); free(w->iw); free(w->w);
 }
 
@@ -448,9 +427,7 @@ a2d_driver *a2d_create(int n, int n_ev, double rtol, const double *atol, const d
   h->terminal = (int *)calloc(n_ev + 1, sizeof(int));
   if (n_ev) memcpy(h->terminal, terminal, sizeof(int) * n_ev);
   h->t_last = -1e300;
-#ifndef A2D_CAPI
   (void)ids;
-#endif
   A2D_ALLOC(h->wres, res, 0);
   A2D_ALLOC(h->wjac, iteration_matrix, 1);
 #ifdef A2D_EVENTS
