@@ -20,7 +20,7 @@ from .compiler.gc_pause import cyclic_gc_paused
 from .compiler.pipeline import compile_system
 from .errors import (Acausal2dError, ModelDefinitionError, SimulationError, StructuralError,
                       translated)
-from .runtime.cstore import notice
+from .runtime.notices import notice
 from .runtime.evaluator import Evaluator
 from .runtime.initialize import initial_point
 from .runtime.selection import select

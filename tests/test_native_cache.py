@@ -181,35 +181,6 @@ def test_export_packs_only_a_verified_binary(tmp_path, monkeypatch):
     assert again == path and cstore.verified(again)
 
 
-def test_units_compiled_apart_give_the_function_of_the_whole(tmp_path, monkeypatch):
-    """csplit: CasADi's C spread over two translation units (compiled in
-    parallel) links into a library with the same functions."""
-    import casadi as ca
-    from acausal2d.runtime import csplit, cunits
-    monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path))
-    monkeypatch.setattr(csplit, "SPLIT_FROM", 0)
-    x = ca.SX.sym("x", 6)
-    f = ca.Function("f", [x], [ca.sin(x) * ca.cos(x[::-1]) + ca.sumsqr(x)])
-    g = ca.Function("g", [x], [ca.jacobian(ca.exp(x) * x[0], x)])
-    cg = ca.CodeGenerator("a2d_split.c", {"with_header": False})
-    cg.add(f)
-    cg.add(g)
-    code = cg.dump()
-    assert len(csplit.split(code, 2)) == 2
-    values = {}
-    for k in (1, 2):
-        monkeypatch.setattr(cunits, "workers", lambda k=k: k)
-        path = cbuild.build({"a2d_split.c": code}, flags=["-O1", "-DSPLIT_%d" % k],
-                            name="split%d" % k)
-        lib = {name: ca.external(name, path) for name in ("f", "g")}
-        point = np.linspace(0.1, 0.6, 6)
-        values[k] = [np.array(lib[n](point)).ravel() for n in ("f", "g")]
-    for a, b, fn in zip(values[1], values[2], (f, g)):
-        exact = np.array(fn(np.linspace(0.1, 0.6, 6))).ravel()
-        assert np.max(np.abs(a - exact)) <= 1e-13 * (1 + np.max(np.abs(exact)))
-        assert np.max(np.abs(b - exact)) <= 1e-13 * (1 + np.max(np.abs(exact)))
-
-
 def test_cache_command_lists_sizes_and_clears(tmp_path, monkeypatch, capsys):
     from acausal2d.cli import main
     monkeypatch.setenv(cbuild.CACHE_ENV, str(tmp_path))

@@ -16,7 +16,7 @@ import pytest
 
 import acausal2d
 from acausal2d.options import RunOptionError
-from acausal2d.runtime import background, cbuild, cstore, native, tiers
+from acausal2d.runtime import background, cbuild, cstore, native, notices, tiers
 from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
 from tiers_support import agree as _agree
 
@@ -117,7 +117,7 @@ def test_a_failed_background_compile_is_said_once_and_stays_on_python(auto, capf
     assert marker, os.listdir(auto)
     assert "failed (exit 1)" in (auto / marker[0]).read_text()
     capfd.readouterr()
-    monkeypatch.setattr(cstore, "_said", set())          # as in a new process
+    monkeypatch.setattr(notices, "_said", set())          # as in a new process
     for _ in range(2):
         again, form2 = _run(PistonEngine())
         assert native.library(form2) is None and not background.pending()

@@ -15,7 +15,7 @@ import pytest
 import acausal2d
 from acausal2d import Acausal2dError
 from acausal2d.io.output import OutputFolder
-from acausal2d.runtime import cstore, rundir
+from acausal2d.runtime import notices as runtime_notices, rundir
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -25,8 +25,8 @@ PENDULUM = os.path.join(ROOT, "models", "pendulum.py")
 
 @pytest.fixture
 def fresh_notices(monkeypatch):
-    monkeypatch.setattr(cstore, "_said", set())
-    log = cstore.logger()
+    monkeypatch.setattr(runtime_notices, "_said", set())
+    log = runtime_notices.logger()
     level = log.level
     yield log
     log.setLevel(level)
@@ -34,10 +34,10 @@ def fresh_notices(monkeypatch):
 
 def test_a_first_run_notice_is_quiet_in_python_unless_asked(fresh_notices, capfd):
     fresh_notices.setLevel(logging.WARNING)          # Python's and a notebook's default
-    cstore.notice("compiling native code for M in the background", first_run=True)
+    runtime_notices.notice("compiling native code for M in the background", first_run=True)
     assert capfd.readouterr().err == ""
     fresh_notices.setLevel(logging.INFO)             # asked for
-    cstore.notice("compiling native code for N in the background", first_run=True)
+    runtime_notices.notice("compiling native code for N in the background", first_run=True)
     assert capfd.readouterr().err == "acausal2d: compiling native code for N in the background\n"
 
 
@@ -45,7 +45,7 @@ def test_a_failure_notice_is_said_once_and_goes_through_the_named_logger(fresh_n
                                                                         capfd):
     assert fresh_notices is logging.getLogger("acausal2d")
     for _ in range(2):
-        cstore.notice("the cached library x is damaged; rebuilding it")
+        runtime_notices.notice("the cached library x is damaged; rebuilding it")
     assert capfd.readouterr().err == "acausal2d: the cached library x is damaged; rebuilding it\n"
 
 

@@ -7,7 +7,7 @@ import logging
 import numpy as np
 import pytest
 
-from acausal2d.runtime import background, cbuild, cstore, drivers, native, tiers
+from acausal2d.runtime import background, cbuild, drivers, native, notices, tiers
 
 NEEDS_NATIVE = pytest.mark.skipif(cbuild.find_compiler() is None or not native.enabled(),
                                   reason="no C compiler or another SUNDIALS")
@@ -24,8 +24,8 @@ def fresh_cache(tmp_path, monkeypatch):
     monkeypatch.setattr(background, "_queue", [])
     monkeypatch.setattr(background, "_seen", set())
     monkeypatch.setattr(background, "_workers", [])
-    monkeypatch.setattr(cstore, "_said", set())
-    log = cstore.logger()           # the first-run notices asked for, as the command line does
+    monkeypatch.setattr(notices, "_said", set())
+    log = notices.logger()           # the first-run notices asked for, as the command line does
     monkeypatch.setattr(log, "level", logging.INFO)
     monkeypatch.setattr(log, "_cache", {})
     return tmp_path / "cache"

@@ -21,7 +21,7 @@ import importlib
 import signal
 
 from ..errors import Acausal2dError
-from ..runtime import cstore
+from ..runtime import notices
 from .. import __version__
 from ..io.loader import load_model
 from ..analysis.study import declared_studies
@@ -84,7 +84,7 @@ def main(argv=None):
     temporary folder).  Called as the program (``argv`` None), Ctrl-C is
     ignored once the command has ended: the interpreter's shutdown must not
     turn a finished command into a death by SIGINT."""
-    cstore.logger().setLevel(logging.INFO)      # the first-run notices, on stderr
+    notices.logger().setLevel(logging.INFO)      # the first-run notices, on stderr
     with terminate_as_interrupt() as interrupts:     # SIGTERM as Ctrl-C: clean-ups run
         code = _main(argv)
     if code == 0 and interrupts is not None and interrupts.seen:

@@ -18,6 +18,7 @@ import threading
 import time
 
 from . import cbuild, cstore
+from .notices import notice
 
 NICE = 19                # the lowest priority: a later run is never slowed for the compile
 _queue: list = []        # (key, recipe, label) not yet handed to a worker
@@ -71,7 +72,7 @@ def launch(label=None):
                                 stdin=subprocess.DEVNULL, stdout=log, stderr=log,
                                 start_new_session=True)
     _workers.append(proc)
-    cstore.notice("compiling native code for %s in the background; this run uses the "
+    notice("compiling native code for %s in the background; this run uses the "
                   "Python path" % label, first_run=True)
     return True
 

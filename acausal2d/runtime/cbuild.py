@@ -31,6 +31,7 @@ import casadi as ca
 
 from . import cstore as store, cunits as units
 from . import drivers
+from .notices import notice
 from .cstore import CACHE_ENV, _sha256, build_key, cache_dir  # noqa: F401 - names of this module
 from .cunits import BuildFailed, CompilerMissing, find_compiler  # noqa: F401 - names of this module
 
@@ -181,7 +182,7 @@ def lookup(key, name="lib"):
     path = os.path.join(folder, os.path.basename(named))
     if not (path.endswith(".so") and os.path.basename(path).startswith(name + "-")
             and os.path.exists(path)):
-        store.notice("the index %s names no library of the cache (%r); it is compiled again"
+        notice("the index %s names no library of the cache (%r); it is compiled again"
                      % (index, named[:80]))
         return None
     return path if store.verified(path) else None
@@ -208,7 +209,7 @@ def publish_index(key, name, path):
     try:
         store.write_atomic(index_path(key, name), os.path.basename(path).encode("utf-8"))
     except OSError as exc:
-        store.notice("the index of the compiled library %s could not be written (%s); later "
+        notice("the index of the compiled library %s could not be written (%s); later "
                      "runs compile it again until the cache folder %s can be written"
                      % (os.path.basename(path), exc.strerror or exc, store.folder()))
 
@@ -222,7 +223,7 @@ def load(key, make, name, loader):
     try:
         return loader(path)
     except (OSError, RuntimeError, AttributeError) as exc:    # AttributeError: a symbol missing
-        store.notice("the cached library %s could not be loaded (%s); rebuilding it"
+        notice("the cached library %s could not be loaded (%s); rebuilding it"
                      % (path, str(exc).strip().splitlines()[0] if str(exc).strip() else exc))
         store.discard(path)
         return loader(build_indexed(key, make, name))

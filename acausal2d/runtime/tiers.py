@@ -26,6 +26,7 @@ import time
 
 from . import cbuild, cstore
 from ..errors import Acausal2dError
+from .notices import notice
 from .background import failure_path, launch, pending, queue, wait  # noqa: F401 - the worker side
 
 ENV = "ACAUSAL2D_NATIVE"
@@ -77,14 +78,14 @@ def obtain(key, recipe, loader, chosen=None, label=None):
         _later(key, recipe, label or "this model")
         return None
     if path is None and cbuild.find_compiler() is not None:
-        cstore.notice("compiling native code for %s before the run (native mode 'now')"
+        notice("compiling native code for %s before the run (native mode 'now')"
                       % (label or "this model"), first_run=True)
     t0 = time.perf_counter()
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)
     except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError) as exc:
         why = str(exc).strip().splitlines()[0][:200] if str(exc).strip() else type(exc).__name__
-        cstore.notice("the native code %s for %s could not be built or loaded (%s); this run "
+        notice("the native code %s for %s could not be built or loaded (%s); this run "
                       "uses the Python path" % (recipe.name, label or "this model", why))
         return None
     finally:
@@ -98,7 +99,7 @@ def _later(key, recipe, label):
     if failed is None:
         queue(key, recipe, label)
         return
-    cstore.notice("the compile of native code for %s failed (%s; the messages are in "
+    notice("the compile of native code for %s failed (%s; the messages are in "
                   "%s*.failed, 'acausal2d cache clear' retries it); this run uses the "
                   "Python path" % (label, failed.splitlines()[0][:200],
                                    os.path.join(cstore.folder(), "")))

@@ -1,0 +1,46 @@
+"""The notices of the runtime (native code compiled, a cache refused or
+damaged, a structure compiled again): one line each on standard error,
+once per process, through the ``acausal2d`` logger.
+"""
+import logging
+import sys
+
+_said: set = set()
+LOGGER_NAME = "acausal2d"
+"""The ``logging`` logger acausal2d's notices go through."""
+
+
+class _Stderr(logging.Handler):
+    """``acausal2d: <message>`` on the current ``sys.stderr``."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            print("acausal2d: " + record.getMessage(), file=sys.stderr)
+            sys.stderr.flush()
+        except Exception:        # noqa: BLE001 - logging never raises into the run
+            self.handleError(record)
+
+
+def logger() -> logging.Logger:
+    """The ``acausal2d`` logger: its own stderr handler (``acausal2d:
+    <message>``), level WARNING, not propagated.  Notices of the first run
+    of a structure (native code being compiled) are INFO: quiet in Python
+    and in a notebook unless asked for
+    (``logging.getLogger("acausal2d").setLevel(logging.INFO)``); the
+    command line shows them.  Failures that change how a run goes (a
+    compile that failed, a cache that cannot be written) are WARNING."""
+    log = logging.getLogger(LOGGER_NAME)
+    if not any(isinstance(h, _Stderr) for h in log.handlers):
+        log.addHandler(_Stderr())
+        log.propagate = False
+        if log.level == logging.NOTSET:
+            log.setLevel(logging.WARNING)
+    return log
+
+
+def notice(message: str, first_run: bool = False) -> None:
+    """Say ``message`` once per process through :func:`logger`: INFO for a
+    notice of a first run (``first_run``), else WARNING."""
+    if message not in _said:
+        _said.add(message)
+        logger().log(logging.INFO if first_run else logging.WARNING, message)
