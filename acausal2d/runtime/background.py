@@ -14,8 +14,8 @@ import os
 import pickle
 import subprocess
 import sys
-import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 from . import cbuild, cstore
 from .notices import notice
@@ -120,37 +120,9 @@ parallel, but its units are uneven and its link is one process, so a
 second build fills the idle core.  Chain of 81 links, the worker alone on
 its two libraries (the next one's C generated meanwhile in both cases),
 10 alternating pairs on a loaded 2-core machine: one at a time 4.58 s,
-two at once 4.17 s (medians; faster in 8 of the 10 pairs)."""
-
-
-class _Builds:
-    """The worker's builds, each in a thread of its own (the compiler runs
-    in processes; the threads only wait for it).  The C of a recipe is
-    generated before, in the worker's main thread, so CasADi is used by
-    one thread at a time."""
-
-    def __init__(self):
-        self.running = []
-
-    def start(self, key, recipe, generated):
-        """Build ``recipe`` (published under ``key``) beside the others;
-        where its C could not be ``generated``, the build meets the error
-        again, in this thread, and records it."""
-        if not generated:
-            _build(key, recipe)
-            return
-        self.running = [t for t in self.running if t.is_alive()]
-        while len(self.running) >= BUILDS_AT_ONCE:
-            self.running.pop(0).join()
-        thread = threading.Thread(target=_build, args=(key, recipe), daemon=True,
-                                  name="acausal2d-build-%s" % recipe.name)
-        thread.start()
-        self.running.append(thread)
-
-    def finish(self):
-        """Wait for every build."""
-        while self.running:
-            self.running.pop(0).join()
+two at once 4.17 s (medians; faster in 8 of the 10 pairs).  The C of each
+recipe is generated in the worker's main thread, so CasADi is used by one
+thread at a time; the threads of the pool only wait for the compiler."""
 
 
 def _generate(recipe):
@@ -173,12 +145,14 @@ def _work(path):
     with open(path, "rb") as fh:
         jobs = pickle.load(fh)
     try:
-        builds = _Builds()
-        for key, recipe in jobs:
-            if cbuild.lookup(key, recipe.name) is not None:     # another worker built it
-                continue
-            builds.start(key, recipe, _generate(recipe))
-        builds.finish()
+        with ThreadPoolExecutor(BUILDS_AT_ONCE, thread_name_prefix="acausal2d-build") as pool:
+            for key, recipe in jobs:
+                if cbuild.lookup(key, recipe.name) is not None:     # another worker built it
+                    continue
+                if _generate(recipe):       # CasADi in this thread only; the compilers beside
+                    pool.submit(_build, key, recipe)
+                else:                       # the build meets the error again and records it
+                    _build(key, recipe)
     finally:
         for p in (path, path + ".log"):
             try:
