@@ -228,3 +228,24 @@ def test_a_chain_runs_through_the_lu_by_default_as_through_superlu_mt():
     scale = 1.0 + np.max(np.abs(b[2]), axis=0)       # per unknown
     assert np.max(np.abs(a[2] - b[2]) / scale) <= 1e-6
     assert abs(a[-1] - b[-1]) <= 0.1 * b[-1]        # steps within 10 %
+
+
+def test_the_lu_is_found_in_a_process_that_loaded_scikit_sundae_first():
+    """scikit-sundae's import loads the dense solver's own library before
+    the driver's: its op slots then hold that library's copy of the dense
+    solver's functions, not the IDA library's (the driver found no slot
+    and fell back to SuperLU_MT in every process that had run the Python
+    path first).  The slots are found by the functions' names."""
+    import subprocess
+    import sys
+    code = ("import sksundae.ida\n"
+            "import sys\n"
+            "sys.path[:0] = [%r]\n"
+            "import test_native_lu as t\n"
+            "lib, drv, *_ = t._chain_problem(4, 'sparse-lu')\n"
+            "print(lib.a2d_lu_usable(), t._probe(lib, drv, t.np.ones(drv.prob.form.jac_sparsity"
+            ".nnz()), t.np.ones(drv.n))[0][5])\n" % HERE)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=600, cwd=HERE)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["1", "3"], out.stdout + out.stderr[-2000:]

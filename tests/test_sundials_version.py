@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.runtime import cbuild, cstore, native
+from acausal2d.runtime import cbuild, native, notices
 from conftest import load_model_class
 
 RTOL = 1e-8
@@ -47,7 +47,7 @@ def test_the_loaded_release_is_the_one_the_core_library_is_named_for():
 def test_another_release_falls_back_once_with_the_same_motion(monkeypatch, capsys):
     if cbuild.sundials_libraries() is None:
         pytest.skip("scikit-sundae ships no SUNDIALS libraries here")
-    monkeypatch.setattr(cstore, "_said", set())
+    monkeypatch.setattr(notices, "_said", set())
     monkeypatch.setattr(native, "_loaded_version", ["7.8.0"])
     first, used = _run()
     second, used_again = _run()

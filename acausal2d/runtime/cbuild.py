@@ -90,13 +90,6 @@ def _object_target(text, flags, name, cc):
     return args, drivers.prebuilt(filename) or os.path.join(store.folder(), filename)
 
 
-def object_built(text, flags=(), name="obj"):
-    """True where the object file of :func:`build_object` was installed
-    with the package or is in the cache (and verified)."""
-    cc = find_compiler()
-    return cc is not None and store.verified(_object_target(text, flags, name, cc)[1])
-
-
 def build_object(text, flags=(), name="obj"):
     """The path of the position-independent object file compiled from the C
     ``text`` with ``flags``, cached and verified as libraries are

@@ -65,11 +65,6 @@ def fallback_folders():
     return found
 
 
-def fallback_folder():
-    """The shared temporary directory's fallback (see :func:`fallback_folders`)."""
-    return fallback_folders()[-1]
-
-
 _own: list = []        # the private folder made for this process (last resort), once
 NOWHERE = os.path.join(os.devnull, "acausal2d-cbuild")
 """The folder of a process that has none it may use: nothing can be

@@ -81,7 +81,6 @@ def _declared_version():
 SUNDIALS_VERSION = _declared_version()
 """The SUNDIALS release the declarations in ``native_driver.c`` are written
 for (its ``A2D_SUNDIALS_*`` lines)."""
-_libs: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()       # formulation -> loaded library (or False)
 _P, _I, _L = ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int), \
     ctypes.POINTER(ctypes.c_long)
 _PROGRESS = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_double)
@@ -193,32 +192,48 @@ def _declare(lib):
     return lib
 
 
-_keys: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()       # formulation -> its fingerprint
+_plans: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()    # owner -> (key, recipe) or None
+_loaded: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()   # owner -> library or False
 
 
-def library(form, chosen=None, label=None):
-    """The compiled library of a formulation (cached on disk), or None where
-    the engine ``chosen`` (:func:`~acausal2d.runtime.tiers.mode`) is the
-    Python path, it cannot be built, or it is not in the cache in mode auto
+def _library(owner, plan, loader, chosen, label):
+    """The loaded library of ``owner`` (a formulation or a system) made as
+    ``plan(owner)`` says ((fingerprint, recipe), or None: too large for
+    native code), or None where the engine ``chosen``
+    (:func:`~acausal2d.runtime.tiers.mode`) is the Python path, it cannot be
+    built, or it is not in the cache in mode auto
     (:mod:`~acausal2d.runtime.tiers`: compiled after the run, found by a
     later one).  ``label``: the model, for the notices."""
     if not enabled(chosen):
         return None
-    lib = _libs.get(form)
+    lib = _loaded.get(owner)
     if lib is None:
-        if too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
-            _libs[form] = False
+        if owner not in _plans:
+            _plans[owner] = plan(owner)
+        if _plans[owner] is None:
+            _loaded[owner] = False
             return None
-        folder, libs = cbuild.sundials_libraries()
-        linked = [libs[k] for k in LIBRARIES if k in libs]
-        if form not in _keys:
-            _keys[form] = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
-                                             drivers.text("a2d_driver"), *linked)
-        lib = tiers.obtain(_keys[form], _model_recipe(form, linked, folder),
-                           lambda path: _declare(ctypes.CDLL(path)), chosen, label)
+        lib = tiers.obtain(*_plans[owner], loader, chosen, label)
         if lib is not None or tiers.mode(chosen) == "now":     # built, or its build failed
-            _libs[form] = lib or False
+            _loaded[owner] = lib or False
     return lib or None
+
+
+def _model_plan(form):
+    """(fingerprint, recipe) of a formulation's library (:func:`_library`)."""
+    if too_large(form.res_fn, form.jac_fn, form.event_fn or form.res_fn):
+        return None
+    folder, libs = cbuild.sundials_libraries()
+    linked = [libs[k] for k in LIBRARIES if k in libs]
+    key = cbuild.fingerprint((form.res_fn, form.event_fn), _derived(form),
+                             drivers.text("a2d_driver"), *linked)
+    return key, _model_recipe(form, linked, folder)
+
+
+def library(form, chosen=None, label=None):
+    """The compiled library of a formulation (cached on disk), or None
+    (:func:`_library`)."""
+    return _library(form, _model_plan, lambda path: _declare(ctypes.CDLL(path)), chosen, label)
 
 
 def _hand_in_optional(lib, solver):
@@ -388,40 +403,15 @@ def compiled(functions, chosen=None, label=None):
     return _compiled[key]
 
 
-_projectors: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> loaded library (or False)
-
-
-_plans: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()     # system -> (key, recipe)
-
-
 def _projector_plan(system):
-    """(fingerprint, recipe) of the C projector's library of ``system``, or
-    None where it is too large for native code."""
+    """(fingerprint, recipe) of the C projector's library of ``system``
+    (:func:`_library`)."""
     if too_large(system.residual_fn, system.jacobian_fn):
         return None
-    if system not in _plans:
-        key = cbuild.fingerprint((system.residual_fn,), _derived(system),
-                                 drivers.text("a2d_project"))
-        _plans[system] = key, Recipe("a2d_rows", [
-            ("cse", [system.residual_fn]), ("ej", [system.residual_fn, system.jacobian_fn])],
-            objects=["a2d_project"])
-    return _plans[system]
-
-
-def _projector_library(system, chosen=None):
-    if not enabled(chosen):
-        return None
-    lib = _projectors.get(system)
-    if lib is None:
-        plan = _projector_plan(system)
-        if plan is None:
-            _projectors[system] = False
-            return None
-        lib = tiers.obtain(plan[0], plan[1], _declare_projector, chosen,
-                           getattr(system, "model_name", None))
-        if lib is not None or tiers.mode(chosen) == "now":     # built, or its build failed
-            _projectors[system] = lib or False
-    return lib or None
+    key = cbuild.fingerprint((system.residual_fn,), _derived(system), drivers.text("a2d_project"))
+    return key, Recipe("a2d_rows", [("cse", [system.residual_fn]),
+                                    ("ej", [system.residual_fn, system.jacobian_fn])],
+                       objects=["a2d_project"])
 
 
 def _declare_projector(path):
@@ -441,7 +431,8 @@ def row_projector(system, free, chosen=None):
     structurally singular.
     Each row gets at most ``max_iter`` Newton iterations; after a row that
     needed more than ``slow`` of them the next row takes a new LU."""
-    lib = _projector_library(system, chosen)
+    lib = _library(system, _projector_plan, _declare_projector, chosen,
+                   getattr(system, "model_name", None))
     if lib is None:
         return None
     colind, row = _ccs(system.jacobian_fn.sparsity_out(0))

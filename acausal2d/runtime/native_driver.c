@@ -75,16 +75,10 @@ int SUNLinSolSolve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, sunre
 sunindextype SUNLinSolLastFlag(SUNLinearSolver s);
 int SUNLinSolSpace(SUNLinearSolver s, long *lrw, long *liw);
 void SUNLinSolFreeEmpty(SUNLinearSolver s);
-/* the ops of SUNDIALS' dense solver: only their addresses are used (a2d_slots) */
-int SUNLinSolGetType_Dense(SUNLinearSolver s);
-int SUNLinSolGetID_Dense(SUNLinearSolver s);
-int SUNLinSolInitialize_Dense(SUNLinearSolver s);
-int SUNLinSolSetup_Dense(SUNLinearSolver s, SUNMatrix a);
-int SUNLinSolSolve_Dense(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b,
-                         sunrealtype t);
-sunindextype SUNLinSolLastFlag_Dense(SUNLinearSolver s);
-int SUNLinSolSpace_Dense(SUNLinearSolver s, long *lrw, long *liw);
-int SUNLinSolFree_Dense(SUNLinearSolver s);
+/* dladdr (dlfcn.h; the layout of Dl_info on glibc and macOS): the name of the
+ * function an op slot holds (a2d_slots) */
+typedef struct { const char *fname; void *fbase; const char *sname; void *saddr; } a2d_dl_info;
+int dladdr(const void *addr, a2d_dl_info *info);
 void *IDACreate(SUNContext ctx);
 int IDAInit(void *mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);
 int IDAReInit(void *mem, sunrealtype t0, N_Vector y0, N_Vector yp0);
@@ -134,7 +128,11 @@ typedef struct {
  * the ops field of the generic struct is the one non-NULL field before the
  * context in a new empty solver, and the slot of each op is where the ops
  * of a reference solver (SUNDIALS' dense solver, whose op functions are
- * exported) hold its functions.  Where one is not found, SuperLU_MT is used. */
+ * exported) hold the function of its name.  By name, not by address: the IDA
+ * library carries a copy of the dense solver's functions, and which copy a
+ * slot holds depends on what the process loaded first (scikit-sundae's
+ * import: the copy of the dense solver's own library).  Where one is not
+ * found, SuperLU_MT is used. */
 typedef void (*a2d_op)(void);
 enum { A2D_GETTYPE, A2D_GETID, A2D_INIT, A2D_SETUP, A2D_SOLVE, A2D_LASTFLAG, A2D_SPACE,
        A2D_FREE, A2D_OPS, A2D_MAX_SLOTS = 64, A2D_MAX_FIELDS = 8 };
@@ -163,12 +161,16 @@ static int a2d_find_ops_field(SUNContext ctx) {
   return found;
 }
 
+static int a2d_is(a2d_op op, const char *name) {
+  a2d_dl_info info;
+  return op && dladdr((const void *)op, &info) && info.sname && !strcmp(info.sname, name);
+}
+
 static int a2d_slots(SUNContext ctx, int *slot) {
-  a2d_op want[A2D_OPS] = {
-    (a2d_op)SUNLinSolGetType_Dense, (a2d_op)SUNLinSolGetID_Dense,
-    (a2d_op)SUNLinSolInitialize_Dense, (a2d_op)SUNLinSolSetup_Dense,
-    (a2d_op)SUNLinSolSolve_Dense, (a2d_op)SUNLinSolLastFlag_Dense,
-    (a2d_op)SUNLinSolSpace_Dense, (a2d_op)SUNLinSolFree_Dense};
+  static const char *want[A2D_OPS] = {
+    "SUNLinSolGetType_Dense", "SUNLinSolGetID_Dense", "SUNLinSolInitialize_Dense",
+    "SUNLinSolSetup_Dense", "SUNLinSolSolve_Dense", "SUNLinSolLastFlag_Dense",
+    "SUNLinSolSpace_Dense", "SUNLinSolFree_Dense"};
   int s, k, found = 0;
   N_Vector v = N_VNew_Serial(1, ctx);
   SUNMatrix m = SUNDenseMatrix(1, 1, ctx);
@@ -178,7 +180,7 @@ static int a2d_slots(SUNContext ctx, int *slot) {
   if (ref && a2d_ops_field > 0)   /* stops at the last op wanted: no slot past the struct */
     for (s = 0; s < A2D_MAX_SLOTS && found < A2D_OPS; ++s)
       for (k = 0; k < A2D_OPS; ++k)
-        if (slot[k] < 0 && a2d_ops(ref)[s] == want[k]) { slot[k] = s; found++; }
+        if (slot[k] < 0 && a2d_is(a2d_ops(ref)[s], want[k])) { slot[k] = s; found++; }
   if (ref) SUNLinSolFree(ref);
   if (m) SUNMatDestroy(m);
   if (v) N_VDestroy(v);
