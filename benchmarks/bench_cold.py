@@ -6,6 +6,7 @@ Python path, the background compile, and later runs at native speed.
     python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, two pairs: the suite)
     python benchmarks/bench_cold.py --classic  (also compile first, as before issue 30)
     python benchmarks/bench_cold.py belt chain (only the models whose names contain these)
+    python benchmarks/bench_cold.py --pairs=5  (5 alternating pairs instead of 9)
 
 Every figure is measured in a fresh process with a cache folder of its own:
 
@@ -16,6 +17,8 @@ Every figure is measured in a fresh process with a cache folder of its own:
   (:mod:`acausal2d.runtime.drivers`; the header says whether there are);
 - "no drivers": the same with ``ACAUSAL2D_PREBUILT=0``: an install that
   found no compiler, so that the first run also compiles the drivers;
+- "no compiler": the first run in mode auto with no C compiler on ``PATH``
+  (``$CC`` unset): the Python path, and no worker after it;
 - "native in": from the worker's start until every library it builds is
   published (at -O0 first where the C is large: runs from then on are
   native; target for the chain of 81 links: <= 5 s);
@@ -101,11 +104,14 @@ def child(kind, n, stop):
                       "native": res.stats["native_compile_time"]}))
 
 
-def _child(name, models, cache, mode, prebuilt="1", stop=None, kill=False):
+def _child(name, models, cache, mode, prebuilt="1", stop=None, kill=False, compiler=True):
     kind, n, default = models[name]
     stop = default if stop is None else stop
     env = dict(os.environ, ACAUSAL2D_CACHE_DIR=cache, ACAUSAL2D_NATIVE=mode,
                ACAUSAL2D_PREBUILT=prebuilt, **{KILL: "1" if kill else "0"})
+    if not compiler:                      # no C compiler on PATH ($CC unset)
+        env.pop("CC", None)
+        env["PATH"] = cache
     out = subprocess.run([sys.executable, __file__, "--child", kind, str(n), str(stop)],
                          env=env, capture_output=True, text=True, check=True, timeout=1800)
     return json.loads(out.stdout.strip().splitlines()[-1])
@@ -129,10 +135,12 @@ def measure(name, models, repeat, classic, pairs):
     the Python path and the first run, of ``pairs`` alternating pairs (the
     rounds' and more, whose workers are stopped after the run)."""
     rows = {"python": [], "auto": [], "usable": [], "worker": [], "cpu": [], "later": [],
-            "new": [], "now": [], "alone": []}
+            "new": [], "now": [], "alone": [], "nocc": []}
     for _ in range(repeat):
-        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b, \
+                tempfile.TemporaryDirectory() as e:
             rows["python"].append(_child(name, models, b, "off")["run"])
+            rows["nocc"].append(_child(name, models, e, "auto", compiler=False)["run"])
             first = _child(name, models, a, "auto")
             rows["auto"].append(first["run"])
             rows["worker"].append(first["worker"] or 0.0)
@@ -149,8 +157,10 @@ def measure(name, models, repeat, classic, pairs):
             if classic:
                 rows["now"].append(_child(name, models, b, "now")["run"])
     for _ in range(pairs - repeat):
-        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b:
+        with tempfile.TemporaryDirectory() as a, tempfile.TemporaryDirectory() as b, \
+                tempfile.TemporaryDirectory() as e:
             rows["python"].append(_child(name, models, b, "off")["run"])
+            rows["nocc"].append(_child(name, models, e, "auto", compiler=False)["run"])
             rows["auto"].append(_child(name, models, a, "auto", kill=True)["run"])
     return {k: statistics.median(v) for k, v in rows.items() if v}
 
@@ -190,15 +200,17 @@ def main(models, repeat, classic, piston, whole_repeat, pairs):
     print("cold start (issue 30), fresh processes, s: Python and first run medians of %d "
           "alternating pairs, the rest medians of %d; driver objects installed with the "
           "package: %d" % (pairs, repeat, _installed()))
-    print("%-22s %8s %12s %6s %12s %6s %10s %7s %11s %7s %7s %14s" % (
-        "model", "Python", "first(auto)", "ratio", "no drivers", "ratio", "native in", "alone",
-        "background", "bg CPU", "later", "compile first"))
+    print("%-22s %8s %12s %6s %12s %6s %12s %6s %10s %7s %11s %7s %7s %14s" % (
+        "model", "Python", "first(auto)", "ratio", "no drivers", "ratio", "no compiler",
+        "ratio", "native in", "alone", "background", "bg CPU", "later", "compile first"))
     for name in models:
         m = measure(name, models, repeat, classic, pairs)
-        print("%-22s %8.3f %12.3f %6.2f %12.3f %6.2f %10.3f %7.3f %11.3f %7.2f %7.3f %14s" % (
-            name, m["python"], m["auto"], m["auto"] / m["python"], m["new"],
-            m["new"] / m["python"], m["usable"], m["alone"], m["worker"], m["cpu"], m["later"],
-            "%.3f" % m["now"] if "now" in m else "-"))
+        print("%-22s %8.3f %12.3f %6.2f %12.3f %6.2f %12.3f %6.2f %10.3f %7.3f %11.3f %7.2f "
+              "%7.3f %14s" % (
+                  name, m["python"], m["auto"], m["auto"] / m["python"], m["new"],
+                  m["new"] / m["python"], m["nocc"], m["nocc"] / m["python"], m["usable"],
+                  m["alone"], m["worker"], m["cpu"], m["later"],
+                  "%.3f" % m["now"] if "now" in m else "-"))
     if piston:
         cold, bare, warm = whole_process(whole_repeat)
         print("acausal2d simulate models/piston_engine.py, whole process, medians of %d: empty "
@@ -216,4 +228,6 @@ if __name__ == "__main__":
     else:
         chosen = [a for a in args if not a.startswith("--")]
         picked = {k: v for k, v in MODELS.items() if not chosen or any(c in k for c in chosen)}
-        main(picked, 3, "--classic" in args, not chosen or "piston" in chosen, 5, PAIRS)
+        pairs = int(next((a[8:] for a in args if a.startswith("--pairs=")), PAIRS))
+        repeat = min(3, pairs)
+        main(picked, repeat, "--classic" in args, not chosen or "piston" in chosen, 5, pairs)

@@ -71,12 +71,13 @@ def test_small_modes_print_their_tables(script, labels):
 def test_bench_cold_small():
     text = _run("bench_cold.py", "--small")
     row = next(s for s in text.splitlines() if s.startswith("chain of 3 links"))
-    numbers = _numbers(row)     # Python, first (auto), ratio, no drivers, ratio, native in,
-    assert len(numbers) == 10   # alone, background, CPU, later
+    numbers = _numbers(row)     # Python, first (auto), ratio, no drivers, ratio, no compiler,
+    assert len(numbers) == 12   # ratio, native in, alone, background, CPU, later
     assert numbers[2] == pytest.approx(numbers[1] / numbers[0], rel=0.01, abs=0.01)
     assert numbers[4] == pytest.approx(numbers[3] / numbers[0], rel=0.01, abs=0.01)
-    assert numbers[5] <= numbers[7]         # the libraries are published before the worker ends
-    assert (numbers[5] > 0) == (numbers[6] > 0)    # a worker beside a run and alone, or none
+    assert numbers[6] == pytest.approx(numbers[5] / numbers[0], rel=0.01, abs=0.01)
+    assert numbers[7] <= numbers[9]         # the libraries are published before the worker ends
+    assert (numbers[7] > 0) == (numbers[8] > 0)    # a worker beside a run and alone, or none
     line = next(s for s in text.splitlines() if "piston_engine.py, whole process" in s)
     numbers = _numbers(line)    # empty, without the installed drivers, full; two ratios
     assert len(numbers) == 5

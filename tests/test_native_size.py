@@ -1,13 +1,12 @@
 """The native engine's size, counted: the modules of ``acausal2d/runtime``
 that exist only for the native path - the driver and its C (IDA's loop, the
-sparse LU, the output projector), the orders and block
-triangular layouts handed to that C,
-when a library is used or compiled (the two rules, the detached worker),
-how C is generated, compiled and published, and the verified cache with its
-private folders and file locks - in physical lines, as ``wc -l`` counts
-them.  The Python path, the numerical core the two engines share (Newton,
-events, the initialization) and the notices of the whole runtime are not
-counted.
+sparse LU, the output projector), the orders and block triangular layouts
+handed to that C, when a library is used or compiled (the two rules, the
+detached worker), how C is generated, compiled and published, and the
+verified cache with its private folders and file locks - in physical
+lines, as ``wc -l`` counts them.  The Python path, the numerical core the
+two engines share (Newton, events, the initialization) and the notices of
+the whole runtime are not counted.
 
 The aim is 1,500 lines (the engine counted 3,735 before the engine port);
 :data:`CEILING` is where it stands, so the count can only go down."""
