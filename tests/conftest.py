@@ -205,9 +205,42 @@ FAST_CASES = {
 first few cases (the others are slow): {module: {test function: cases}}."""
 
 
+FIRST = ["test_readme_commands.py", "test_bench_small_modes.py", "test_help_examples.py",
+         "test_plain_clone.py", "test_fit_cli.py", "test_ci_run.py", "test_talk_mechanisms.py",
+         "test_output_rows.py", "test_fit.py"]
+"""Modules that hold the suite's longest tests (a minute or more each on two
+cores: the plain clone running every documented command, the benchmarks'
+small modes).  Under ``-n auto`` they are started first, dealt in turn to
+the workers (:func:`first_for_each_worker`): started last, one of them
+alone would make the run's tail.  Whole modules move, so that their
+module-scoped fixtures are made once."""
+
+
+def first_for_each_worker(items, workers):
+    """``items`` reordered so that xdist's load scheduling hands worker k
+    the modules FIRST[k::workers] at the front of its first chunk.  The
+    chunk is xdist's (pytest-xdist 3, LoadScheduling.schedule): a quarter of
+    the items per worker.  A run without workers keeps the order."""
+    if workers < 2:
+        return items
+    module = lambda item: os.path.basename(str(item.fspath))     # noqa: E731
+    rest = [item for item in items if module(item) not in FIRST]
+    chunk = max(2, len(items) // workers // 4)
+    out = []
+    for k in range(workers):
+        heads = [item for m in FIRST[k::workers] for item in items if module(item) == m]
+        take = max(0, chunk - len(heads)) if k < workers - 1 else 0
+        out += heads + rest[:take]
+        rest = rest[take:]
+    return out + rest
+
+
 def pytest_collection_modifyitems(config, items):
     """Mark the tests of :data:`SLOW_MODULES` and :data:`SLOW_TESTS` slow,
-    and the cases of :data:`FAST_CASES` beyond the first few."""
+    and the cases of :data:`FAST_CASES` beyond the first few; the modules
+    of :data:`FIRST` first on each worker."""
+    workers = int(getattr(config, "workerinput", {}).get("workercount", 1))
+    items[:] = first_for_each_worker(items, workers)
     slow = pytest.mark.slow
     seen = {}
     for item in items:
