@@ -411,7 +411,7 @@ class OneWayClutch(_Modes):
         self.law = check_law(self, law)
         if law == "modes" and self.is_given("w_s"):
             raise ModelDefinitionError("%s: w_s is the width of the stick zones of law='zone'; "
-                                       "drop it or give law='zone'" % self.describe())
+                                       "drop w_s or give law='zone'" % self.describe())
         self.mu_pos = table_rows(self, "mu_pos", mu_pos, [(0.0, 0.5)])
         self.check_parameters(self.parameter_value)
         self.flange_a = RotationalFlange()

@@ -319,9 +319,12 @@ def test_small_relative_speed_meets_rtol_on_its_nominal_scale():
 
 
 def test_zone_width_without_the_zone_law_is_refused():
-    """w_s means the stick zone: without law='zone' it is an error naming it."""
-    with pytest.raises(ModelDefinitionError, match="w_s"):
-        rot.BearingFriction(w_s=1e-3)
+    """w_s means the stick zone: without law='zone' it is an error naming it
+    and what to do (Clutch, Brake, BearingFriction, OneWayClutch alike)."""
+    for element in (rot.Clutch, rot.Brake, rot.BearingFriction, rot.OneWayClutch):
+        with pytest.raises(ModelDefinitionError, match="w_s.*drop w_s or give law='zone'"):
+            element(w_s=1e-3)
+        assert element(w_s=1e-3, law="zone").law == "zone"
     with pytest.raises(ModelDefinitionError, match="law"):
         rot.Brake(law="smooth")
 
