@@ -1,6 +1,8 @@
 """1D rotational mechanics (Modelica.Mechanics.Rotational conventions):
 flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
+import warnings
+
 import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
@@ -189,15 +191,23 @@ class Torque(Component):
         return [self.flange.tau == -self.tau_in.u, self.support.tau == -self.flange.tau]
 
 
-class ConstantTorque(Component):
-    """Constant torque tau acting on the flange (Modelica.Mechanics.
-    Rotational.Sources.ConstantTorque, MSL 4.0, whose parameter is
-    ``tau_constant``)::
+class _PartialTorque(Component):
+    """A torque source on ``flange`` with Modelica's optional ``support``
+    (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Interfaces.PartialTorque)::
 
-        flange.tau = -tau,  support.tau = -flange.tau
+        phi = flange.phi - phi_support,  w = der(phi)
+        tau = -flange.tau,  support.tau = -flange.tau
 
-    ``support`` as :class:`Torque`'s."""
-    tau = Parameter(0.0, "N.m", "torque")
+    ``support`` left unconnected is fixed to ground (``useSupport = false``,
+    ``phi_support = 0``); connected to a housing (``useSupport = true``) it
+    takes the reaction torque there.  ``tau`` accelerates the flange (a
+    negative one is a load).  Subclasses give :meth:`torque_law`."""
+    phi = Variable(unit="rad", doc="angle of flange with respect to support (= flange.phi - "
+                   "support.phi)")
+    w = Variable(unit="rad/s", doc="angular velocity of flange with respect to support "
+                 "(= der(phi))")
+    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -205,63 +215,84 @@ class ConstantTorque(Component):
         self.support = RotationalFlange(ground={"phi": 0.0},
                                         doc="housing (fixed at 0 if unconnected)")
 
+    def torque_law(self):
+        """The right-hand side of ``tau = ...``."""
+        raise NotImplementedError
+
     def equations(self):
-        return [self.flange.tau == -self.tau, self.support.tau == -self.flange.tau]
+        return [self.phi == self.flange.phi - self.support.phi, self.w == der(self.phi),
+                self.tau == -self.flange.tau, self.support.tau == -self.flange.tau,
+                self.tau == self.torque_law()]
 
 
-class TorqueStep(Component):
-    """Constant torque with a step (Modelica.Mechanics.Rotational.Sources.
-    TorqueStep, MSL 4.0, without support: the reaction goes to ground)::
+class ConstantTorque(_PartialTorque):
+    """Constant torque, not dependent on speed (Modelica Standard Library
+    4.0, Modelica.Mechanics.Rotational.Sources.ConstantTorque; the
+    support as :class:`_PartialTorque`'s)::
 
-        w = der(phi),  phi = flange.phi,  tau = -flange.tau
+        phi = flange.phi - phi_support,  w = der(phi)
+        tau = -flange.tau,  tau = tau_constant
+
+    ``tau`` is the variable, as in Modelica; ``tau=`` with a number is the
+    former name of ``tau_constant`` (DeprecationWarning)."""
+    tau_constant = Parameter(0.0, "N.m", "constant torque (< 0: a load in the positive "
+                             "direction of rotation)")
+
+    def __init__(self, **kw):
+        if isinstance(kw.get("tau"), (int, float)):
+            if "tau_constant" in kw:
+                raise ModelDefinitionError("ConstantTorque: give tau_constant only (tau is the "
+                                           "former name of the constant torque)")
+            warnings.warn("ConstantTorque(tau=...) is the former name of Modelica's "
+                          "tau_constant: write ConstantTorque(tau_constant=...); tau is the "
+                          "torque variable", DeprecationWarning, stacklevel=2)
+            kw["tau_constant"] = kw.pop("tau")
+        super().__init__(**kw)
+
+    def torque_law(self):
+        return self.tau_constant
+
+
+class TorqueStep(_PartialTorque):
+    """Constant torque with a step (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Sources.TorqueStep; the support as
+    :class:`_PartialTorque`'s)::
+
+        phi = flange.phi - phi_support,  w = der(phi),  tau = -flange.tau
         tau = offsetTorque + (if time < startTime then 0 else stepTorque)
 
-    ``tau`` accelerates the flange (a negative one is a load); the step is
-    a time event."""
+    The step is a time event."""
     stepTorque = Parameter(1.0, "N.m", "height of the torque step (< 0: a load)")
     offsetTorque = Parameter(0.0, "N.m", "offset of the torque")
     startTime = Parameter(0.0, "s", "torque = offsetTorque for time < startTime")
-    phi = Variable(unit="rad", doc="angle of the flange")
-    w = Variable(unit="rad/s", doc="angular velocity of the flange")
-    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
 
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.flange = RotationalFlange()
-
-    def equations(self):
-        step = ca.if_else(time < self.startTime, 0.0, self.stepTorque)
-        return [self.phi == self.flange.phi, self.w == der(self.phi),
-                self.tau == -self.flange.tau, self.tau == self.offsetTorque + step]
+    def torque_law(self):
+        return self.offsetTorque + ca.if_else(time < self.startTime, 0.0, self.stepTorque)
 
 
-class QuadraticSpeedDependentTorque(Component):
-    """Torque quadratic in the speed (Modelica.Mechanics.Rotational.Sources.
-    QuadraticSpeedDependentTorque, MSL 4.0, without support)::
+class QuadraticSpeedDependentTorque(_PartialTorque):
+    """Torque quadratic in the speed (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Sources.QuadraticSpeedDependentTorque;
+    the support as :class:`_PartialTorque`'s)::
 
-        w = der(phi),  tau = -flange.tau
+        phi = flange.phi - phi_support,  w = der(phi),  tau = -flange.tau
         tau = tau_nominal (w / w_nominal)^2                        TorqueDirection
         tau = tau_nominal (if w >= 0 then 1 else -1) (w / w_nominal)^2   otherwise
 
     ``tau_nominal < 0`` is a load (a fan); with ``TorqueDirection=False``
     it opposes the motion in both directions (``w |w|``: continuous with
-    its first derivative, no event)."""
+    its first derivative, no event).  ``w`` is the speed relative to the
+    support."""
     tau_nominal = Parameter(1.0, "N.m", "nominal torque (< 0: a load in the positive direction)")
     w_nominal = Parameter(1.0, "rad/s", "nominal speed", positive=True)
-    phi = Variable(unit="rad", doc="angle of the flange")
-    w = Variable(unit="rad/s", doc="angular velocity of the flange")
-    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
 
     def __init__(self, TorqueDirection=True, **kw):
         super().__init__(**kw)
         self.TorqueDirection = bool(TorqueDirection)
-        self.flange = RotationalFlange()
 
-    def equations(self):
+    def torque_law(self):
         x = self.w / self.w_nominal
-        law = x * x if self.TorqueDirection else x * ca.fabs(x)
-        return [self.phi == self.flange.phi, self.w == der(self.phi),
-                self.tau == -self.flange.tau, self.tau == self.tau_nominal * law]
+        return self.tau_nominal * (x * x if self.TorqueDirection else x * ca.fabs(x))
 
 
 class Speed(Component):

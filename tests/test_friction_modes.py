@@ -105,7 +105,7 @@ class Braked(Component):
 
     def __init__(self, T, **kw):
         super().__init__(**kw)
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.inertia = rot.Inertia(J=2.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.brake = rot.Brake(mu_pos=[[0.0, 0.4]], cgeo=0.5, fn_max=100.0, peak=1.25)
         self.one = signals.Constant(k=1.0)
@@ -140,7 +140,7 @@ class Freewheel(Component):
         self.fix = rot.Fixed()
         self.owc = rot.OneWayClutch(fn_max=100.0)
         self.a = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.f = signals.Constant(k=engage)
         self.connect(self.f.y, self.owc.f_normalized)
         self.connect(self.fix.flange, self.owc.flange_a)
@@ -337,7 +337,7 @@ class RampedDrive(Component):
 
     def __init__(self, shared=True, D=0.5, **kw):
         super().__init__(**kw)
-        self.src = rot.ConstantTorque(tau=DRIVE["T"])
+        self.src = rot.ConstantTorque(tau_constant=DRIVE["T"])
         self.J1 = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.clutch = rot.Clutch(fn_max=DRIVE["fn_max"], peak=DRIVE["peak"])
         self.J2 = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))

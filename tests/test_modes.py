@@ -67,7 +67,7 @@ class PhysicalPendulum(Component):
         self.connect(self.revolute.frame_b, self.rod.frame_a)
         self.connect(self.rod.frame_b, self.body.frame_a)
         if torque is not None:
-            self.drive = rotational.ConstantTorque(tau=torque)
+            self.drive = rotational.ConstantTorque(tau_constant=torque)
             self.connect(self.drive.flange, self.revolute.flange_a)
 
 
