@@ -10,7 +10,6 @@ event time is off by the time its crossing function needs to move by RTOL
 of its scale (``RTOL * scale / rate``, ten times room).  Speeds between
 events: 100 RTOL of their scale (the global error)."""
 import math
-import time
 
 import numpy as np
 import pytest
@@ -277,14 +276,12 @@ class Bouncing(Component):
 def test_zeno_ball_ends_with_an_error_naming_element_and_relation():
     """The bounces accumulate at t* = sqrt(2/g) 3 = 1.3546 s; the run stops
     there (it went on through the ground) naming the ball and its relation
-    (wall time measured: well under 10 s)."""
-    wall = time.perf_counter()
+    (its wall time: benchmarks/bench_events.py)."""
     with pytest.raises(EventError) as err:
         acausal2d.simulate(Bouncing(), stop_time=3.0, rtol=RTOL)
     msg = str(err.value)
     assert "Zeno" in msg and "ground contact" in msg and "Ball 'ball'" in msg
     assert err.value.time == pytest.approx(3 * math.sqrt(2 / 9.81), rel=1e-3)
-    assert time.perf_counter() - wall < 60       # a hang guard, not a speed target
 
 
 class Housing(Component):
