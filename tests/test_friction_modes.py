@@ -419,6 +419,11 @@ def test_shared_ramp_clutch_and_brake_run_a_second_as_the_closed_form(ulps):
     assert is_code(res["brake.mode"][t < tb - 1e-6], 0.0)
     assert is_code(res["brake.mode"][t > switching[3] + 1e-6], 2.0)
     assert np.max(np.abs(res["clutch.w_rel"][after])) <= LOCKED
+    # Modelica's startForward: 1 only while the brake starts to slide (at tb)
+    starting = t[res["brake.startForward"] > 0.5]
+    assert len(starting) and np.max(np.abs(starting - tb)) <= 1e-9
+    assert is_code(res["brake.locked"][t < tb - 1e-6], 1.0)
+    assert is_code(res["brake.startBackward"], 0.0)
 
 
 def test_shared_ramp_agrees_with_two_separate_ramps():

@@ -337,3 +337,26 @@ def test_translational_relative_states_with_msl_nominal():
     assert "sd.s_rel" in res.states and len(res.states) == 2     # v_rel: an alias of mass.v
     assert np.max(np.abs(res["sd.s_rel"] - ref.y[0])) <= 100 * 1e-6 * 1e-4
     assert np.max(np.abs(res["sd.v_rel"] - ref.y[1])) <= 100 * 1e-6 * 1e-4
+
+
+class Damped(Component):
+    """Inertia J = 2 at w0 = 3 on a rotational Damper (d = 4) to the ground."""
+
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.inertia = rot.Inertia(J=2.0, phi=start(0.0, fixed=True), w=start(3.0, fixed=True))
+        self.damper = rot.Damper(d=4.0)
+        self.fix = rot.Fixed()
+        self.connect(self.fix.flange, self.damper.flange_a)
+        self.connect(self.damper.flange_b, self.inertia.flange_a)
+
+
+def test_damper_w_rel_and_its_relative_angle():
+    """Modelica's Damper (PartialCompliantWithRelativeStates): w_rel =
+    der(phi_rel), tau = d w_rel; J w' = -d w: w_rel = 3 exp(-2 t), phi_rel
+    = 1.5 (1 - exp(-2 t)), the torque on the inertia -d w_rel."""
+    res = acausal2d.simulate(Damped(), stop_time=1.0, rtol=RTOL, output_times=T)
+    w = 3.0 * np.exp(-2.0 * T)
+    assert np.max(np.abs(res["damper.w_rel"] - w)) <= 100 * RTOL * 3.0
+    assert np.max(np.abs(res["damper.phi_rel"] - 1.5 * (1 - np.exp(-2.0 * T)))) <= 100 * RTOL
+    assert np.max(np.abs(res["damper.tau"] - 4.0 * w)) <= 100 * RTOL * 12.0
