@@ -32,6 +32,7 @@ from acausal2d import (Component, der, Parameter, RealInput, RotationalFlange,
                        Variable)
 from acausal2d.language.symbols import define_latch, latch
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.relative_states import relative_states
 
 
 def _pairs(comp, name, table):
@@ -406,8 +407,9 @@ class OneWayClutch(_Modes):
 
     power_sides = (("flange_a",), ("flange_b",))
 
-    def __init__(self, mu_pos=None, law="modes", **kw):
+    def __init__(self, mu_pos=None, law="modes", phi_nominal=None, stateSelect=None, **kw):
         super().__init__(**kw)
+        relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
         self.law = check_law(self, law)
         if law == "modes" and self.is_given("w_s"):
             raise ModelDefinitionError("%s: w_s is the width of the stick zones of law='zone'; "

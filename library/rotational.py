@@ -8,6 +8,7 @@ import casadi as ca
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
                        Variable, time)
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.relative_states import relative_states
 from acausal2d.library.friction1d import (_Modes, check_law, interpolate, partial_friction,
                                           table_rows, zone_law)
 
@@ -82,6 +83,10 @@ class _RelativeStates(_Compliant):
     phi_rel = Variable(unit="rad", state_select="prefer", nominal=1e-4,
                        doc="relative angle flange_b - flange_a")
     w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
+
+    def __init__(self, phi_nominal=None, stateSelect=None, **kw):
+        super().__init__(**kw)
+        relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
 
 
 class Damper(_RelativeStates):
@@ -383,8 +388,9 @@ class Clutch(_Modes):
 
     power_sides = (("flange_a",), ("flange_b",))
 
-    def __init__(self, mu_pos=None, law="modes", **kw):
+    def __init__(self, mu_pos=None, law="modes", phi_nominal=None, stateSelect=None, **kw):
         super().__init__(**kw)
+        relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
         if mu_pos is not None and "mu" in kw:
             raise ModelDefinitionError("%s: give mu (a constant) or mu_pos (a table), not both"
                                        % self.describe())

@@ -5,6 +5,7 @@ import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, TranslationalFlange,
                        Variable)
+from acausal2d.library.relative_states import relative_states
 
 
 class Fixed(Component):
@@ -82,6 +83,10 @@ class _RelativeStates(_Compliant):
     s_rel = Variable(unit="m", state_select="prefer", nominal=1e-4,
                      doc="relative position flange_b - flange_a")
     v_rel = Variable(unit="m/s", state_select="prefer", doc="relative velocity")
+
+    def __init__(self, s_nominal=None, stateSelect=None, **kw):
+        super().__init__(**kw)
+        relative_states(self, "s_rel", "v_rel", s_nominal, stateSelect, "s_nominal")
 
 
 class Damper(_RelativeStates):

@@ -307,13 +307,13 @@ class Mount(Component):
     """A mass (m = 1) on a translational SpringDamper to the ground (c = 1,
     d = 0.5), pushed by 1e-6 sin(t) N: a micrometre-scale relative motion."""
 
-    def __init__(self, **kw):
+    def __init__(self, sd=None, **kw):
         super().__init__(**kw)
         self.sig = signals.Sine(amplitude=1e-6, f=1 / (2 * np.pi))
         self.force = tr.Force()
         self.mass = tr.Mass(m=1.0)
         self.sd = tr.SpringDamper(c=1.0, d=0.5, s_rel=start(0.0, fixed=True),
-                                  v_rel=start(0.0, fixed=True))
+                                  v_rel=start(0.0, fixed=True), **(sd or {}))
         self.fix = tr.Fixed()
         self.connect(self.sig.y, self.force.f_in)
         self.connect(self.force.flange, self.mass.flange_a)
@@ -360,3 +360,26 @@ def test_damper_w_rel_and_its_relative_angle():
     assert np.max(np.abs(res["damper.w_rel"] - w)) <= 100 * RTOL * 3.0
     assert np.max(np.abs(res["damper.phi_rel"] - 1.5 * (1 - np.exp(-2.0 * T)))) <= 100 * RTOL
     assert np.max(np.abs(res["damper.tau"] - 4.0 * w)) <= 100 * RTOL * 12.0
+
+
+def test_relative_state_keywords_as_modelica():
+    """Modelica's stateSelect and phi_nominal / s_nominal of
+    PartialCompliantWithRelativeStates: StateSelect.avoid leaves the
+    mass's own s, v as the states (the run's motion unchanged: within 100
+    rtol of the nominal scale of the default run); a nominal below
+    Modelica.Constants.eps means 1; the clutches take them too; a wrong
+    literal is an error naming the keyword."""
+    grid = np.linspace(0.0, 10.0, 101)
+    cm = acausal2d.compile_model(Mount(sd={"stateSelect": "StateSelect.avoid"}))
+    avoid = cm.simulate(stop_time=10.0, rtol=1e-6, output_times=grid)
+    assert "sd.s_rel" not in avoid.states and set(avoid.states) == {"mass.s", "mass.v"}
+    default = acausal2d.simulate(Mount(), stop_time=10.0, rtol=1e-6, output_times=grid)
+    assert np.max(np.abs(avoid["sd.s_rel"] - default["sd.s_rel"])) <= 100 * 1e-6 * 1e-4
+    assert tr.SpringDamper(s_nominal=1e-3).variable("s_rel").nominal == pytest.approx(1e-3)
+    assert rot.SpringDamper(phi_nominal=0.0).variable("phi_rel").nominal == pytest.approx(1.0)
+    assert rot.Clutch(phi_nominal=1e-3).variable("phi_rel").nominal == pytest.approx(1e-3)
+    assert rot.OneWayClutch(stateSelect="never").variable("w_rel").state_select == "never"
+    with pytest.raises(ModelDefinitionError, match="stateSelect must be one of"):
+        rot.Damper(stateSelect="StateSelect.sometimes")
+    with pytest.raises(ModelDefinitionError, match="phi_nominal"):
+        rot.Damper(phi_nominal=-1.0)
