@@ -201,6 +201,28 @@ class _Modes(Component):
 
     MODE_WORDS = {-1: "sliding backward", 0: "stuck", 1: "sliding forward", 2: "free"}
     """The words of the mode codes, for events."""
+    ZONE = "w_s"
+    """The parameter of the stick zone's width (law='zone' only)."""
+
+    def _zone_error(self, how):
+        return ModelDefinitionError(
+            "%s: %s is the width of the stick zone of law='zone'; with Modelica's modes (the "
+            "default) it has no meaning: %s or give law='zone'" % (self.describe(), self.ZONE, how))
+
+    def refuse_zone_width(self):
+        """An error naming the stick zone's width if the model gives it
+        to an element of Modelica's modes (it would change nothing)."""
+        if self.law == "modes" and self.is_given(self.ZONE):
+            raise self._zone_error("drop %s" % self.ZONE)
+
+    def check_parameters(self, value):
+        """Under Modelica's modes the stick zone's width keeps its default
+        in every run (``--set``, ``params=``, a sweep): changed, it is an
+        error naming it, as in the constructor."""
+        zone = self.ZONE
+        if getattr(self, "law", None) == "modes" and \
+                value(zone) != self.parameter_declaration(zone).default:
+            raise self._zone_error("leave %s out of the run's parameters" % zone)
 
     def describe_mode(self, value):
         """The mode output in words (stuck, sliding forward or backward,
@@ -230,16 +252,10 @@ class _Friction(_Modes):
     its stick zone w_s (law='zone' only)."""
     peak = Parameter(1.0, "1", "peak of the friction at w = 0: tau0_max = peak * tau0", min=1.0)
 
-    ZONE = "w_s"
-
     def __init__(self, law="modes", **kw):
         super().__init__(**kw)
         self.law = check_law(self, law)
-        if law == "modes" and self.is_given(self.ZONE):
-            raise ModelDefinitionError(
-                "%s: %s is the width of the stick zone of law='zone'; with Modelica's modes "
-                "(the default) it has no meaning: drop %s or give law='zone'"
-                % (self.describe(), self.ZONE, self.ZONE))
+        self.refuse_zone_width()
 
     def sliding_mode_advice(self):
         """What to change when the element's relations chatter."""
@@ -403,17 +419,13 @@ class OneWayClutch(_Modes):
     fn = Variable(unit="N", doc="normal force (0 if f_normalized <= 0)")
     stuck = Variable(unit="1", doc="1 if w_rel = 0 (locked or starting forward)")
     EPS0 = 1e-4
-    ZONE = "w_s"
-
     power_sides = (("flange_a",), ("flange_b",))
 
     def __init__(self, mu_pos=None, law="modes", phi_nominal=None, stateSelect=None, **kw):
         super().__init__(**kw)
         relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
         self.law = check_law(self, law)
-        if law == "modes" and self.is_given("w_s"):
-            raise ModelDefinitionError("%s: w_s is the width of the stick zones of law='zone'; "
-                                       "drop w_s or give law='zone'" % self.describe())
+        self.refuse_zone_width()
         self.mu_pos = table_rows(self, "mu_pos", mu_pos, [(0.0, 0.5)])
         self.check_parameters(self.parameter_value)
         self.flange_a = RotationalFlange()
@@ -424,7 +436,9 @@ class OneWayClutch(_Modes):
 
     def check_parameters(self, value):
         """The lock torque peak mu0 cgeo fn_max > 0 (on the values
-        ``value(name)`` gives): a freewheel without it never locks."""
+        ``value(name)`` gives): a freewheel without it never locks; the
+        stick zone's width as :meth:`_Modes.check_parameters`."""
+        super().check_parameters(value)
         if not interpolate(self.mu_pos, 0.0) * value("cgeo") > 0:
             raise ModelDefinitionError(
                 "%s: the freewheel's lock torque peak mu0 cgeo fn_max is 0 (mu_pos at w = 0 is "

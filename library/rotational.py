@@ -395,10 +395,7 @@ class Clutch(_Modes):
             raise ModelDefinitionError("%s: give mu (a constant) or mu_pos (a table), not both"
                                        % self.describe())
         self.law = check_law(self, law)
-        if law == "modes" and self.is_given("w_s"):
-            raise ModelDefinitionError(
-                "%s: w_s is the width of the stick zone of law='zone'; with Modelica's modes "
-                "(the default) it has no meaning: drop w_s or give law='zone'" % self.describe())
+        self.refuse_zone_width()
         self.mu_pos = None if mu_pos is None else table_rows(self, "mu_pos", mu_pos, None)
         self.flange_a = RotationalFlange()
         self.flange_b = RotationalFlange()

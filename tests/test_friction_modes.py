@@ -322,6 +322,13 @@ def test_zone_width_without_the_zone_law_is_refused():
         with pytest.raises(ModelDefinitionError, match="w_s.*drop w_s or give law='zone'"):
             element(w_s=1e-3)
         assert element(w_s=1e-3, law="zone").law == "zone"
+    # and in a run's parameters (--set, params=, a sweep), where it would change nothing
+    cm = acausal2d.compile_model(Pair(rot.Clutch(mu=0.5, fn_max=20.0), wa=10.0))
+    with pytest.raises(ModelDefinitionError, match="w_s.*leave w_s out of the run's param"):
+        cm.simulate(stop_time=0.1, params={"clutch.w_s": 1e-2})
+    zone = acausal2d.compile_model(Pair(rot.Clutch(mu=0.5, fn_max=20.0, law="zone"), wa=10.0))
+    assert zone.simulate(stop_time=0.1, params={"clutch.w_s": 1e-2}).time[-1] == \
+        pytest.approx(0.1, abs=1e-12)
     with pytest.raises(ModelDefinitionError, match="law"):
         rot.Brake(law="smooth")
 
