@@ -1,5 +1,6 @@
-"""1D friction elements with stiction (Modelica.Mechanics.Rotational.
-Components.BearingFriction, Brake, OneWayClutch, MSL 4.0), and the friction
+"""1D friction elements with stiction (Modelica Standard Library 4.0,
+Modelica.Mechanics.Rotational.Components.BearingFriction, Brake,
+OneWayClutch), and the friction
 laws they share with :class:`acausal2d.library.rotational.Clutch` and the
 translational elements of :mod:`acausal2d.library.friction_translational`.
 
@@ -158,8 +159,8 @@ def mode_latches(comp, w, sa, free, tau0, tau0_max, block=(None, None)):
 
 
 def partial_friction(comp, w, a, sa, free, tau0, tau0_max, slide, block=(None, None)):
-    """Modelica's PartialFriction (MSL 4.0, Modelica.Mechanics.Rotational.
-    Interfaces.PartialFriction) for the relative speed ``w``, its
+    """Modelica's PartialFriction (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Interfaces.PartialFriction) for the relative speed ``w``, its
     acceleration ``a`` and the path parameter ``sa`` (an unknown of the
     element); returns ``(tau, equations, latches)``: the friction torque
     (force) as an expression, the latches of :func:`mode_latches` and the
@@ -310,8 +311,8 @@ class _SupportFriction(_Friction):
 
 
 class BearingFriction(_SupportFriction):
-    """Coulomb friction in a bearing (Modelica.Mechanics.Rotational.
-    Components.BearingFriction, MSL 4.0)::
+    """Coulomb friction in a bearing (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Components.BearingFriction)::
 
         phi = flange_a.phi - support.phi,  flange_b.phi = flange_a.phi
         w = der(phi),  a = der(w)
@@ -338,8 +339,8 @@ class BearingFriction(_SupportFriction):
 
 
 class Brake(_SupportFriction):
-    """Brake based on Coulomb friction (Modelica.Mechanics.Rotational.
-    Components.Brake, MSL 4.0)::
+    """Brake based on Coulomb friction (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Components.Brake)::
 
         phi = flange_a.phi - support.phi,  flange_b.phi = flange_a.phi
         w = der(phi),  a = der(w)
@@ -376,8 +377,8 @@ class Brake(_SupportFriction):
 
 
 class OneWayClutch(_Modes):
-    """Parallel connection of a freewheel and a clutch (Modelica.Mechanics.
-    Rotational.Components.OneWayClutch, MSL 4.0)::
+    """Parallel connection of a freewheel and a clutch (Modelica Standard
+    Library 4.0, Modelica.Mechanics.Rotational.Components.OneWayClutch)::
 
         phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
         flange_b.tau = tau,  flange_a.tau = -tau

@@ -27,8 +27,9 @@ STATE_SELECT = ("never", "avoid", "default", "prefer", "always")
 def relative_states(comp, position, speed, nominal, state_select, nominal_name="phi_nominal"):
     """Apply Modelica's ``phi_nominal`` (named ``nominal_name``) to the
     variable ``position`` and ``stateSelect`` (``"StateSelect.prefer"``,
-    ``"Modelica.StateSelect.prefer"`` or ``"prefer"``) to ``position`` and ``speed`` of ``comp``; None leaves the
-    element's default.  Errors name the component and the keyword."""
+    ``"Modelica.StateSelect.prefer"`` or ``"prefer"``) to ``position`` and
+    ``speed`` of ``comp``; None leaves the element's default.  Errors name
+    the component and the keyword."""
     if nominal is not None:
         if isinstance(nominal, bool) or not isinstance(nominal, numbers.Real) or \
                 not math.isfinite(nominal) or nominal < 0:

@@ -27,7 +27,7 @@ class Fixed(Component):
 
 class Inertia(Component):
     """Rotational inertia J between two rigidly coupled flanges
-    (Modelica.Mechanics.Rotational.Components.Inertia, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Components.Inertia)::
 
         phi = flange_a.phi = flange_b.phi,  w = der(phi),  a = der(w)
         J * a = flange_a.tau + flange_b.tau
@@ -151,7 +151,7 @@ class SpeedSensor(Component):
 
 class MultiSensor(Component):
     """Power, torque and angular velocity between two flanges
-    (Modelica.Mechanics.Rotational.Sensors.MultiSensor, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Sensors.MultiSensor)::
 
         flange_a.phi = flange_b.phi,  w = der(flange_a.phi)
         tau = flange_a.tau,  0 = flange_a.tau + flange_b.tau
@@ -177,7 +177,7 @@ class MultiSensor(Component):
 
 class Torque(Component):
     """Torque from the signal tau_in acting on the flange
-    (Modelica.Mechanics.Rotational.Sources.Torque, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Sources.Torque)::
 
         flange.tau = -tau,  support.tau = -flange.tau
 
@@ -328,10 +328,11 @@ class Position(Component):
 
 
 class Clutch(_Modes):
-    """Friction clutch (Modelica.Mechanics.Rotational.Components.Clutch,
-    MSL 4.0; the dissertation's disc clutch, ch. 8.2 "discClutch1") between
-    ``flange_a`` and ``flange_b``, engaged by the signal input
-    ``f_normalized`` (0 = open, 1 = fully closed)::
+    """Friction clutch (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Components.Clutch; the disc clutch
+    "discClutch1" of Ebert (2015), ch. 8.2) between ``flange_a`` and
+    ``flange_b``, engaged by the signal input ``f_normalized`` (0 = open,
+    1 = fully closed)::
 
         phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
         flange_b.tau = tau,  flange_a.tau = -tau

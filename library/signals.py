@@ -36,7 +36,7 @@ def _former_start_time(kw):
 
 
 class Sine(_Source):
-    """Sine wave (Modelica.Blocks.Sources.Sine, MSL 4.0)::
+    """Sine wave (Modelica Standard Library 4.0, Modelica.Blocks.Sources.Sine)::
 
         y = offset + (if time < startTime then 0
                       else amplitude * sin(2 pi f (time - startTime) + phase))
@@ -58,7 +58,7 @@ class Sine(_Source):
 
 
 class Ramp(_Source):
-    """Linear ramp (Modelica.Blocks.Sources.Ramp, MSL 4.0)::
+    """Linear ramp (Modelica Standard Library 4.0, Modelica.Blocks.Sources.Ramp)::
 
         y = offset + (if time < startTime then 0
                       else if time < startTime + duration

@@ -21,8 +21,8 @@ class Fixed(Component):
 
 
 class Mass(Component):
-    """Sliding mass with inertia (Modelica.Mechanics.Translational.
-    Components.Mass, MSL 4.0)::
+    """Sliding mass with inertia (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Translational.Components.Mass)::
 
         flange_a.s = s - L/2,  flange_b.s = s + L/2,  v = der(s)
         m der(v) = flange_a.f + flange_b.f
@@ -172,8 +172,8 @@ from acausal2d.library.friction1d import interpolate, table_rows  # noqa: E402,F
 
 
 class Brake(SupportFriction):
-    """Brake based on Coulomb friction (Modelica.Mechanics.Translational.
-    Components.Brake, MSL 4.0)::
+    """Brake based on Coulomb friction (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Translational.Components.Brake)::
 
         s = flange_a.s - support.s,  flange_b.s = flange_a.s
         v = der(s),  a = der(v),  0 = flange_a.f + flange_b.f - f
