@@ -1,8 +1,8 @@
 """1D friction elements with stiction (Modelica Standard Library 4.0,
 Modelica.Mechanics.Rotational.Components.BearingFriction, Brake,
-OneWayClutch), and the friction
-laws they share with :class:`acausal2d.library.rotational.Clutch` and the
-translational elements of :mod:`acausal2d.library.friction_translational`.
+OneWayClutch), and the friction laws they share with
+:class:`acausal2d.library.rotational.Clutch` and the translational elements
+of :mod:`acausal2d.library.friction_translational`.
 
 By default (``law="modes"``) they compute Modelica's PartialFriction: the
 modes Forward, Stuck, Backward and Free of its state machine are held by
@@ -160,11 +160,11 @@ def mode_latches(comp, w, sa, free, tau0, tau0_max, block=(None, None)):
 
 def partial_friction(comp, w, a, sa, free, tau0, tau0_max, slide, block=(None, None)):
     """Modelica's PartialFriction (Modelica Standard Library 4.0,
-    Modelica.Mechanics.Rotational.Interfaces.PartialFriction) for the relative speed ``w``, its
-    acceleration ``a`` and the path parameter ``sa`` (an unknown of the
-    element); returns ``(tau, equations, latches)``: the friction torque
-    (force) as an expression, the latches of :func:`mode_latches` and the
-    equations of ``a`` and of the mode outputs
+    Modelica.Mechanics.Rotational.Interfaces.PartialFriction) for the
+    relative speed ``w``, its acceleration ``a`` and the path parameter
+    ``sa`` (an unknown of the element); returns ``(tau, equations,
+    latches)``: the friction torque (force) as an expression, the latches
+    of :func:`mode_latches` and the equations of ``a`` and of the mode outputs
     ``mode``, ``locked``, ``startForward``, ``startBackward`` (variables
     of ``comp``)::
 

@@ -1,6 +1,7 @@
 """1D rotational mechanics (Modelica.Mechanics.Rotational conventions):
 flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
+import numbers
 import warnings
 
 import casadi as ca
@@ -244,7 +245,8 @@ class ConstantTorque(_PartialTorque):
                              "direction of rotation)")
 
     def __init__(self, **kw):
-        if isinstance(kw.get("tau"), (int, float)):
+        former = kw.get("tau")
+        if isinstance(former, numbers.Real) and not isinstance(former, bool):
             if "tau_constant" in kw:
                 raise ModelDefinitionError("ConstantTorque: give tau_constant only (tau is the "
                                            "former name of the constant torque)")
