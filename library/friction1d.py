@@ -366,14 +366,21 @@ class Brake(_SupportFriction):
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
     def equations(self):
-        free = self.fn <= 0
-        fn_pos = ca.if_else(free, 0.0, self.fn)
-        mu0 = interpolate(self.mu_pos, 0.0)
-        slide = lambda v: self.cgeo * fn_pos * interpolate(self.mu_pos, v)  # noqa: E731
-        return self._kinematics() + self.law_equations(
-            self.w, self.a, free, mu0 * self.cgeo * fn_pos, slide) + [
+        free, breakaway, slide = brake_friction(self)
+        return self._kinematics() + self.law_equations(self.w, self.a, free, breakaway, slide) + [
             self.fn == self.fn_max * self.f_normalized.u,
-            self.tau0_max == self.peak * mu0 * self.cgeo * fn_pos]
+            self.tau0_max == self.peak * breakaway]
+
+
+def brake_friction(brake):
+    """What a brake (rotational or translational) hands to the friction law
+    from its normal force ``fn``, ``cgeo`` and ``mu_pos`` table: (free: the
+    relation ``fn <= 0``, the breakaway value mu0 cgeo fn (0 when free), the
+    sliding value as a function of the relative speed cgeo fn mu_pos(v))."""
+    free = brake.fn <= 0
+    fn_pos = ca.if_else(free, 0.0, brake.fn)
+    breakaway = interpolate(brake.mu_pos, 0.0) * brake.cgeo * fn_pos
+    return free, breakaway, lambda v: brake.cgeo * fn_pos * interpolate(brake.mu_pos, v)
 
 
 class OneWayClutch(_Modes):

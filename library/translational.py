@@ -1,7 +1,6 @@
 """1D translational mechanics (Modelica.Mechanics.Translational conventions):
 flange.s is the absolute position, flange.f the force acting on the element
 from the connected part."""
-import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, TranslationalFlange,
                        Variable)
@@ -168,7 +167,7 @@ class PositionSensor(Component):
 # Modelica.Mechanics.Translational.Components' friction, where Modelica users look for it
 from acausal2d.library.friction_translational import (  # noqa: E402,F401
     MassWithStopAndFriction, SupportFriction)
-from acausal2d.library.friction1d import interpolate, table_rows  # noqa: E402,F401
+from acausal2d.library.friction1d import brake_friction, interpolate, table_rows  # noqa: E402,F401,E501
 
 
 class Brake(SupportFriction):
@@ -196,13 +195,10 @@ class Brake(SupportFriction):
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
     def equations(self):
-        free = self.fn <= 0
-        fn_pos = ca.if_else(free, 0.0, self.fn)
-        mu0 = interpolate(self.mu_pos, 0.0)
-        slide = lambda v: self.cgeo * fn_pos * interpolate(self.mu_pos, v)  # noqa: E731
+        free, breakaway, slide = brake_friction(self)
         return [self.s == self.flange_a.s - self.support.s, self.flange_b.s == self.flange_a.s,
                 self.v == der(self.s), self.a == der(self.v),
                 0 == self.flange_a.f + self.flange_b.f - self.f,
                 self.support.f == -self.flange_a.f - self.flange_b.f,
                 self.fn == self.fn_max * self.f_normalized.u] + self.law_equations(
-            self.v, self.a, free, mu0 * self.cgeo * fn_pos, slide)
+            self.v, self.a, free, breakaway, slide)
