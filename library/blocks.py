@@ -1,4 +1,4 @@
-"""Signal blocks of Modelica.Blocks (MSL 4.0) with Modelica's names,
+"""Signal blocks of Modelica.Blocks (Modelica Standard Library 4.0) with Modelica's names,
 parameters and equations: Sources.Step, Sources.Pulse, Math.Gain, Math.Add, Math.Add3,
 Math.Feedback, Nonlinear.Limiter, Continuous.Integrator,
 Continuous.Derivative, Continuous.PID and Continuous.LimPID.
@@ -142,7 +142,8 @@ class Add3(Component):
 
 
 class Product(Component):
-    """Product of two inputs (Modelica.Blocks.Math.Product, MSL 4.0)::
+    """Product of two inputs (Modelica Standard Library 4.0,
+    Modelica.Blocks.Math.Product)::
 
         y = u1 * u2
 

@@ -1,4 +1,4 @@
-"""Controllers of Modelica.Blocks.Continuous (MSL 4.0): :class:`PID` and
+"""Controllers of Modelica.Blocks.Continuous (Modelica Standard Library 4.0): :class:`PID` and
 :class:`LimPID`, written flat with Modelica's parameters and equations.
 
 Modelica composes both of sub-blocks (``I``: Integrator, ``D``:
@@ -126,7 +126,7 @@ class PID(_Controller):
 class LimPID(_Controller):
     """P, PI, PD or PID controller with limited output, anti-windup
     compensation, set-point weighting and optional feed-forward
-    (Modelica.Blocks.Continuous.LimPID, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Blocks.Continuous.LimPID)::
 
         controlError = u_s - u_m
         P.y = wp * u_s - u_m

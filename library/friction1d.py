@@ -1,7 +1,8 @@
-"""1D friction elements with stiction (Modelica.Mechanics.Rotational.
-Components.BearingFriction, Brake, OneWayClutch, MSL 4.0), and the friction
-laws they share with :class:`acausal2d.library.rotational.Clutch` and the
-translational elements of :mod:`acausal2d.library.friction_translational`.
+"""1D friction elements with stiction (Modelica Standard Library 4.0,
+Modelica.Mechanics.Rotational.Components.BearingFriction, Brake,
+OneWayClutch), and the friction laws they share with
+:class:`acausal2d.library.rotational.Clutch` and the translational elements
+of :mod:`acausal2d.library.friction_translational`.
 
 By default (``law="modes"``) they compute Modelica's PartialFriction: the
 modes Forward, Stuck, Backward and Free of its state machine are held by
@@ -32,6 +33,7 @@ from acausal2d import (Component, der, Parameter, RealInput, RotationalFlange,
                        Variable)
 from acausal2d.language.symbols import define_latch, latch
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.relative_states import relative_states
 
 
 def _pairs(comp, name, table):
@@ -157,12 +159,12 @@ def mode_latches(comp, w, sa, free, tau0, tau0_max, block=(None, None)):
 
 
 def partial_friction(comp, w, a, sa, free, tau0, tau0_max, slide, block=(None, None)):
-    """Modelica's PartialFriction (MSL 4.0, Modelica.Mechanics.Rotational.
-    Interfaces.PartialFriction) for the relative speed ``w``, its
-    acceleration ``a`` and the path parameter ``sa`` (an unknown of the
-    element); returns ``(tau, equations, latches)``: the friction torque
-    (force) as an expression, the latches of :func:`mode_latches` and the
-    equations of ``a`` and of the mode outputs
+    """Modelica's PartialFriction (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Interfaces.PartialFriction) for the
+    relative speed ``w``, its acceleration ``a`` and the path parameter
+    ``sa`` (an unknown of the element); returns ``(tau, equations,
+    latches)``: the friction torque (force) as an expression, the latches
+    of :func:`mode_latches` and the equations of ``a`` and of the mode outputs
     ``mode``, ``locked``, ``startForward``, ``startBackward`` (variables
     of ``comp``)::
 
@@ -200,6 +202,28 @@ class _Modes(Component):
 
     MODE_WORDS = {-1: "sliding backward", 0: "stuck", 1: "sliding forward", 2: "free"}
     """The words of the mode codes, for events."""
+    ZONE = "w_s"
+    """The parameter of the stick zone's width (law='zone' only)."""
+
+    def _zone_error(self, how):
+        return ModelDefinitionError(
+            "%s: %s is the width of the stick zone of law='zone'; with Modelica's modes (the "
+            "default) it has no meaning: %s or give law='zone'" % (self.describe(), self.ZONE, how))
+
+    def refuse_zone_width(self):
+        """An error naming the stick zone's width if the model gives it
+        to an element of Modelica's modes (it would change nothing)."""
+        if self.law == "modes" and self.is_given(self.ZONE):
+            raise self._zone_error("drop %s" % self.ZONE)
+
+    def check_parameters(self, value):
+        """Under Modelica's modes the stick zone's width keeps its default
+        in every run (``--set``, ``params=``, a sweep): changed, it is an
+        error naming it, as in the constructor."""
+        zone = self.ZONE
+        if getattr(self, "law", None) == "modes" and \
+                value(zone) != self.parameter_declaration(zone).default:
+            raise self._zone_error("leave %s out of the run's parameters" % zone)
 
     def describe_mode(self, value):
         """The mode output in words (stuck, sliding forward or backward,
@@ -229,16 +253,10 @@ class _Friction(_Modes):
     its stick zone w_s (law='zone' only)."""
     peak = Parameter(1.0, "1", "peak of the friction at w = 0: tau0_max = peak * tau0", min=1.0)
 
-    ZONE = "w_s"
-
     def __init__(self, law="modes", **kw):
         super().__init__(**kw)
         self.law = check_law(self, law)
-        if law == "modes" and self.is_given(self.ZONE):
-            raise ModelDefinitionError(
-                "%s: %s is the width of the stick zone of law='zone'; with Modelica's modes "
-                "(the default) it has no meaning: drop %s or give law='zone'"
-                % (self.describe(), self.ZONE, self.ZONE))
+        self.refuse_zone_width()
 
     def sliding_mode_advice(self):
         """What to change when the element's relations chatter."""
@@ -293,8 +311,8 @@ class _SupportFriction(_Friction):
 
 
 class BearingFriction(_SupportFriction):
-    """Coulomb friction in a bearing (Modelica.Mechanics.Rotational.
-    Components.BearingFriction, MSL 4.0)::
+    """Coulomb friction in a bearing (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Components.BearingFriction)::
 
         phi = flange_a.phi - support.phi,  flange_b.phi = flange_a.phi
         w = der(phi),  a = der(w)
@@ -321,8 +339,8 @@ class BearingFriction(_SupportFriction):
 
 
 class Brake(_SupportFriction):
-    """Brake based on Coulomb friction (Modelica.Mechanics.Rotational.
-    Components.Brake, MSL 4.0)::
+    """Brake based on Coulomb friction (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Components.Brake)::
 
         phi = flange_a.phi - support.phi,  flange_b.phi = flange_a.phi
         w = der(phi),  a = der(w)
@@ -348,19 +366,26 @@ class Brake(_SupportFriction):
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
     def equations(self):
-        free = self.fn <= 0
-        fn_pos = ca.if_else(free, 0.0, self.fn)
-        mu0 = interpolate(self.mu_pos, 0.0)
-        slide = lambda v: self.cgeo * fn_pos * interpolate(self.mu_pos, v)  # noqa: E731
-        return self._kinematics() + self.law_equations(
-            self.w, self.a, free, mu0 * self.cgeo * fn_pos, slide) + [
+        free, breakaway, slide = brake_friction(self)
+        return self._kinematics() + self.law_equations(self.w, self.a, free, breakaway, slide) + [
             self.fn == self.fn_max * self.f_normalized.u,
-            self.tau0_max == self.peak * mu0 * self.cgeo * fn_pos]
+            self.tau0_max == self.peak * breakaway]
+
+
+def brake_friction(brake):
+    """What a brake (rotational or translational) hands to the friction law
+    from its normal force ``fn``, ``cgeo`` and ``mu_pos`` table: (free: the
+    relation ``fn <= 0``, the breakaway value mu0 cgeo fn (0 when free), the
+    sliding value as a function of the relative speed cgeo fn mu_pos(v))."""
+    free = brake.fn <= 0
+    fn_pos = ca.if_else(free, 0.0, brake.fn)
+    breakaway = interpolate(brake.mu_pos, 0.0) * brake.cgeo * fn_pos
+    return free, breakaway, lambda v: brake.cgeo * fn_pos * interpolate(brake.mu_pos, v)
 
 
 class OneWayClutch(_Modes):
-    """Parallel connection of a freewheel and a clutch (Modelica.Mechanics.
-    Rotational.Components.OneWayClutch, MSL 4.0)::
+    """Parallel connection of a freewheel and a clutch (Modelica Standard
+    Library 4.0, Modelica.Mechanics.Rotational.Components.OneWayClutch)::
 
         phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
         flange_b.tau = tau,  flange_a.tau = -tau
@@ -402,16 +427,13 @@ class OneWayClutch(_Modes):
     fn = Variable(unit="N", doc="normal force (0 if f_normalized <= 0)")
     stuck = Variable(unit="1", doc="1 if w_rel = 0 (locked or starting forward)")
     EPS0 = 1e-4
-    ZONE = "w_s"
-
     power_sides = (("flange_a",), ("flange_b",))
 
-    def __init__(self, mu_pos=None, law="modes", **kw):
+    def __init__(self, mu_pos=None, law="modes", phi_nominal=None, stateSelect=None, **kw):
         super().__init__(**kw)
+        relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
         self.law = check_law(self, law)
-        if law == "modes" and self.is_given("w_s"):
-            raise ModelDefinitionError("%s: w_s is the width of the stick zones of law='zone'; "
-                                       "drop it or give law='zone'" % self.describe())
+        self.refuse_zone_width()
         self.mu_pos = table_rows(self, "mu_pos", mu_pos, [(0.0, 0.5)])
         self.check_parameters(self.parameter_value)
         self.flange_a = RotationalFlange()
@@ -422,7 +444,9 @@ class OneWayClutch(_Modes):
 
     def check_parameters(self, value):
         """The lock torque peak mu0 cgeo fn_max > 0 (on the values
-        ``value(name)`` gives): a freewheel without it never locks."""
+        ``value(name)`` gives): a freewheel without it never locks; the
+        stick zone's width as :meth:`_Modes.check_parameters`."""
+        super().check_parameters(value)
         if not interpolate(self.mu_pos, 0.0) * value("cgeo") > 0:
             raise ModelDefinitionError(
                 "%s: the freewheel's lock torque peak mu0 cgeo fn_max is 0 (mu_pos at w = 0 is "

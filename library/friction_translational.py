@@ -1,6 +1,6 @@
-"""Translational friction elements with stiction (Modelica.Mechanics.
-Translational.Components.SupportFriction and MassWithStopAndFriction,
-MSL 4.0), on the modes and laws of :mod:`acausal2d.library.friction1d`
+"""Translational friction elements with stiction (Modelica Standard Library
+4.0, Modelica.Mechanics.Translational.Components.SupportFriction and
+MassWithStopAndFriction), on the modes and laws of :mod:`acausal2d.library.friction1d`
 (Modelica's PartialFriction by default, ``law="zone"`` for the stick
 zone)."""
 import casadi as ca
@@ -13,8 +13,8 @@ from acausal2d.library.friction1d import (_Friction, _named, interpolate, partia
 
 
 class SupportFriction(_Friction):
-    """Coulomb friction between a flange and its support (Modelica.Mechanics.
-    Translational.Components.SupportFriction, MSL 4.0)::
+    """Coulomb friction between a flange and its support (Modelica Standard
+    Library 4.0, Modelica.Mechanics.Translational.Components.SupportFriction)::
 
         s = flange_a.s - support.s,  flange_b.s = flange_a.s
         v = der(s),  a = der(v)
@@ -56,8 +56,8 @@ class SupportFriction(_Friction):
 
 
 class MassWithStopAndFriction(_Friction):
-    """Sliding mass with hard stops and Stribeck friction (Modelica.Mechanics.
-    Translational.Components.MassWithStopAndFriction, MSL 4.0)::
+    """Sliding mass with hard stops and Stribeck friction (Modelica Standard
+    Library 4.0, Modelica.Mechanics.Translational.Components.MassWithStopAndFriction)::
 
         flange_a.s = s - L/2,  flange_b.s = s + L/2,  v = der(s),  a = der(v)
         0 = flange_a.f + flange_b.f - f - m * der(v)

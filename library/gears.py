@@ -1,4 +1,4 @@
-"""Ideal gears of Modelica.Mechanics.Rotational.Components (MSL 4.0):
+"""Ideal gears of Modelica.Mechanics.Rotational.Components (Modelica Standard Library 4.0):
 :class:`IdealGear` and :class:`IdealPlanetary`.
 
 Both are re-exported by :mod:`acausal2d.library.rotational`, where a
@@ -83,7 +83,7 @@ class IdealPlanetary(Component):
 
 class IdealGearR2T(Component):
     """Gearbox transforming rotational into translational motion
-    (Modelica.Mechanics.Rotational.Components.IdealGearR2T, MSL 4.0, with
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Components.IdealGearR2T, with
     both supports fixed)::
 
         flangeR.phi = ratio * flangeT.s
@@ -103,8 +103,8 @@ class IdealGearR2T(Component):
 
 
 class IdealRollingWheel(Component):
-    """Ideal rolling wheel (Modelica.Mechanics.Rotational.Components.
-    IdealRollingWheel, MSL 4.0, with both supports fixed)::
+    """Ideal rolling wheel (Modelica Standard Library 4.0, Modelica.Mechanics.
+    Rotational.Components.IdealRollingWheel, with both supports fixed)::
 
         flangeR.phi * radius = flangeT.s
         0 = radius * flangeT.f + flangeR.tau

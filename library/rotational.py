@@ -1,11 +1,15 @@
 """1D rotational mechanics (Modelica.Mechanics.Rotational conventions):
 flange.phi is the absolute angle, flange.tau the torque acting on the
 element from the connected part."""
+import numbers
+import warnings
+
 import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, RotationalFlange,
                        Variable, time)
 from acausal2d.errors import ModelDefinitionError
+from acausal2d.library.relative_states import relative_states
 from acausal2d.library.friction1d import (_Modes, check_law, interpolate, partial_friction,
                                           table_rows, zone_law)
 
@@ -24,7 +28,7 @@ class Fixed(Component):
 
 class Inertia(Component):
     """Rotational inertia J between two rigidly coupled flanges
-    (Modelica.Mechanics.Rotational.Components.Inertia, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Components.Inertia)::
 
         phi = flange_a.phi = flange_b.phi,  w = der(phi),  a = der(w)
         J * a = flange_a.tau + flange_b.tau
@@ -80,6 +84,10 @@ class _RelativeStates(_Compliant):
     phi_rel = Variable(unit="rad", state_select="prefer", nominal=1e-4,
                        doc="relative angle flange_b - flange_a")
     w_rel = Variable(unit="rad/s", state_select="prefer", doc="relative angular velocity")
+
+    def __init__(self, phi_nominal=None, stateSelect=None, **kw):
+        super().__init__(**kw)
+        relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
 
 
 class Damper(_RelativeStates):
@@ -144,7 +152,7 @@ class SpeedSensor(Component):
 
 class MultiSensor(Component):
     """Power, torque and angular velocity between two flanges
-    (Modelica.Mechanics.Rotational.Sensors.MultiSensor, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Sensors.MultiSensor)::
 
         flange_a.phi = flange_b.phi,  w = der(flange_a.phi)
         tau = flange_a.tau,  0 = flange_a.tau + flange_b.tau
@@ -170,7 +178,7 @@ class MultiSensor(Component):
 
 class Torque(Component):
     """Torque from the signal tau_in acting on the flange
-    (Modelica.Mechanics.Rotational.Sources.Torque, MSL 4.0)::
+    (Modelica Standard Library 4.0, Modelica.Mechanics.Rotational.Sources.Torque)::
 
         flange.tau = -tau,  support.tau = -flange.tau
 
@@ -189,15 +197,23 @@ class Torque(Component):
         return [self.flange.tau == -self.tau_in.u, self.support.tau == -self.flange.tau]
 
 
-class ConstantTorque(Component):
-    """Constant torque tau acting on the flange (Modelica.Mechanics.
-    Rotational.Sources.ConstantTorque, MSL 4.0, whose parameter is
-    ``tau_constant``)::
+class _PartialTorque(Component):
+    """A torque source on ``flange`` with Modelica's optional ``support``
+    (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Interfaces.PartialTorque)::
 
-        flange.tau = -tau,  support.tau = -flange.tau
+        phi = flange.phi - phi_support,  w = der(phi)
+        tau = -flange.tau,  support.tau = -flange.tau
 
-    ``support`` as :class:`Torque`'s."""
-    tau = Parameter(0.0, "N.m", "torque")
+    ``support`` left unconnected is fixed to ground (``useSupport = false``,
+    ``phi_support = 0``); connected to a housing (``useSupport = true``) it
+    takes the reaction torque there.  ``tau`` accelerates the flange (a
+    negative one is a load).  Subclasses give :meth:`torque_law`."""
+    phi = Variable(unit="rad", doc="angle of flange with respect to support (= flange.phi - "
+                   "support.phi)")
+    w = Variable(unit="rad/s", doc="angular velocity of flange with respect to support "
+                 "(= der(phi))")
+    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
 
     def __init__(self, **kw):
         super().__init__(**kw)
@@ -205,63 +221,85 @@ class ConstantTorque(Component):
         self.support = RotationalFlange(ground={"phi": 0.0},
                                         doc="housing (fixed at 0 if unconnected)")
 
+    def torque_law(self):
+        """The right-hand side of ``tau = ...``."""
+        raise NotImplementedError
+
     def equations(self):
-        return [self.flange.tau == -self.tau, self.support.tau == -self.flange.tau]
+        return [self.phi == self.flange.phi - self.support.phi, self.w == der(self.phi),
+                self.tau == -self.flange.tau, self.support.tau == -self.flange.tau,
+                self.tau == self.torque_law()]
 
 
-class TorqueStep(Component):
-    """Constant torque with a step (Modelica.Mechanics.Rotational.Sources.
-    TorqueStep, MSL 4.0, without support: the reaction goes to ground)::
+class ConstantTorque(_PartialTorque):
+    """Constant torque, not dependent on speed (Modelica Standard Library
+    4.0, Modelica.Mechanics.Rotational.Sources.ConstantTorque; the
+    support as :class:`_PartialTorque`'s)::
 
-        w = der(phi),  phi = flange.phi,  tau = -flange.tau
+        phi = flange.phi - phi_support,  w = der(phi)
+        tau = -flange.tau,  tau = tau_constant
+
+    ``tau`` is the variable, as in Modelica; ``tau=`` with a number is the
+    former name of ``tau_constant`` (DeprecationWarning)."""
+    tau_constant = Parameter(0.0, "N.m", "constant torque (< 0: a load in the positive "
+                             "direction of rotation)")
+
+    def __init__(self, **kw):
+        former = kw.get("tau")
+        if isinstance(former, numbers.Real) and not isinstance(former, bool):
+            if "tau_constant" in kw:
+                raise ModelDefinitionError("ConstantTorque: give tau_constant only (tau is the "
+                                           "former name of the constant torque)")
+            warnings.warn("ConstantTorque(tau=...) is the former name of Modelica's "
+                          "tau_constant: write ConstantTorque(tau_constant=...); tau is the "
+                          "torque variable", DeprecationWarning, stacklevel=2)
+            kw["tau_constant"] = kw.pop("tau")
+        super().__init__(**kw)
+
+    def torque_law(self):
+        return self.tau_constant
+
+
+class TorqueStep(_PartialTorque):
+    """Constant torque with a step (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Sources.TorqueStep; the support as
+    :class:`_PartialTorque`'s)::
+
+        phi = flange.phi - phi_support,  w = der(phi),  tau = -flange.tau
         tau = offsetTorque + (if time < startTime then 0 else stepTorque)
 
-    ``tau`` accelerates the flange (a negative one is a load); the step is
-    a time event."""
+    The step is a time event."""
     stepTorque = Parameter(1.0, "N.m", "height of the torque step (< 0: a load)")
     offsetTorque = Parameter(0.0, "N.m", "offset of the torque")
     startTime = Parameter(0.0, "s", "torque = offsetTorque for time < startTime")
-    phi = Variable(unit="rad", doc="angle of the flange")
-    w = Variable(unit="rad/s", doc="angular velocity of the flange")
-    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
 
-    def __init__(self, **kw):
-        super().__init__(**kw)
-        self.flange = RotationalFlange()
-
-    def equations(self):
-        step = ca.if_else(time < self.startTime, 0.0, self.stepTorque)
-        return [self.phi == self.flange.phi, self.w == der(self.phi),
-                self.tau == -self.flange.tau, self.tau == self.offsetTorque + step]
+    def torque_law(self):
+        return self.offsetTorque + ca.if_else(time < self.startTime, 0.0, self.stepTorque)
 
 
-class QuadraticSpeedDependentTorque(Component):
-    """Torque quadratic in the speed (Modelica.Mechanics.Rotational.Sources.
-    QuadraticSpeedDependentTorque, MSL 4.0, without support)::
+class QuadraticSpeedDependentTorque(_PartialTorque):
+    """Torque quadratic in the speed (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Sources.QuadraticSpeedDependentTorque;
+    the support as :class:`_PartialTorque`'s)::
 
-        w = der(phi),  tau = -flange.tau
+        phi = flange.phi - phi_support,  w = der(phi),  tau = -flange.tau
         tau = tau_nominal (w / w_nominal)^2                        TorqueDirection
         tau = tau_nominal (if w >= 0 then 1 else -1) (w / w_nominal)^2   otherwise
 
     ``tau_nominal < 0`` is a load (a fan); with ``TorqueDirection=False``
     it opposes the motion in both directions (``w |w|``: continuous with
-    its first derivative, no event)."""
+    its first derivative, no event).  ``w`` is the speed relative to the
+    support."""
     tau_nominal = Parameter(1.0, "N.m", "nominal torque (< 0: a load in the positive direction)")
     w_nominal = Parameter(1.0, "rad/s", "nominal speed", positive=True)
-    phi = Variable(unit="rad", doc="angle of the flange")
-    w = Variable(unit="rad/s", doc="angular velocity of the flange")
-    tau = Variable(unit="N.m", doc="accelerating torque acting at the flange (= -flange.tau)")
 
     def __init__(self, TorqueDirection=True, **kw):
         super().__init__(**kw)
         self.TorqueDirection = bool(TorqueDirection)
-        self.flange = RotationalFlange()
 
-    def equations(self):
+    def torque_law(self):
         x = self.w / self.w_nominal
-        law = x * x if self.TorqueDirection else x * ca.fabs(x)
-        return [self.phi == self.flange.phi, self.w == der(self.phi),
-                self.tau == -self.flange.tau, self.tau == self.tau_nominal * law]
+        return self.tau_nominal * (x * x if self.TorqueDirection else x * ca.fabs(x))
 
 
 class Speed(Component):
@@ -292,10 +330,11 @@ class Position(Component):
 
 
 class Clutch(_Modes):
-    """Friction clutch (Modelica.Mechanics.Rotational.Components.Clutch,
-    MSL 4.0; the dissertation's disc clutch, ch. 8.2 "discClutch1") between
-    ``flange_a`` and ``flange_b``, engaged by the signal input
-    ``f_normalized`` (0 = open, 1 = fully closed)::
+    """Friction clutch (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Rotational.Components.Clutch; the disc clutch
+    "discClutch1" of Ebert (2015), ch. 8.2) between ``flange_a`` and
+    ``flange_b``, engaged by the signal input ``f_normalized`` (0 = open,
+    1 = fully closed)::
 
         phi_rel = flange_b.phi - flange_a.phi,  w_rel = der(phi_rel),  a_rel = der(w_rel)
         flange_b.tau = tau,  flange_a.tau = -tau
@@ -352,12 +391,14 @@ class Clutch(_Modes):
 
     power_sides = (("flange_a",), ("flange_b",))
 
-    def __init__(self, mu_pos=None, law="modes", **kw):
+    def __init__(self, mu_pos=None, law="modes", phi_nominal=None, stateSelect=None, **kw):
         super().__init__(**kw)
+        relative_states(self, "phi_rel", "w_rel", phi_nominal, stateSelect)
         if mu_pos is not None and "mu" in kw:
             raise ModelDefinitionError("%s: give mu (a constant) or mu_pos (a table), not both"
                                        % self.describe())
         self.law = check_law(self, law)
+        self.refuse_zone_width()
         self.mu_pos = None if mu_pos is None else table_rows(self, "mu_pos", mu_pos, None)
         self.flange_a = RotationalFlange()
         self.flange_b = RotationalFlange()

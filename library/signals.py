@@ -36,7 +36,7 @@ def _former_start_time(kw):
 
 
 class Sine(_Source):
-    """Sine wave (Modelica.Blocks.Sources.Sine, MSL 4.0)::
+    """Sine wave (Modelica Standard Library 4.0, Modelica.Blocks.Sources.Sine)::
 
         y = offset + (if time < startTime then 0
                       else amplitude * sin(2 pi f (time - startTime) + phase))
@@ -58,7 +58,7 @@ class Sine(_Source):
 
 
 class Ramp(_Source):
-    """Linear ramp (Modelica.Blocks.Sources.Ramp, MSL 4.0)::
+    """Linear ramp (Modelica Standard Library 4.0, Modelica.Blocks.Sources.Ramp)::
 
         y = offset + (if time < startTime then 0
                       else if time < startTime + duration
@@ -81,6 +81,57 @@ class Ramp(_Source):
         ramp = ca.if_else(time < self.startTime, 0,
                           ca.if_else(time < self.startTime + self.duration, tau, 1))
         return [self.y.u == self.offset + self.height * ramp]
+
+
+class KinematicPTP(_Source):
+    """Point-to-point motion as fast as the kinematic limits allow: the
+    path's acceleration (Modelica Standard Library 4.0,
+    Modelica.Blocks.Sources.KinematicPTP, one axis: ``nout = 1``)::
+
+        aux1 = deltaq / qd_max,  aux2 = deltaq / qdd_max
+        sd_max = 1 / abs(aux1),  sdd_max = 1 / abs(aux2)
+        Ta1 = sqrt(1 / sdd_max),  Ta2 = sd_max / sdd_max
+        noWphase = Ta2 >= Ta1
+        Tv = if noWphase then Ta1 else 1 / sd_max
+        Te = if noWphase then Ta1 + Ta1 else Tv + Ta2
+        sdd = if time < startTime then 0 else
+              (if noWphase then
+                 (if time < Ta1 + startTime then sdd_max
+                  else if time < Te + startTime then -sdd_max else 0)
+               else
+                 (if time < Ta2 + startTime then sdd_max
+                  else if time < Tv + startTime then 0
+                  else if time < Te + startTime then -sdd_max else 0))
+        y = deltaq * sdd
+
+    ``y`` is the acceleration ``der(qd)`` of a motion that moves by
+    ``deltaq`` from rest to rest in ``Te``: accelerating at ``qdd_max`` to
+    ``qd_max`` (or, with no phase of constant speed, to the speed reached
+    half way), then decelerating.  Integrate it twice (two
+    :class:`~acausal2d.library.blocks.Integrator`, or a torque ``J y`` on an
+    inertia) for the speed and the position.  Every switch is a time
+    event.  The parameters are scalars (Modelica's vectors synchronise
+    several axes to the slowest; here one axis per block)."""
+    deltaq = Parameter(1.0, "", "distance to move", nonzero=True)
+    qd_max = Parameter(1.0, "", "maximum velocity der(q)", positive=True)
+    qdd_max = Parameter(1.0, "", "maximum acceleration der(qd)", positive=True)
+    startTime = Parameter(0.0, "s", "time instant at which the movement starts")
+
+    def equations(self):
+        aux1, aux2 = self.deltaq / self.qd_max, self.deltaq / self.qdd_max
+        sd_max, sdd_max = 1 / ca.fabs(aux1), 1 / ca.fabs(aux2)
+        ta1, ta2 = ca.sqrt(1 / sdd_max), sd_max / sdd_max
+        no_w = ta2 >= ta1
+        tv = ca.if_else(no_w, ta1, 1 / sd_max)
+        te = ca.if_else(no_w, ta1 + ta1, tv + ta2)
+        t0 = self.startTime
+        triangle = ca.if_else(time < ta1 + t0, sdd_max,
+                              ca.if_else(time < te + t0, -sdd_max, 0.0))
+        trapezoid = ca.if_else(time < ta2 + t0, sdd_max,
+                               ca.if_else(time < tv + t0, 0.0,
+                                          ca.if_else(time < te + t0, -sdd_max, 0.0)))
+        sdd = ca.if_else(time < self.startTime, 0.0, ca.if_else(no_w, triangle, trapezoid))
+        return [self.y.u == self.deltaq * sdd]
 
 
 class TimeFunction(_Source):

@@ -1,10 +1,10 @@
 """1D translational mechanics (Modelica.Mechanics.Translational conventions):
 flange.s is the absolute position, flange.f the force acting on the element
 from the connected part."""
-import casadi as ca
 
 from acausal2d import (Component, der, Parameter, RealInput, RealOutput, TranslationalFlange,
                        Variable)
+from acausal2d.library.relative_states import relative_states
 
 
 class Fixed(Component):
@@ -20,8 +20,8 @@ class Fixed(Component):
 
 
 class Mass(Component):
-    """Sliding mass with inertia (Modelica.Mechanics.Translational.
-    Components.Mass, MSL 4.0)::
+    """Sliding mass with inertia (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Translational.Components.Mass)::
 
         flange_a.s = s - L/2,  flange_b.s = s + L/2,  v = der(s)
         m der(v) = flange_a.f + flange_b.f
@@ -69,25 +69,46 @@ class Spring(_Compliant):
         return self._common() + [self.f == self.c * (self.s_rel - self.s_rel0)]
 
 
-class Damper(_Compliant):
-    """Linear damper f = d v_rel with v_rel = der(s_rel)."""
+class _RelativeStates(_Compliant):
+    """Modelica's PartialCompliantWithRelativeStates (Modelica Standard
+    Library 4.0, Modelica.Mechanics.Translational.Interfaces): ``s_rel``
+    and ``v_rel`` are preferred states (``stateSelect = prefer``),
+    ``s_rel`` with the nominal ``s_nominal = 1e-4`` m (a small relative
+    displacement is integrated to its own scale, not as the difference of
+    two large absolute positions)::
+
+        s_rel = flange_b.s - flange_a.s,  v_rel = der(s_rel)
+        flange_b.f = f,  flange_a.f = -f"""
+    s_rel = Variable(unit="m", state_select="prefer", nominal=1e-4,
+                     doc="relative position flange_b - flange_a")
+    v_rel = Variable(unit="m/s", state_select="prefer", doc="relative velocity")
+
+    def __init__(self, s_nominal=None, stateSelect=None, **kw):
+        super().__init__(**kw)
+        relative_states(self, "s_rel", "v_rel", s_nominal, stateSelect, "s_nominal")
+
+
+class Damper(_RelativeStates):
+    """Linear damper (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Translational.Components.Damper): ``f = d v_rel``
+    with ``v_rel = der(s_rel)``; relative states as
+    :class:`_RelativeStates`."""
     d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
-    v_rel = Variable(unit="m/s", doc="relative velocity")
 
     def equations(self):
         return self._common() + [self.v_rel == der(self.s_rel), self.f == self.d * self.v_rel]
 
 
-class SpringDamper(_Compliant):
-    """Linear spring and damper in parallel
-    (Modelica.Mechanics.Translational.Components.SpringDamper):
+class SpringDamper(_RelativeStates):
+    """Linear spring and damper in parallel (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Translational.Components.SpringDamper):
     ``f = c (s_rel - s_rel0) + d v_rel``, ``v_rel = der(s_rel)``; the force
     ``f`` acts on flange_b (``-f`` on flange_a, Ebert (2015), eq. 4.1 at the
-    flanges).  ``loss_power = d v_rel^2`` is the power dissipated."""
+    flanges).  ``loss_power = d v_rel^2`` is the power dissipated.
+    Relative states as :class:`_RelativeStates`."""
     c = Parameter(1.0, "N/m", "spring constant", min=0.0)
     d = Parameter(1.0, "N.s/m", "damping constant", min=0.0)
     s_rel0 = Parameter(0.0, "m", "unstretched length")
-    v_rel = Variable(unit="m/s", doc="relative velocity")
     loss_power = Variable(unit="W", doc="power dissipated by the damper")
 
     def equations(self):
@@ -146,12 +167,12 @@ class PositionSensor(Component):
 # Modelica.Mechanics.Translational.Components' friction, where Modelica users look for it
 from acausal2d.library.friction_translational import (  # noqa: E402,F401
     MassWithStopAndFriction, SupportFriction)
-from acausal2d.library.friction1d import interpolate, table_rows  # noqa: E402,F401
+from acausal2d.library.friction1d import brake_friction, interpolate, table_rows  # noqa: E402,F401,E501
 
 
 class Brake(SupportFriction):
-    """Brake based on Coulomb friction (Modelica.Mechanics.Translational.
-    Components.Brake, MSL 4.0)::
+    """Brake based on Coulomb friction (Modelica Standard Library 4.0,
+    Modelica.Mechanics.Translational.Components.Brake)::
 
         s = flange_a.s - support.s,  flange_b.s = flange_a.s
         v = der(s),  a = der(v),  0 = flange_a.f + flange_b.f - f
@@ -174,13 +195,10 @@ class Brake(SupportFriction):
         self.f_normalized = RealInput(doc="normalized normal force (0..1)")
 
     def equations(self):
-        free = self.fn <= 0
-        fn_pos = ca.if_else(free, 0.0, self.fn)
-        mu0 = interpolate(self.mu_pos, 0.0)
-        slide = lambda v: self.cgeo * fn_pos * interpolate(self.mu_pos, v)  # noqa: E731
+        free, breakaway, slide = brake_friction(self)
         return [self.s == self.flange_a.s - self.support.s, self.flange_b.s == self.flange_a.s,
                 self.v == der(self.s), self.a == der(self.v),
                 0 == self.flange_a.f + self.flange_b.f - self.f,
                 self.support.f == -self.flange_a.f - self.flange_b.f,
                 self.fn == self.fn_max * self.f_normalized.u] + self.law_equations(
-            self.v, self.a, free, mu0 * self.cgeo * fn_pos, slide)
+            self.v, self.a, free, breakaway, slide)

@@ -36,7 +36,7 @@ class DriveTrain(Component):
     def __init__(self, **kw):
         super().__init__(**kw)
         # -- step 2: the motor (a constant torque) on its rotor, which starts at rest
-        self.motor = rotational.ConstantTorque(tau=TAU_M)
+        self.motor = rotational.ConstantTorque(tau_constant=TAU_M)
         self.rotor = rotational.Inertia(J=J_M, phi=start(0.0, fixed=True),
                                         w=start(0.0, fixed=True))
         self.connect(self.motor.flange, self.rotor.flange_a)

@@ -62,7 +62,7 @@ class HydraulicCircuit(Component):
         # -- step 5: the motor's shaft, its inertia and the load torque against it
         self.shaft = rotational.Inertia(J=J_SHAFT, phi=start(0.0, fixed=True),
                                         w=start(0.0, fixed=True))
-        self.load = rotational.ConstantTorque(tau=-T_LOAD)
+        self.load = rotational.ConstantTorque(tau_constant=-T_LOAD)
         self.connect(self.motor.flange, self.shaft.flange_a)
         self.connect(self.shaft.flange_b, self.load.flange)
         # -- end step 5

@@ -118,7 +118,7 @@ class DrumString(Component):
         self.ring = rotational.Fixed()
         self.drum = rotational.Inertia(J=J_DRUM + mass * R_DRUM ** 2,
                                        phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.rope = rotational.ConstantTorque(tau=-force * R_DRUM)
+        self.rope = rotational.ConstantTorque(tau_constant=-force * R_DRUM)
         self.speed = rotational.SpeedSensor()
         self.set = Ramp(height=w_set, duration=2.0, startTime=t_start)
         self.control = LimPID(controllerType="PI", initType="InitialState", k=K_DRUM, Ti=0.3,

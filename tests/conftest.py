@@ -108,7 +108,6 @@ SLOW_TESTS = {
     "test_readme_commands.py": ["test_every_readme_command_runs_in_a_plain_clone"],
     "test_clone_root_import.py": ["test_library_imports_from_the_clone_root_without_the_installed_package"],
     "test_docs.py": ["test_tutorial_notebook_executes_and_shows_figures"],
-    "test_band_models.py": ["test_models_run_from_the_cli"],
     "test_cli.py": ["test_simulated_animation_draws_in_browser",
                     "test_simulate_writes_csv_plots_and_animation",
                     "test_bad_numbers_are_errors_with_exit_code_2",
@@ -186,9 +185,28 @@ SLOW_TESTS = {
                       "test_four_bar_frequency_at_a_crank_angle_follows_its_reduced_inertia"],
     "test_output_rows.py": ["test_chain_rows_satisfy_every_equation_at_20000_points"],
     "test_planar_references.py": ["test_cli_reproduces_reference"],
-    "test_talk_mechanisms.py": ["test_position_correction_agrees_with_the_dae_within_its_lentol",
-                                "test_node_model_agrees_with_the_vdi_elements_over_a_crank_turn"],
     "test_modes_cli.py": ["test_modes_campbell_of_the_four_bar_follows_its_reduced_inertia"],
+    # the fast tier's longest on two cores (4 s of CPU or more each, most of them a
+    # command-line process, a compile into an empty cache or a browser)
+    "test_seen_untrusted.py": ["test_seen_native_fallbacks_are_said_in_one_line",
+                               "test_seen_planted_library_in_a_precreated_fallback_is_refused_and_never_loaded",
+                               "test_seen_slow_headers_are_cut_off"],
+    "test_optimize.py": ["test_four_bar_passes_its_precision_points"],
+    "test_event_words.py": ["test_verbose_prints_the_relations_and_the_default_does_not"],
+    "test_explore_diagram.py": ["test_diagram_opens_the_clutch_and_shows_its_parameters_and_flows"],
+    "test_talk_mechanisms.py": ["test_position_correction_agrees_with_the_dae_within_its_lentol",
+                                "test_node_model_agrees_with_the_vdi_elements_over_a_crank_turn",
+                                "test_press_correction_needs_the_talks_iterations"],
+    "test_connector_report.py": ["test_seen2_simulate_warns_about_the_loose_flanges"],
+    "test_runtime_steps.py": ["test_swinging_parallelogram_steps_grow_slowly_with_the_tolerance"],
+    "test_seen_bad_inputs.py": ["test_seen_other_plot_signals_leave_no_old_pngs"],
+    "test_diagram.py": ["test_simulate_writes_the_diagram_with_its_outputs"],
+    "test_when_model_does_not_run_doc.py": [
+        "test_the_set_suggestion_and_the_event_words_are_on_the_page"],
+    "test_native_capi.py": ["test_bench_capi_small_prints_its_table"],
+    "test_band_models.py": ["test_models_run_from_the_cli", "test_readme_band_synthesis_section"],
+    "test_user_names.py": ["test_simulate_plots_a_signal_by_its_connector_name"],
+    "test_derived_accelerations.py": ["test_seen_3_spring_damper_demo_compares_accelerations"],
 }
 """Single tests of otherwise fast modules that start processes (the command
 line, a benchmark's small mode, a killed run, a dask cluster) or a browser,
@@ -205,9 +223,42 @@ FAST_CASES = {
 first few cases (the others are slow): {module: {test function: cases}}."""
 
 
+FIRST = ["test_readme_commands.py", "test_bench_small_modes.py", "test_help_examples.py",
+         "test_plain_clone.py", "test_fit_cli.py", "test_ci_run.py", "test_talk_mechanisms.py",
+         "test_output_rows.py", "test_fit.py"]
+"""Modules that hold the suite's longest tests (a minute or more each on two
+cores: the plain clone running every documented command, the benchmarks'
+small modes).  Under ``-n auto`` they are started first, dealt in turn to
+the workers (:func:`first_for_each_worker`): started last, one of them
+alone would make the run's tail.  Whole modules move, so that their
+module-scoped fixtures are made once."""
+
+
+def first_for_each_worker(items, workers):
+    """``items`` reordered so that xdist's load scheduling hands worker k
+    the modules FIRST[k::workers] at the front of its first chunk.  The
+    chunk is xdist's (pytest-xdist 3, LoadScheduling.schedule): a quarter of
+    the items per worker.  A run without workers keeps the order."""
+    if workers < 2:
+        return items
+    module = lambda item: os.path.basename(str(item.fspath))     # noqa: E731
+    rest = [item for item in items if module(item) not in FIRST]
+    chunk = max(2, len(items) // workers // 4)
+    out = []
+    for k in range(workers):
+        heads = [item for m in FIRST[k::workers] for item in items if module(item) == m]
+        take = max(0, chunk - len(heads)) if k < workers - 1 else 0
+        out += heads + rest[:take]
+        rest = rest[take:]
+    return out + rest
+
+
 def pytest_collection_modifyitems(config, items):
     """Mark the tests of :data:`SLOW_MODULES` and :data:`SLOW_TESTS` slow,
-    and the cases of :data:`FAST_CASES` beyond the first few."""
+    and the cases of :data:`FAST_CASES` beyond the first few; the modules
+    of :data:`FIRST` first on each worker."""
+    workers = int(getattr(config, "workerinput", {}).get("workercount", 1))
+    items[:] = first_for_each_worker(items, workers)
     slow = pytest.mark.slow
     seen = {}
     for item in items:

@@ -338,7 +338,7 @@ class CurvedDrumRope(Component):
             self.drum = CurvedDrum(con, w_i=-1, x10=0.0, y10=0.0, J=1e-3, n_wound=3.0,
                                    phi=start(0.0, fixed=True), w_rel=start(0.0, fixed=True))
             self.rope = Belt(c=1e6, d=1e3, eps=start(60.0 / 1e6, fixed=True))
-            self.hold = rotational.ConstantTorque(tau=5.0)
+            self.hold = rotational.ConstantTorque(tau_constant=5.0)
             self.connect(self.hold.flange, self.drum.ctrR2)
             self.pull = RopeDrive(x0=0.085, y0=-1.0, angle=-math.pi / 2)
             self.sig = signals.TimeFunction(lambda t: 0.5 * (t - ca.sin(2 * t) / 2))

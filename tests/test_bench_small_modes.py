@@ -57,6 +57,7 @@ def test_bench_core_small():
     ("bench_belt_drive.py", ("synthesis of the pulley pair", "design (from the disk cache)",
                              "build + compile_model", "design + compile + simulate")),
     ("bench_cable_crane.py", ("#1", "median", "best")),
+    ("bench_events.py", ("drive train, shared ramp", "Zeno ball", "relay storm")),
     ("bench_runtime.py", ("first compile + simulate", "warm compile + simulate",
                           "acausal2d simulate models/pendulum.py", "compressor, simulate")),
 ])

@@ -35,7 +35,7 @@ class TwoInertias(Component):
             self.eng = signals.Constant(k=1.0)
         else:
             self.eng = signals.TimeFunction(engage)
-        self.src = rot.ConstantTorque(tau=T_ext)
+        self.src = rot.ConstantTorque(tau_constant=T_ext)
         self.connect(self.eng.y, self.clutch.f_normalized)
         self.connect(self.a.flange_b, self.clutch.flange_a)
         self.connect(self.clutch.flange_b, self.b.flange_a)
@@ -113,7 +113,7 @@ class MotorLoad(Component):
     def __init__(self, T_load=0.0, **kw):
         super().__init__(**kw)
         self.motor = rot.AsyncMotor(J=0.01, T_k=40.0, s_k=0.2)
-        self.load = rot.ConstantTorque(tau=-T_load)
+        self.load = rot.ConstantTorque(tau_constant=-T_load)
         self.connect(self.motor.flange, self.load.flange)
 
 

@@ -142,7 +142,7 @@ class Braked(Component):
 
     def __init__(self, T, J, **kw):
         super().__init__(**kw)
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.inertia = rot.Inertia(J=J, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.brake = rot.Brake(mu_pos=[[0.0, 0.4]], cgeo=0.5, fn_max=100.0, peak=1.25, w_s=W_S, law="zone")
         self.one = signals.Constant(k=1.0)

@@ -32,7 +32,7 @@ class GearTrain(Component):
 
     def __init__(self, ratio=5.0, T=2.0, J1=0.1, J2=3.0, housing=None, **kw):
         super().__init__(**kw)
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.in_ = rot.Inertia(J=J1, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.gear = rot.IdealGear(ratio=ratio)
         self.out = rot.Inertia(J=J2, phi=start(0.0, fixed=True))
@@ -94,7 +94,7 @@ class Planetary(Component):
 
     def __init__(self, ratio=100 / 50, T=1.0, Js=0.01, Jc=2.0, **kw):
         super().__init__(**kw)
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.sun = rot.Inertia(J=Js, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.gear = rot.IdealPlanetary(ratio=ratio)
         self.ring = rot.Fixed()

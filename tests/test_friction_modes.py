@@ -10,7 +10,6 @@ event time is off by the time its crossing function needs to move by RTOL
 of its scale (``RTOL * scale / rate``, ten times room).  Speeds between
 events: 100 RTOL of their scale (the global error)."""
 import math
-import time
 
 import numpy as np
 import pytest
@@ -105,7 +104,7 @@ class Braked(Component):
 
     def __init__(self, T, **kw):
         super().__init__(**kw)
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.inertia = rot.Inertia(J=2.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.brake = rot.Brake(mu_pos=[[0.0, 0.4]], cgeo=0.5, fn_max=100.0, peak=1.25)
         self.one = signals.Constant(k=1.0)
@@ -140,7 +139,7 @@ class Freewheel(Component):
         self.fix = rot.Fixed()
         self.owc = rot.OneWayClutch(fn_max=100.0)
         self.a = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
-        self.src = rot.ConstantTorque(tau=T)
+        self.src = rot.ConstantTorque(tau_constant=T)
         self.f = signals.Constant(k=engage)
         self.connect(self.f.y, self.owc.f_normalized)
         self.connect(self.fix.flange, self.owc.flange_a)
@@ -277,14 +276,12 @@ class Bouncing(Component):
 def test_zeno_ball_ends_with_an_error_naming_element_and_relation():
     """The bounces accumulate at t* = sqrt(2/g) 3 = 1.3546 s; the run stops
     there (it went on through the ground) naming the ball and its relation
-    (wall time measured: well under 10 s)."""
-    wall = time.perf_counter()
+    (its wall time: benchmarks/bench_events.py)."""
     with pytest.raises(EventError) as err:
         acausal2d.simulate(Bouncing(), stop_time=3.0, rtol=RTOL)
     msg = str(err.value)
     assert "Zeno" in msg and "ground contact" in msg and "Ball 'ball'" in msg
     assert err.value.time == pytest.approx(3 * math.sqrt(2 / 9.81), rel=1e-3)
-    assert time.perf_counter() - wall < 60       # a hang guard, not a speed target
 
 
 class Housing(Component):
@@ -319,8 +316,185 @@ def test_small_relative_speed_meets_rtol_on_its_nominal_scale():
 
 
 def test_zone_width_without_the_zone_law_is_refused():
-    """w_s means the stick zone: without law='zone' it is an error naming it."""
-    with pytest.raises(ModelDefinitionError, match="w_s"):
-        rot.BearingFriction(w_s=1e-3)
+    """w_s means the stick zone: without law='zone' it is an error naming it
+    and what to do (Clutch, Brake, BearingFriction, OneWayClutch alike)."""
+    for element in (rot.Clutch, rot.Brake, rot.BearingFriction, rot.OneWayClutch):
+        with pytest.raises(ModelDefinitionError, match="w_s.*drop w_s or give law='zone'"):
+            element(w_s=1e-3)
+        assert element(w_s=1e-3, law="zone").law == "zone"
+    # and in a run's parameters (--set, params=, a sweep), where it would change nothing
+    cm = acausal2d.compile_model(Pair(rot.Clutch(mu=0.5, fn_max=20.0), wa=10.0))
+    with pytest.raises(ModelDefinitionError, match="w_s.*leave w_s out of the run's param"):
+        cm.simulate(stop_time=0.1, params={"clutch.w_s": 1e-2})
+    zone = acausal2d.compile_model(Pair(rot.Clutch(mu=0.5, fn_max=20.0, law="zone"), wa=10.0))
+    assert zone.simulate(stop_time=0.1, params={"clutch.w_s": 1e-2}).time[-1] == \
+        pytest.approx(0.1, abs=1e-12)
     with pytest.raises(ModelDefinitionError, match="law"):
         rot.Brake(law="smooth")
+
+
+class RampedDrive(Component):
+    """Modelica-like drive train: a constant torque T on J1 -- clutch -- J2
+    -- brake to the ground.  One Ramp (0 -> 1 from t0 over D) closes the
+    clutch and, through Feedback (1 - ramp), opens the brake; ``shared=False``
+    feeds Feedback from a second, identical Ramp instead."""
+
+    def __init__(self, shared=True, D=0.5, law="modes", **kw):
+        super().__init__(**kw)
+        zone = {} if law == "modes" else {"law": law, "w_s": 1e-3}
+        self.src = rot.ConstantTorque(tau_constant=DRIVE["T"])
+        self.J1 = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.clutch = rot.Clutch(fn_max=DRIVE["fn_max"], peak=DRIVE["peak"], **zone)
+        self.J2 = rot.Inertia(J=1.0, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
+        self.brake = rot.Brake(fn_max=DRIVE["fn_max"], peak=DRIVE["peak"], **zone)
+        self.ramp = signals.Ramp(duration=D, startTime=DRIVE["t0"])
+        self.one = signals.Constant(k=1.0)
+        self.feedback = blocks.Feedback()
+        self.connect(self.src.flange, self.J1.flange_a)
+        self.connect(self.J1.flange_b, self.clutch.flange_a)
+        self.connect(self.clutch.flange_b, self.J2.flange_a)
+        self.connect(self.J2.flange_b, self.brake.flange_a)
+        self.connect(self.ramp.y, self.clutch.f_normalized)
+        self.connect(self.one.y, self.feedback.u1)
+        if shared:
+            self.connect(self.ramp.y, self.feedback.u2)
+        else:
+            self.ramp2 = signals.Ramp(duration=D, startTime=DRIVE["t0"])
+            self.connect(self.ramp2.y, self.feedback.u2)
+        self.connect(self.feedback.y, self.brake.f_normalized)
+
+
+DRIVE = {"T": 10.0, "fn_max": 30.0, "peak": 1.1, "t0": 0.2}
+
+
+def ramped_drive_closed_form(t, D):
+    """(w1, w2, switching times) of :class:`RampedDrive` (J1 = J2 = 1, mu
+    0.5, cgeo 1: k = mu cgeo fn_max = 15 N m, s = (t - t0)/D clipped).
+    The clutch slides (w_rel < 0 from t = 0: J1 runs ahead) and passes k s
+    to J2; the brake (capacity peak k (1 - s)) holds J2 until k s = peak k
+    (1 - s): tb = t0 + D peak / (1 + peak); then J2' = k s - k (1 - s);
+    after t0 + D the brake is free, J1' = T - k, J2' = k, until the speeds
+    meet at tl; then both at T / 2 (the clutch passes T / 2 < peak k)."""
+    T, k, peak, t0 = DRIVE["T"], 0.5 * DRIVE["fn_max"], DRIVE["peak"], DRIVE["t0"]
+    tb, te = t0 + D * peak / (1 + peak), t0 + D
+
+    def w1_ramp(t):
+        return T * t - k * np.clip(t - t0, 0.0, None) ** 2 / (2 * D)
+
+    def w2_ramp(t):
+        return k * (((t - t0) ** 2 - (tb - t0) ** 2) / D - (t - tb)) if t > tb else 0.0
+
+    w1e, w2e = w1_ramp(te), w2_ramp(te)
+    tl = te + (w1e - w2e) / (k - (T - k))
+    wl = w2e + k * (tl - te)
+    w1 = np.where(t <= te, w1_ramp(np.minimum(t, te)), w1e + (T - k) * (t - te))
+    w2 = np.where(t <= te, [w2_ramp(x) for x in np.minimum(t, te)], w2e + k * (t - te))
+    locked = t >= tl
+    w1[locked] = w2[locked] = wl + T / 2 * (t[locked] - tl)
+    return w1, w2, (0.0, t0, tb, te, tl)
+
+
+@pytest.mark.parametrize("ulps", (0, 3, -3))
+def test_shared_ramp_clutch_and_brake_run_a_second_as_the_closed_form(ulps):
+    """The drive train of a shared Ramp closing the clutch and, through
+    Feedback (1 - ramp), opening the brake runs its second to the end (main
+    97e483c: an event storm of max(fn, 0) on the +-1e-30 round-off of 1 -
+    ramp, 13,407 events in 1.6 ms).  Against the closed form: speeds within
+    100 RTOL of their scale, the brake's breakaway and the clutch's lock at
+    their times.  No storm can hold this: the closed form has 5 switching
+    points (t = 0, t0, tb, t0 + D, tl), each at most two events (a
+    breakaway's start and its sliding mode, Modelica's startForward ->
+    Forward); IDA's steps per segment (a polynomial piece restarted at
+    order 1) at most 60 beside the output grid's.  The ramp's duration moved
+    by a few ulps changes nothing."""
+    D = 0.5 * (1 + ulps * np.finfo(float).eps)
+    grid = np.linspace(0.0, 1.0, 101)
+    res = acausal2d.simulate(RampedDrive(D=D), stop_time=1.0, rtol=RTOL, output_times=grid)
+    w1, w2, switching = ramped_drive_closed_form(res.time, D)
+    assert len(res.events) <= 2 * len(switching)
+    assert res.stats["steps"] <= 60 * (len(res.events) + 1) + len(grid)
+    assert np.max(np.abs(res["J1.w"] - w1)) <= 100 * RTOL * 10.0
+    assert np.max(np.abs(res["J2.w"] - w2)) <= 100 * RTOL * 10.0
+    tb, tl = switching[2], switching[4]
+    brake = [t for t, txt in res.events if "brake.startForward" in txt]
+    assert brake[0] == pytest.approx(tb, abs=10 * RTOL * 15.0 / (2 * 15.0 / D))
+    lock = [t for t, txt in res.events if "clutch" in txt and t > switching[3]]
+    assert lock[0] == pytest.approx(tl, abs=10 * RTOL * 10.0 / 20.0)
+    t = res.time
+    before, after = t < tl - 1e-6, t > tl + 1e-6
+    assert is_code(res["clutch.mode"][t < 0.2], 2.0) and is_code(res["clutch.mode"][after], 0.0)
+    assert is_code(res["clutch.mode"][(t > 0.2 + 1e-6) & before], -1.0)
+    assert is_code(res["brake.mode"][t < tb - 1e-6], 0.0)
+    assert is_code(res["brake.mode"][t > switching[3] + 1e-6], 2.0)
+    assert np.max(np.abs(res["clutch.w_rel"][after])) <= LOCKED
+    # Modelica's startForward: 1 only while the brake starts to slide (at tb)
+    starting = t[res["brake.startForward"] > 0.5]
+    assert len(starting) and np.max(np.abs(starting - tb)) <= 1e-9
+    assert is_code(res["brake.locked"][t < tb - 1e-6], 1.0)
+    assert is_code(res["brake.startBackward"], 0.0)
+
+
+@pytest.mark.parametrize("law", ("modes", "zone"))
+def test_shared_ramp_agrees_with_two_separate_ramps(law):
+    """The same drive with two separate identical Ramp blocks (which ran
+    in 0.4 s on main 97e483c) gives the same motion, within the global
+    error of both runs (100 RTOL of the speeds' scale), with the same
+    events; also with the stick-zone law, whose relation max(clutch.fn, 0)
+    stormed there (at most two events per switching point of the closed
+    form)."""
+    grid = np.linspace(0.0, 1.0, 101)
+    shared = acausal2d.simulate(RampedDrive(law=law), stop_time=1.0, rtol=RTOL,
+                                output_times=grid)
+    apart = acausal2d.simulate(RampedDrive(shared=False, law=law), stop_time=1.0, rtol=RTOL,
+                               output_times=grid)
+    assert len(shared.events) <= 2 * 5
+    # torques too under the modes; in the zone a torque is its stiff
+    # coupling tau0_max / w_s times a speed's error: the speeds stand for it
+    names = ("J1.w", "J2.w") + (("clutch.tau", "brake.tau") if law == "modes" else ())
+    for name in names:
+        assert np.max(np.abs(shared[name] - apart[name])) <= 2 * 100 * RTOL * 15.0, name
+    assert len(shared.events) == len(apart.events)
+    # an event time within the speeds' bound over the slowest crossing rate,
+    # J2's k (2 s_b - 1) as the brake leaves its zone (exact locks: 10 RTOL)
+    rate = 15.0 * (2 * DRIVE["peak"] / (1 + DRIVE["peak"]) - 1)
+    tol = 10 * RTOL if law == "modes" else 2 * 100 * RTOL * 15.0 / rate
+    assert np.max(np.abs(np.array([t for t, _ in shared.events])
+                         - np.array([t for t, _ in apart.events]))) <= tol
+
+
+class Relay(Component):
+    """A two-point switch with the hysteresis +-band: x' = 1 while on, -1
+    while off; it switches off at x = band, on at x = -band."""
+    band = Parameter(1e-7, "1", "half width of the hysteresis")
+    x = Variable(unit="1", state_select="always")
+    on = Variable(unit="1")
+
+    def equations(self):
+        h = latch("relay.on")
+        define_latch(h, ca.if_else(h, self.band - self.x, -self.band - self.x), "heater on",
+                     g_start=-self.x)
+        return [der(self.x) == 2 * h - 1, self.on == h]
+
+
+class Switching(Component):
+    def __init__(self, **kw):
+        super().__init__(**kw)
+        self.relay = Relay(x=start(0.0, fixed=True))
+
+
+def test_event_storm_ends_with_an_error_naming_element_and_relation():
+    """A hysteresis of 1e-7 switches every 2e-7 s: events without progress
+    on the run's scale of 1 s, none of them closer than the chattering
+    bound, none shrinking (no Zeno).  The storm watch (500 events within
+    1e-3 of the span) stops it at its 500th event, t = band + 499 (2 band)
+    (to the event location, RTOL of the crossing's scale), naming the
+    relation and its element."""
+    from acausal2d.runtime.events import STORM_EVENTS
+    band = 1e-7
+    with pytest.raises(EventError) as err:
+        acausal2d.simulate(Switching(), stop_time=1.0, rtol=RTOL)
+    msg = str(err.value)
+    assert "event storm" in msg and "'heater on' in Relay 'relay'" in msg
+    assert "%d events" % STORM_EVENTS in msg
+    want = band + (STORM_EVENTS - 1) * 2 * band
+    assert err.value.time == pytest.approx(want, abs=STORM_EVENTS * 10 * RTOL * band)

@@ -29,7 +29,7 @@ class TorquePendulum(Component):
                                  use_flange=True)
         self.rod = FixedTranslation(r=(1.0, 0.0))
         self.body = Body(m=1.0, I=0.1)
-        self.drive = ConstantTorque(tau=15.0)      # more than m g d = 9.81 N.m
+        self.drive = ConstantTorque(tau_constant=15.0)      # more than m g d = 9.81 N.m
         self.connect(self.fixed.frame, self.revolute.frame_a)
         self.connect(self.revolute.frame_b, self.rod.frame_a)
         self.connect(self.rod.frame_b, self.body.frame_a)

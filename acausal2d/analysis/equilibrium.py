@@ -108,9 +108,27 @@ def invariant_nodes(system):
                      and st.var_level[j] == 0], dtype=int)
 
 
+def step_scale(system):
+    """The Newton step's scale of every node: its nominal value, at least 1
+    for a position (a node with a velocity and an acceleration) and its
+    derivatives, as :data:`MAX_MOVE` and :data:`SHIFTS` count.  A relative
+    position's nominal (Modelica's ``phi_nominal = 1e-4``) sets the error
+    control of its integration; as the Newton's scale it would make a free
+    position (a trolley on a damper) dominate every step's norm."""
+    st = system.structure
+    A = np.asarray(st.var_to_diff.to_diff)
+    level = np.asarray(st.var_level)
+    vel = np.where(A >= 0, A, 0)
+    chain = (level == 0) & (A >= 0) & (A[vel] >= 0)
+    for _ in range(2):                  # velocities, accelerations
+        nxt = A[np.nonzero(chain)[0]]
+        chain[nxt[nxt >= 0]] = True
+    return np.where(chain, np.maximum(system.nominal, 1.0), system.nominal)
+
+
 class _Step:
     """The Newton system of E = 0, der(x) = 0, invariants held, linearised
-    at one consistent point z: ``solve(z')`` is the nominal-scaled
+    at one consistent point z: ``solve(z')`` is the scaled (:func:`step_scale`)
     minimum-norm step -J^+ F(z') with this point's Jacobian J (the step at
     z' for the natural monotonicity test uses the same J)."""
 
@@ -120,12 +138,12 @@ class _Step:
         self.inv = np.array(sorted(held), dtype=int)
         n = len(z)
         J = np.vstack([ev.jacobian(point.t, z, point.d, dense=True), np.eye(n)[deriv],
-                       np.eye(n)[self.inv]]) * s.nominal[None, :]
+                       np.eye(n)[self.inv]]) * step_scale(s)[None, :]
         self.ok = bool(np.all(np.isfinite(J)))
         self.pinv = np.linalg.pinv(J, rcond=1e-12) if self.ok else None
 
     def solve(self, z):
-        """Scaled step dz / nominal at z (None where not finite)."""
+        """Scaled step dz / step_scale at z (None where not finite)."""
         F = np.concatenate([self.ev.residual(self.point.t, z, self.point.d), z[self.deriv],
                             z[self.inv] - np.array([self.held[j] for j in self.inv])])
         if not np.all(np.isfinite(F)):
@@ -138,7 +156,7 @@ def _limited(ev, states, dz):
     units, shortened by ``fraction`` so that no position state moves by
     more than MAX_MOVE times its nominal value (at least 1)."""
     s = ev.system
-    dx = dz[states] * s.nominal[states]
+    dx = dz[states] * step_scale(s)[states]
     pos = np.array([s.structure.var_level[j] == 0 for j in states], dtype=bool)
     limit = MAX_MOVE * np.maximum(s.nominal[states], 1.0)
     move = np.max(np.abs(dx[pos]) / limit[pos]) if np.any(pos) else 0.0

@@ -29,6 +29,7 @@ import json
 import secrets
 
 from ..errors import Acausal2dError
+from ..io.output import interrupt_is_the_end
 from .guard import Guard, allowed_hosts, protocol
 from .requests import BadRequest
 from .runner import Superseded
@@ -138,5 +139,6 @@ def serve(explorer, host="127.0.0.1", port=8765, open_browser=False, announce=pr
     except KeyboardInterrupt:    # uvicorn shut down cleanly, then raised Ctrl-C again
         pass
     finally:
+        interrupt_is_the_end()   # Ctrl-C is how the server ends: the command's code stands
         explorer.close()
     return 0 if server.started else 2

@@ -104,6 +104,16 @@ class Interrupts:
             raise KeyboardInterrupt
 
 
+def interrupt_is_the_end():
+    """For a command whose normal end is Ctrl-C or SIGTERM (a server): the
+    interrupt it caught is its end, not a swallowed one, so the command line
+    exits with the command's own code."""
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        handler = signal.getsignal(signum)
+        if isinstance(handler, Interrupts):
+            handler.seen.clear()
+
+
 @contextlib.contextmanager
 def held_signals():
     """SIGINT and SIGTERM held back (delivered when the block ends): for

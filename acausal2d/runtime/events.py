@@ -9,7 +9,7 @@ time derivative under the relation values being tried.  If no set of
 relation values agrees with its own motion - friction ``sign(v)`` at v = 0
 pushes v up with one value and down with the other - the motion is in a
 sliding mode (sticking), which the element must model itself (as
-``rotational.Clutch`` does with its stick zone): the run stops with an
+``rotational.Clutch`` does with its modes): the run stops with an
 error naming the relation, its component, the time and what to change (the
 component's own advice where it gives one,
 :meth:`~acausal2d.language.dsl.Component.sliding_mode_advice`).  A relation
@@ -61,8 +61,9 @@ def sliding_mode_advice(system, relations):
     the general one."""
     owners = {id(o): o for o in (relation_owner(system, k) for k in relations) if o is not None}
     advice = [a for a in (o.sliding_mode_advice() for o in owners.values()) if a]
-    generic = ("Model sticking in the element (as rotational.Clutch does with its stick zone "
-               "|w_rel| < w_s) or smooth the relation.")
+    generic = ("Model sticking in the element with modes held by latches (as rotational.Clutch "
+               "does with Modelica's PartialFriction modes), give a switching a hysteresis the "
+               "run can resolve, or smooth the relation.")
     return " ".join(advice) if len(advice) == len(owners) and advice else generic
 
 

@@ -11,7 +11,7 @@ class BrakeDemo(Component):
 
     def __init__(self, **kw):
         super().__init__(**kw)
-        self.torque = rotational.ConstantTorque(tau=5.0)
+        self.torque = rotational.ConstantTorque(tau_constant=5.0)
         self.wheel = rotational.Inertia(J=0.1, phi=start(0.0, fixed=True), w=start(0.0, fixed=True))
         self.brake = rotational.Brake(mu_pos=[[0.0, 0.5]], cgeo=0.1, fn_max=200.0)
         self.press = signals.Ramp(height=-1.0, duration=0.01, offset=1.0, startTime=0.5)
