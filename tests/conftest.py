@@ -204,6 +204,7 @@ SLOW_TESTS = {
     "test_when_model_does_not_run_doc.py": [
         "test_the_set_suggestion_and_the_event_words_are_on_the_page"],
     "test_native_capi.py": ["test_bench_capi_small_prints_its_table"],
+    "test_native_lu.py": ["test_the_lu_is_found_in_a_process_that_loaded_scikit_sundae_first"],
     "test_band_models.py": ["test_models_run_from_the_cli", "test_readme_band_synthesis_section"],
     "test_user_names.py": ["test_simulate_plots_a_signal_by_its_connector_name"],
     "test_derived_accelerations.py": ["test_seen_3_spring_damper_demo_compares_accelerations"],
