@@ -15,6 +15,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 import xml.etree.ElementTree as ET
 
 import pytest
@@ -379,3 +380,18 @@ def test_a_connect_to_a_stray_component_is_drawn_as_its_error():
     assert not [p for p in root.iter(SVG + "path") if "line" in classes(p)]
     text = " ".join(t.text or "" for t in root.iter(SVG + "text"))
     assert "not part of it" in text
+
+
+def test_drawing_a_diagram_imports_no_graph_library():
+    """simulate writes diagram.svg with every run: its layout is pure Python
+    (networkx's import alone took longer than the drawing)."""
+    code = ("import sys, acausal2d; from acausal2d.visual.diagram import write_diagram; "
+            "write_diagram(acausal2d.load_model(sys.argv[1], 'ClutchMotor'), sys.argv[2]); "
+            "print('networkx' in sys.modules)")
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "d.svg")
+        proc = subprocess.run([sys.executable, "-c", code, os.path.join(ROOT, "models", "clutch_motor.py"),
+                               out], capture_output=True, text=True, timeout=300)
+        assert proc.returncode == 0, proc.stderr
+        assert proc.stdout.split() == ["False"]
+        assert os.path.getsize(out) > 0

@@ -15,14 +15,14 @@ layers that follow the flow of power, few crossings, no overlapping boxes.
    the mean height of its neighbours as the stacking allows (least squares
    under the no-overlap constraints, by pool-adjacent-violators).
 
-Everything here is pure Python on networkx; the result is a
+Everything here is pure Python (no graph library: networkx's import alone
+took longer than drawing a model); the result is a
 :class:`Layout` that :mod:`acausal2d.visual.diagram_svg` draws.
 """
+from collections import deque
 from dataclasses import dataclass, field
 
 import bisect
-
-import networkx as nx
 
 CHAR = 6.4            # width of a character of the box texts (11 px sans-serif), px
 SMALL = 5.0           # of the port names (9 px)
@@ -71,7 +71,7 @@ def box_size(box):
 _REFERENCES = ("PressureSource",)     # a tank: a reference, not where power comes from
 
 
-def _roots(st, graph, power):
+def _roots(st, nodes, power):
     """The boxes power enters at, per connected part of the power graph:
     motors and sources with no input, else sources driven by a signal,
     else the ground (a fixed point, the world, a tank), else the first."""
@@ -82,63 +82,136 @@ def _roots(st, graph, power):
     tests = [lambda p: boxes[p].cls == "AsyncMotor" or source(p) and p not in driven, source,
              lambda p: boxes[p].kind in ("fixed", "world") or boxes[p].cls in _REFERENCES]
     roots = []
-    for part in nx.connected_components(power):
+    for part in _components(nodes, power):
         cand = next((c for c in ([p for p in part if t(p)] for t in tests) if c), None)
-        roots += cand or [min(part, key=list(graph).index)]
+        roots += cand or [part[0]]
     return roots
+
+
+def _components(nodes, adjacent):
+    """The connected parts of an undirected graph ({node: neighbours}),
+    each in the order of ``nodes``."""
+    seen, parts = set(), []
+    for start in nodes:
+        if start in seen:
+            continue
+        seen.add(start)
+        part, todo = [], [start]
+        while todo:
+            v = todo.pop()
+            part.append(v)
+            new = [w for w in adjacent[v] if w not in seen]
+            seen.update(new)
+            todo += new
+        parts.append(sorted(part, key=nodes.index))
+    return parts
 
 
 def _distances(st):
     """Breadth-first distance of each box from the roots along power lines."""
-    graph = nx.Graph()
-    graph.add_nodes_from(b.path for b in st.boxes)
-    power = graph.copy()
+    nodes = [b.path for b in st.boxes]
+    power = {p: set() for p in nodes}
     for ln in st.lines:
-        graph.add_edge(ln.box_a, ln.box_b)
-        if ln.domain != "signal":
-            power.add_edge(ln.box_a, ln.box_b)
-    roots = _roots(st, graph, power)
-    return dict(nx.multi_source_dijkstra_path_length(power, roots)) if roots else {}
+        if ln.domain != "signal" and ln.box_a != ln.box_b:
+            power[ln.box_a].add(ln.box_b)
+            power[ln.box_b].add(ln.box_a)
+    roots = _roots(st, nodes, power)
+    dist = {r: 0 for r in roots}
+    todo = deque(roots)
+    while todo:
+        v = todo.popleft()
+        for w in sorted(power[v], key=nodes.index):
+            if w not in dist:
+                dist[w] = dist[v] + 1
+                todo.append(w)
+    return dist
 
 
 def _directed(st):
-    """The DAG the layers follow: power lines from nearer the roots to
-    farther, signals from output to input, cycles broken."""
+    """The DAG the layers follow ({node: successors}): power lines from
+    nearer the roots to farther, signals from output to input, cycles
+    broken."""
     order = {b.path: i for i, b in enumerate(st.boxes)}
     dist = _distances(st)
     rank = {p: (dist.get(p, 0), order[p]) for p in order}
-    dag = nx.DiGraph()
-    dag.add_nodes_from(order)
+    dag = {p: [] for p in order}
     for ln in st.lines:
         a, b = ln.box_a, ln.box_b
         if a == b:
             continue
         if ln.domain != "signal" and rank[a] > rank[b]:
             a, b = b, a
-        if not dag.has_edge(b, a):
-            dag.add_edge(a, b)
+        if a not in dag[b] and b not in dag[a]:
+            dag[a].append(b)
     while True:
-        try:
-            cycle = nx.find_cycle(dag)
-        except nx.NetworkXNoCycle:
+        cycle = _find_cycle(dag)
+        if cycle is None:
             return dag
-        u, v = max(cycle, key=lambda e: (rank[e[0]] > rank[e[1]], rank[e[0]]))[:2]
-        dag.remove_edge(u, v)
-        if not dag.has_edge(v, u):
-            dag.add_edge(v, u)
+        u, v = max(cycle, key=lambda e: (rank[e[0]] > rank[e[1]], rank[e[0]]))
+        dag[u].remove(v)
+        if u not in dag[v]:
+            dag[v].append(u)
+
+
+def _find_cycle(dag):
+    """The edges of a cycle of ``dag`` ({node: successors}), or None:
+    depth first from the nodes in their order."""
+    state = {}                       # 1: on the current path, 2: done
+    for start in dag:
+        if start in state:
+            continue
+        path, stack = [start], [iter(dag[start])]
+        state[start] = 1
+        while stack:
+            for w in stack[-1]:
+                if state.get(w) == 1:
+                    loop = path[path.index(w):] + [w]
+                    return list(zip(loop[:-1], loop[1:]))
+                if w not in state:
+                    state[w] = 1
+                    path.append(w)
+                    stack.append(iter(dag[w]))
+                    break
+            else:
+                state[path.pop()] = 2
+                stack.pop()
+    return None
+
+
+def _topological(dag):
+    """The nodes of the acyclic ``dag`` ({node: successors}), each after
+    its predecessors."""
+    indegree = {v: 0 for v in dag}
+    for v in dag:
+        for w in dag[v]:
+            indegree[w] += 1
+    todo = deque(v for v in dag if indegree[v] == 0)
+    out = []
+    while todo:
+        v = todo.popleft()
+        out.append(v)
+        for w in dag[v]:
+            indegree[w] -= 1
+            if indegree[w] == 0:
+                todo.append(w)
+    return out
 
 
 # ------------------------------------------------------------ 2. layers
 def _layers(dag):
     """{node: layer}: longest path; a node that only feeds others moves
     up to just before the first of them."""
+    pred = {v: [] for v in dag}
+    for v in dag:
+        for w in dag[v]:
+            pred[w].append(v)
+    order = _topological(dag)
     layer = {}
-    for v in nx.topological_sort(dag):
-        layer[v] = max((layer[u] + 1 for u in dag.predecessors(v)), default=0)
-    for v in reversed(list(nx.topological_sort(dag))):
-        succ = list(dag.successors(v))
-        if succ and not any(True for _ in dag.predecessors(v)):
-            layer[v] = min(layer[s] for s in succ) - 1
+    for v in order:
+        layer[v] = max((layer[u] + 1 for u in pred[v]), default=0)
+    for v in reversed(order):
+        if dag[v] and not pred[v]:
+            layer[v] = min(layer[w] for w in dag[v]) - 1
     low = min(layer.values(), default=0)
     return {v: k - low for v, k in layer.items()}
 
