@@ -3,7 +3,8 @@ Python path, the background compile, and later runs at native speed.
 
     python benchmarks/bench_cold.py            (the table of issue 30; medians of 3, the
                                                 Python path and the first run of 9 pairs)
-    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, two pairs: the suite)
+    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, two pairs, the piston
+                                                engine's whole process once: the suite)
     python benchmarks/bench_cold.py --classic  (also compile first, as before issue 30)
     python benchmarks/bench_cold.py belt chain (only the models whose names contain these)
     python benchmarks/bench_cold.py --pairs=5  (5 alternating pairs instead of 9)
@@ -35,7 +36,7 @@ Every figure is measured in a fresh process with a cache folder of its own:
 - ``acausal2d simulate models/piston_engine.py``, whole process, with an
   empty cache (auto), the same without the installed drivers
   (``ACAUSAL2D_PREBUILT=0``) and with a full cache (target: <= 1.2x);
-  medians of 5 (3 with --small), the three alternating.
+  medians of 5 (one each with --small), the three alternating.
 """
 import json
 import os
@@ -224,7 +225,7 @@ if __name__ == "__main__":
     if args[:1] == ["--child"]:
         child(args[1], int(args[2]), None if args[3] == "None" else float(args[3]))
     elif "--small" in args:
-        main(SMALL, 1, "--classic" in args, True, 3, 2)
+        main(SMALL, 1, "--classic" in args, True, 1, 2)
     else:
         chosen = [a for a in args if not a.startswith("--")]
         picked = {k: v for k, v in MODELS.items() if not chosen or any(c in k for c in chosen)}
