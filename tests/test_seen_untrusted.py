@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from acausal2d.runtime import private_dir
-from acausal2d.runtime import cbuild, cstore, native
+from acausal2d.runtime import cbuild, cstore, native, notices
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PENDULUM = os.path.join(ROOT, "models", "pendulum.py")
@@ -519,7 +519,7 @@ def test_seen_pulley_mass_is_structural_and_params_recompile(hanging, capfd):
 
 def test_seen_pulley_mass_through_set_recompiles(hanging, tmp_path, capfd, monkeypatch):
     import csv
-    monkeypatch.setattr(cstore, "_said", set())       # the notice is said once per process
+    monkeypatch.setattr(notices, "_said", set())       # the notice is said once per process
     one, three, cm = hanging
     code, out, err = _cli(["simulate", one, "--set", "p.m=3", "--out", tmp_path / "a"], capfd)
     assert code == 0, err
@@ -685,7 +685,7 @@ def test_seen_full_disk_index_is_said(tmp_path, monkeypatch, capsys):
     def full(path, data):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
     monkeypatch.setattr(cstore, "write_atomic", full)
-    monkeypatch.setattr(cstore, "_said", set())
+    monkeypatch.setattr(notices, "_said", set())
     cbuild.publish_index("0" * 64, "lib", str(tmp_path / "lib-x.so"))
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "No space left on device" in err and "compile it again" in err
@@ -869,7 +869,7 @@ def test_seen_a_library_missing_its_symbol_is_rebuilt(tmp_path, monkeypatch, cap
     driver's symbol ("undefined symbol: a2d_create") was not rebuilt."""
     import ctypes
     monkeypatch.setenv(cstore.CACHE_ENV, str(tmp_path / "cache"))
-    monkeypatch.setattr(cstore, "_said", set())
+    monkeypatch.setattr(notices, "_said", set())
     good = {"good.c": "int a2d_create(void) { return 42; }\n"}
     import shutil
     built = cbuild.build({"wrong.c": "int other(void) { return 1; }\n"}, name="wrong")
