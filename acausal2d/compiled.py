@@ -131,6 +131,7 @@ class CompiledModel:
             self.derived = derived_signals(model, self.system.names)
         self.structural = self._read_while_compiling(reads)
         self._recompiled: dict[tuple[tuple[str, str], ...], CompiledModel] = {}
+        self._said_recompiled: set[tuple[str, ...]] = set()    # parameters named in a notice
         self._source = given if self.structural else None     # compiled again from it
         self.compile_time = _time.perf_counter() - t0
 
@@ -296,8 +297,10 @@ class CompiledModel:
 
     def for_values(self, params: Params | None) -> "CompiledModel":
         """This model, or, where ``params`` change a :attr:`structural`
-        parameter, the model compiled again with the new values (one line
-        on stderr names them; kept for the next run with the same values)."""
+        parameter, the model compiled again with the new values (kept for
+        the next run with the same values).  One line on stderr names the
+        parameters and their first new values, once per model and set of
+        parameters: an optimisation over them is not a line per trial."""
         if not params or not isinstance(params, dict) or not self.structural:
             return self
         vals = self.parameter_values(params, structural=True)
@@ -310,9 +313,12 @@ class CompiledModel:
         key = tuple(sorted((n, repr(v)) for n, v in new.items()))
         cache = self._recompiled
         if key not in cache:
-            notice("%s %s read while %s is compiled; it is compiled again with %s" % (
-                ", ".join(new), "is" if len(new) == 1 else "are", type(self.model).__name__,
-                ", ".join("%s = %s" % (n, v) for n, v in new.items())))
+            if tuple(new) not in self._said_recompiled:      # a study: said once, not per trial
+                self._said_recompiled.add(tuple(new))
+                notice("%s %s read while %s is compiled; it is compiled again with %s (and for "
+                       "each new value)" % (", ".join(new), "is" if len(new) == 1 else "are",
+                                            type(self.model).__name__,
+                                            ", ".join("%s = %s" % (n, v) for n, v in new.items())))
             if len(cache) >= 8:
                 cache.pop(next(iter(cache)))
             assert self._source is not None              # kept where a parameter is structural
