@@ -18,8 +18,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import bench_floor  # noqa: E402
-import capi_driver  # noqa: E402
-from acausal2d.runtime import native, tiers  # noqa: E402
+from acausal2d.runtime import capi, native, tiers  # noqa: E402
 
 
 def _ida(sim, make):
@@ -47,14 +46,14 @@ def main(argv):
         cm = bench_floor.acausal2d.compile_model(make())
         sim = bench_floor.the_run(cm, stop, rtol, 200 if small else 5000)
         compiled = _ida(sim, native.native_ida)
-        capi = _ida(sim, capi_driver.capi_ida)
-        if compiled[0] is None or capi[0] is None:
+        capi_ = _ida(sim, capi.capi_ida)
+        if compiled[0] is None or capi_[0] is None:
             print("%-20s  not measured (no native driver here)" % name)
             continue
         a, b = [], []
         for _ in range(pairs + 1):         # the first pair warms up
             a.append(_time(*compiled[:1], sim, *compiled[1:]))
-            b.append(_time(*capi[:1], sim, *capi[1:]))
+            b.append(_time(*capi_[:1], sim, *capi_[1:]))
         ratios = [y / x for x, y in zip(a[1:], b[1:])]
         print("%-20s %10.5f %10.5f %8.2f" % (name, statistics.median(a[1:]),
                                              statistics.median(b[1:]), statistics.median(ratios)))

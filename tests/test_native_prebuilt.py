@@ -1,6 +1,6 @@
 """The drivers' objects compiled at install time (issue 30: the first run
-on a machine does not wait for them): ``setup.py`` compiles them into the
-package, each with its SHA-256; a new structure links them and compiles
+on a machine does not wait for them): ``setup.py`` compiles them and the
+driver on CasADi's C API into the package, each with its SHA-256; a new structure links them and compiles
 only its generated code (the C projector's library beside the model's);
 a damaged one is left where it is and compiled into the cache instead;
 ``ACAUSAL2D_PREBUILT=0`` ignores them; an install without a compiler goes
@@ -24,12 +24,12 @@ pytestmark = NEEDS_NATIVE
 
 def _expected_names():
     cc = cbuild.find_compiler()
-    return sorted(drivers.object_file(name, drivers.text(name), drivers.flags(cc), cc)[1]
-                  for name in drivers.OBJECTS)
+    return sorted([drivers.object_file(name, drivers.text(name), drivers.flags(cc), cc)[1]
+                   for name in drivers.OBJECTS] + [drivers.capi_file()])
 
 
-def _verified_objects(folder):
-    names = sorted(f for f in os.listdir(folder) if f.endswith(".o"))
+def _verified_objects(folder, suffixes=(".o", ".so")):
+    names = sorted(f for f in os.listdir(folder) if f.endswith(suffixes))
     for f in names:
         path = os.path.join(folder, f)
         assert cstore.file_digest(path) == cstore.recorded(path), f
@@ -102,7 +102,7 @@ def test_a_damaged_installed_object_is_left_and_compiled_into_the_cache(
     err = capfd.readouterr().err
     assert "does not match its recorded SHA-256" in err and victim in err, err
     assert os.path.exists(victim)                          # not ours to remove
-    assert [f.split("-")[0] for f in _verified_objects(cache)] == ["a2d_project"]
+    assert [f.split("-")[0] for f in _verified_objects(cache, ".o")] == ["a2d_project"]
     agree(res, _reference(monkeypatch), ("revoluteDrive.phi", "prismatic.s"), 1e-8)
 
 
@@ -110,7 +110,7 @@ def test_prebuilt_0_ignores_the_installed_objects(cache, monkeypatch):
     monkeypatch.setenv(drivers.ENV, "0")
     monkeypatch.setenv(tiers.ENV, "now")
     res = _run(PistonEngine())
-    assert sorted(f.split("-")[0] for f in _verified_objects(cache)) == \
+    assert sorted(f.split("-")[0] for f in _verified_objects(cache, ".o")) == \
         ["a2d_driver_events", "a2d_project"]
     agree(res, _reference(monkeypatch), ("revoluteDrive.phi", "prismatic.s"), 1e-8)
 

@@ -1,6 +1,7 @@
 """The native inner loop (acausal2d.runtime.native) against the Python path
 through scikit-sundae: the same IDA steps and the same motion; without a C
-compiler (or with ACAUSAL2D_NATIVE=0) the run takes the Python path."""
+compiler and the driver installed with the package (or with
+ACAUSAL2D_NATIVE=0) the run takes the Python path."""
 import os
 import sys
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 
 import acausal2d
-from acausal2d.runtime import cbuild, cunits, native
+from acausal2d.runtime import capi, cbuild, cunits, drivers, native
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "models"))
 from piston_engine import PistonEngine  # noqa: E402
@@ -39,10 +40,15 @@ def test_native_and_python_paths_take_the_same_steps(monkeypatch):
         assert np.max(np.abs(fast[name] - slow[name])) <= 1e-9 * scale, name
 
 
-def test_without_a_compiler_the_python_path_runs(monkeypatch):
+def test_without_a_compiler_or_installed_driver_the_python_path_runs(monkeypatch):
+    """No compiler and no driver on CasADi's C API installed with the
+    package (an install that found no compiler; with it installed, the run
+    is native on it: tests/test_native_capi.py)."""
     monkeypatch.setattr(cunits, "COMPILERS", ())
     monkeypatch.delenv("CC", raising=False)
     monkeypatch.setenv(cbuild.CACHE_ENV, "/nonexistent-acausal2d-cache")
+    monkeypatch.setenv(drivers.ENV, "0")
+    monkeypatch.setattr(capi, "_loaded", {})
     res, used = _run()
     assert not used
     monkeypatch.setenv("ACAUSAL2D_NATIVE", "0")      # the Python path on purpose

@@ -1,8 +1,9 @@
-"""The native engine's two rules (acausal2d.runtime.tiers): a run whose
+"""The native engine's rules (acausal2d.runtime.tiers): a run whose
 structure has a library in the cache uses it; one that has none runs on the
-Python path alone - nothing is compiled or waited for during it, its IDA
-takes the steps of the Python path - and a detached worker compiles the
-library after the run, where a later run finds it.  The engine is a field
+driver on CasADi's C API (acausal2d.runtime.capi; nothing of the structure
+is compiled or waited for during it, its IDA takes the steps of the Python
+path) and a detached worker compiles the library after the run, where a
+later run finds it.  The engine is a field
 of the run's options; two processes compiling one structure at once publish
 one library; a failed background compile is said once and the run stays on
 the Python path; and the answer does not depend on the engine (per model,
@@ -16,7 +17,7 @@ import pytest
 
 import acausal2d
 from acausal2d.options import RunOptionError
-from acausal2d.runtime import background, cbuild, cstore, native, notices, tiers
+from acausal2d.runtime import background, capi, cbuild, cstore, native, notices, tiers
 from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
 from tiers_support import agree as _agree
 
@@ -47,12 +48,16 @@ def _libraries(folder):
     return sorted(f for f in os.listdir(folder) if f.startswith("a2d_model") and f.endswith(".so"))
 
 
-def test_a_run_before_the_library_exists_takes_the_python_path(auto, capfd, monkeypatch):
-    workers = []             # workers of this process at each step of the run
+def test_a_run_before_the_library_exists_runs_on_the_c_api_driver(auto, capfd, monkeypatch):
+    workers, drivers_run = [], []      # workers of this process at each step of the run
 
     def progress(t, t_end):
         workers.append(len(background._workers))
+    real = native.NativeIDA.run
+    monkeypatch.setattr(native.NativeIDA, "run",
+                        lambda self, *a: drivers_run.append(self.lib) or real(self, *a))
     res, form = _run(PistonEngine(), progress=progress)
+    assert drivers_run and all(lib is capi.driver() for lib in drivers_run)
     assert len(workers) > 2 and max(workers[:-1]) == 0     # none during the run (the last
     #                                                        call: after it, at its end)
     err = capfd.readouterr().err
@@ -64,7 +69,7 @@ def test_a_run_before_the_library_exists_takes_the_python_path(auto, capfd, monk
     assert native.library(form2) is not None
     assert "in the background" not in capfd.readouterr().err
     ref, _ = _run(PistonEngine(), native="off")
-    # the first run's IDA ran alone on the Python path: the steps of the Python path
+    # the first run's IDA on the C API: the steps of the Python path (the same dense LU)
     assert res.stats["steps"] == ref.stats["steps"]
     assert res.stats["segments"] == ref.stats["segments"]
     _agree(res, ref, ("revoluteDrive.phi", "revoluteDrive.w", "prismatic.s"), 1e-8)

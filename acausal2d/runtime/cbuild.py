@@ -144,15 +144,25 @@ _serial: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()   # Function 
 
 
 def serialized(fn):
-    """``fn.serialize()`` of a CasADi function, made once per function
-    object: the fingerprint (:func:`fingerprint`) and the background job
-    (:class:`~acausal2d.runtime.codegen.Recipe`) both need it, and the
-    first run of a new structure pays for it before it starts (chain of 81
-    links: 0.1-0.3 s per serialization of its functions on a loaded machine)."""
+    """A CasADi function serialized as a file of CasADi's serializer holds
+    it (with its type tag: :func:`deserialized` reads it back, and CasADi's
+    C API reads it from a file, :mod:`~acausal2d.runtime.capi`), made once
+    per function object: the fingerprint (:func:`fingerprint`), the
+    background job (:class:`~acausal2d.runtime.codegen.Recipe`) and the C
+    API all need it, and the first run of a new structure pays for it
+    before it starts (chain of 81 links: 0.1-0.3 s per serialization of its
+    functions on a loaded machine)."""
     text = _serial.get(fn)
     if text is None:
-        text = _serial[fn] = fn.serialize()
+        writer = ca.StringSerializer()
+        writer.pack(fn)
+        text = _serial[fn] = writer.encode()
     return text
+
+
+def deserialized(text):
+    """The CasADi function of :func:`serialized`'s ``text``."""
+    return ca.StringDeserializer(text).unpack()
 
 
 def index_path(key, name):

@@ -108,7 +108,7 @@ class Recipe:
         return state
 
     def __setstate__(self, state):
-        state["parts"] = [(how, [ca.Function.deserialize(s) for s in fns])
+        state["parts"] = [(how, [cbuild.deserialized(s) for s in fns])
                           for how, fns in state["parts"]]
         self.__dict__.update(state)
 

@@ -4,7 +4,9 @@ C compiler is found there, else on first use into the cache.
 Every native library links one of three object files compiled from C that
 does not depend on the model (:data:`OBJECTS`): the IDA driver
 (``native_driver.c``, with or without events) and the output projector
-(``native_project.c``), each with the sparse LU (``native_lu.c``).  They are
+(``native_project.c``), each with the sparse LU (``native_lu.c``).  The
+same driver on CasADi's C API (:data:`CAPI`) is a library of its own,
+which runs a structure before its library is compiled.  They are
 most of a small model's compile (piston engine: 1.0 s of gcc for the two it
 uses, 0.19 s for its generated code), so a machine's first run would wait
 for them.  ``pip install`` therefore compiles them into the package
@@ -56,6 +58,15 @@ OBJECTS = {"a2d_driver": ("", "lu", "driver"),
 """Object name -> (defines, sources): the C of each object is
 :data:`GENERATED`, the defines and the sources in this order."""
 
+CAPI = "a2d_capi"
+"""The driver on CasADi's C API (:mod:`~acausal2d.runtime.capi`): a shared
+library of the driver, the output projector and the LU with ``A2D_CAPI`` (no generated code, no
+library linked: the SUNDIALS and C API functions it calls are bound when
+it is loaded), so that a machine with no compiler at run time runs it."""
+CAPI_FLAGS = ("-O2", "-fPIC", "-shared")
+"""Its flags: fixed, so that its name (:func:`capi_file`) is found with no
+compiler to ask."""
+
 GCC_LIMITS = ("--param=sccvn-max-alias-queries-per-access=20",
               "--param=dse-max-alias-queries-per-store=20")
 """gcc's alias queries per memory access in value numbering and dead-store
@@ -80,6 +91,18 @@ def text(name):
     """The C of the object ``name`` (a key of :data:`OBJECTS`)."""
     defines, *parts = OBJECTS[name]
     return GENERATED + defines + "".join(source(p) for p in parts)
+
+
+def capi_text():
+    """The C of the driver on CasADi's C API (:data:`CAPI`)."""
+    return GENERATED + "#define A2D_EVENTS 1\n#define A2D_CAPI 1\n" + source("lu") + \
+        source("driver") + source("project")
+
+
+def capi_file():
+    """The file name of the driver on CasADi's C API: it carries the key of
+    its text and flags (not of a compiler: it is looked up where none is)."""
+    return "%s-%s.so" % (CAPI, cstore.build_key({CAPI + ".c": capi_text()}, CAPI_FLAGS)[:32])
 
 
 def is_gcc(compiler):
@@ -122,7 +145,7 @@ def installed():
     """(file name, whether its SHA-256 matches) of the objects in the
     package (:data:`PREBUILT`), for ``acausal2d cache list``."""
     try:
-        names = sorted(f for f in os.listdir(PREBUILT) if f.endswith(".o"))
+        names = sorted(f for f in os.listdir(PREBUILT) if f.endswith((".o", ".so")))
     except OSError:
         return []
     return [(name, _matches(os.path.join(PREBUILT, name))) for name in names]
@@ -138,12 +161,13 @@ def _matches(path):
 
 
 def install(dest=PREBUILT, compiler=None, log=print):
-    """Compile every object of :data:`OBJECTS` into ``dest`` (each with its
-    SHA-256 beside it) with ``compiler`` (default: the one found at run
-    time, :func:`~acausal2d.runtime.cunits.find_compiler`); the paths
-    built.  Nothing is built where there is no compiler, and an object the
-    compiler refuses is left out (``log`` says why): the run compiles it
-    into the cache then."""
+    """Compile every object of :data:`OBJECTS` and the driver on CasADi's C
+    API (:data:`CAPI`) into ``dest`` (each with its SHA-256 beside it) with
+    ``compiler`` (default: the one found at run time,
+    :func:`~acausal2d.runtime.cunits.find_compiler`); the paths built.
+    Nothing is built where there is no compiler, and a file the compiler
+    refuses is left out (``log`` says why): a run builds it into the cache
+    then, where it finds a compiler."""
     cc = compiler or cunits.find_compiler()
     if cc is None:
         log("acausal2d: no C compiler found; the native drivers are compiled on first use")
@@ -160,4 +184,11 @@ def install(dest=PREBUILT, compiler=None, log=print):
                 % (name, str(exc).splitlines()[0]))
             continue
         built.append(target)
+    target = os.path.join(dest, capi_file())
+    try:
+        cunits.compile_library(cc, {CAPI + ".c": capi_text()}, CAPI_FLAGS, dest, target)
+        built.append(target)
+    except cunits.BuildFailed as exc:
+        log("acausal2d: %s not built at install (%s); it is built on first use where a "
+            "compiler is found" % (CAPI, str(exc).splitlines()[0]))
     return built

@@ -415,9 +415,14 @@ def _projector_plan(system):
 
 
 def _declare_projector(path):
-    lib = ctypes.CDLL(path)
+    return declare_projector(ctypes.CDLL(path))
+
+
+def declare_projector(lib):
+    """``lib`` with the argument types of its ``a2d_project``."""
     lib.a2d_project.argtypes = [ctypes.c_int, _P, _P, _P, _P, ctypes.c_int, ctypes.c_int, _I,
-                                _P, ctypes.c_double, ctypes.c_int, ctypes.c_int, _I, _I, _I, _I]
+                                _P, ctypes.c_double, ctypes.c_int, ctypes.c_int, _I, _I, _I, _I,
+                                _I]
     return lib
 
 
@@ -433,8 +438,14 @@ def row_projector(system, free, chosen=None):
     needed more than ``slow`` of them the next row takes a new LU."""
     lib = _library(system, _projector_plan, _declare_projector, chosen,
                    getattr(system, "model_name", None))
-    if lib is None:
-        return None
+    return None if lib is None else projector_on(lib, system, free)
+
+
+def projector_on(lib, system, free, ids=None):
+    """The function of :func:`row_projector` on the library ``lib`` (a
+    structure's, or with ``ids`` of E and EJ the driver on CasADi's C API,
+    :mod:`~acausal2d.runtime.capi`); None where dE/dz_free is structurally
+    singular."""
     colind, row = _ccs(system.jacobian_fn.sparsity_out(0))
     ints = blt_layout.layout(system, free)
     if ints is None:
@@ -451,6 +462,7 @@ def row_projector(system, free, chosen=None):
         p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
         lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,
                         _ptr(col_of, _I), _ptr(nominal), float(tol), int(max_iter), int(slow),
-                        _ptr(colind, _I), _ptr(row, _I), _ptr(ints, _I), _ptr(ok, _I))
+                        _ptr(colind, _I), _ptr(row, _I), _ptr(ints, _I), _ptr(ok, _I),
+                        None if ids is None else _ptr(ids, _I))
         return Z, ok.astype(bool)
     return project

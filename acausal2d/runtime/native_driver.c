@@ -29,7 +29,85 @@ typedef int (*IDARootFn)(sunrealtype, N_Vector, N_Vector, sunrealtype *, void *)
 typedef int (*IDALsJacFn)(sunrealtype, sunrealtype, N_Vector, N_Vector, N_Vector, SUNMatrix,
                           void *, N_Vector, N_Vector, N_Vector);
 
-int SUNDIALSGetVersionNumber(int *major, int *minor, int *patch, char *label, int len);
+/* The SUNDIALS functions the driver calls.  A model's library is linked against
+ * scikit-sundae's SUNDIALS: they are declared.  The driver on CasADi's C API
+ * (capi.py, A2D_BOUND) is built once with no library to link, so that it runs where
+ * no compiler is: they are pointers of the same names, and so are the C API's
+ * functions (A2D_BOUND_EXTRA), which a2d_bind sets, in the order of
+ * a2d_bound_names, from the addresses capi.py looks up by those names. */
+#define A2D_SUNDIALS_CALLS(X) \
+  X(int, SUNDIALSGetVersionNumber, (int *major, int *minor, int *patch, char *label, \
+                                    int len)) \
+  X(int, SUNContext_Create, (SUNComm comm, SUNContext *ctx)) \
+  X(int, SUNContext_Free, (SUNContext *ctx)) \
+  X(int, SUNContext_ClearErrHandlers, (SUNContext ctx)) \
+  X(N_Vector, N_VNew_Serial, (sunindextype n, SUNContext ctx)) \
+  X(sunrealtype *, N_VGetArrayPointer, (N_Vector v)) \
+  X(void, N_VDestroy, (N_Vector v)) \
+  X(SUNMatrix, SUNDenseMatrix, (sunindextype m, sunindextype n, SUNContext ctx)) \
+  X(sunrealtype *, SUNDenseMatrix_Data, (SUNMatrix a)) \
+  X(SUNMatrix, SUNSparseMatrix, (sunindextype m, sunindextype n, sunindextype nnz, int type, \
+                                  SUNContext ctx)) \
+  X(sunrealtype *, SUNSparseMatrix_Data, (SUNMatrix a)) \
+  X(sunindextype *, SUNSparseMatrix_IndexValues, (SUNMatrix a)) \
+  X(sunindextype *, SUNSparseMatrix_IndexPointers, (SUNMatrix a)) \
+  X(void, SUNMatDestroy, (SUNMatrix a)) \
+  X(SUNLinearSolver, SUNLinSol_Dense, (N_Vector y, SUNMatrix a, SUNContext ctx)) \
+  X(int, SUNLinSolFree, (SUNLinearSolver s)) \
+  X(SUNLinearSolver, SUNLinSolNewEmpty, (SUNContext ctx)) \
+  X(int, SUNLinSolGetType, (SUNLinearSolver s)) \
+  X(int, SUNLinSolSetup, (SUNLinearSolver s, SUNMatrix a)) \
+  X(int, SUNLinSolSolve, (SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, \
+                          sunrealtype tol)) \
+  X(sunindextype, SUNLinSolLastFlag, (SUNLinearSolver s)) \
+  X(int, SUNLinSolSpace, (SUNLinearSolver s, long *lrw, long *liw)) \
+  X(void, SUNLinSolFreeEmpty, (SUNLinearSolver s)) \
+  X(void *, IDACreate, (SUNContext ctx)) \
+  X(int, IDAInit, (void *mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0)) \
+  X(int, IDAReInit, (void *mem, sunrealtype t0, N_Vector y0, N_Vector yp0)) \
+  X(int, IDASVtolerances, (void *mem, sunrealtype rtol, N_Vector atol)) \
+  X(int, IDASetLinearSolver, (void *mem, SUNLinearSolver ls, SUNMatrix a)) \
+  X(int, IDASetJacFn, (void *mem, IDALsJacFn jac)) \
+  X(int, IDASetUserData, (void *mem, void *data)) \
+  X(int, IDASetId, (void *mem, N_Vector id)) \
+  X(int, IDASetSuppressAlg, (void *mem, int suppress)) \
+  X(int, IDASetMaxNumSteps, (void *mem, long steps)) \
+  X(int, IDARootInit, (void *mem, int n, IDARootFn g)) \
+  X(int, IDASetRootDirection, (void *mem, int *dir)) \
+  X(int, IDASetStopTime, (void *mem, sunrealtype t)) \
+  X(int, IDAClearStopTime, (void *mem)) \
+  X(int, IDASolve, (void *mem, sunrealtype tout, sunrealtype *tret, N_Vector y, N_Vector yp, \
+                    int task)) \
+  X(int, IDAGetRootInfo, (void *mem, int *found)) \
+  X(int, IDAGetNumResEvals, (void *mem, long *n)) \
+  X(int, IDAGetNumJacEvals, (void *mem, long *n)) \
+  X(void, IDAFree, (void **mem))
+#ifdef A2D_CAPI
+#define A2D_BOUND 1
+#define A2D_BOUND_EXTRA(X) \
+  X(int, casadi_c_eval_id, (int id, const casadi_real **arg, casadi_real **res, casadi_int *iw, \
+                            casadi_real *w, int mem)) \
+  X(int, casadi_c_work_id, (int id, casadi_int *sz_arg, casadi_int *sz_res, casadi_int *sz_iw, \
+                            casadi_int *sz_w)) \
+  X(int, casadi_c_checkout_id, (int id)) \
+  X(void, casadi_c_release_id, (int id, int mem))
+#else
+#define A2D_BOUND_EXTRA(X)
+#endif
+#ifdef A2D_BOUND
+#define A2D_DECLARE(ret, name, args) static ret (*name) args;
+#define A2D_NAME(ret, name, args) #name,
+#define A2D_SET(ret, name, args) name = (ret (*) args)fn[k++];
+A2D_SUNDIALS_CALLS(A2D_DECLARE) A2D_BOUND_EXTRA(A2D_DECLARE)
+const char *a2d_bound_names[] = {A2D_SUNDIALS_CALLS(A2D_NAME) A2D_BOUND_EXTRA(A2D_NAME) 0};
+void a2d_bind(void *const *fn) {
+  int k = 0;
+  A2D_SUNDIALS_CALLS(A2D_SET) A2D_BOUND_EXTRA(A2D_SET)
+}
+#else
+#define A2D_DECLARE(ret, name, args) ret name args;
+A2D_SUNDIALS_CALLS(A2D_DECLARE)
+#endif
 
 /* 1 if the loaded SUNDIALS is the release the declarations here are written for */
 int a2d_sundials_matches(void) {
@@ -40,21 +118,6 @@ int a2d_sundials_matches(void) {
          patch == A2D_SUNDIALS_PATCH;
 }
 
-int SUNContext_Create(SUNComm comm, SUNContext *ctx);
-int SUNContext_Free(SUNContext *ctx);
-int SUNContext_ClearErrHandlers(SUNContext ctx);
-N_Vector N_VNew_Serial(sunindextype n, SUNContext ctx);
-sunrealtype *N_VGetArrayPointer(N_Vector v);
-void N_VDestroy(N_Vector v);
-SUNMatrix SUNDenseMatrix(sunindextype m, sunindextype n, SUNContext ctx);
-sunrealtype *SUNDenseMatrix_Data(SUNMatrix a);
-SUNMatrix SUNSparseMatrix(sunindextype m, sunindextype n, sunindextype nnz, int type,
-                          SUNContext ctx);
-sunrealtype *SUNSparseMatrix_Data(SUNMatrix a);
-sunindextype *SUNSparseMatrix_IndexValues(SUNMatrix a);
-sunindextype *SUNSparseMatrix_IndexPointers(SUNMatrix a);
-void SUNMatDestroy(SUNMatrix a);
-SUNLinearSolver SUNLinSol_Dense(N_Vector y, SUNMatrix a, SUNContext ctx);
 /* LAPACK's dense LU and SuperLU_MT are not linked (their libraries load OpenBLAS,
  * gfortran and libgomp, 4-5 ms of a process's first run): native.py loads them
  * only for a solver that needs them and hands their constructors in here */
@@ -67,37 +130,10 @@ void a2d_set_optional(void *lapack_dense, void *superlumt) {
   a2d_lapack_dense = (a2d_lapack_dense_fn)lapack_dense;
   a2d_superlumt = (a2d_superlumt_fn)superlumt;
 }
-int SUNLinSolFree(SUNLinearSolver s);
-SUNLinearSolver SUNLinSolNewEmpty(SUNContext ctx);
-int SUNLinSolGetType(SUNLinearSolver s);
-int SUNLinSolSetup(SUNLinearSolver s, SUNMatrix a);
-int SUNLinSolSolve(SUNLinearSolver s, SUNMatrix a, N_Vector x, N_Vector b, sunrealtype tol);
-sunindextype SUNLinSolLastFlag(SUNLinearSolver s);
-int SUNLinSolSpace(SUNLinearSolver s, long *lrw, long *liw);
-void SUNLinSolFreeEmpty(SUNLinearSolver s);
 /* dladdr (dlfcn.h; the layout of Dl_info on glibc and macOS): the name of the
  * function an op slot holds (a2d_slots) */
 typedef struct { const char *fname; void *fbase; const char *sname; void *saddr; } a2d_dl_info;
 int dladdr(const void *addr, a2d_dl_info *info);
-void *IDACreate(SUNContext ctx);
-int IDAInit(void *mem, IDAResFn res, sunrealtype t0, N_Vector y0, N_Vector yp0);
-int IDAReInit(void *mem, sunrealtype t0, N_Vector y0, N_Vector yp0);
-int IDASVtolerances(void *mem, sunrealtype rtol, N_Vector atol);
-int IDASetLinearSolver(void *mem, SUNLinearSolver ls, SUNMatrix a);
-int IDASetJacFn(void *mem, IDALsJacFn jac);
-int IDASetUserData(void *mem, void *data);
-int IDASetId(void *mem, N_Vector id);
-int IDASetSuppressAlg(void *mem, int suppress);
-int IDASetMaxNumSteps(void *mem, long steps);
-int IDARootInit(void *mem, int n, IDARootFn g);
-int IDASetRootDirection(void *mem, int *dir);
-int IDASetStopTime(void *mem, sunrealtype t);
-int IDAClearStopTime(void *mem);
-int IDASolve(void *mem, sunrealtype tout, sunrealtype *tret, N_Vector y, N_Vector yp, int task);
-int IDAGetRootInfo(void *mem, int *found);
-int IDAGetNumResEvals(void *mem, long *n);
-int IDAGetNumJacEvals(void *mem, long *n);
-void IDAFree(void **mem);
 
 #define A2D_NORMAL 1
 #define A2D_TSTOP_RETURN 1
@@ -112,10 +148,15 @@ typedef struct {
   int id, mem;                    /* where A2D_EVAL is given: the function's id and memory */
 } a2d_work;
 
-/* How a generated function is evaluated, its work arrays made and released.  C put
- * before this file may define them otherwise (benchmarks/capi_driver.py: through
- * CasADi's C API, the function ids[k] of a2d_create). */
-#ifndef A2D_EVAL
+/* How a generated function is evaluated, its work arrays made and released: the
+ * model's generated C, or (A2D_CAPI) the function ids[k] of a2d_create in CasADi's C
+ * API, with a memory checked out per driver. */
+#ifdef A2D_CAPI
+#define A2D_EVAL(x, fn) casadi_c_eval_id((x).id, (x).arg, (x).res, (x).iw, (x).w, (x).mem)
+#define A2D_ALLOC(x, fn, k) a2d_alloc_id(&(x), ids[k])
+#define A2D_RELEASE(x) if ((x).arg && (x).id >= 0) casadi_c_release_id((x).id, (x).mem)
+static void a2d_alloc_id(a2d_work *w, int id);
+#else
 #define A2D_EVAL(x, fn) fn((x).arg, (x).res, (x).iw, (x).w, 0)
 #define A2D_ALLOC(x, fn, k) a2d_alloc(&(x), fn##_work)
 #define A2D_RELEASE(x)
@@ -292,11 +333,21 @@ static void a2d_alloc_arrays(a2d_work *w) {
   w->w = (casadi_real *)calloc(w->sz_w + 1, sizeof(casadi_real));
 }
 
+#ifdef A2D_CAPI
+static void a2d_alloc_id(a2d_work *w, int id) {
+  w->id = id;
+  if (id < 0) return;
+  casadi_c_work_id(id, &w->sz_arg, &w->sz_res, &w->sz_iw, &w->sz_w);
+  w->mem = casadi_c_checkout_id(id);
+  a2d_alloc_arrays(w);
+}
+#else
 static void a2d_alloc(a2d_work *w, int (*work)(casadi_int *, casadi_int *, casadi_int *,
                                                 casadi_int *)) {
   work(&w->sz_arg, &w->sz_res, &w->sz_iw, &w->sz_w);
   a2d_alloc_arrays(w);
 }
+#endif
 
 static void a2d_free_work(a2d_work *w) {
   A2D_RELEASE(*w);

@@ -46,7 +46,20 @@ typedef struct {
   casadi_real **res;
   casadi_int *iw;
   casadi_real *w_ca;
+  const int *ids;               /* A2D_CAPI: the ids of E and EJ in CasADi's C API */
+  int mem[2];                   /* their memories */
 } a2d_proj;
+
+/* The functions E and EJ: generated (prepended), or (A2D_CAPI, native_driver.c before
+ * this file) evaluated through CasADi's C API */
+#ifdef A2D_CAPI
+#define A2D_CALL(h, k, fn) casadi_c_eval_id((h)->ids[k], (h)->arg, (h)->res, (h)->iw, \
+                                            (h)->w_ca, (h)->mem[k])
+#define A2D_WORK(h, k, fn, a, r, i, w) casadi_c_work_id((h)->ids[k], a, r, i, w)
+#else
+#define A2D_CALL(h, k, fn) fn((h)->arg, (h)->res, (h)->iw, (h)->w_ca, 0)
+#define A2D_WORK(h, k, fn, a, r, i, w) fn##_work(a, r, i, w)
+#endif
 
 /* Factor the diagonal blocks; all entries must be finite.  A block with
  * an LU from an earlier row is refactored with its pivots first. */
@@ -91,9 +104,9 @@ static int a2d_eval(a2d_proj *h, int jac, double t, const double *z, const doubl
   h->res[0] = out;
   if (jac) {            /* E and dE/dz in one pass (shared subexpressions): E into h->e */
     h->res[0] = h->e; h->res[1] = out;
-    return EJ(h->arg, h->res, h->iw, h->w_ca, 0);
+    return A2D_CALL(h, 1, EJ);
   }
-  return E(h->arg, h->res, h->iw, h->w_ca, 0);
+  return A2D_CALL(h, 0, E);
 }
 
 /* dE/dz at z: the row's equation scales, and (if factor) the BLT LU of dE/dz_free */
@@ -161,8 +174,12 @@ static int a2d_blocks(a2d_proj *h) {
 static int a2d_alloc(a2d_proj *h) {
   casadi_int sz_arg, sz_res, sz_iw, sz_w, a1, r1, i1, w1;
   int n = h->n_eq;
-  E_work(&sz_arg, &sz_res, &sz_iw, &sz_w);
-  EJ_work(&a1, &r1, &i1, &w1);
+  A2D_WORK(h, 0, E, &sz_arg, &sz_res, &sz_iw, &sz_w);
+  A2D_WORK(h, 1, EJ, &a1, &r1, &i1, &w1);
+#ifdef A2D_CAPI
+  h->mem[0] = casadi_c_checkout_id(h->ids[0]);
+  h->mem[1] = casadi_c_checkout_id(h->ids[1]);
+#endif
   if (a1 > sz_arg) sz_arg = a1;
   if (r1 > sz_res) sz_res = r1;
   if (i1 > sz_iw) sz_iw = i1;
@@ -193,6 +210,12 @@ static void a2d_release(a2d_proj *h) {
   free(h->lu); free(h->ap); free(h->jnz); free(h->ax); free(h->below); free(h->dinv);
   free(h->w); free(h->e); free(h->x); free(h->scale); free(h->z0);
   free(h->arg); free(h->res); free(h->iw); free(h->w_ca);
+#ifdef A2D_CAPI
+  if (h->ids) {
+    casadi_c_release_id(h->ids[0], h->mem[0]);
+    casadi_c_release_id(h->ids[1], h->mem[1]);
+  }
+#endif
 }
 
 /* One row from z (its predicted start applied): iterations used, or -1 with
@@ -215,14 +238,15 @@ static int a2d_row(a2d_proj *h, double t, double *z, const double *p, const doub
 
 int a2d_project(int m, const double *T, double *Z, const double *p, const double *d, int n_var,
                 int n_eq, const int *col_of, const double *nominal, double tol, int max_iter,
-                int slow, const int *colind, const int *row, const int *blt_ints, int *ok) {
+                int slow, const int *colind, const int *row, const int *blt_ints, int *ok,
+                const int *ids) {
   a2d_proj h;
   int r, c, have = 0, pred = 0;
   double *delta = (double *)calloc(n_var + 1, sizeof(double));
   const int *q = blt_ints;       /* nb, start, rperm, pvar, slot, aptr, ai, bptr, brow in one array */
   memset(&h, 0, sizeof h);
   h.n_var = n_var; h.n_eq = n_eq; h.col_of = col_of; h.nominal = nominal;
-  h.colind = colind; h.row = row;
+  h.colind = colind; h.row = row; h.ids = ids;
   h.nnz = colind[n_var];
   h.b.nb = q[0]; q += 1;
   h.b.start = q; q += h.b.nb + 1;

@@ -17,7 +17,8 @@ import numpy as np
 from ..compiler.index1 import SPARSE_FROM
 from . import tiers
 from .buffered import Buffered
-from .native import compiled, row_projector, too_large
+from .capi import engine_projector
+from .native import compiled, too_large
 
 CHUNKS = (64, 16, 4, 1)         # batch sizes of the mapped evaluations
 RES_TOL = 1e-12                 # residual, relative to the equation's scale
@@ -109,7 +110,7 @@ class Projector:
         self.csc_order, self.csc_rows = order, self.jrows[order].astype(np.int32)
         self.csc_ptr = np.searchsorted(self.jcols[order], np.arange(n + 1)).astype(np.int32)
         self.in_c = _in_c(system, form)
-        self.native = row_projector(system, self.free, chosen) if self.in_c else None
+        self.native = engine_projector(system, self.free, chosen) if self.in_c else None
         self.native_iterations = SIMPLIFIED_ITERATIONS
         self.native_slow = 0 if self.n_eq >= NEW_LU_FROM else 1
         self._to_rows = None

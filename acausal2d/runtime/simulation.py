@@ -31,7 +31,7 @@ from .ida import (LazySolver, Problem, Reached, RootFound, SundialsMessages, adv
                   make_solver, start_solver)
 from . import tiers
 from .background import launch
-from .native import native_ida
+from .capi import engine_ida
 from .projection import Projector
 from .rows import OutputRows
 from .initialize import initial_point, initialization_error
@@ -211,7 +211,7 @@ class Simulation:
             atol = self.atol if self.atol is not None else self.rtol * self.system.nominal
             atol = np.broadcast_to(np.asarray(atol, dtype=float), (form.n,)).copy()
             y0, yp0 = form.y_from(self.z)
-            prob.native = native_ida(prob, self.rtol, atol, chosen=self.native, label=self.label)
+            prob.native = engine_ida(prob, self.rtol, atol, chosen=self.native, label=self.label)
             prob.atol = atol
             solver = LazySolver(lambda t=self.t: start_solver(
                 make_solver(prob, self.rtol, atol), prob, t, y0, yp0, self.rtol, atol))

@@ -1,17 +1,20 @@
-"""When a model's native libraries are used: two rules, no estimates.
+"""When a model's native libraries are used: three rules, no estimates.
 
 The engine (``RunOptions(native=...)``, ``acausal2d simulate --native``,
 else ``$ACAUSAL2D_NATIVE``) is one of :data:`MODES`:
 
 - ``auto`` (the default): a library in the cache is used (the native
-  engine); one that is not is queued, the run takes the Python path, and
-  after the run a detached worker (:mod:`~acausal2d.runtime.background`, a
-  separate process at the lowest priority) compiles what was queued and
-  publishes it into the cache, where later runs, in this process or
-  another, find it.  Nothing is compiled or waited for during a run, and no
-  wall-clock estimate decides anything;
+  engine); one that is not is queued, the run is native on the driver on
+  CasADi's C API (:mod:`~acausal2d.runtime.capi`: the formulation's own
+  CasADi functions evaluated in C, no compiler needed; the Python path
+  where that driver is not here), and after the run a detached worker
+  (:mod:`~acausal2d.runtime.background`, a separate process at the lowest
+  priority) compiles what was queued and publishes it into the cache,
+  where later runs, in this process or another, find it.  Nothing of the
+  model is compiled or waited for during a run, and no wall-clock
+  estimate decides anything;
 - ``now`` (or ``1``): the compiled tier: a missing library is compiled
-  first, in this process;
+  first, in this process (the C API driver where that fails);
 - ``off`` (or ``0``): the Python path only.
 
 A recipe (:class:`~acausal2d.runtime.codegen.Recipe`) says what C a library
