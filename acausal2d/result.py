@@ -13,15 +13,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .errors import Acausal2dError
 from .io.files import atomic_path
-from .visual.plotting import plot
-from .visual.scene import animate
-from .visual.animation import render_html
-from .visual.notebook import Animation
-from .visual.scene import NO_GEOMETRY, build_scene, has_geometry
-from .io.dymola_mat import write_mat
-from .visual.notebook import summary_html
 
 if TYPE_CHECKING:
+    from .visual.notebook import Animation
     from _typeshed import SupportsWrite
     from matplotlib.figure import Figure
     import pandas
@@ -198,6 +192,7 @@ class Result:
         signal ``x``, with units in the labels; same-unit signals share an
         axes with a legend.  Writes ``path`` or returns a matplotlib Figure.
         See :func:`acausal2d.visual.plotting.plot`."""
+        from .visual.plotting import plot
         return plot(self, names, path, title, x=x)
 
     def animate(self, path: str | os.PathLike[str], traces: Iterable[str] = (),
@@ -211,6 +206,7 @@ class Result:
         slider, ``autoplay`` starts playback, ``poles`` ({label: link}, see
         :meth:`poles`) draws the instantaneous poles on a layer.  See
         :mod:`acausal2d.visual.scene` and :mod:`acausal2d.visual.animation`."""
+        from .visual.scene import animate
         return animate(self, path, traces, title, arrows, signal, autoplay, poles)
 
     def animation(self, traces: Iterable[str] = (), title: str | None = None,
@@ -219,6 +215,9 @@ class Result:
         """The animation (options as for :meth:`animate`) as an object a
         notebook displays inline (:class:`acausal2d.visual.notebook.Animation`,
         whose ``save(path)`` writes the page)."""
+        from .visual.animation import render_html
+        from .visual.notebook import Animation
+        from .visual.scene import NO_GEOMETRY, build_scene, has_geometry
         if self.model is not None and not has_geometry(self.model.model):
             raise Acausal2dError(NO_GEOMETRY % type(self.model.model).__name__)
         scene = build_scene(self, traces, title, arrows, signal, autoplay, poles)
@@ -247,6 +246,7 @@ class Result:
         another or its negation shared) for Modelica plotting tools; every
         column (derivatives included) unless ``names`` is given.  See
         :mod:`acausal2d.io.dymola_mat`.  Returns ``path``."""
+        from .io.dymola_mat import write_mat
         columns = self.names if names is None else list(names)
         units = {n: self.unit(n) for n in columns + list(self.parameters)}
         return write_mat(path, self.time, {n: self[n] for n in columns}, self.parameters,
@@ -265,6 +265,7 @@ class Result:
 
     def _repr_html_(self) -> str:
         """Jupyter's display: a summary table and a small figure of the outputs."""
+        from .visual.notebook import summary_html
         return summary_html(self)
 
 

@@ -13,13 +13,16 @@ Every figure is measured in a fresh process with a cache folder of its own:
 
 - "Python path": ``ACAUSAL2D_NATIVE=off``, compile_model + simulate;
 - "first run (auto)": an empty cache in mode auto: compile_model +
-  simulate on the Python path, the worker launched after it;
-  the drivers' objects are those ``pip install`` compiled into the package
-  (:mod:`acausal2d.runtime.drivers`; the header says whether there are);
+  simulate on the driver on CasADi's C API, the worker launched after it;
+  the drivers' objects and the C API driver are those ``pip install``
+  compiled into the package (:mod:`acausal2d.runtime.drivers`; the header
+  says how many there are);
 - "no drivers": the same with ``ACAUSAL2D_PREBUILT=0``: an install that
-  found no compiler, so that the first run also compiles the drivers;
+  found no compiler, so that the first run also builds the C API driver
+  (and the worker the drivers' objects);
 - "no compiler": the first run in mode auto with no C compiler on ``PATH``
-  (``$CC`` unset): the Python path, and no worker after it;
+  (``$CC`` unset): on the C API driver installed with the package, and no
+  worker after it;
 - "native in": from the worker's start until every library it builds is
   published (at -O0 first where the C is large: runs from then on are
   native; target for the chain of 81 links: <= 5 s);
@@ -187,20 +190,21 @@ def whole_process(repeat):
 
 
 def _installed():
-    """How many driver objects were compiled into the package at install
-    (the installed acausal2d, which the runs import: from a clone's folder a
-    non-editable install's copy would be shadowed by the sources, which
-    have none)."""
+    """How many driver objects were compiled into the package at install,
+    and whether the C API driver of this version was (the installed
+    acausal2d, which the runs import: from a clone's folder a non-editable
+    install's copy would be shadowed by the sources, which have none)."""
     from acausal2d.runtime import drivers
     folder = drivers.PREBUILT
-    return len([f for f in os.listdir(folder) if f.endswith(".o")]) if os.path.isdir(folder) \
-        else 0
+    names = os.listdir(folder) if os.path.isdir(folder) else []
+    return len([f for f in names if f.endswith(".o")]), \
+        "yes" if drivers.capi_file() in names else "no"
 
 
 def main(models, repeat, classic, piston, whole_repeat, pairs):
     print("cold start (issue 30), fresh processes, s: Python and first run medians of %d "
           "alternating pairs, the rest medians of %d; driver objects installed with the "
-          "package: %d" % (pairs, repeat, _installed()))
+          "package: %d, the C API driver: %s" % ((pairs, repeat) + _installed()))
     print("%-22s %8s %12s %6s %12s %6s %12s %6s %10s %7s %11s %7s %7s %14s" % (
         "model", "Python", "first(auto)", "ratio", "no drivers", "ratio", "no compiler",
         "ratio", "native in", "alone", "background", "bg CPU", "later", "compile first"))

@@ -52,6 +52,11 @@ SITES = {
         "the diagram's layout loads networkx (COSTLY): only when a diagram is drawn",
     ("acausal2d/explore/runner.py", "acausal2d.visual.diagram"):
         "the diagram's layout loads networkx (COSTLY): once per explored model",
+    **{("acausal2d/result.py", "acausal2d." + m): "a result's figures, animation and MAT file "
+       "only: a run that draws nothing does not load the visual layer (its import took 0.03-0.1 "
+       "s of the first run of a process)" for m in ("visual.plotting", "visual.scene",
+                                                   "visual.animation", "visual.notebook",
+                                                   "io.dymola_mat")},
     ("library/belt/placement.py", "acausal2d.library"):
         "the linkage imports planar, which imports the belts: a module-level import is a cycle",
 }

@@ -40,7 +40,8 @@ def cmd_cache(args):
 
 
 def _print_installed():
-    """The drivers' objects compiled at install (not part of the cache)."""
+    """The drivers' objects and the driver on CasADi's C API compiled at
+    install (not part of the cache)."""
     from ..runtime.drivers import PREBUILT, installed
     found = installed()
     damaged = [name for name, ok in found if not ok]
@@ -48,9 +49,11 @@ def _print_installed():
         print("no driver objects were compiled at install; they are compiled into the cache "
               "on first use")
     else:
-        print("%d driver objects compiled at install in %s%s" % (
-            len(found), PREBUILT, "; SHA-256 not matching (reinstall acausal2d): " +
-            ", ".join(damaged) if damaged else "; each matches its SHA-256"))
+        capi = sum(name.endswith(".so") for name, _ in found)
+        check = ("; SHA-256 not matching (reinstall acausal2d): " + ", ".join(damaged)
+                 if damaged else "; each matches its SHA-256")
+        print("%d driver objects compiled at install in %s (%d of them the driver on CasADi's "
+              "C API)%s" % (len(found), PREBUILT, capi, check))
 
 
 def add_parsers(sub):

@@ -267,9 +267,9 @@ def add_parsers(sub):
                    "links on a layer of the animation: label=link pairs, e.g. "
                    "1=ground,2=A0A,3=AB,4=B0B (frames, node constraints or x:y:phi signals)")
     s.add_argument("--native", choices=("auto", "now", "off"), help="native code: auto (default, "
-                   "$ACAUSAL2D_NATIVE): a structure not compiled yet runs on the Python path "
-                   "and is compiled in the background after the run; now: compile first; "
-                   "off: the Python path only")
+                   "$ACAUSAL2D_NATIVE): a structure not compiled yet runs natively on CasADi's "
+                   "C API and is compiled in the background after the run; now: compile "
+                   "first; off: the Python path only")
     s.add_argument("--result-format", choices=("csv", "mat"), default="csv",
                    help="result.csv (default) or result.mat in Dymola's result format (MAT v4, "
                    "read by Modelica plotting tools, DyMat, buildingspy)")

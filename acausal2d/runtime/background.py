@@ -72,8 +72,8 @@ def launch(label=None):
                                 stdin=subprocess.DEVNULL, stdout=log, stderr=log,
                                 start_new_session=True)
     _workers.append(proc)
-    notice("compiling native code for %s in the background; this run uses the "
-                  "Python path" % label, first_run=True)
+    notice("compiling native code for %s in the background, for the runs that follow"
+           % label, first_run=True)
     return True
 
 
