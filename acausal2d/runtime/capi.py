@@ -1,24 +1,18 @@
 """The native engine before a structure's library exists: the driver on
-CasADi's C API.
+CasADi's C API.  Until a structure's library (:mod:`~acausal2d.runtime.
+native`) is in the cache, or where no compiler is found, the same IDA
+driver and projector (``native_driver.c``, ``native_project.c`` with
+``A2D_CAPI``) run the formulation's own CasADi functions through CasADi's C
+API (``casadi_c_eval_id`` of the casadi wheel's libcasadi), pushed to it
+once per formulation: 1.5-4x the compiled library's time, a fifth to a
+half of the Python path's (``benchmarks/bench_capi.py``, docs/speed.md).
 
-A structure's own library (:mod:`~acausal2d.runtime.native`) is compiled
-C of its functions; until it is in the cache (mode ``auto``: compiled by a
-detached worker after the run, :mod:`~acausal2d.runtime.tiers`), or where
-no compiler is found, the same IDA driver (``native_driver.c`` with
-``A2D_CAPI``) runs the formulation's own CasADi functions through CasADi's
-C API (``casadi_c_eval_id`` of the libcasadi the casadi wheel ships),
-pushed to it once per formulation as a serialized file.  There is no
-Python in its loop: on the models of ``benchmarks/bench_capi.py`` it takes
-1.5-4x the compiled library's time and a fifth to a third of the Python
-path's.
-
-The driver is built once per machine with no library linked: at install
-where a compiler is found (:func:`~acausal2d.runtime.drivers.install`,
-checked against the SHA-256 recorded beside it), else on first use into
-the cache where one is found now.  The SUNDIALS functions (of the
-scikit-sundae wheel) and the C API's that it calls are looked up by name
-in those libraries, each opened locally, and handed to it
-(``a2d_bind``) when it is loaded: a later FMU binds its own SUNDIALS.
+It is built once per machine with no library linked: at install where a
+compiler is found (:func:`~acausal2d.runtime.drivers.install`, checked
+against its recorded SHA-256), else on first use into the cache.  The
+SUNDIALS functions (scikit-sundae's) and the C API's that it calls are
+looked up by name in those libraries, each opened locally, and handed to
+it (``a2d_bind``) when it is loaded: a later FMU binds its own SUNDIALS.
 """
 import ctypes
 import os

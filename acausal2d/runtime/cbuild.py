@@ -21,6 +21,7 @@ generator, native drivers):
 Errors a user can act on are :class:`CompilerMissing` (names what to
 install) and :class:`BuildFailed` (carries the compiler's message).
 """
+import functools
 import glob
 import os
 import shutil
@@ -244,22 +245,14 @@ def _sksundae_dir():
     return list(spec.submodule_search_locations)[0]
 
 
-_found_libraries: dict = {}     # the package folder -> what sundials_libraries found there
-
-
-def sundials_libraries():
+@functools.lru_cache(maxsize=None)
+def sundials_libraries(pkg=None):
     """(lib folder, short name -> path) of the SUNDIALS libraries that the
     scikit-sundae wheel ships, or None if it is not installed that way;
-    the folder is listed once per process (each run asked twice: 1.8 ms of
-    the piston engine's 39 ms warm simulate)."""
-    pkg = _sksundae_dir()
-    if pkg not in _found_libraries:
-        _found_libraries[pkg] = _listed(pkg)
-    return _found_libraries[pkg]
-
-
-def _listed(pkg):
-    """:func:`sundials_libraries` of the scikit-sundae package folder ``pkg``."""
+    listed once per process (each run asked twice: 1.8 ms of the piston
+    engine's 39 ms warm simulate).  ``pkg``: the package's folder (default:
+    found, :func:`_sksundae_dir`)."""
+    pkg = pkg or _sksundae_dir()
     if pkg is None:
         return None
     folder = os.path.normpath(os.path.join(pkg, "..", "scikit_sundae.libs"))
