@@ -33,10 +33,8 @@ _pushing = threading.RLock()     # the driver's load, and the C API's list of fu
 def _libcasadi():
     """The path of the libcasadi the casadi wheel ships, or None."""
     folder = os.path.dirname(ca.__file__)
-    for name in sorted(os.listdir(folder)):
-        if name.startswith("libcasadi.so") or name == "libcasadi.dylib":
-            return os.path.join(folder, name)
-    return None
+    return next((os.path.join(folder, name) for name in sorted(os.listdir(folder))
+                 if name.startswith("libcasadi.so") or name == "libcasadi.dylib"), None)
 
 
 def _path():
@@ -117,40 +115,41 @@ def _push(lib, fns):
 
 
 def _ids(lib, owner, what):
-    """The ids in CasADi's C API of the functions of ``owner``: of a
-    formulation (``what`` "ida") its residual, iteration matrix and events
-    (-1: none); of a system ("rows") E and EJ.  Pushed once per owner; the
-    C API's list is cleared where no owner of earlier ids is left (an
-    optimisation compiling a model per trial would otherwise keep every
-    trial's functions)."""
+    """The ids in CasADi's C API of ``owner``'s functions (a formulation's,
+    ``what`` "ida": residual, iteration matrix, events or -1; a system's,
+    "rows": E and EJ), pushed once per owner; the C API's list is cleared
+    where no owner of earlier ids is left (else a study kept every trial's)."""
     with _pushing:
         if not len(_pushed) and lib.casadi.casadi_c_n_loaded():
             lib.casadi.casadi_c_clear()
-        return _ids_of(lib, _pushed.setdefault(owner, {}), owner, what)
+        done = _pushed.setdefault(owner, {})
+        if what not in done:
+            ids = _push(lib, _functions(owner, what))
+            done[what] = None if ids is None else np.array(ids + [-1] * (3 - len(ids)), np.intc)
+        return done[what]
 
 
-def _ids_of(lib, done, owner, what):
-    """:func:`_ids` with the lock held (``done``: the owner's ids so far)."""
-    if what not in done:
-        if what == "ida":
-            fns = [fn for fn in (owner.res_fn, owner.jac_fn, owner.event_fn) if fn is not None]
-        else:
-            args = owner.residual_fn.sx_in()       # E and dE/dz as one function, no cse:
-            fns = [owner.residual_fn, ca.Function("EJ", args, [owner.residual_fn(*args),
-                                                               owner.jacobian_fn(*args)])]
-        ids = _push(lib, fns)
-        done[what] = None if ids is None else np.array(ids + [-1] * (3 - len(ids)), dtype=np.intc)
-    return done[what]
+def _functions(owner, what):
+    """The CasADi functions of ``owner`` that :func:`_ids` pushes."""
+    if what == "ida":
+        return [fn for fn in (owner.res_fn, owner.jac_fn, owner.event_fn) if fn is not None]
+    args = owner.residual_fn.sx_in()
+    return [owner.residual_fn, ca.Function("EJ", args, [owner.residual_fn(*args),
+                                                        owner.jacobian_fn(*args)])]
 
 
 def capi_ida(prob, rtol, atol, solver=None, chosen=None):
     """A :class:`~acausal2d.runtime.native.NativeIDA` of ``prob`` on the
-    driver of :func:`driver`, or None (the engine ``chosen`` is the Python
-    path, or the driver is not here)."""
-    if tiers.mode(chosen) == "off":
+    driver of :func:`driver`, or None: the engine ``chosen`` is the Python
+    path, the driver is not here, or the formulation is too large to compile
+    (pushing its functions took longer than its runs: the cabinet door 1.2 s,
+    its run 0.6 s, and a study compiles it per trial)."""
+    form = prob.form
+    if tiers.mode(chosen) == "off" or native.too_large(form.res_fn, form.jac_fn,
+                                                        form.event_fn or form.res_fn):
         return None
     lib = driver()
-    ids = None if lib is None else _ids(lib, prob.form, "ida")
+    ids = None if lib is None else _ids(lib, form, "ida")
     if ids is None:
         return None
     drv = native.NativeIDA(lib, prob, rtol, atol, prob.terminal, prob.direction, solver, ids)
@@ -172,7 +171,8 @@ def engine_projector(system, free, chosen=None):
     library where the cache has it, else on the driver on CasADi's C API;
     None: the Python path."""
     found = native.row_projector(system, free, chosen)
-    if found is not None or tiers.mode(chosen) == "off":
+    if found is not None or tiers.mode(chosen) == "off" or \
+            native.too_large(system.residual_fn, system.jacobian_fn):
         return found
     lib = driver()
     ids = None if lib is None else _ids(lib, system, "rows")
