@@ -25,7 +25,7 @@ import time
 
 from . import private_dir
 from . import posix
-from .notices import notice
+from .notices import WITHOUT_LIBRARY, notice
 
 try:                    # CPython's own SHA-256 (3.12+: _sha2; 3.11: _sha256): the digests
     from _sha2 import sha256 as _sha256          # of hashlib.sha256, without the OpenSSL
@@ -93,8 +93,8 @@ def folder():
         if other is None:
             other = _own_folder()
             if other == NOWHERE:
-                notice("%s; no private folder could be made for native code, so this run "
-                       "uses the Python path" % why)
+                notice("%s; no private folder could be made for native code, so %s"
+                       % (why, WITHOUT_LIBRARY))
                 return other
         else:
             refused = private_dir.problem(other)

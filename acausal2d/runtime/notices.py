@@ -6,6 +6,10 @@ import logging
 import sys
 
 _said: set = set()
+WITHOUT_LIBRARY = ("this run goes on without compiled code: on CasADi's C API where "
+                   "acausal2d's driver for it is here, else on the Python path")
+"""What a run does where a structure's compiled library is not there (the
+end of the notices that say why)."""
 LOGGER_NAME = "acausal2d"
 """The ``logging`` logger acausal2d's notices go through."""
 

@@ -29,7 +29,7 @@ import time
 
 from . import cbuild, cstore
 from ..errors import Acausal2dError
-from .notices import notice
+from .notices import WITHOUT_LIBRARY, notice
 from .background import failure_path, launch, pending, queue, wait  # noqa: F401 - the worker side
 
 ENV = "ACAUSAL2D_NATIVE"
@@ -82,14 +82,14 @@ def obtain(key, recipe, loader, chosen=None, label=None):
         return None
     if path is None and cbuild.find_compiler() is not None:
         notice("compiling native code for %s before the run (native mode 'now')"
-                      % (label or "this model"), first_run=True)
+               % (label or "this model"), first_run=True)
     t0 = time.perf_counter()
     try:
         return cbuild.load(key, recipe.make, recipe.name, loader)
     except (cbuild.CompilerMissing, cbuild.BuildFailed, OSError, RuntimeError) as exc:
         why = str(exc).strip().splitlines()[0][:200] if str(exc).strip() else type(exc).__name__
-        notice("the native code %s for %s could not be built or loaded (%s); this run "
-                      "uses the Python path" % (recipe.name, label or "this model", why))
+        notice("the native code %s for %s could not be built or loaded (%s); %s"
+               % (recipe.name, label or "this model", why, WITHOUT_LIBRARY))
         return None
     finally:
         _spent[0] += time.perf_counter() - t0 if path is None else 0.0
@@ -103,9 +103,9 @@ def _later(key, recipe, label):
         queue(key, recipe, label)
         return
     notice("the compile of native code for %s failed (%s; the messages are in "
-                  "%s*.failed, 'acausal2d cache clear' retries it); this run uses the "
-                  "Python path" % (label, failed.splitlines()[0][:200],
-                                   os.path.join(cstore.folder(), "")))
+           "%s*.failed, 'acausal2d cache clear' retries it); %s"
+           % (label, failed.splitlines()[0][:200], os.path.join(cstore.folder(), ""),
+              WITHOUT_LIBRARY))
 
 
 def spent():
