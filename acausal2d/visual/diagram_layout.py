@@ -91,6 +91,7 @@ def _roots(st, nodes, power):
 def _components(nodes, adjacent):
     """The connected parts of an undirected graph ({node: neighbours}),
     each in the order of ``nodes``."""
+    order = {v: i for i, v in enumerate(nodes)}
     seen, parts = set(), []
     for start in nodes:
         if start in seen:
@@ -103,13 +104,14 @@ def _components(nodes, adjacent):
             new = [w for w in adjacent[v] if w not in seen]
             seen.update(new)
             todo += new
-        parts.append(sorted(part, key=nodes.index))
+        parts.append(sorted(part, key=order.__getitem__))
     return parts
 
 
 def _distances(st):
     """Breadth-first distance of each box from the roots along power lines."""
     nodes = [b.path for b in st.boxes]
+    order = {p: i for i, p in enumerate(nodes)}
     power = {p: set() for p in nodes}
     for ln in st.lines:
         if ln.domain != "signal" and ln.box_a != ln.box_b:
@@ -120,7 +122,7 @@ def _distances(st):
     todo = deque(roots)
     while todo:
         v = todo.popleft()
-        for w in sorted(power[v], key=nodes.index):
+        for w in sorted(power[v], key=order.__getitem__):
             if w not in dist:
                 dist[w] = dist[v] + 1
                 todo.append(w)
