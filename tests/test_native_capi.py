@@ -18,7 +18,7 @@ import pytest
 import acausal2d
 from acausal2d.runtime import background, capi, drivers, native, projection, tiers
 from acausal2d.runtime.simulation import Simulation
-from tiers_support import NEEDS_NATIVE, WAIT, agree, fresh_cache
+from tiers_support import NEEDS_NATIVE, WAIT, agree, fresh_cache, native_runs
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path[:0] = [os.path.join(ROOT, "models")]
@@ -62,15 +62,6 @@ def installed(tmp_path_factory):
     return folder
 
 
-def _native_runs(monkeypatch):
-    """A list that gets an entry per native segment run (either driver)."""
-    calls = []
-    real = native.NativeIDA.run
-    monkeypatch.setattr(native.NativeIDA, "run", lambda self, *a: calls.append(self.lib) or
-                        real(self, *a))
-    return calls
-
-
 def _run(model, **options):
     return acausal2d.compile_model(model).simulate(stop_time=0.5, rtol=RTOL, intervals=200,
                                                    **options)
@@ -94,7 +85,7 @@ def test_a_new_structure_runs_on_the_c_api_driver_from_its_first_run(
     real = projection.Projector.project
     monkeypatch.setattr(projection.Projector, "project", lambda self, *a: projected.append(
         self.native) or real(self, *a))
-    calls = _native_runs(monkeypatch)
+    calls = native_runs(monkeypatch)
     res = _run(PistonEngine())
     lib = capi.driver()
     assert lib is not None and calls and all(c is lib for c in calls)

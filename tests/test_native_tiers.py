@@ -18,7 +18,7 @@ import pytest
 import acausal2d
 from acausal2d.options import RunOptionError
 from acausal2d.runtime import background, capi, cbuild, cstore, native, notices, tiers
-from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache
+from tiers_support import NEEDS_NATIVE, WAIT, fresh_cache, native_runs
 from tiers_support import agree as _agree
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -49,13 +49,11 @@ def _libraries(folder):
 
 
 def test_a_run_before_the_library_exists_runs_on_the_c_api_driver(auto, capfd, monkeypatch):
-    workers, drivers_run = [], []      # workers of this process at each step of the run
+    workers = []             # workers of this process at each step of the run
+    drivers_run = native_runs(monkeypatch)
 
     def progress(t, t_end):
         workers.append(len(background._workers))
-    real = native.NativeIDA.run
-    monkeypatch.setattr(native.NativeIDA, "run",
-                        lambda self, *a: drivers_run.append(self.lib) or real(self, *a))
     res, form = _run(PistonEngine(), progress=progress)
     assert drivers_run and all(lib is capi.driver() for lib in drivers_run)
     assert len(workers) > 2 and max(workers[:-1]) == 0     # none during the run (the last
@@ -80,10 +78,7 @@ def test_the_engine_is_chosen_per_run(auto, monkeypatch):
     """``native`` of the run's options over ``$ACAUSAL2D_NATIVE`` (auto
     here), run by run in one process: ``now`` compiles first and runs
     natively, ``off`` then runs on the Python path with the library there."""
-    calls = []
-    real = native.NativeIDA.run
-    monkeypatch.setattr(native.NativeIDA, "run",
-                        lambda self, *a: calls.append(1) or real(self, *a))
+    calls = native_runs(monkeypatch)
     fast, form = _run(Pendulum(), native="now")
     assert calls and native.library(form, "now") is not None
     assert fast.stats["native_compile_time"] > 0.0

@@ -38,3 +38,14 @@ def agree(a, b, names, rtol):
     for name in names:
         scale = 1.0 + np.max(np.abs(b[name]))
         assert np.max(np.abs(a[name] - b[name])) <= 1e3 * rtol * scale, name
+
+
+def native_runs(monkeypatch):
+    """A list that gets the library of each native segment run (a
+    structure's compiled library or the driver on CasADi's C API), for
+    the rest of the test."""
+    runs = []
+    real = native.NativeIDA.run
+    monkeypatch.setattr(native.NativeIDA, "run",
+                        lambda self, *a: runs.append(self.lib) or real(self, *a))
+    return runs
