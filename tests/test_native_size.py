@@ -11,7 +11,7 @@ the whole runtime are not counted.
 
 The aim is 1,500 lines (the engine counted 3,735 before the engine port,
 3,277 after it); :data:`CEILING` is where it stands, so the count can only
-go down.  The driver on CasADi's C API added 315 lines (``capi.py``, its
+go down.  The driver on CasADi's C API added 307 lines (``capi.py``, its
 variant of the driver's and projector's C, its install-time build): it
 runs a new structure natively from its first run, where the Python path
 took 1.3-4x as long (docs/speed.md)."""
@@ -23,7 +23,7 @@ ENGINE = ("native.py", "native_driver.c", "native_lu.c", "native_project.c",
           "blt.py", "blt_layout.py", "ordering.py", "tiers.py", "background.py", "codegen.py",
           "cbuild.py", "cunits.py", "drivers.py", "cstore.py", "private_dir.py", "posix.py",
           "capi.py")
-CEILING = 3592
+CEILING = 3584
 AIM = 1500
 
 

@@ -42,7 +42,7 @@ def _path():
     cache where a compiler is found; None where neither."""
     found = drivers.prebuilt(drivers.capi_file())
     if found is None and cbuild.find_compiler() is not None:
-        found = cbuild.build({drivers.CAPI + ".c": drivers.capi_text()}, name=drivers.CAPI)
+        found = cbuild.build({drivers.CAPI + ".c": drivers.text(drivers.CAPI)}, name=drivers.CAPI)
     return found
 
 

@@ -187,7 +187,7 @@ def lookup(key, name="lib"):
     if not (path.endswith(".so") and os.path.basename(path).startswith(name + "-")
             and os.path.exists(path)):
         notice("the index %s names no library of the cache (%r); it is compiled again"
-                     % (index, named[:80]))
+               % (index, named[:80]))
         return None
     return path if store.verified(path) else None
 
@@ -214,8 +214,8 @@ def publish_index(key, name, path):
         store.write_atomic(index_path(key, name), os.path.basename(path).encode("utf-8"))
     except OSError as exc:
         notice("the index of the compiled library %s could not be written (%s); later "
-                     "runs compile it again until the cache folder %s can be written"
-                     % (os.path.basename(path), exc.strerror or exc, store.folder()))
+               "runs compile it again until the cache folder %s can be written"
+               % (os.path.basename(path), exc.strerror or exc, store.folder()))
 
 
 def load(key, make, name, loader):
@@ -228,7 +228,7 @@ def load(key, make, name, loader):
         return loader(path)
     except (OSError, RuntimeError, AttributeError) as exc:    # AttributeError: a symbol missing
         notice("the cached library %s could not be loaded (%s); rebuilding it"
-                     % (path, str(exc).strip().splitlines()[0] if str(exc).strip() else exc))
+               % (path, str(exc).strip().splitlines()[0] if str(exc).strip() else exc))
         store.discard(path)
         return loader(build_indexed(key, make, name))
 
@@ -246,13 +246,12 @@ def _sksundae_dir():
 
 
 @functools.lru_cache(maxsize=None)
-def sundials_libraries(pkg=None):
+def sundials_libraries():
     """(lib folder, short name -> path) of the SUNDIALS libraries that the
     scikit-sundae wheel ships, or None if it is not installed that way;
     listed once per process (each run asked twice: 1.8 ms of the piston
-    engine's 39 ms warm simulate).  ``pkg``: the package's folder (default:
-    found, :func:`_sksundae_dir`)."""
-    pkg = pkg or _sksundae_dir()
+    engine's 39 ms warm simulate)."""
+    pkg = _sksundae_dir()
     if pkg is None:
         return None
     folder = os.path.normpath(os.path.join(pkg, "..", "scikit_sundae.libs"))

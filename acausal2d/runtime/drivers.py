@@ -60,9 +60,12 @@ OBJECTS = {"a2d_driver": ("", "lu", "driver"),
 
 CAPI = "a2d_capi"
 """The driver on CasADi's C API (:mod:`~acausal2d.runtime.capi`): a shared
-library of the driver, the output projector and the LU with ``A2D_CAPI`` (no generated code, no
-library linked: the SUNDIALS and C API functions it calls are bound when
-it is loaded), so that a machine with no compiler at run time runs it."""
+library of the driver, the output projector and the LU with ``A2D_CAPI``
+(no generated code, no library linked: the SUNDIALS and C API functions it
+calls are bound when it is loaded), so that a machine with no compiler at
+run time runs it."""
+CAPI_PARTS = ("#define A2D_EVENTS 1\n#define A2D_CAPI 1\n", "lu", "driver", "project")
+"""Its defines and sources, as an object's in :data:`OBJECTS`."""
 CAPI_FLAGS = ("-O2", "-fPIC", "-shared")
 """Its flags: fixed, so that its name (:func:`capi_file`) is found with no
 compiler to ask."""
@@ -88,21 +91,16 @@ def source(key):
 
 
 def text(name):
-    """The C of the object ``name`` (a key of :data:`OBJECTS`)."""
-    defines, *parts = OBJECTS[name]
+    """The C of the object ``name`` (a key of :data:`OBJECTS`) or of the
+    driver on CasADi's C API (:data:`CAPI`)."""
+    defines, *parts = CAPI_PARTS if name == CAPI else OBJECTS[name]
     return GENERATED + defines + "".join(source(p) for p in parts)
-
-
-def capi_text():
-    """The C of the driver on CasADi's C API (:data:`CAPI`)."""
-    return GENERATED + "#define A2D_EVENTS 1\n#define A2D_CAPI 1\n" + source("lu") + \
-        source("driver") + source("project")
 
 
 def capi_file():
     """The file name of the driver on CasADi's C API: it carries the key of
     its text and flags (not of a compiler: it is looked up where none is)."""
-    return "%s-%s.so" % (CAPI, cstore.build_key({CAPI + ".c": capi_text()}, CAPI_FLAGS)[:32])
+    return "%s-%s.so" % (CAPI, cstore.build_key({CAPI + ".c": text(CAPI)}, CAPI_FLAGS)[:32])
 
 
 def is_gcc(compiler):
@@ -136,8 +134,8 @@ def prebuilt(filename):
     if _matches(path):
         return path
     notice("the driver object %s installed with acausal2d does not match its recorded "
-                  "SHA-256; it is compiled into the cache instead (reinstall acausal2d to "
-                  "mend the installation)" % path)
+           "SHA-256; it is compiled into the cache instead (reinstall acausal2d to "
+           "mend the installation)" % path)
     return None
 
 
@@ -186,7 +184,7 @@ def install(dest=PREBUILT, compiler=None, log=print):
         built.append(target)
     target = os.path.join(dest, capi_file())
     try:
-        cunits.compile_library(cc, {CAPI + ".c": capi_text()}, CAPI_FLAGS, dest, target)
+        cunits.compile_library(cc, {CAPI + ".c": text(CAPI)}, CAPI_FLAGS, dest, target)
         built.append(target)
     except cunits.BuildFailed as exc:
         log("acausal2d: %s not built at install (%s); it is built on first use where a "

@@ -16,10 +16,11 @@ It makes the same IDA settings as :func:`~acausal2d.runtime.ida.make_solver`
 and :func:`~acausal2d.runtime.ida.start_solver` (tolerances, algebraic ids
 with ``IDASetSuppressAlg``, :data:`~acausal2d.options.STEPS_PER_OUTPUT` steps per output interval, root directions,
 terminal roots) and runs a segment as scikit-sundae's ``solve`` does, so
-the steps are the same.  Where there is no compiler, the build fails, the
-SUNDIALS version is not the one the declarations are written for, or IDA
-fails in a segment, the caller uses the Python path (which then reports the
-failure exactly as before).  ``ACAUSAL2D_NATIVE=0`` turns it off.
+the steps are the same.  Where there is no compiler or the build fails, the
+same driver runs on CasADi's C API (:mod:`~acausal2d.runtime.capi`); where
+the SUNDIALS version is not the one the declarations are written for, or IDA
+fails in a segment, the Python path (which then reports the failure exactly
+as before).  ``ACAUSAL2D_NATIVE=0`` turns it off.
 
 The driver declares the SUNDIALS functions it calls itself (the wheel ships
 no headers), for the release named in ``native_driver.c``
@@ -124,9 +125,8 @@ def loaded_sundials_version():
 def _falls_back(why):
     """Say once per process that IDA runs through scikit-sundae, and why."""
     notice("%s, the native driver is declared for SUNDIALS %s: IDA runs through "
-                  "scikit-sundae instead (the Python path: the same results, slower; "
-                  "ACAUSAL2D_NATIVE=off chooses it without this message)"
-                  % (why, SUNDIALS_VERSION))
+           "scikit-sundae instead (the Python path: the same results, slower; "
+           "ACAUSAL2D_NATIVE=off chooses it without this message)" % (why, SUNDIALS_VERSION))
 
 
 def _text(path):
@@ -249,8 +249,8 @@ def _hand_in_optional(lib, solver):
         if lib.a2d_lu_ok:
             return
         notice("the linear-solver slots of this SUNDIALS (%s) were not found: "
-                      "IDA's sparse systems use SuperLU_MT instead of the driver's own LU "
-                      "(the same results, slower)" % SUNDIALS_VERSION)
+               "IDA's sparse systems use SuperLU_MT instead of the driver's own LU "
+               "(the same results, slower)" % SUNDIALS_VERSION)
     libs = cbuild.sundials_libraries()[1]
     found = []
     for name, symbol in OPTIONAL:

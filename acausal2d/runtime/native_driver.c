@@ -31,9 +31,9 @@ typedef int (*IDALsJacFn)(sunrealtype, sunrealtype, N_Vector, N_Vector, N_Vector
 
 /* The SUNDIALS functions the driver calls.  A model's library is linked against
  * scikit-sundae's SUNDIALS: they are declared.  The driver on CasADi's C API
- * (capi.py, A2D_BOUND) is built once with no library to link, so that it runs where
+ * (capi.py, A2D_CAPI) is built once with no library to link, so that it runs where
  * no compiler is: they are pointers of the same names, and so are the C API's
- * functions (A2D_BOUND_EXTRA), which a2d_bind sets, in the order of
+ * functions (A2D_CAPI_CALLS), which a2d_bind sets, in the order of
  * a2d_bound_names, from the addresses capi.py looks up by those names. */
 #define A2D_SUNDIALS_CALLS(X) \
   X(int, SUNDIALSGetVersionNumber, (int *major, int *minor, int *patch, char *label, \
@@ -83,26 +83,21 @@ typedef int (*IDALsJacFn)(sunrealtype, sunrealtype, N_Vector, N_Vector, N_Vector
   X(int, IDAGetNumJacEvals, (void *mem, long *n)) \
   X(void, IDAFree, (void **mem))
 #ifdef A2D_CAPI
-#define A2D_BOUND 1
-#define A2D_BOUND_EXTRA(X) \
+#define A2D_CAPI_CALLS(X) \
   X(int, casadi_c_eval_id, (int id, const casadi_real **arg, casadi_real **res, casadi_int *iw, \
                             casadi_real *w, int mem)) \
   X(int, casadi_c_work_id, (int id, casadi_int *sz_arg, casadi_int *sz_res, casadi_int *sz_iw, \
                             casadi_int *sz_w)) \
   X(int, casadi_c_checkout_id, (int id)) \
   X(void, casadi_c_release_id, (int id, int mem))
-#else
-#define A2D_BOUND_EXTRA(X)
-#endif
-#ifdef A2D_BOUND
 #define A2D_DECLARE(ret, name, args) static ret (*name) args;
 #define A2D_NAME(ret, name, args) #name,
 #define A2D_SET(ret, name, args) name = (ret (*) args)fn[k++];
-A2D_SUNDIALS_CALLS(A2D_DECLARE) A2D_BOUND_EXTRA(A2D_DECLARE)
-const char *a2d_bound_names[] = {A2D_SUNDIALS_CALLS(A2D_NAME) A2D_BOUND_EXTRA(A2D_NAME) 0};
+A2D_SUNDIALS_CALLS(A2D_DECLARE) A2D_CAPI_CALLS(A2D_DECLARE)
+const char *a2d_bound_names[] = {A2D_SUNDIALS_CALLS(A2D_NAME) A2D_CAPI_CALLS(A2D_NAME) 0};
 void a2d_bind(void *const *fn) {
   int k = 0;
-  A2D_SUNDIALS_CALLS(A2D_SET) A2D_BOUND_EXTRA(A2D_SET)
+  A2D_SUNDIALS_CALLS(A2D_SET) A2D_CAPI_CALLS(A2D_SET)
 }
 #else
 #define A2D_DECLARE(ret, name, args) ret name args;
