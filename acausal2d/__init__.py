@@ -23,7 +23,6 @@ from .errors import (Acausal2dError, InitializationError, ModelDefinitionError, 
                      SimulationError, StructuralError)
 from .language.symbols import der, time, time_derivative  # noqa: E402,F401
 from .analysis.check import check  # noqa: E402,F401
-from .analysis.compare import compare as _compare  # noqa: E402
 from .analysis.study import study  # noqa: E402,F401
 from .io import loader as _loader  # noqa: E402
 from .io.loader import load_model as _load
@@ -51,6 +50,7 @@ def compare(result: Any, reference: Any, signals: Any = None, **options: Any) ->
     see :func:`acausal2d.analysis.compare.compare` for the options.
     Returns a Comparison."""
     import acausal2d.library.planar  # noqa: F401  (declares the aliases)
+    from .analysis.compare import compare as _compare
     comparison: Comparison = _compare(result, reference, signals=signals, **options)
     return comparison
 

@@ -29,9 +29,6 @@ from .result import Result
 from .run_checks import (MAX_RESULT_BYTES, _check_atol, _check_clock, _check_size,  # noqa: F401
                          _experiment)
 from .derived import derived_columns, derived_signals
-from .analysis.modes import linearize
-from .analysis.modes import modes
-from .analysis.equilibrium import find_equilibrium
 from .language.dsl import Parameter, compile_reads
 from .options import RunOptions, number
 from .protocols import ParameterValue, Params, Start
@@ -404,6 +401,7 @@ class CompiledModel:
         static equilibrium: a
         :class:`~acausal2d.analysis.linearize.Linearization` (see
         :func:`acausal2d.analysis.modes.linearize`)."""
+        from .analysis.modes import linearize
         return linearize(self, at, equilibrium, params, inputs, outputs, start)
 
     def modes(self, at: float | None = None, equilibrium: bool = False,
@@ -411,6 +409,7 @@ class CompiledModel:
         """Natural frequencies, damping ratios and mode shapes: a
         :class:`~acausal2d.analysis.modes.Modes` (see
         :func:`acausal2d.analysis.modes.modes`)."""
+        from .analysis.modes import modes
         return modes(self, at, equilibrium, params, start)
 
     def equilibrium(self, t: float = 0.0, params: Params | None = None,
@@ -418,6 +417,7 @@ class CompiledModel:
         """The static equilibrium (all state derivatives zero) at time t: an
         :class:`~acausal2d.analysis.equilibrium.Equilibrium` (see
         :func:`acausal2d.analysis.equilibrium.find_equilibrium`)."""
+        from .analysis.equilibrium import find_equilibrium
         with translated("searching the equilibrium of %s" % type(self.model).__name__):
             return find_equilibrium(self, t, params, start)
 

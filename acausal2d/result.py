@@ -12,7 +12,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import Acausal2dError
-from .io.files import atomic_path
 
 if TYPE_CHECKING:
     from .visual.notebook import Animation
@@ -169,6 +168,7 @@ class Result:
         """Write a CSV file with a ``time`` column and the given variables (all
         by default, derivatives excluded); creates the folder if needed and
         replaces an existing file atomically."""
+        from .io.files import atomic_path
         with atomic_path(path) as tmp:
             with open(tmp, "w", newline="") as fh:
                 self.write_csv(fh, names)

@@ -37,6 +37,9 @@ COSTLY = {
     "webbrowser": "explore only: opens the page",
     "tqdm": "0.1 s; a progress bar only where standard error is a terminal",
     "threadpoolctl": "0.03 s (and 34 ms for its controller); made once per process at the first run",
+    "subprocess": "7-8 ms (with signal, selectors, locale); only where a compiler or a worker runs",
+    "concurrent": "2-7 ms (and logging); the background worker's process only",
+    "logging": "5-16 ms; only when a notice is said",
 }
 """Third-party (and stdlib) packages imported inside functions: name -> reason."""
 
@@ -48,6 +51,14 @@ SITES = {
     ("acausal2d/analysis/fit.py", "acausal2d.analysis.optimality"): "imports scipy.optimize",
     ("library/linkage/base.py", "acausal2d.library"):
         "the module defines a function 'translational' and planar imports linkage",
+    ("acausal2d/__init__.py", "acausal2d.analysis.compare"):
+        "compare only: it loads io.files (tempfile, hashlib, json, shutil), 20-28 ms of "
+        "``import acausal2d`` (the command line loads it for its compare command)",
+    ("acausal2d/compiled.py", "acausal2d.analysis.modes"):
+        "linearize and modes only (with the equilibrium, 6-14 ms of a first run's imports)",
+    ("acausal2d/compiled.py", "acausal2d.analysis.equilibrium"): "the equilibrium only (as above)",
+    ("acausal2d/result.py", "acausal2d.io.files"):
+        "a CSV written only (io.files loads tempfile, hashlib, json, shutil: 10-24 ms)",
     ("acausal2d/compiled.py", "acausal2d.visual.diagram"):
         "the diagram's layout loads networkx (COSTLY): only when a diagram is drawn",
     ("acausal2d/explore/runner.py", "acausal2d.visual.diagram"):

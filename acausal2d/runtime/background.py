@@ -10,12 +10,11 @@ its marker (:func:`failure_path`) with the message.  It is launched when a
 run has ended (:func:`launch`), so it never shares the machine with the run
 that asked for it.
 """
+import contextlib
 import os
 import pickle
-import subprocess
 import sys
 import time
-from concurrent.futures import ThreadPoolExecutor
 
 from . import cbuild, cstore
 from .notices import notice
@@ -57,6 +56,7 @@ def launch(label=None):
         return False
     jobs = sorted(_queue, key=lambda job: job[1].name != "a2d_model")
     del _queue[:]
+    import subprocess                  # a worker started: not on the way of a run
     label = label or next((lab for _, _, lab in jobs if lab), "this model")
     folder = cstore.folder()
     try:
@@ -93,6 +93,7 @@ def wait(timeout):
     """Wait until no worker of this process runs any more, at most
     ``timeout`` s in all; returns True where none runs (tests, benchmarks:
     a run never waits for a worker)."""
+    import subprocess
     end = time.monotonic() + timeout
     try:
         for proc in list(_workers):
@@ -138,10 +139,9 @@ def _generate(recipe):
 def _work(path):
     """The worker: build each job of the job file, up to
     :data:`BUILDS_AT_ONCE` at once, and leave a marker where one fails."""
-    try:
+    with contextlib.suppress(OSError):
         os.nice(NICE)
-    except OSError:
-        pass
+    from concurrent.futures import ThreadPoolExecutor      # the worker's process only
     with open(path, "rb") as fh:
         jobs = pickle.load(fh)
     try:
@@ -155,8 +155,6 @@ def _work(path):
                     _build(key, recipe)
     finally:
         for p in (path, path + ".log"):
-            try:
+            with contextlib.suppress(OSError):
                 os.remove(p)
-            except OSError:
-                pass
 

@@ -12,7 +12,6 @@ naming the compiler, the command and its output.
 import contextlib
 import os
 import shutil
-import subprocess
 
 from ..errors import Acausal2dError
 from . import cstore
@@ -60,6 +59,7 @@ def _failed(cc, cmd, why, output=""):
 def _run_all(cc, commands):
     """Run compiler commands, at most :func:`workers` at a time; each must
     exit 0 and write its output file (the last argument after ``-o``)."""
+    import subprocess                  # compiling only: not on the way of a run
     pending, running = list(commands), []
     try:
         while pending or running:
