@@ -180,16 +180,18 @@ def optimize(model: ModelArgument, vary: dict[str, Any], objective: Any,
 
 def export_fmu(model: ModelArgument, kind: str = "me", out: str | None = None,
                inputs: dict[str, float] | None = None, fixed_states: bool = False,
-               options: RunOptions | None = None) -> str:
+               options: RunOptions | None = None, params: dict[str, Any] | None = None) -> str:
     """Export a model as an FMI 2.0 FMU with native binaries; kind ``"me"``
     (Model Exchange) or ``"cs"`` (Co-Simulation); ``options``: a
     :class:`RunOptions` whose stop_time and rtol become the FMU's default
-    experiment; see :func:`acausal2d.fmu.export_fmu`.  Returns the path."""
+    experiment; ``params``: parameter values exported instead of the
+    model's (as for simulate); see :func:`acausal2d.fmu.export_fmu`.
+    Returns the path."""
     from .fmu import export_fmu as _export
     from .arguments import model_argument
     given = model_argument(model, "export_fmu")
     # a CompiledModel: the model it was compiled from
     instance = given if isinstance(given, Component) else given.model
     path: str = _export(instance, kind=kind, out=out, inputs=inputs, fixed_states=fixed_states,
-                        options=options)
+                        options=options, params=params)
     return path

@@ -138,6 +138,11 @@ class CompiledModel:
     decides whether it has mass), so a run refuses a changed value of one
     (:meth:`parameter_values`) and the live page offers no slider for it."""
 
+    def is_structural(self, name: str) -> bool:
+        """True where the scalar parameter ``name`` (``B0.r[0]``, ``spring.k``)
+        is, or is an element of, a :attr:`structural` parameter."""
+        return self._whole_name(name) in self.structural
+
     def _read_while_compiling(self, reads: list[tuple[Component, str]]) -> frozenset[str]:
         found = set()
         ours = {id(c) for c in self.model.components()}     # not a class's throwaway instance

@@ -10,6 +10,13 @@ SOURCE_FILES = ("a2d_casadi.c", "a2d_core.c", "a2d_cs.c", "a2d_fmi2.c")
 """The C files in the FMU's sources/ (listed in modelDescription.xml)."""
 
 
+STRUCTURAL = ("read when the model was compiled (it decides the model's structure): a "
+              "constant of this FMU; export the model again with another value")
+"""The description of a parameter the compiler read
+(:attr:`~acausal2d.compiled.CompiledModel.structural`): the FMU cannot
+change it, so it is a local constant, and ``fmi2SetReal`` refuses it."""
+
+
 def _variable(var):
     attrs = " ".join("%s=%s" % (k, quoteattr(str(v))) for k, v in var["attrs"].items())
     real = " ".join("%s=%s" % (k, quoteattr(str(v))) for k, v in var["real"].items())
@@ -27,6 +34,10 @@ def variables(data):
             attrs = {"name": inputs[name], "valueReference": k, "causality": "input",
                      "variability": "continuous",
                      "description": "input (top-level RealInput %s)" % inputs[name]}
+        elif name in data.structural:
+            attrs = {"name": name, "valueReference": k, "causality": "local",
+                     "variability": "constant", "initial": "exact",
+                     "description": STRUCTURAL + (" (%s)" % decl.doc if decl.doc else "")}
         else:
             attrs = {"name": name, "valueReference": k, "causality": "parameter",
                      "variability": "fixed", "description": decl.doc or ""}

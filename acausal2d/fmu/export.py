@@ -60,6 +60,7 @@ class ExportData:
     held0: list
     p0: np.ndarray
     input_params: dict
+    structural: frozenset
     units: dict
     experiment: RunOptions
     version: str
@@ -126,22 +127,25 @@ def _may_turn_singular(system, level):
     return bool(ca.depends_on(J, ca.vertcat(*st.var_sym)))
 
 
-def export_data(model, inputs=None, fixed_states=False, options=None):
+def export_data(model, inputs=None, fixed_states=False, options=None, params=None):
     """:class:`ExportData` of a model instance (its RealInputs bound, see
     :func:`~acausal2d.library.inputs.bind_inputs`); ``options`` (a
     :class:`~acausal2d.options.RunOptions`) give the FMU's default
-    experiment (stop time, tolerance) instead of the model's."""
+    experiment (stop time, tolerance) instead of the model's; ``params``
+    the parameter values exported (a parameter the compiler reads compiles
+    the model again with its value, as a run does)."""
     name = type(model).__name__
     model, input_params = bind_inputs(model, inputs)
-    compiled = compile_model(model)
+    compiled = compile_model(model).for_values(params)
     _check_discrete_memory(compiled.system)
-    p = compiled.parameter_values()
+    p = compiled.parameter_values(params)
     with translated("preparing %s for export" % name):
         states = _static_states(compiled, name, fixed_states)
         held0 = _held_at_start(compiled, p)
     doc = (type(model).__doc__ or name).strip().splitlines()[0]
+    structural = frozenset(n for n, *_ in compiled.parameters if compiled.is_structural(n))
     return ExportData(compiled.system, name, name, doc, list(states), list(held0), p,
-                      input_params, compiled.units,
+                      input_params, structural, compiled.units,
                       (options or RunOptions()).resolved(_experiment(model)), __version__)
 
 
@@ -194,7 +198,8 @@ def build_binary(data, folder, src):
 
 
 def export_fmu(model: Any, kind: str = "me", out: "str | None" = None, inputs: Any = None,
-               fixed_states: bool = False, options: "RunOptions | None" = None) -> str:
+               fixed_states: bool = False, options: "RunOptions | None" = None,
+               params: Any = None) -> str:
     """Export ``model`` (a model instance) as an FMI 2.0 FMU file.
 
     kind: ``"me"`` (Model Exchange) or ``"cs"`` (Co-Simulation); out: the
@@ -203,7 +208,10 @@ def export_fmu(model: Any, kind: str = "me", out: "str | None" = None, inputs: A
     the states chosen at the start (the FMU stops with an error where they
     no longer serve); options: a :class:`~acausal2d.options.RunOptions`
     whose stop_time and rtol become the FMU's default experiment (default:
-    the model's ``experiment``).  Returns the path.  Raises
+    the model's ``experiment``); params: {parameter: value} exported
+    instead of the model's values (a parameter the compiler reads is a
+    constant of the FMU, so this is how another value of it is exported).
+    Returns the path.  Raises
     :class:`DynamicStateSelectionError` for a model whose states may have to
     change during a run (unless ``fixed_states``)."""
     if kind not in KINDS:
@@ -211,7 +219,7 @@ def export_fmu(model: Any, kind: str = "me", out: "str | None" = None, inputs: A
                                    "got %r" % (kind,))
     if out is not None:
         _check_target(out)                 # before the model is compiled and built
-    data = export_data(model, inputs, fixed_states, options)
+    data = export_data(model, inputs, fixed_states, options, params)
     out = out or data.identifier + ".fmu"
     _check_target(out)
     with tempfile.TemporaryDirectory() as tmp:

@@ -76,6 +76,9 @@ def model_data_header(data, sizes):
               _array("double", "a2d_nominal_x", s.nominal[list(data.states)], "%.17g"),
               _array("int", "a2d_is_input", [int(name in inputs) for name, *_ in s.parameters],
                      "%d"),
+              _array("int", "a2d_is_structural",
+                     [int(name in data.structural) for name, *_ in s.parameters], "%d"),
+              _strings("a2d_parameter_name", [name for name, *_ in s.parameters]),
               _strings("a2d_equation_text", [s.describe_equation(i) for i in range(st.n_eq)]),
               _strings("a2d_relation_text", [relation_text(s, k)
                                              for k in range(len(s.relations))]),

@@ -132,6 +132,13 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
                      "parameter or input (only those can be set)", (unsigned)vr[i]);
             return fail(m, "fmi2SetReal");
         }
+        if (a2d_is_structural[vr[i]]) {
+            snprintf(m->core.message, sizeof(m->core.message), "%s was read when the model was "
+                     "compiled (it decides the model's structure): it is a constant of this "
+                     "FMU; export the model again with the value wanted",
+                     a2d_parameter_name[vr[i]]);
+            return fail(m, "fmi2SetReal");
+        }
         if (!a2d_is_input[vr[i]] && m->mode != INSTANTIATED && m->mode != INITIALIZATION) {
             snprintf(m->core.message, sizeof(m->core.message), "parameter %u is fixed: set it "
                      "before initialization", (unsigned)vr[i]);
