@@ -358,9 +358,137 @@ int a2d_settle(a2d_core* c, const int* held, int n_held, const double* values, i
     return -3;
 }
 
+/* Sign (+-1) of det of the iteration matrix with the states held at the
+ * consistent point of c, log|det| in *logdet and the pivot of the smallest
+ * scaled pivot in *weak; 0 where it is singular within rounding: the
+ * smallest pivot of its LU, rows and columns scaled to largest entries 1
+ * (the scaling changes no sign and is undone in *logdet), is below
+ * PASSAGE_PIVOT of the largest - there Newton's 1e-10 residuals no longer
+ * fix the unknowns.  Its own LU buffer: the factors kept for Newton stay. */
+#define PASSAGE_PIVOT 1e-10
+static int det_sign(a2d_core* c, double* logdet, int* weak)
+{
+    int i, k, n = A2D_N, sign = 1, small = 0;
+    double* M = c->Mdet;
+    double big = 0.0;
+    a2d_rows rows = {A2D_NX, a2d_states, 0, 0.0, c->x, 0, 0};
+    iteration_matrix(c, c->t, c->z, &rows, M);
+    *logdet = 0.0;
+    for (k = 0; k < 2 * n; k++) {          /* rows (k < n), then columns */
+        double m = 0.0;
+        double* e = k < n ? M + k * n : M + (k - n);  /* the row or column */
+        int step = k < n ? 1 : n;
+        for (i = 0; i < n; i++)
+            if (fabs(e[i * step]) > m) m = fabs(e[i * step]);
+        if (!(m > 0.0)) return 0;
+        for (i = 0; i < n; i++) e[i * step] /= m;
+        *logdet += log(m);
+    }
+    if (lu_factor(M, n, c->pivdet)) return 0;
+    for (k = 0; k < n; k++) {
+        double u = M[k * n + k];
+        if (c->pivdet[k] != k) sign = -sign;
+        if (u < 0) sign = -sign;
+        if (fabs(u) > big) big = fabs(u);
+        if (fabs(u) < fabs(M[small * n + small])) small = k;
+        *logdet += log(fabs(u));
+    }
+    *weak = small;
+    return fabs(M[small * n + small]) < PASSAGE_PIVOT * big ? 0 : sign;
+}
+
+#define PASSAGE_DIP 6.907755278982137     /* log(1e3) */
+
+/* The elements of the equations in the nearly dependent combination of the
+ * rows of det_sign's LU (P M = L U; y^T M ~ 0 for y = P^T L^-T U^-T e_weak),
+ * the largest weights first, at most three, into buf. */
+static void dependent_elements(a2d_core* c, int weak, char* buf, size_t size)
+{
+    int n = A2D_N, i, k, named = 0;
+    double* y = c->ztry;
+    const double* M = c->Mdet;
+    double big = 0.0;
+    for (i = 0; i < n; i++) {                         /* U^T a = e_weak */
+        double v = i == weak ? 1.0 : 0.0;
+        for (k = 0; k < i; k++) v -= M[k * n + i] * y[k];
+        y[i] = v / M[i * n + i];
+    }
+    for (i = n - 1; i >= 0; i--)                      /* L^T c = a (unit diagonal) */
+        for (k = i + 1; k < n; k++) y[i] -= M[k * n + i] * y[k];
+    for (k = n - 1; k >= 0; k--)                      /* y = P^T c */
+        if (c->pivdet[k] != k) { double t = y[k]; y[k] = y[c->pivdet[k]]; y[c->pivdet[k]] = t; }
+    for (i = 0; i < A2D_NEQ; i++) if (fabs(y[i]) > big) big = fabs(y[i]);
+    buf[0] = 0;
+    while (named < 3 && big > 0.0) {
+        int best = -1;
+        for (i = 0; i < A2D_NEQ; i++)
+            if (fabs(y[i]) >= 0.1 * big && (best < 0 || fabs(y[i]) > fabs(y[best]))) best = i;
+        if (best < 0) break;
+        y[best] = 0.0;
+        {
+            char element[80];
+            const char* text = a2d_equation_text[best];
+            const char* end = strstr(text, " equation ");
+            snprintf(element, sizeof(element), "%.*s", end ? (int)(end - text) : 79, text);
+            if (strstr(buf, element) == 0) {
+                size_t used = strlen(buf);
+                snprintf(buf + used, size - used, "%s%s", named ? ", " : "", element);
+                named++;
+            }
+        }
+    }
+}
+
+static int passage(a2d_core* c, double at, double t0, double t1, int weak, const char* how)
+{
+    char elements[200];
+    dependent_elements(c, weak, elements, sizeof(elements));
+    snprintf(c->message, sizeof(c->message), "the mechanism reached a singular position at "
+             "t = %.9g in %s (between the steps at %.9g and %.9g the determinant of its "
+             "equations %s): the states chosen at the export cannot follow it; acausal2d "
+             "simulate passes it and reports it", at, elements[0] ? elements : "its equations",
+             t0, t1, how);
+    return -1;
+}
+
+/* After an accepted step: -1 (with the message) where det dE/dz with the
+ * states held changed sign since the last accepted step of the same
+ * relation values, or where its size at the last step was a local minimum
+ * below 1e-3 of its largest since then (the runtime's criteria,
+ * acausal2d/runtime/singularities.py): the mechanism passed or touched a
+ * singular position, which the states chosen at the export cannot follow. */
+int a2d_check_passage(a2d_core* c)
+{
+    double logdet = 0.0;
+    int weak = 0, sign;
+    if (A2D_NX == 0) return 0;
+    if (a2d_solve_states(c)) return -1;
+    sign = det_sign(c, &logdet, &weak);
+    if (sign == 0)
+        return passage(c, c->t, c->det_known ? c->det_t[1] : c->t, c->t, weak,
+                       "is zero within rounding");
+    if (c->det_known && sign != c->det_sign) {
+        double w = 1.0 / (1.0 + exp(logdet - c->det_log[1]));   /* |det0| / (|det0| + |det1|) */
+        return passage(c, c->det_t[1] + w * (c->t - c->det_t[1]), c->det_t[1], c->t, weak,
+                       "changed sign");
+    }
+    if (c->det_known >= 2 && c->det_log[1] < c->det_log[0] && c->det_log[1] < logdet
+        && c->det_log[1] < c->det_max - PASSAGE_DIP)
+        return passage(c, c->det_t[1], c->det_t[0], c->t, weak, "had a deep minimum");
+    if (!c->det_known || logdet > c->det_max) c->det_max = logdet;
+    c->det_sign = sign;
+    c->det_t[0] = c->det_t[1];
+    c->det_log[0] = c->det_log[1];
+    c->det_t[1] = c->t;
+    c->det_log[1] = logdet;
+    c->det_known += c->det_known < 2;
+    return 0;
+}
+
 int a2d_event_iteration(a2d_core* c, int* changed)
 {
     *changed = 0;
+    c->det_known = 0;             /* the relations may change the equations */
     if (a2d_solve_states(c)) return -1;
     return a2d_settle(c, a2d_states, A2D_NX, c->x, changed);
 }
@@ -400,6 +528,7 @@ int a2d_initialize(a2d_core* c)
     if (a2d_settle(c, a2d_held0, A2D_NHELD0, held, &changed)) return -1;
     for (k = 0; k < A2D_NX; k++) c->x[k] = c->z[a2d_states[k]];
     c->dirty = 0;
+    c->det_known = 0;
     return 0;
 }
 

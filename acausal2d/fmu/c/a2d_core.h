@@ -43,6 +43,11 @@ typedef struct {
     int lu_valid[2];
     double lu_s[2];
     int cur;                  /* the slot used last */
+    /* det dE/dz (states held) at the last two accepted steps of the same
+     * relation values (a2d_check_passage): its sign (0: none known yet),
+     * log|det| and time, and the largest log|det| since the relations changed */
+    int det_sign, det_known;
+    double det_t[2], det_log[2], det_max;
     /* work */
     const double* arg[A2D_SZ_ARG + 1];
     double* res[A2D_SZ_RES + 1];
@@ -52,6 +57,8 @@ typedef struct {
     double M[2][A2D_NZ * A2D_NZ];
     double r[A2D_NZ], rtry[A2D_NZ], dz[A2D_NZ], ztry[A2D_NZ];
     int piv[2][A2D_NZ];
+    double Mdet[A2D_NZ * A2D_NZ];     /* the determinant's LU (a2d_check_passage) */
+    int pivdet[A2D_NZ];
     char message[512];
 } a2d_core;
 
@@ -67,5 +74,6 @@ int a2d_initialize(a2d_core* c);
 int a2d_event_iteration(a2d_core* c, int* changed);
 double a2d_value(a2d_core* c, unsigned int vr);
 double a2d_next_time_event(a2d_core* c, double t);
+int a2d_check_passage(a2d_core* c);
 
 #endif

@@ -142,6 +142,7 @@ int a2d_cs_advance(a2d_cs* s, a2d_core* c, double t_end)
         for (k = 0; k < A2D_NX; k++) c->x[k] = c->z[a2d_states[k]];
         c->dirty = 0;
         s->steps++;
+        if (a2d_check_passage(c)) return -1;
         if (timed || (te > 0 && fabs(c->t - te) <= 1e-13 * (fabs(te) > 1 ? fabs(te) : 1))) {
             if (a2d_event_iteration(c, &changed)) return -1;
         }

@@ -207,9 +207,11 @@ fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
 fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet, fmi2Boolean* enter,
                                        fmi2Boolean* terminate)
 {
-    (void)c; (void)noSet;
+    a2d_instance* m = (a2d_instance*)c;
+    (void)noSet;
     *enter = fmi2False;
     *terminate = fmi2False;
+    if (a2d_check_passage(&m->core)) return fail(m, "fmi2CompletedIntegratorStep");
     return fmi2OK;
 }
 
