@@ -310,3 +310,30 @@ def test_fmpy_rebuilds_the_binary_from_the_listed_sources(fmus, tmp_path):
     res, grid, outputs = reference("clutch")
     errs = max_relative_errors(res, grid, outputs, fmu_run(str(tmp_path), "me", "clutch"))
     assert max(errs.values()) < 1e-4, errs
+
+
+@pytest.mark.slow
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+@pytest.mark.parametrize("ulps", [-3, 3])
+def test_singular_position_decision_does_not_move_with_a_few_ulps(tmp_path, ulps):
+    """The FMU's singular-position check decides on the sign and size of a
+    determinant; the coupler's length moved by a few ulps stops the FMU at
+    the same time (to the 1 ms of its steps) with an error naming the dyad
+    (tests/test_decision_robustness.py for the runtime's own decisions; the
+    four-bars of test_fmu_validates_and_matches_acausal2d run through their
+    2 s without the check firing)."""
+    length = float(np.nextafter(0.05, 1.0 if ulps > 0 else 0.0))
+    for _ in range(abs(ulps) - 1):
+        length = float(np.nextafter(length, 1.0 if ulps > 0 else 0.0))
+    assert 0 < abs(length - 0.05) <= 3 * np.spacing(0.05)
+    fmu = export_fmu(load("fourbar"), "me", str(tmp_path / "short.fmu"), inputs={"tau": 0.2},
+                     params={"dyad.lL1": length})
+    messages = []
+    with pytest.raises(Exception):
+        fmpy.simulate_fmu(fmu, stop_time=0.6, start_values={"tau": 0.2},
+                          logger=lambda *a: messages.append(a[-1].decode()))
+    text = " ".join(messages)
+    # the same outcome, whichever check meets it first (Newton at a right-hand
+    # side, or the determinant after a step): an error at the position naming the dyad
+    assert "singular position" in text and "DDD 'dyad'" in text
+    assert abs(float(text.split("t = ")[1].split()[0]) - 0.4058329) < 1e-3
