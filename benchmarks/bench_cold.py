@@ -3,7 +3,7 @@ Python path, the background compile, and later runs at native speed.
 
     python benchmarks/bench_cold.py            (the table of issue 30; medians of 3, the
                                                 Python path and the first run of 9 pairs)
-    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, two pairs, the piston
+    python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, one pair, the piston
                                                 engine's whole process once: the suite)
     python benchmarks/bench_cold.py --classic  (also compile first, as before issue 30)
     python benchmarks/bench_cold.py belt chain (only the models whose names contain these)
@@ -229,7 +229,7 @@ if __name__ == "__main__":
     if args[:1] == ["--child"]:
         child(args[1], int(args[2]), None if args[3] == "None" else float(args[3]))
     elif "--small" in args:
-        main(SMALL, 1, "--classic" in args, True, 1, 2)
+        main(SMALL, 1, "--classic" in args, True, 1, 1)
     else:
         chosen = [a for a in args if not a.startswith("--")]
         picked = {k: v for k, v in MODELS.items() if not chosen or any(c in k for c in chosen)}

@@ -5,9 +5,9 @@ page.  Runs in a worker process of :mod:`gallery` (one model per call)."""
 import os
 import time
 
-# The runs take the native mode of the environment (auto: a library the cache has, else the
-# driver on CasADi's C API, the library compiled after the run for later builds); the Python
-# path took 145 s of the workers' time for the 119 models, the compressor 10 s of it.
+# The gallery's runs are short and each model structure runs once: the Python path, no C
+# compiled for them (no background compiles outliving the build); set it to override.
+os.environ.setdefault("ACAUSAL2D_NATIVE", "off")
 
 import acausal2d  # noqa: E402
 from acausal2d.io.files import safe_filename  # noqa: E402
