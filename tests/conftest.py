@@ -262,7 +262,10 @@ def pytest_configure(config):
     them anew (1.1-1.25 s of CPU on the 2-core CI machine) for each
     ``simulate`` a test runs in-process.  What the child draws is the same.
     Measured on four modules of such tests (151 tests, -n 2): 92.7 -> 81.4 s
-    of CPU.  Tests of what a process imports start their own interpreter."""
+    of CPU.  Tests of what a process imports start their own interpreter.
+    Under ``-n`` the controller runs no test: it does not import them."""
+    if getattr(config.option, "numprocesses", None) and not hasattr(config, "workerinput"):
+        return
     import matplotlib.figure  # noqa: F401
     import matplotlib.backends.backend_agg  # noqa: F401
 
