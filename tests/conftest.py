@@ -99,6 +99,7 @@ SLOW_MODULES = {
     "test_native_tiers_build.py": "the native engine's build tiers (compiler)",
     "test_fmu.py": "FMUs built with the C compiler and run by fmpy",
     "test_models_no_deprecation.py": "every model of models/ (as the gallery)",
+    "test_site_build.py": "the documentation site built in a plain clone (the gallery, notebooks)",
 }
 
 
@@ -270,12 +271,13 @@ def pytest_configure(config):
     import matplotlib.backends.backend_agg  # noqa: F401
 
 
-FIRST = ["test_readme_commands.py", "test_bench_small_modes.py", "test_help_examples.py",
-         "test_plain_clone.py", "test_fit_cli.py", "test_ci_run.py", "test_talk_mechanisms.py",
-         "test_output_rows.py", "test_fit.py"]
+FIRST = ["test_readme_commands.py", "test_site_build.py", "test_bench_small_modes.py",
+         "test_help_examples.py", "test_plain_clone.py", "test_fit_cli.py", "test_ci_run.py",
+         "test_talk_mechanisms.py", "test_output_rows.py", "test_fit.py"]
 """Modules that hold the suite's longest tests (a minute or more each on two
-cores: the plain clone running every documented command, the benchmarks'
-small modes).  Under ``-n auto`` they are started first, dealt in turn to
+cores: the plain clone running every documented command, the documentation
+site's build, the benchmarks' small modes).  Under ``-n auto`` they are
+started first, dealt in turn to
 the workers (:func:`first_for_each_worker`): started last, one of them
 alone would make the run's tail.  Whole modules move, so that their
 module-scoped fixtures are made once."""

@@ -6,7 +6,8 @@ lower bounds (tests/data/floors.txt as pip constraints) on the lowest
 Python in a second fresh environment and runs those examples.  Checked
 here: the constraints file pins every lower bound of pyproject.toml at that
 version and nothing else, .ci/floors runs on the requires-python floor and
-runs the examples, and .ci/run calls it before the README's test command."""
+runs the examples, and .ci/run starts it before the README's test command
+(beside it) and fails on its result."""
 import pathlib
 import re
 import tomllib

@@ -1,11 +1,10 @@
 """The offline link check of the documentation site (docs/_ext/site_links.py):
 it finds a missing page, a missing image and a missing fragment on a small
-site and passes its good links; on the built site (docs/_build/html or
-$ACAUSAL2D_SITE, when built) no internal link misses its target."""
+site and passes its good links.  The built site's links are checked where
+it is built (tests/test_site_build.py)."""
 import os
 import sys
 
-import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "docs", "_ext"))
@@ -33,12 +32,3 @@ def test_a_small_site(tmp_path):
     assert sorted((page, url) for page, url, _ in missing) == [
         ("guide/a.html", "../anim/x.html"), ("index.html", "fig.png"),
         ("index.html", "guide/a.html#nowhere"), ("index.html", "guide/gone.html")]
-
-
-def test_the_built_site():
-    site = next((f for f in (os.environ.get("ACAUSAL2D_SITE"),
-                             os.path.join(ROOT, "docs", "_build", "html"))
-                 if f and os.path.isfile(os.path.join(f, "index.html"))), None)
-    if site is None:
-        pytest.skip("the site is not built (python -m sphinx -b html docs docs/_build/html)")
-    assert missing_targets(site) == []
