@@ -120,3 +120,22 @@ def test_cli_sweep_bad_options_exit_2(tmp_path, args, message):
     proc = run("sweep", PENDULUM, "--out", str(tmp_path), *args)
     assert proc.returncode == 2, proc.stdout + proc.stderr
     assert message in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_a_refused_scheduler_address_is_refused_before_dask_tries_again():
+    """Nothing listens at the port: refused at once (Dask's Client would try
+    again for its 10 s); a listening port, another scheme or a malformed
+    port are left to the Client."""
+    import socket
+    from acausal2d.analysis.sweep import _refuse_unreachable
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        port = sock.getsockname()[1]
+        sock.listen()
+        assert _refuse_unreachable("tcp://127.0.0.1:%d" % port) is None
+        assert _refuse_unreachable("127.0.0.1:%d" % port) is None
+    for address in ("tcp://127.0.0.1:%d" % port, "127.0.0.1:%d" % port):
+        with pytest.raises(ConnectionRefusedError):
+            _refuse_unreachable(address)
+    assert _refuse_unreachable("tls://127.0.0.1:%d" % port) is None
+    assert _refuse_unreachable("tcp://127.0.0.1:notaport") is None

@@ -49,6 +49,8 @@ import hashlib
 import inspect
 import itertools
 import os
+import socket
+import urllib.parse
 import sys
 import time as _time
 from typing import Any
@@ -314,6 +316,7 @@ def cluster(workers=None, scheduler=None):
     from dask.distributed import Client, LocalCluster
     if scheduler is not None:
         try:
+            _refuse_unreachable(scheduler)
             client = Client(scheduler, timeout="10s")
         except (OSError, TimeoutError) as exc:
             raise Acausal2dError("cannot reach the Dask scheduler at %s: %s"
@@ -327,6 +330,27 @@ def cluster(workers=None, scheduler=None):
                       silence_logs=logging.ERROR) as local, \
             Client(local) as client:
         yield client
+
+
+def _refuse_unreachable(scheduler):
+    """Raise ConnectionRefusedError where ``scheduler`` is a TCP address
+    (``tcp://host:port`` or ``host:port``) at which nothing listens: the
+    host refuses at once, where Dask's Client would try again for its whole
+    timeout (10 s).  Any other address or outcome is left to the Client."""
+    text = str(scheduler)
+    parts = urllib.parse.urlsplit(text if "://" in text else "tcp://" + text)
+    try:
+        host, port = parts.hostname, parts.port
+    except ValueError:                # not a port: the Client's own message
+        return
+    if parts.scheme != "tcp" or not host or port is None:
+        return
+    try:
+        socket.create_connection((host, port), timeout=10).close()
+    except ConnectionRefusedError:
+        raise
+    except OSError:                   # unresolved, unreachable, timed out: the Client decides
+        return
 
 
 def _run_dask(client, model, points, settings, progress):
