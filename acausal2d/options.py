@@ -92,16 +92,18 @@ def _atol(value: object) -> float | tuple[float, ...]:
 
 
 def _output_times(value: object) -> tuple[float, ...]:
-    bad = "must be at least two finite, increasing times (a list of numbers), got %r" % (value,)
+    def bad() -> RunOptionError:      # the message made only for a refusal (a long array's repr)
+        return RunOptionError("output_times", "must be at least two finite, increasing times "
+                              "(a list of numbers), got %r" % (value,))
     if isinstance(value, (str, bytes, Mapping)):
-        raise RunOptionError("output_times", bad)
+        raise bad()
     try:
         t = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise RunOptionError("output_times", bad) from None
+        raise bad() from None
     if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
-        raise RunOptionError("output_times", bad)
-    return tuple(float(x) for x in t)
+        raise bad()
+    return tuple(t.tolist())
 
 
 def _progress(value: object) -> Progress:
