@@ -98,7 +98,6 @@ SLOW_MODULES = {
     "test_native_tiers.py": "the native engine's tiers (compiler, background worker)",
     "test_native_tiers_build.py": "the native engine's build tiers (compiler)",
     "test_fmu.py": "FMUs built with the C compiler and run by fmpy",
-    "test_models_no_deprecation.py": "every model of models/ (as the gallery)",
     "test_site_build.py": "the documentation site built in a plain clone (the gallery, notebooks)",
 }
 

@@ -17,6 +17,7 @@ import shlex
 import subprocess
 import sys
 
+import pytest
 from test_plain_clone import ROOT, make_clone
 from test_user_words import site_jargon
 
@@ -57,3 +58,26 @@ def test_the_site_builds_in_a_plain_clone(tmp_path):
     assert len(frames) == len(set(frames)) >= 100          # one animation page per model
     assert missing_targets(site) == []
     assert site_jargon(site) == []
+
+
+DEPRECATED = '''
+from acausal2d import Component
+from acausal2d.library.belt import Pulley
+
+
+class OldPulley(Component):
+    def __init__(self):
+        super().__init__()
+        self.pulley = Pulley(r=0.1, J=1e-4, x0=0.2, y0=-1.0)
+'''
+
+
+def test_a_shipped_model_on_a_former_interface_fails_the_gallery(tmp_path):
+    """The gallery loads and compiles each model with DeprecationWarning as an
+    error (its run is a build warning, so the -W build fails), naming the file."""
+    from gallery_run import _load_and_compile
+    path = tmp_path / "old_pulley.py"
+    path.write_text(DEPRECATED, encoding="utf-8")
+    with pytest.raises(DeprecationWarning) as err:
+        _load_and_compile(str(path), "OldPulley")
+    assert "old_pulley.py" in str(err.value) and "x0" in str(err.value)
