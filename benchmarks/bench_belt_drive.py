@@ -1,4 +1,4 @@
-"""Wall time of the non-circular toothed belt drive (seed ch. 7.3.2): 2 s
+"""Wall time of the non-circular toothed belt drive (Ebert (2015), ch. 7.3.2): 2 s
 simulated (720 deg of drive angle), compilation and pulley design included.
 Prints a table.
 
@@ -23,10 +23,10 @@ cold      = (full mode only) one run in a fresh process with empty caches
             (native libraries and pulley design): what the very first run
             on a machine costs, C compiler included (CPU of the process and
             of its children, the compiler)
-The seed reports 4.2 s in SimulationX on a 3 GHz CPU for compile + simulate
+Ebert (2015) reports 4.2 s in SimulationX on a 3 GHz CPU for compile + simulate
 (with given contours).  The table shows the first run in this process and the
-median of ``repeats`` runs; the target of issue 17 is design + compile +
-simulate <= 0.14 s (30x the seed).
+median of ``repeats`` runs; the target is design + compile + simulate
+<= 0.14 s (30x faster than the dissertation's SimulationX run).
 """
 import math
 import os
@@ -82,9 +82,9 @@ def main(repeats=5, cold=True):
     tot_first, tot_med = sum(first[1:4]), sum(med[1:4])
     print("%-40s %10.3f %10.3f" % ("design + compile + simulate", tot_first, tot_med))
     print("%-40s %10.3f %10.3f" % ("design + compile + simulate, CPU", first[4], med[4]))
-    print("%-40s %10.3f %10.3f" % ("target (seed / 30)", TARGET, TARGET))
-    print("%-40s %10.3f" % ("seed (SimulationX, 3 GHz)", SEED_TIME))
-    print("%-40s %9.1fx %9.1fx" % ("speed-up vs seed, incl. design", SEED_TIME / tot_first,
+    print("%-40s %10.3f %10.3f" % ("target (SimulationX / 30)", TARGET, TARGET))
+    print("%-40s %10.3f" % ("Ebert (2015): SimulationX, 3 GHz", SEED_TIME))
+    print("%-40s %9.1fx %9.1fx" % ("speed-up vs SimulationX, incl. design", SEED_TIME / tot_first,
                                    SEED_TIME / tot_med))
     print("native C libraries in the disk cache at the first run: %s" % warm)
     if cold:

@@ -1,5 +1,5 @@
-"""Wall time of one cable-crane transfer cycle (seed ch. 8.1: 140 s in
-SimulationX on a 3 GHz machine), compilation included.
+"""Wall time of one cable-crane transfer cycle (Ebert (2015), ch. 8.1:
+140 s in SimulationX on a 3 GHz machine), compilation included.
 
     python benchmarks/bench_cable_crane.py [repeats]     (default 5)
     python benchmarks/bench_cable_crane.py --small       (1 cycle, for the test suite)
@@ -9,7 +9,7 @@ drum drive design, prepare_belts), compile = compile_model (flattening,
 index reduction, code generation), simulate = consistent initialization and
 the IDA run over the 30 s cycle at the model's rtol (1e-7), 601 output
 points.  The first row is the first cycle in this process; the last rows the
-median and the best of all repeats (issue 17: >= 300x the seed's 140 s).
+median and the best of all repeats (target: >= 300x faster than those 140 s).
 The native C of the model is compiled once per model structure and cached
 on disk; the table says whether it was there at the first cycle ("warm") and
 (full mode) what one cycle costs in a fresh process with empty caches, C
@@ -52,7 +52,7 @@ def main(repeats=5, cold=True):
     print("Cable crane, one transfer cycle of %.0f s (%d flat equations, %d events)"
           % (T_STOP, neq, len(res.events)))
     print("%-8s %8s %9s %9s %9s %10s %9s %10s" % ("run", "build", "compile", "simulate",
-                                                  "total", "vs seed", "CPU", "vs seed"))
+                                                  "total", "vs 140 s", "CPU", "vs 140 s"))
     med = tuple(statistics.median(r[k] for r in rows) for k in range(5))
     best = min(rows, key=lambda r: r[3])
     for label, r in [("#%d" % (k + 1), r) for k, r in enumerate(rows)] + [("median", med),

@@ -1,11 +1,11 @@
-"""Cold start (issue 30): the first run of a new model structure against the
+"""Cold start: the first run of a new model structure against the
 Python path, the background compile, and later runs at native speed.
 
-    python benchmarks/bench_cold.py            (the table of issue 30; medians of 3, the
+    python benchmarks/bench_cold.py            (the full table; medians of 3, the
                                                 Python path and the first run of 9 pairs)
     python benchmarks/bench_cold.py --small    (a chain of 3 links, one run, one pair, the piston
                                                 engine's whole process once: the suite)
-    python benchmarks/bench_cold.py --classic  (also compile first, as before issue 30)
+    python benchmarks/bench_cold.py --classic  (also compile first, as the runtime did before)
     python benchmarks/bench_cold.py belt chain (only the models whose names contain these)
     python benchmarks/bench_cold.py --pairs=5  (5 alternating pairs instead of 9)
 
@@ -34,8 +34,8 @@ Every figure is measured in a fresh process with a cache folder of its own:
   compiler processes ("bg CPU": on a machine shared with other jobs the wall
   time scatters, the CPU time much less);
 - "later run": the next process on the filled cache (native speed);
-- "compile first": mode now on an empty cache (the behaviour before issue
-  30; with --classic);
+- "compile first": mode now on an empty cache (the behaviour before the
+  first run went on without its library; with --classic);
 - ``acausal2d simulate models/piston_engine.py``, whole process, with an
   empty cache (auto), the same without the installed drivers
   (``ACAUSAL2D_PREBUILT=0``) and with a full cache (target: <= 1.2x);
@@ -202,7 +202,7 @@ def _installed():
 
 
 def main(models, repeat, classic, piston, whole_repeat, pairs):
-    print("cold start (issue 30), fresh processes, s: Python and first run medians of %d "
+    print("cold start, fresh processes, s: Python and first run medians of %d "
           "alternating pairs, the rest medians of %d; driver objects installed with the "
           "package: %d, the C API driver: %s" % ((pairs, repeat) + _installed()))
     print("%-22s %8s %12s %6s %12s %6s %12s %6s %10s %7s %11s %7s %7s %14s" % (

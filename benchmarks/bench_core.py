@@ -13,7 +13,7 @@ figure is the best of a few runs (one for the large chains).
 
 The second table compiles chains of about 10k, 20k and 50k flattened
 equations (compile as above, no simulation) and prints the growth exponent
-of the CPU time between the sizes (issue 17: 50k in <= 30 s, exponent
+of the CPU time between the sizes (targets: 50k in <= 30 s, exponent
 <= 1.2 between 10k and 50k).
 """
 import math

@@ -1,4 +1,4 @@
-"""The explore server (``acausal2d explore``, issue 33) under load.  Prints a table.
+"""The explore server (``acausal2d explore``) under load.  Prints a table.
 
     python benchmarks/bench_explore.py [--small]
 

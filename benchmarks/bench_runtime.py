@@ -12,7 +12,7 @@
 - the same warm (compile + simulate again in one process);
 - the whole process ``acausal2d simulate models/pendulum.py --out DIR``
   (CSV, plots, animation);
-- the compressor (seed ch. 8.2, 14 s): simulate time, number of events and
+- the compressor (Ebert (2015), ch. 8.2, 14 s): simulate time, number of events and
   the time spent per event (re-initialization, event iteration).
 Each figure is the median of ``repeats`` runs (default 5; the spread between
 runs on this shared 2-core machine is large).  The processes started run with the bytecode

@@ -1,4 +1,4 @@
-"""What scoping the thread limits to our runs costs (issue 34): making the
+"""What scoping the thread limits to our runs costs: making the
 process's threadpoolctl ``ThreadpoolController`` (at the first run, and again
 only after a library with a thread pool was loaded), the check that no such
 library was loaded (where a run loads native code), and entering and leaving

@@ -5,7 +5,7 @@ pulls the output.  The cam is an eccentric circle (support function p(psi)
 drum pivot changes with the drum angle and the ratio is not constant.
 
 ==========  ===========================================  ==================
-model       structure (seed)                             output load
+model       structure (Ebert (2015))                     output load
 ==========  ===========================================  ==================
 DBDD        DB~DD (Bild 2.6, four-bar chain): band from  torque on the
             the drum to the tip of a rocker at B0         rocker

@@ -3,7 +3,7 @@
 the documentation (sources and, if built, the site), the command line's
 help, the messages' templates (the prose string literals of the package
 and its library) and the docstrings of the package, the library, the
-models and the documentation's extensions.  The bibliography and the
+models, the benchmarks and the documentation's extensions.  The bibliography and the
 glossary name the works these words came from and are exempt.
 
 Identifiers are not jargon: a random generator's seed (``seed=0``, "random
@@ -26,7 +26,7 @@ EXEMPT_PAGES = {"glossary", "bibliography"}
 
 WORDS = [
     ("seed", re.compile(r"(?<![\w.`'\"-])(?<!\w\()(?<!\w\[)(?<!random )(?<!rng )(?<!fixed )(?<!the random )"
-                        r"seeds?\b(?![\w=(`\")\]-])(?!\s*=)(?!'(?!s\b))(?! (?:of|for) the (?:random|noise|generator))",
+                        r"seeds?\b(?![\w=(`\"\]-])(?!\)\s*[:=,.\]])(?!\s*=)(?!'(?!s\b))(?! (?:of|for) the (?:random|noise|generator))",
                         re.I)),
     ("the talk", re.compile(r"\bthe talk\b(?!-)", re.I)),
     ("issue N", re.compile(r"\bissues? #?\d+", re.I)),
@@ -50,13 +50,14 @@ def jargon(text):
 
 def test_the_patterns_tell_words_from_identifiers():
     prose = ["the seed's Bild 4.1", "(seed ch. 2)", "as the talk shows", "after issue 17",
-             "the spec's section 1.6", "see lines 2428-2440", "../shared/specs/x.md"]
+             "the spec's section 1.6", "see lines 2428-2440", "../shared/specs/x.md",
+             "structure (seed)  output"]
     for text in prose:
         assert jargon(text), text
     identifiers = ["a random seed", "fixed seeds", "``seed=0``", "rng = default_rng(seed)",
                    "spec = specs.speed(2)", "library/nodes/specs.py", "the `spec` argument",
                    "a bad spec raises", "per figure spec",
-                   "seeded", "seedless", "'seed'", "the talk-back"]
+                   "seeded", "seedless", "'seed'", "the talk-back", "f(x, seed)."]
     assert [t for t in identifiers if jargon(t)] == []
 
 
@@ -134,7 +135,7 @@ def test_command_line_help():
 # ---------------------------------------------------------------- code
 def _sources():
     files = []
-    for folder in ("acausal2d", "library", "models", os.path.join("docs", "_ext")):
+    for folder in ("acausal2d", "library", "models", "benchmarks", os.path.join("docs", "_ext")):
         files += glob.glob(os.path.join(ROOT, folder, "**", "*.py"), recursive=True)
     real = {os.path.realpath(p): p for p in files}          # acausal2d/library is library/
     return sorted(real)
