@@ -133,6 +133,23 @@ def test_time_events_fall_on_their_times_without_root_finding():
     assert w[k[-1]] == pytest.approx(2.0, abs=1e-12)
 
 
+
+def test_time_relation_values_are_those_of_the_plain_call():
+    """The time relations' g and dg/dt the run schedules its time events by
+    (bound once per run) equal CasADi's plain call of ``time_event_fn``."""
+    from acausal2d.runtime.simulation import Simulation
+    cm = acausal2d.compile_model(RampOnInertia())
+    opts = cm.run_options(stop_time=1.0)
+    sim = Simulation(cm.system, cm.parameter_values(None), opts.times(), opts.rtol, opts.atol)
+    assert len(cm.system.time_relations) == 2
+    for t in (0.0, 0.2, 0.45, 0.7, 1.0):
+        sim.t = t
+        g, rate = sim._time_relation_values()
+        want = [np.asarray(x).ravel() for x in cm.system.time_event_fn(t, sim.p)]
+        for got, ref in zip((g, rate), want):       # the same function evaluated: a few ulps
+            np.testing.assert_allclose(got, ref, rtol=4 * np.finfo(float).eps, atol=1e-15)
+
+
 class Bouncer(Component):
     """A ball on a stiff contact spring (x < 0) under gravity, dropped from 1 m."""
     x = Variable(start=1.0, fixed=True)
