@@ -91,9 +91,9 @@ def _stored_rows(cm, **settings):
     saved = []
     project = projection.Projector.project
 
-    def keep(self, T, Z, d):
+    def keep(self, T, Z, d, overwrite=False):
         saved.append((self, np.array(T), np.array(Z), np.array(d)))
-        return project(self, T, Z, d)
+        return project(self, T, Z, d, overwrite)
     projection.Projector.project = keep
     try:
         cm.simulate(**settings)
@@ -135,6 +135,11 @@ def test_the_c_projector_solves_every_row_to_1e_12(model, settings, largest):
         assert_copied(out[:, ~np.isin(np.arange(Z.shape[1]), proj.free)],   # held columns
                       Z[:, ~np.isin(np.arange(Z.shape[1]), proj.free)])
         assert _worst(proj, T, out, d) <= 1e-12
+        given = Z.copy()                   # the run's way: IDA's rows solved where they are
+        inplace, ok = proj.native(T, given, proj.p, d, projection.RES_TOL,
+                                  proj.native_iterations, proj.native_slow, True)
+        assert inplace is given and ok.all()
+        assert_copied(inplace, out)                    # the same deterministic call
         n_rows += len(T)
     assert n_rows >= 100
     assert native.row_projector(proj.system, proj.free) is not None

@@ -83,8 +83,8 @@ def test_a_new_structure_runs_on_the_c_api_driver_from_its_first_run(
         monkeypatch.delenv("CC", raising=False)
     projected = []
     real = projection.Projector.project
-    monkeypatch.setattr(projection.Projector, "project", lambda self, *a: projected.append(
-        self.native) or real(self, *a))
+    monkeypatch.setattr(projection.Projector, "project", lambda self, *a, **kw: projected.append(
+        self.native) or real(self, *a, **kw))
     calls = native_runs(monkeypatch)
     res = _run(PistonEngine())
     lib = capi.driver()

@@ -427,15 +427,15 @@ def declare_projector(lib):
 
 
 def row_projector(system, free, chosen=None):
-    """A function (T, Z, p, d, tol, max_iter, slow) -> (Z solved for the
-    unknowns ``free``, converged rows) in C (``native_project.c``, LU of the
-    Jacobian's block lower-triangular form with ``native_lu.c`` per block,
-    :func:`~acausal2d.runtime.blt_layout.layout`),
-    or None where the engine ``chosen`` is the Python path, it cannot be
-    built (or is not in the cache in mode auto) or dE/dz_free is
-    structurally singular.
-    Each row gets at most ``max_iter`` Newton iterations; after a row that
-    needed more than ``slow`` of them the next row takes a new LU."""
+    """A function (T, Z, p, d, tol, max_iter, slow, overwrite=False) -> (Z
+    solved for the unknowns ``free`` - in a copy, or in Z where ``overwrite``
+    and Z is C-ordered floats -, converged rows) in C (``native_project.c``,
+    LU of dE/dz_free's block lower-triangular form, ``native_lu.c`` per block,
+    :func:`~acausal2d.runtime.blt_layout.layout`), or None where the engine
+    ``chosen`` is the Python path, it cannot be built (or is not in the cache
+    in mode auto) or dE/dz_free is structurally singular.  Each row gets at
+    most ``max_iter`` Newton iterations; after a row that needed more than
+    ``slow`` of them the next row takes a new LU."""
     lib = _library(system, _projector_plan, _declare_projector, chosen,
                    getattr(system, "model_name", None))
     return None if lib is None else projector_on(lib, system, free)
@@ -455,9 +455,9 @@ def projector_on(lib, system, free, ids=None):
     col_of[free] = np.arange(len(free), dtype=np.intc)
     nominal = np.ascontiguousarray(system.nominal, dtype=float)
 
-    def project(T, Z, p, d, tol, max_iter, slow):
+    def project(T, Z, p, d, tol, max_iter, slow, overwrite=False):
         T = np.ascontiguousarray(T, float)
-        Z = np.array(Z, dtype=float, order="C")
+        Z = np.require(Z, float, ["C", "W"]) if overwrite else np.array(Z, dtype=float, order="C")
         ok = np.zeros(len(T), dtype=np.intc)
         p_, d_ = (np.ascontiguousarray(np.r_[np.asarray(a, float).ravel(), 0.0]) for a in (p, d))
         lib.a2d_project(len(T), _ptr(T), _ptr(Z), _ptr(p_), _ptr(d_), n_var, n_eq,

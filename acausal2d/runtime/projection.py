@@ -220,22 +220,24 @@ class Projector:
                 break
         return Z, done
 
-    def project(self, T, Z, d):
+    def project(self, T, Z, d, overwrite=False):
         """Rows of Z (at times T, relation values d) solved for the
         non-state unknowns; rows that do not converge are left as given.
         Where it can be built, the C projector (``native_project.c``,
         Newton with an LU of the block lower-triangular form reused from
-        row to row) goes first; it returns a new array (the rows of the chain
-        of 20 links, 16 MB, are not copied twice)."""
+        row to row) goes first.  The result is a new array, or with
+        ``overwrite`` (the caller gives Z up, as a run does with IDA's
+        output) Z itself where it is a C-ordered array of floats: the rows
+        of the chain of 20 links, 16 MB, are not copied."""
         if self.native is not None and len(T):
             out, ok = self.native(T, Z, self.p, d, RES_TOL, self.native_iterations,
-                                  self.native_slow)
+                                  self.native_slow, overwrite)
             if ok.all():
                 return out
             rest = np.nonzero(~ok)[0]
             out[rest] = self._project(np.asarray(T)[rest], out[rest], d)
             return out
-        out = np.array(Z, dtype=float)
+        out = np.require(Z, float, ["C", "W"]) if overwrite else np.array(Z, dtype=float)
         if not len(self.free) or not len(T):
             return out
         return self._project(T, out, d)

@@ -244,7 +244,7 @@ class Simulation:
         except Exception as exc:       # scikit-sundae raises on bad input at the start
             raise SimulationError("IDA could not start at t=%.6g: %s" % (self.t, exc),
                                   time=self.t) from None
-        rows = projector.project(T, Y, self.d)
+        rows = projector.project(T, Y, self.d, overwrite=True)     # Y: this segment's own
         self.out.add_block(T, rows)
         self.stats.segments += 1
         self.stats.steps += prob.steps - steps0
