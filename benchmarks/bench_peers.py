@@ -16,7 +16,11 @@ warm          = compile + simulate in this process after a first run
 first         = the first compile + simulate in a fresh process, after
                 ``import acausal2d`` only (lazy imports of the runtime
                 included), against the warm figure
-The last line says whether acausal2d's bytecode (``__pycache__``) is
+The processes start in a folder of their own, so they import the acausal2d
+this Python has installed (not a checkout they happen to start in).  The
+last line says which one (its folder; an editable install is the
+checkout, and its import hook adds about 0.03 s to every process of the
+environment, rumoca's too) and whether its bytecode (``__pycache__``) is
 there: without it (``PYTHONDONTWRITEBYTECODE=1`` with a source checkout)
 every process compiles acausal2d's modules from source, about 0.05 s of
 CPU that an installed package does not pay (rumoca's wheel has its bytecode).
@@ -24,6 +28,7 @@ CPU rows: user + system time of the same runs (robust against other load
 on the machine).  Ratios are rumoca / acausal2d (> 1: acausal2d is faster).  Without rumoca
 the acausal2d side runs and the table says rumoca is missing.
 """
+import json
 import os
 import resource
 import statistics
@@ -35,6 +40,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 MODEL_PY = os.path.join(ROOT, "models", "piston_engine.py")
 MODEL_MO = os.path.join(HERE, "peers", "MiniPlanar.mo")
+NEUTRAL = os.path.join(HERE, "peers")   # the processes' folder: no acausal2d package in it
 CLASS_MO = "MiniPlanar.SliderCrankAcausal"
 STOP, INTERVALS, RTOL = 10.0, 5000, 1e-8
 
@@ -83,7 +89,7 @@ def whole_process(tool):
     of the whole process: user + system, CPU s of compile + simulate)."""
     c0, t0 = _children_cpu(), time.perf_counter()
     out = subprocess.run([sys.executable, "-c", _code(tool)], capture_output=True, text=True,
-                         check=True, cwd=ROOT)
+                         check=True, cwd=NEUTRAL)
     wall = time.perf_counter() - t0
     fields = out.stdout.split()
     return wall, float(fields[0]), _children_cpu() - c0, float(fields[2])
@@ -127,17 +133,34 @@ def main(pairs=5):
     print("%-44s %10.2f" % ("acausal2d first / warm", first["acausal2d"] / hot["acausal2d"]))
     print("%-44s %10.2f" % ("acausal2d first / warm (CPU)",
                             first_cpu["acausal2d"] / hot_cpu["acausal2d"]))
-    print("acausal2d bytecode: %s" % ("cached" if bytecode_cached() else
-                                      "not cached (each process compiles acausal2d from source)"))
+    folder, editable = installed()
+    print("acausal2d: %s (%s), bytecode %s" % (
+        folder, "editable install" if editable else "installed",
+        "cached" if bytecode_cached(folder) else
+        "not cached (each process compiles acausal2d from source)"))
     if "rumoca" not in tools:
         print("rumoca is missing (pip install rumoca==0.10.2, or the 'bench' extra): "
               "acausal2d side only")
 
 
-def bytecode_cached():
-    """True if acausal2d's modules have up-to-date bytecode (pyc) files."""
+def installed():
+    """(folder of the acausal2d the processes import, whether it is an
+    editable install)."""
+    code = ("import json, os, acausal2d, importlib.metadata as m\n"
+            "url = json.loads(m.distribution('acausal2d').read_text('direct_url.json') or '{}')\n"
+            "print(json.dumps([os.path.dirname(acausal2d.__file__), "
+            "url.get('dir_info', {}).get('editable', False)]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=NEUTRAL)
+    folder, editable = json.loads(out.stdout.strip().splitlines()[-1])
+    return folder, bool(editable)
+
+
+def bytecode_cached(folder):
+    """True if the acausal2d package in ``folder`` has up-to-date bytecode
+    (pyc) files."""
     import importlib.util
-    src = os.path.join(ROOT, "acausal2d", "compiled.py")
+    src = os.path.join(folder, "compiled.py")
     pyc = importlib.util.cache_from_source(src)
     return os.path.exists(pyc) and os.path.getmtime(pyc) >= os.path.getmtime(src)
 
