@@ -11,8 +11,9 @@ x' = y[der(x)], every equation as an algebraic equation) is handed to
 rtol and the smallest of its absolute tolerances; algebraic unknowns left
 out of the error test as in acausal2d) and the same output grid, without
 events.  Both are timed in CPU seconds of this process (single-threaded
-both; on a machine shared with other jobs wall times scatter by 2-3x) as
-the median of ``repeats`` runs (default 5).  A second table gives the
+both; on a machine shared with other jobs wall times scatter by 2-3x),
+alternating, ``repeats`` pairs (default 5): the table gives the medians of
+each and the median of the pairs' ratios.  A second table gives the
 native IDA alone with each linear solver it can use (the choice of
 :mod:`acausal2d.runtime.native`: SUNDIALS' dense LU, LAPACK's, SuperLU_MT,
 the driver's own sparse LU).
@@ -107,17 +108,26 @@ def floor_run(fn, x0, z0):
 
 
 def measure(make, stop, rtol, n_out, repeats):
-    """One row of the table: medians of ``repeats`` runs."""
+    """One row of the table: the two runs alternate ``repeats`` times
+    (after a warm-up of each; each pair in the other order than the last);
+    their medians and the median of the pairs' ratios (the machine's speed
+    drifts between runs, and a pair sees nearly the same machine)."""
     cm = acausal2d.compile_model(make())
     acausal2d_run(cm, stop, rtol, n_out)              # warm-up
-    runs = [acausal2d_run(cm, stop, rtol, n_out) for _ in range(repeats)]
     sim = the_run(cm, stop, rtol, n_out)
     fn, x0, z0 = floor_integrator(sim)
     floor_run(fn, x0, z0)
-    floors = [floor_run(fn, x0, z0) for _ in range(repeats)]
+    runs, floors = [], []
+    for k in range(repeats):            # in turn which of the pair runs first
+        if k % 2:
+            floors.append(floor_run(fn, x0, z0))
+        runs.append(acausal2d_run(cm, stop, rtol, n_out))
+        if not k % 2:
+            floors.append(floor_run(fn, x0, z0))
     a = statistics.median(r[0] for r in runs)
     f = statistics.median(r[0] for r in floors)
-    return (a, f, a / f, runs[-1][1], floors[-1][1]), sim
+    ratio = statistics.median(r[0] / q[0] for r, q in zip(runs, floors))
+    return (a, f, ratio, runs[-1][1], floors[-1][1]), sim
 
 
 def solver_times(sim, repeats):
@@ -147,7 +157,7 @@ def main(argv):
     repeats = int(args[0]) if args else (1 if small else 5)
     n_out = 200 if small else 5000
     print("Warm simulate vs CasADi IDAS on the same index-1 system (%d output points, "
-          "median of %d)" % (n_out, repeats))
+          "%d alternating pairs: medians, ratio the median of the pairs')" % (n_out, repeats))
     print("%-20s %14s %10s %7s %10s %11s" % HEADER)
     solvers = []
     for name, make, stop, rtol in CASES:

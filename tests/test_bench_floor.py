@@ -24,7 +24,8 @@ def test_bench_floor_small_prints_its_table():
     for name, (a, f, ratio, steps_a, steps_f) in rows.items():
         a, f, ratio = float(a), float(f), float(ratio)
         assert a > 0 and f > 0, name
-        h = 0.5e-5        # the times are printed to 1e-5 s, the ratio to 0.01
+        h = 0.5e-5        # the times are printed to 1e-5 s, the ratio to 0.01; one pair in
+        #                   the small mode: the ratio is that pair's
         assert (a - h) / (f + h) - 0.005 <= ratio <= (a + h) / (f - h) + 0.005, name
         # the same system at the same tolerances: step counts within 25 % of each other
         assert abs(int(steps_a) - int(steps_f)) <= 0.25 * int(steps_f), name
