@@ -319,9 +319,9 @@ class NativeIDA:
     def run(self, tspan, y0, yp0):
         """One segment over ``tspan``: (flag, T, Y, passes (T, Y), last
         (t, y, yp), root info, nfev, njev, steps taken)."""
-        n, m = self.n, len(tspan)
-        T, Y = np.zeros(m), np.zeros((m, n))
-        PT, PY = np.zeros(MAX_PASSES), np.zeros((MAX_PASSES, n))
+        n, m = self.n, len(tspan)       # rows left unfilled are not handed out: not zeroed
+        T, Y = np.empty(m), np.empty((m, n))
+        PT, PY = np.empty(MAX_PASSES), np.empty((MAX_PASSES, n))
         n_rows, n_pass = ctypes.c_int(m), ctypes.c_int(MAX_PASSES)
         pass_col = self.prob.n_rel + self.prob.n_mon if self.prob.n_pass else -1
         steps0 = self.lib.a2d_steps(self.handle)
