@@ -229,15 +229,15 @@ class Projector:
         ``overwrite`` (the caller gives Z up, as a run does with IDA's
         output) Z itself where it is a C-ordered array of floats: the rows
         of the chain of 20 links, 16 MB, are not copied."""
+        out = np.require(Z, float, ["C", "W"]) if overwrite else np.array(Z, dtype=float, order="C")
         if self.native is not None and len(T):
-            out, ok = self.native(T, Z, self.p, d, RES_TOL, self.native_iterations,
-                                  self.native_slow, overwrite)
+            out, ok = self.native(T, out, self.p, d, RES_TOL, self.native_iterations,
+                                  self.native_slow, True)
             if ok.all():
                 return out
             rest = np.nonzero(~ok)[0]
             out[rest] = self._project(np.asarray(T)[rest], out[rest], d)
             return out
-        out = np.require(Z, float, ["C", "W"]) if overwrite else np.array(Z, dtype=float)
         if not len(self.free) or not len(T):
             return out
         return self._project(T, out, d)
